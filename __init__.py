@@ -1,0 +1,8 @@
+"""BirdsEye for QGIS — survey-driven aerial training sets and detector review."""
+
+
+def classFactory(iface):  # noqa: N802 (QGIS API name)
+    """QGIS entry point; imports lazily so a missing optional package never stops QGIS starting."""
+    from .birdseye_qgis.gui.plugin import BirdsEyePlugin
+
+    return BirdsEyePlugin(iface)

@@ -1,0 +1,26 @@
+"""Errors raised for bad user input.
+
+Every message names the file (or layer), and where it applies the row and the field, and says what
+was expected, so the Processing log tells a user exactly what to fix.
+"""
+from __future__ import annotations
+
+
+class InputError(ValueError):
+    """Input a user can fix: a file, row or field that is not what was expected."""
+
+    def __init__(self, message: str, *, source: str | None = None, row: int | None = None,
+                 field: str | None = None):
+        self.source, self.row, self.field = source, row, field
+        where = []
+        if source:
+            where.append(str(source))
+        if row is not None:
+            where.append(f"row {row}")
+        if field:
+            where.append(f"field '{field}'")
+        super().__init__(f"{', '.join(where)}: {message}" if where else message)
+
+
+class Cancelled(Exception):
+    """Raised inside core loops when the caller's cancel callback returns True."""

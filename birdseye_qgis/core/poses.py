@@ -1,0 +1,105 @@
+"""Frame poses and the per-frame camera geometry derived from them.
+
+A :class:`FramePoses` is what a frame layer carries (DESIGN §3): the IMU/body position in WGS84
+(lat, lon, ellipsoidal height), the attitude quaternion ``q = (qw, qx, qy, qz)`` with
+``v_ned = R(q) v_body`` (body = forward-right-down = the IMU frame of ``T_cam_imu``), and the
+ellipsoidal height of the level ground under the frame (from the altimeter, or NaN when a DEM
+supplies the ground).
+
+:class:`FrameGeometry` turns these into camera centres and orientations in a
+:class:`~.geodesy.LocalFrame`, vectorised over frames.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .camera import CameraModel
+from .geodesy import LocalFrame
+from .rotations import quat_to_rotmat
+
+
+@dataclass
+class FramePoses:
+    """Poses of F frames taken by one camera. Arrays have length F."""
+
+    frame_id: np.ndarray
+    lat: np.ndarray
+    lon: np.ndarray
+    height: np.ndarray
+    quat: np.ndarray
+    ground_height: np.ndarray
+    camera: CameraModel
+
+    def __post_init__(self):
+        self.frame_id = np.asarray(self.frame_id)
+        for name in ("lat", "lon", "height", "ground_height"):
+            setattr(self, name, np.asarray(getattr(self, name), dtype=float).reshape(-1))
+        self.quat = np.asarray(self.quat, dtype=float).reshape(-1, 4)
+        n = len(self.lat)
+        for name in ("frame_id", "lon", "height", "quat", "ground_height"):
+            if len(getattr(self, name)) != n:
+                raise ValueError(f"FramePoses.{name} has {len(getattr(self, name))} entries, expected {n}")
+
+    def __len__(self) -> int:
+        return len(self.lat)
+
+    def subset(self, index) -> "FramePoses":
+        return FramePoses(self.frame_id[index], self.lat[index], self.lon[index], self.height[index],
+                          self.quat[index], self.ground_height[index], self.camera)
+
+
+def ground_height_from_altimeter(height, quat, radalt, t_imu_rad=None) -> np.ndarray:
+    """Ellipsoidal height of the level ground: ``h_rad − radalt·cos(roll)·cos(pitch)``.
+
+    The radar ranges along the body z axis; ``cos(roll)·cos(pitch)`` is the vertical component of
+    that axis, i.e. element (2, 2) of R(q). ``t_imu_rad`` is the altimeter position in the body frame
+    (metres); its vertical offset in NED is applied to the IMU height first.
+    """
+    r = quat_to_rotmat(quat)
+    h_rad = np.asarray(height, dtype=float)
+    if t_imu_rad is not None:
+        h_rad = h_rad - (r @ np.asarray(t_imu_rad, dtype=float))[..., 2]
+    return h_rad - np.asarray(radalt, dtype=float) * r[..., 2, 2]
+
+
+class FrameGeometry:
+    """Camera centres and camera→local rotations of F frames in a local metric frame.
+
+    ``R_local_cam[f] @ X_cam + C[f]`` maps camera-frame points of frame f into the local frame.
+    """
+
+    def __init__(self, poses: FramePoses, local: LocalFrame):
+        self.poses = poses
+        self.local = local
+        self.camera = poses.camera
+        self.imu_position = local.from_geodetic(poses.lat, poses.lon, poses.height)
+        self.up = local.up_at(poses.lat, poses.lon)
+        self.R_local_body = local.rotation_from_ned(poses.lat, poses.lon) @ quat_to_rotmat(poses.quat)
+        t_imu_cam = self.camera.T_imu_cam
+        self.R_local_cam = self.R_local_body @ t_imu_cam[:3, :3]
+        self.C = self.imu_position + self.R_local_body @ t_imu_cam[:3, 3]
+        # Level ground under each frame: normal to the ellipsoid at the IMU, at the ground height.
+        self.ground_point = self.imu_position - (poses.height - poses.ground_height)[:, None] * self.up
+
+    def __len__(self) -> int:
+        return len(self.C)
+
+    def to_camera(self, frame_idx: np.ndarray, points: np.ndarray) -> np.ndarray:
+        """Camera-frame coordinates (N, 3) of local points (N, 3), one frame index per point."""
+        d = np.asarray(points, dtype=float) - self.C[frame_idx]
+        return np.einsum("nji,nj->ni", self.R_local_cam[frame_idx], d)
+
+    def rays(self, frame_idx: np.ndarray, uv: np.ndarray) -> np.ndarray:
+        """Local-frame ray directions (N, 3) (not unit length) through pixels uv (N, 2)."""
+        d_cam = self.camera.pixel_rays(uv)
+        return np.einsum("nij,nj->ni", self.R_local_cam[frame_idx], d_cam)
+
+    def depth_below(self) -> np.ndarray:
+        """Vertical distance (m) from each camera centre down to its level ground."""
+        return np.einsum("fi,fi->f", self.C - self.ground_point, self.up)
+
+    def gsd_m(self) -> np.ndarray:
+        """Ground sample distance (m/px) at the image centre over the level ground."""
+        return self.depth_below() / np.sqrt(self.camera.fx * self.camera.fy)

@@ -1,0 +1,1 @@
+"""One Processing algorithm per module; :mod:`..provider` finds every :class:`BirdsEyeAlgorithm`."""

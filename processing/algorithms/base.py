@@ -1,0 +1,118 @@
+"""Shared base of every BirdsEye Processing algorithm: naming, groups, help, errors, progress."""
+from __future__ import annotations
+
+from pathlib import Path
+
+from qgis.core import QgsProcessingAlgorithm, QgsProcessingException
+from qgis.PyQt.QtCore import QCoreApplication
+from qgis.PyQt.QtGui import QIcon
+
+from ...birdseye_qgis.core.errors import Cancelled, InputError
+
+PLUGIN_ROOT = Path(__file__).resolve().parents[2]
+HELP_DIR = PLUGIN_ROOT / "resources" / "help"
+ICON_PATH = PLUGIN_ROOT / "resources" / "icons" / "birdseye.svg"
+
+GROUPS = {
+    "field": "1 · Field data",
+    "plan": "2 · Flight planning",
+    "labels": "3 · Training labels",
+    "detect": "4 · Detection and review",
+    "design": "5 · Platform design",
+    "simulate": "6 · Simulation",
+}
+
+
+class BirdsEyeAlgorithm(QgsProcessingAlgorithm):
+    """Subclasses set ``ALG_ID``, ``DISPLAY_NAME`` and ``GROUP`` (a key of :data:`GROUPS`).
+
+    Help text lives in ``resources/help/<ALG_ID>.md`` (Markdown-ish: blank-line paragraphs, ``- ``
+    bullets, ``**bold**``), so it is easy to review and translate.
+    """
+
+    ALG_ID = ""
+    DISPLAY_NAME = ""
+    GROUP = ""
+
+    def tr(self, text: str) -> str:
+        return QCoreApplication.translate(type(self).__name__, text)
+
+    def name(self) -> str:
+        return self.ALG_ID
+
+    def displayName(self) -> str:  # noqa: N802
+        return self.tr(self.DISPLAY_NAME)
+
+    def group(self) -> str:
+        return self.tr(GROUPS[self.GROUP])
+
+    def groupId(self) -> str:  # noqa: N802
+        return self.GROUP
+
+    def icon(self) -> QIcon:
+        return QIcon(str(ICON_PATH))
+
+    def createInstance(self):  # noqa: N802
+        return type(self)()
+
+    def shortHelpString(self) -> str:  # noqa: N802
+        path = HELP_DIR / f"{self.ALG_ID}.md"
+        if not path.is_file():
+            return ""
+        return markdown_to_html(self.tr(path.read_text(encoding="utf-8")))
+
+    def helpUrl(self) -> str:  # noqa: N802
+        return ""
+
+    # -------------------------------------------------------------- helpers for subclasses
+    @staticmethod
+    def user_error(exc: Exception) -> QgsProcessingException:
+        """A QgsProcessingException carrying an input error's message (file, row, field)."""
+        return QgsProcessingException(str(exc))
+
+    @staticmethod
+    def progress_callbacks(feedback, start: float = 0.0, end: float = 100.0):
+        """(progress(fraction), is_canceled()) callables for core functions that take them."""
+
+        def progress(fraction: float) -> None:
+            if feedback is not None:
+                feedback.setProgress(start + (end - start) * max(0.0, min(1.0, fraction)))
+
+        def is_canceled() -> bool:
+            return feedback is not None and feedback.isCanceled()
+
+        return progress, is_canceled
+
+    def run_core(self, function, *args, **kwargs):
+        """Call core code, turning its input errors into messages a user can act on."""
+        try:
+            return function(*args, **kwargs)
+        except InputError as exc:
+            raise self.user_error(exc) from exc
+        except Cancelled:
+            raise QgsProcessingException(self.tr("Cancelled by the user.")) from None
+
+
+def markdown_to_html(text: str) -> str:
+    """The small Markdown subset our help files use, as the HTML the Processing dialog shows."""
+    import html
+    import re
+
+    blocks = [b.strip() for b in re.split(r"\n\s*\n", text.strip()) if b.strip()]
+    out = []
+    for block in blocks:
+        lines = block.splitlines()
+        esc = [re.sub(r"\*\*(.+?)\*\*", r"<b>\1</b>", html.escape(line)) for line in lines]
+        esc = [re.sub(r"`(.+?)`", r"<code>\1</code>", line) for line in esc]
+        if lines[0].startswith("#"):
+            out.append(f"<h3>{esc[0].lstrip('#').strip()}</h3>")
+            esc = esc[1:]
+            lines = lines[1:]
+            if not esc:
+                continue
+        if all(line.lstrip().startswith("- ") for line in lines):
+            items = "".join(f"<li>{line.lstrip()[2:]}</li>" for line in esc)
+            out.append(f"<ul>{items}</ul>")
+        else:
+            out.append(f"<p>{' '.join(esc)}</p>")
+    return "\n".join(out)

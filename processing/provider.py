@@ -1,0 +1,54 @@
+"""The ``birdseye`` Processing provider."""
+from __future__ import annotations
+
+import importlib
+import inspect
+import pkgutil
+
+from qgis.core import QgsMessageLog, Qgis, QgsProcessingProvider
+from qgis.PyQt.QtGui import QIcon
+
+from .algorithms import base
+from .algorithms.base import BirdsEyeAlgorithm, ICON_PATH
+
+
+def algorithm_classes() -> list[type[BirdsEyeAlgorithm]]:
+    """Every algorithm class in ``processing/algorithms`` (one per module), sorted by id.
+
+    A module that fails to import (for instance a missing optional package) is logged and skipped,
+    so one broken algorithm never hides the others.
+    """
+    from . import algorithms
+
+    found = {}
+    for info in pkgutil.iter_modules(algorithms.__path__):
+        if info.name == "base":
+            continue
+        try:
+            module = importlib.import_module(f"{algorithms.__name__}.{info.name}")
+        except Exception as exc:  # noqa: BLE001 — reported, never fatal for QGIS
+            QgsMessageLog.logMessage(f"BirdsEye: algorithm module '{info.name}' failed to load: {exc}",
+                                     "BirdsEye", Qgis.Critical)
+            continue
+        for _, cls in inspect.getmembers(module, inspect.isclass):
+            if issubclass(cls, base.BirdsEyeAlgorithm) and cls.ALG_ID and cls.__module__ == module.__name__:
+                found[cls.ALG_ID] = cls
+    return [found[k] for k in sorted(found)]
+
+
+class BirdsEyeProvider(QgsProcessingProvider):
+    def id(self) -> str:
+        return "birdseye"
+
+    def name(self) -> str:
+        return "BirdsEye"
+
+    def longName(self) -> str:  # noqa: N802
+        return "BirdsEye — survey-driven aerial labels and detection"
+
+    def icon(self) -> QIcon:
+        return QIcon(str(ICON_PATH))
+
+    def loadAlgorithms(self) -> None:  # noqa: N802
+        for cls in algorithm_classes():
+            self.addAlgorithm(cls())
