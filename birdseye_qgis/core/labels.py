@@ -140,94 +140,140 @@ def tile_origins(length: int, tile: int) -> list[int]:
 
 def write_label_set(poses: FramePoses, images, geotags: Geotags, frame_labels: list[FrameLabels],
                     out_dir, request: LabelRequest, progress=None, is_canceled=None) -> "LabelSetResult":
-    """Write labels.csv, labels.txt, rasters, tiles and COCO for projected labels."""
-    out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
-    cam = poses.camera
-    classes = request.classes or sorted({str(x) for x in geotags.labels})
-    class_index = {name: i for i, name in enumerate(classes)}
-    rng = np.random.default_rng(request.seed)
-    raster_dir = out / "rasters"
-    if request.write_rasters:
-        raster_dir.mkdir(exist_ok=True)
-    if request.tile_size:
-        (out / "tiles" / "images").mkdir(parents=True, exist_ok=True)
-        (out / "tiles" / "labels").mkdir(parents=True, exist_ok=True)
-    coco = {"images": [], "annotations": [],
-            "categories": [{"id": i + 1, "name": c, "supercategory": "target", "keypoints": ["centre"],
-                            "skeleton": []} for i, c in enumerate(classes)]} if request.coco else None
-    frames_per_geotag = np.zeros(len(geotags), dtype=np.int64)
-    seen_at_edge = np.zeros(len(geotags), dtype=bool)
-    labels_per_frame = []
-    n_edge = n_tiles_pos = n_tiles_neg = 0
-    with open(out / "labels.csv", "w", newline="", encoding="utf-8") as fcsv, \
-            open(out / "labels.txt", "w", encoding="utf-8") as ftxt:
-        writer = csv.writer(fcsv)
-        writer.writerow(LABELS_CSV_FIELDS)
+    """Write labels.csv, labels.txt, rasters, tiles and COCO for the projected labels of one camera."""
+    with LabelWriter(out_dir, geotags, request) as writer:
+        writer.add_frames(poses, images, frame_labels, progress, is_canceled)
+    return writer.result
+
+
+class LabelWriter:
+    """Streams frames into one label folder; frames of several cameras can be added in turn.
+
+    Use as a context manager; ``result`` holds the summary once it is closed.
+    """
+
+    def __init__(self, out_dir, geotags: Geotags, request: LabelRequest):
+        self.out = Path(out_dir)
+        self.out.mkdir(parents=True, exist_ok=True)
+        self.geotags, self.request = geotags, request
+        self.classes = request.classes or sorted({str(x) for x in geotags.labels})
+        self.class_index = {name: i for i, name in enumerate(self.classes)}
+        self.rng = np.random.default_rng(request.seed)
+        self.raster_dir = self.out / "rasters"
+        if request.write_rasters:
+            self.raster_dir.mkdir(exist_ok=True)
+        if request.tile_size:
+            (self.out / "tiles" / "images").mkdir(parents=True, exist_ok=True)
+            (self.out / "tiles" / "labels").mkdir(parents=True, exist_ok=True)
+        self.coco = {"images": [], "annotations": [],
+                     "categories": [{"id": i + 1, "name": c, "supercategory": "target",
+                                     "keypoints": ["centre"], "skeleton": []}
+                                    for i, c in enumerate(self.classes)]} if request.coco else None
+        self.frames_per_geotag = np.zeros(len(geotags), dtype=np.int64)
+        self.seen_at_edge = np.zeros(len(geotags), dtype=bool)
+        self.labels_per_frame: list[int] = []
+        self.missing_images: list[str] = []
+        self.n_edge = self.n_tiles_pos = self.n_tiles_neg = 0
+        self.result: LabelSetResult | None = None
+        self._csv_file = open(self.out / "labels.csv", "w", newline="", encoding="utf-8")
+        self._txt_file = open(self.out / "labels.txt", "w", encoding="utf-8")
+        self._csv = csv.writer(self._csv_file)
+        self._csv.writerow(LABELS_CSV_FIELDS)
+
+    def __enter__(self) -> "LabelWriter":
+        return self
+
+    def __exit__(self, exc_type, exc, tb) -> None:
+        self._csv_file.close()
+        self._txt_file.close()
+        if exc_type is None:
+            self.result = self._finish()
+
+    def add_frames(self, poses: FramePoses, images, frame_labels: list[FrameLabels], progress=None,
+                   is_canceled=None) -> np.ndarray:
+        """Write the frames of one camera; returns the number of labels written per frame."""
+        counts = np.zeros(len(frame_labels), dtype=np.int64)
         for k, fl in enumerate(frame_labels):
             if is_canceled is not None and is_canceled():
                 raise Cancelled()
-            pos = ~fl.edge
-            n_edge += int(fl.edge.sum())
-            seen_at_edge[fl.geotag_index[fl.edge]] = True
-            gi, uv, margin = fl.geotag_index[pos], fl.uv[pos], fl.margin_px[pos]
-            frame_id, image = poses.frame_id[fl.frame_index], str(images[fl.frame_index])
-            labels_per_frame.append(len(gi))
-            frames_per_geotag[gi] += 1
-            names = [str(geotags.labels[g]) for g in gi]
-            for g, (u, v), m, name in zip(gi, uv, margin, names):
-                writer.writerow([frame_id, image, geotags.ids[g], name, f"{u:.3f}", f"{v:.3f}",
-                                 f"{request.sigma_px:g}", f"{m:.1f}"])
-            if len(gi):
-                ftxt.write(f"{k} {image} " + " ".join(
-                    f"{u:.2f},{v:.2f},{class_index[n]}" for (u, v), n in zip(uv, names)) + "\n")
-            raster = None
-            if request.write_rasters or request.tile_size:
-                raster = soft_label_raster(cam.width, cam.height, uv, request.sigma_px)
-            if request.write_rasters:
-                (raster_dir / f"{frame_id}.png").write_bytes(encode_gray_png(raster))
-            if request.tile_size:
-                p, n = _write_tiles(out / "tiles", frame_id, image, raster, uv, request, rng)
-                n_tiles_pos += p
-                n_tiles_neg += n
-            if coco is not None:
-                _add_coco(coco, frame_id, image, cam, uv, names, class_index, request.sigma_px)
+            counts[k] = self._add_frame(poses, str(images[fl.frame_index]), fl)
             if progress is not None:
                 progress((k + 1) / max(1, len(frame_labels)))
-    if coco is not None:
-        (out / "coco_keypoints.json").write_text(json.dumps(coco), encoding="utf-8")
-    lpf = np.asarray(labels_per_frame)
-    summary = {
-        "n_frames": len(frame_labels),
-        "n_frames_with_labels": int((lpf > 0).sum()),
-        "n_labels": int(lpf.sum()),
-        "n_edge": n_edge,
-        "labels_per_frame": _stats(lpf[lpf > 0]),
-        "frames_per_geotag": _stats(frames_per_geotag[frames_per_geotag > 0]),
-        "n_geotags": len(geotags),
-        "n_geotags_in_view": int((frames_per_geotag > 0).sum()),
-        "geotags_never_in_view": [_json_id(geotags.ids[i])
-                                  for i in np.flatnonzero((frames_per_geotag == 0) & ~seen_at_edge)],
-        "geotags_only_at_edge": [_json_id(geotags.ids[i])
-                                 for i in np.flatnonzero((frames_per_geotag == 0) & seen_at_edge)],
-        "classes": classes,
-        "sigma_px": request.sigma_px,
-        "edge_buffer_px": request.edge_buffer_px,
-        "tiles": {"size": request.tile_size, "positive": n_tiles_pos, "negative": n_tiles_neg}
-        if request.tile_size else None,
-        "raster_encoding": "uint8 PNG, 255·exp(−r²/2σ²) to r = 3σ, max-combined",
-    }
-    (out / "summary.json").write_text(json.dumps(summary, indent=2), encoding="utf-8")
-    return LabelSetResult(summary, frames_per_geotag, lpf)
+        return counts
+
+    def _add_frame(self, poses: FramePoses, image: str, fl: FrameLabels) -> int:
+        request, geotags, cam = self.request, self.geotags, poses.camera
+        pos = ~fl.edge
+        self.n_edge += int(fl.edge.sum())
+        self.seen_at_edge[fl.geotag_index[fl.edge]] = True
+        gi, uv, margin = fl.geotag_index[pos], fl.uv[pos], fl.margin_px[pos]
+        frame_id = poses.frame_id[fl.frame_index]
+        idx = len(self.labels_per_frame)
+        self.labels_per_frame.append(len(gi))
+        self.frames_per_geotag[gi] += 1
+        names = [str(geotags.labels[g]) for g in gi]
+        for g, (u, v), m, name in zip(gi, uv, margin, names):
+            self._csv.writerow([frame_id, image, geotags.ids[g], name, f"{u:.3f}", f"{v:.3f}",
+                                f"{request.sigma_px:g}", f"{m:.1f}"])
+        if len(gi):
+            self._txt_file.write(f"{idx} {image} " + " ".join(
+                f"{u:.2f},{v:.2f},{self.class_index[n]}" for (u, v), n in zip(uv, names)) + "\n")
+        raster = None
+        if request.write_rasters or request.tile_size:
+            raster = soft_label_raster(cam.width, cam.height, uv, request.sigma_px)
+        if request.write_rasters:
+            (self.raster_dir / f"{frame_id}.png").write_bytes(encode_gray_png(raster))
+        if request.tile_size:
+            tiles = _write_tiles(self.out / "tiles", frame_id, image, raster, uv, request, self.rng)
+            if tiles is None:
+                self.missing_images.append(image)
+            else:
+                self.n_tiles_pos += tiles[0]
+                self.n_tiles_neg += tiles[1]
+        if self.coco is not None:
+            _add_coco(self.coco, frame_id, image, cam, uv, names, self.class_index, request.sigma_px)
+        return len(gi)
+
+    def _finish(self) -> "LabelSetResult":
+        request, geotags = self.request, self.geotags
+        if self.coco is not None:
+            (self.out / "coco_keypoints.json").write_text(json.dumps(self.coco), encoding="utf-8")
+        lpf = np.asarray(self.labels_per_frame, dtype=np.int64)
+        fpg = self.frames_per_geotag
+        summary = {
+            "n_frames": len(lpf),
+            "n_frames_with_labels": int((lpf > 0).sum()),
+            "n_labels": int(lpf.sum()),
+            "n_edge": self.n_edge,
+            "labels_per_frame": _stats(lpf[lpf > 0]),
+            "frames_per_geotag": _stats(fpg[fpg > 0]),
+            "n_geotags": len(geotags),
+            "n_geotags_in_view": int((fpg > 0).sum()),
+            "geotags_never_in_view": [_json_id(geotags.ids[i])
+                                      for i in np.flatnonzero((fpg == 0) & ~self.seen_at_edge)],
+            "geotags_only_at_edge": [_json_id(geotags.ids[i])
+                                     for i in np.flatnonzero((fpg == 0) & self.seen_at_edge)],
+            "classes": self.classes,
+            "sigma_px": request.sigma_px,
+            "edge_buffer_px": request.edge_buffer_px,
+            "tiles": {"size": request.tile_size, "positive": self.n_tiles_pos, "negative": self.n_tiles_neg,
+                      "missing_images": self.missing_images} if request.tile_size else None,
+            "raster_encoding": "uint8 PNG, 255·exp(−r²/2σ²) to r = 3σ, max-combined",
+        }
+        (self.out / "summary.json").write_text(json.dumps(summary, indent=2), encoding="utf-8")
+        return LabelSetResult(summary, fpg, lpf)
 
 
-def _write_tiles(tile_dir: Path, frame_id, image, raster, uv, request: LabelRequest, rng) -> tuple[int, int]:
-    """Cut image and raster into tiles; all positive tiles, a seeded sample of negatives."""
+def _write_tiles(tile_dir: Path, frame_id, image, raster, uv, request: LabelRequest, rng):
+    """Cut image and raster into tiles: every positive tile, a seeded sample of negatives.
+
+    Returns (positives, negatives) written, or None when the image cannot be read.
+    """
     import cv2
 
     img = cv2.imread(image, cv2.IMREAD_COLOR)
     if img is None:
-        return 0, 0
+        return None
     t = request.tile_size
     h, w = raster.shape
     positives, negatives = [], []

@@ -1,0 +1,219 @@
+"""birdseye:writelabels — every geotag in every frame that sees it, written as a training set."""
+from __future__ import annotations
+
+import json
+
+import numpy as np
+from qgis.core import (QgsExpressionContextUtils, QgsFeature, QgsFeatureSink, QgsField, QgsFields,
+                       QgsProcessing, QgsProcessingException, QgsProcessingMultiStepFeedback,
+                       QgsProcessingOutputNumber, QgsProcessingParameterBoolean,
+                       QgsProcessingParameterFeatureSink, QgsProcessingParameterFeatureSource,
+                       QgsProcessingParameterFile, QgsProcessingParameterFolderDestination,
+                       QgsProcessingParameterNumber, QgsProject)
+from qgis.PyQt.QtCore import QVariant
+
+from ...birdseye_qgis import layers
+from ...birdseye_qgis.core.frame_records import poses_from_records
+from ...birdseye_qgis.core.geodesy import LocalFrame
+from ...birdseye_qgis.core.labels import Geotags, LabelRequest, LabelWriter, project_labels
+from .base import BirdsEyeAlgorithm
+
+#: Project variable the sensor-bound dock sets ("Use σ_label in Write labels").
+SIGMA_VARIABLE = "birdseye_sigma_label_px"
+
+
+def sigma_from_bound_json(path: str) -> float:
+    """σ_label (px) from a ``sensorbound`` JSON: the label radius r at 3σ divided by 3."""
+    try:
+        doc = json.loads(open(path, encoding="utf-8").read())
+        tolerance = float(doc["inputs"]["tolerance_px"])
+    except (OSError, ValueError, KeyError, TypeError) as exc:
+        raise QgsProcessingException(
+            f"{path}: not a sensorbound result (expected inputs.tolerance_px): {exc}") from exc
+    rejected = [a["altitude_m"] for a in doc.get("altitudes", []) if a.get("verdict_exact") == "reject"]
+    if rejected:
+        raise QgsProcessingException(
+            f"{path}: the pose-noise budget is rejected at {', '.join(f'{a:g} m' for a in rejected)}; "
+            f"labels of σ = {tolerance / 3:g} px would not contain the projection error there")
+    return tolerance / 3.0
+
+
+class WriteLabels(BirdsEyeAlgorithm):
+    ALG_ID = "writelabels"
+    DISPLAY_NAME = "Write training labels"
+    GROUP = "labels"
+
+    def initAlgorithm(self, config=None):  # noqa: N802
+        self.addParameter(QgsProcessingParameterFeatureSource(
+            "GEOTAGS", self.tr("Geotags (surveyed targets)"), [QgsProcessing.TypeVectorPoint]))
+        self.addParameter(QgsProcessingParameterFeatureSource(
+            "FRAMES", self.tr("Frames (from Import flight log or Import DJI images)"),
+            [QgsProcessing.TypeVectorPolygon]))
+        self.addParameter(QgsProcessingParameterNumber(
+            "SIGMA_PX", self.tr("Soft-label σ (px); empty: the sensor-bound dock's value, else 10"),
+            QgsProcessingParameterNumber.Double, None, optional=True, minValue=0.5, maxValue=500.0))
+        self.addParameter(QgsProcessingParameterFile(
+            "SENSOR_BOUND_JSON", self.tr("…or σ from a sensorbound result (JSON): r / 3"), optional=True,
+            fileFilter="JSON (*.json)"))
+        self.addParameter(QgsProcessingParameterNumber(
+            "EDGE_BUFFER_PX", self.tr("Edge buffer (px): geotags this close to the border are 'edge', not labels"),
+            QgsProcessingParameterNumber.Double, 0.0, minValue=0.0, maxValue=1000.0))
+        self.addParameter(QgsProcessingParameterBoolean(
+            "WRITE_RASTERS", self.tr("Write one soft-label raster per frame"), defaultValue=True))
+        self.addParameter(QgsProcessingParameterBoolean(
+            "WRITE_TILES", self.tr("Write a tiled training set (image and label tiles)"), defaultValue=False))
+        self.addParameter(QgsProcessingParameterNumber(
+            "TILE_SIZE", self.tr("Tile size (px)"), QgsProcessingParameterNumber.Integer, 224,
+            minValue=16, maxValue=4096))
+        self.addParameter(QgsProcessingParameterNumber(
+            "NEGATIVE_RATIO", self.tr("Negative tiles kept per positive tile"),
+            QgsProcessingParameterNumber.Double, 1.0, minValue=0.0, maxValue=100.0))
+        self.addParameter(QgsProcessingParameterNumber(
+            "SEED", self.tr("Random seed for the negative-tile sample"), QgsProcessingParameterNumber.Integer,
+            0, minValue=0))
+        self.addParameter(QgsProcessingParameterBoolean(
+            "WRITE_COCO", self.tr("Write COCO-keypoints JSON"), defaultValue=False))
+        self.addParameter(QgsProcessingParameterFolderDestination("OUTPUT_FOLDER", self.tr("Label folder")))
+        self.addParameter(QgsProcessingParameterFeatureSink(
+            "OUTPUT_FRAMES", self.tr("Frames with label counts"), QgsProcessing.TypeVectorPolygon,
+            optional=True, createByDefault=True))
+        self.addParameter(QgsProcessingParameterFeatureSink(
+            "OUTPUT_GEOTAGS", self.tr("Geotags with frames seen"), QgsProcessing.TypeVectorPoint,
+            optional=True, createByDefault=True))
+        for name, text in (("LABEL_COUNT", "Labels written"), ("FRAMES_WITH_LABELS", "Frames with labels"),
+                           ("GEOTAGS_NEVER_IN_VIEW", "Geotags never in view"), ("SIGMA_USED_PX", "σ used (px)")):
+            self.addOutput(QgsProcessingOutputNumber(name, self.tr(text)))
+
+    def sigma(self, parameters, context, feedback) -> float:
+        bound = self.parameterAsFile(parameters, "SENSOR_BOUND_JSON", context)
+        if parameters.get("SIGMA_PX") is not None:
+            if bound:
+                feedback.pushWarning("SIGMA_PX is given: SENSOR_BOUND_JSON is ignored")
+            return self.parameterAsDouble(parameters, "SIGMA_PX", context)
+        if bound:
+            return sigma_from_bound_json(bound)
+        scope = QgsExpressionContextUtils.projectScope(context.project() or QgsProject.instance())
+        value = scope.variable(SIGMA_VARIABLE)
+        if value not in (None, ""):
+            feedback.pushInfo(f"σ = {float(value):g} px from the project (sensor-bound calculator)")
+            return float(value)
+        return 10.0
+
+    def processAlgorithm(self, parameters, context, feedback):  # noqa: N802
+        steps = QgsProcessingMultiStepFeedback(3, feedback)
+        geotag_source = self.parameterAsSource(parameters, "GEOTAGS", context)
+        frame_source = self.parameterAsSource(parameters, "FRAMES", context)
+        if geotag_source is None or frame_source is None:
+            raise QgsProcessingException(self.tr("GEOTAGS and FRAMES are both required."))
+        sigma = self.sigma(parameters, context, feedback)
+        geotags = self.run_core(self._read_geotags, geotag_source, context)
+        records = self.run_core(layers.read_frame_layer, frame_source)
+        groups = self.run_core(poses_from_records, records, frame_source.sourceName())
+        request = LabelRequest(
+            sigma_px=sigma, edge_buffer_px=self.parameterAsDouble(parameters, "EDGE_BUFFER_PX", context),
+            write_rasters=self.parameterAsBoolean(parameters, "WRITE_RASTERS", context),
+            tile_size=self.parameterAsInt(parameters, "TILE_SIZE", context)
+            if self.parameterAsBoolean(parameters, "WRITE_TILES", context) else 0,
+            negative_ratio=self.parameterAsDouble(parameters, "NEGATIVE_RATIO", context),
+            seed=self.parameterAsInt(parameters, "SEED", context),
+            coco=self.parameterAsBoolean(parameters, "WRITE_COCO", context))
+        out_dir = self.parameterAsString(parameters, "OUTPUT_FOLDER", context)
+        all_lat = np.concatenate([g[0].lat for g in groups] + [geotags.lat])
+        all_lon = np.concatenate([g[0].lon for g in groups] + [geotags.lon])
+        local = LocalFrame.around(all_lat, all_lon, np.concatenate([g[0].height for g in groups]))
+        feedback.pushInfo(f"{len(records)} frames ({len(groups)} camera(s)), {len(geotags)} geotags, "
+                          f"σ = {sigma:g} px, edge buffer {request.edge_buffer_px:g} px")
+
+        label_counts = np.zeros(len(records), dtype=np.int64)
+        steps.setCurrentStep(0)
+        projected = [self.run_core(project_labels, poses, geotags, request.edge_buffer_px, local)
+                     for poses, _ in groups]
+        steps.setCurrentStep(1)
+        done = 0
+        with LabelWriter(out_dir, geotags, request) as writer:
+            for (poses, idx), frame_labels in zip(groups, projected):
+                images = [records[i].get("image") or "" for i in idx]
+                progress, is_canceled = self.progress_callbacks(
+                    steps, 100.0 * done / len(records), 100.0 * (done + len(idx)) / len(records))
+                label_counts[idx] = self.run_core(writer.add_frames, poses, images, frame_labels, progress,
+                                                  is_canceled)
+                done += len(idx)
+        summary = writer.result.summary
+        steps.setCurrentStep(2)
+        self._log_summary(feedback, summary)
+        results = {"OUTPUT_FOLDER": out_dir, "LABEL_COUNT": summary["n_labels"],
+                   "FRAMES_WITH_LABELS": summary["n_frames_with_labels"],
+                   "GEOTAGS_NEVER_IN_VIEW": len(summary["geotags_never_in_view"]), "SIGMA_USED_PX": sigma}
+        results.update(self._write_frames(parameters, context, frame_source, label_counts))
+        results.update(self._write_geotags(parameters, context, geotag_source, writer.result.frames_per_geotag))
+        return results
+
+    @staticmethod
+    def _read_geotags(source, context) -> Geotags:
+        names = source.fields().names()
+        attrs = [n for n in ("id", "label") if n in names]
+        cols = layers.read_point_layer(source, context.transformContext(), attrs, source.sourceName())
+        ok = np.isfinite(cols["lat"]) & np.isfinite(cols["lon"])
+        ids = np.asarray(cols["attributes"]["id"] if "id" in attrs else cols["row"], dtype=object)
+        labels = np.asarray([v if v else "target" for v in cols["attributes"]["label"]] if "label" in attrs
+                            else ["target"] * len(ok), dtype=object)
+        # Heights do not move labels (each frame places geotags on its own ground); NaN → 0 keeps them finite.
+        height = np.nan_to_num(cols["z"], nan=0.0)
+        return Geotags(ids[ok], labels[ok], cols["lat"][ok], cols["lon"][ok], height[ok])
+
+    @staticmethod
+    def _log_summary(feedback, summary) -> None:
+        lpf, fpg = summary["labels_per_frame"], summary["frames_per_geotag"]
+        feedback.pushInfo(
+            f"{summary['n_labels']} labels in {summary['n_frames_with_labels']} of {summary['n_frames']} frames "
+            f"(labels per labelled frame: mean {lpf['mean']:g}, max {lpf['max']}); "
+            f"{summary['n_geotags_in_view']} of {summary['n_geotags']} geotags in view "
+            f"(frames per geotag: mean {fpg['mean']:g}, max {fpg['max']})")
+        if summary["n_edge"]:
+            feedback.pushInfo(f"{summary['n_edge']} projections fell within the edge buffer (not written)")
+        never = summary["geotags_never_in_view"]
+        if never:
+            shown = ", ".join(str(i) for i in never[:10]) + (" …" if len(never) > 10 else "")
+            feedback.pushWarning(f"{len(never)} geotag(s) never in view of any frame: {shown}")
+        tiles = summary.get("tiles")
+        if tiles and tiles["missing_images"]:
+            feedback.reportError(f"{len(tiles['missing_images'])} image(s) could not be read for tiles; first: "
+                                 f"{tiles['missing_images'][0]}", False)
+
+    def _write_copy(self, parameters, context, name, source, extra: QgsField, values, style):
+        """A copy of ``source`` with one more field; the user's input layer is never modified."""
+        fields = QgsFields(source.fields())
+        if fields.indexOf(extra.name()) >= 0:
+            fields.remove(fields.indexOf(extra.name()))
+        fields.append(extra)
+        sink, dest_id = self.parameterAsSink(parameters, name, context, fields, source.wkbType(),
+                                             source.sourceCrs())
+        if sink is None:
+            return {}
+        for feature, value in zip(source.getFeatures(), values):
+            out = QgsFeature(fields)
+            out.setGeometry(feature.geometry())
+            for field in source.fields():
+                if field.name() != extra.name():
+                    out[field.name()] = feature[field.name()]
+            out[extra.name()] = int(value)
+            sink.addFeature(out, QgsFeatureSink.FastInsert)
+        layers.style_on_load(context, dest_id, style)
+        return {name: dest_id}
+
+    def _write_frames(self, parameters, context, source, counts):
+        return self._write_copy(parameters, context, "OUTPUT_FRAMES", source,
+                                QgsField("n_labels", QVariant.Int), counts.tolist(), "frames.qml")
+
+    def _write_geotags(self, parameters, context, source, frames_per_geotag):
+        # Geotags without a usable position were skipped when reading: align counts by feature order.
+        counts, k = [], 0
+        for feature in source.getFeatures():
+            geometry = feature.geometry()
+            if geometry is None or geometry.isEmpty():
+                counts.append(0)
+            else:
+                counts.append(int(frames_per_geotag[k]))
+                k += 1
+        return self._write_copy(parameters, context, "OUTPUT_GEOTAGS", source,
+                                QgsField("frames_seen", QVariant.Int), counts, "geotags.qml")

@@ -1,0 +1,100 @@
+"""birdseye:writelabels through the registry, on a simulated campaign imported by the importers."""
+from __future__ import annotations
+
+import csv
+import json
+
+import numpy as np
+import pytest
+from qgis.core import QgsExpressionContextUtils, QgsProcessingException, QgsProject
+
+from birdseye.birdseye_qgis.core.simulate import CampaignConfig, simulate_campaign
+
+
+def run(alg_id, params):
+    import processing
+
+    return processing.run(f"birdseye:{alg_id}", params)
+
+
+@pytest.fixture(scope="module")
+def imported(birdseye_provider, tmp_path_factory):
+    folder = tmp_path_factory.mktemp("campaign")
+    cfg = CampaignConfig(seed=3, n_targets=6, field_width_m=8.0, field_length_m=6.0, image_width=480,
+                         image_height=300, n_missed=1, n_spurious=1)
+    simulate_campaign(cfg, folder)
+    geotags = run("importgeotags", {"INPUT": str(folder / "geotags.csv"), "OUTPUT": "TEMPORARY_OUTPUT"})["OUTPUT"]
+    frames = run("importflightlog", {"POSE_LOG": str(folder / "poses.csv"), "IMAGES": str(folder / "frames"),
+                                     "CALIBRATION": str(folder / "calibration.yaml"),
+                                     "OUTPUT": "TEMPORARY_OUTPUT"})["OUTPUT"]
+    return folder, geotags, frames
+
+
+def test_writelabels_writes_the_training_set_and_counts(imported, tmp_path):
+    folder, geotags, frames = imported
+    out = tmp_path / "labels"
+    result = run("writelabels", {"GEOTAGS": geotags, "FRAMES": frames, "SIGMA_PX": 4.0, "EDGE_BUFFER_PX": 5,
+                                 "WRITE_TILES": True, "TILE_SIZE": 96, "WRITE_COCO": True,
+                                 "OUTPUT_FOLDER": str(out), "OUTPUT_FRAMES": "TEMPORARY_OUTPUT",
+                                 "OUTPUT_GEOTAGS": "TEMPORARY_OUTPUT"})
+    rows = list(csv.DictReader(open(out / "labels.csv")))
+    summary = json.loads((out / "summary.json").read_text())
+    assert result["LABEL_COUNT"] == len(rows) == summary["n_labels"] > 10
+    assert result["SIGMA_USED_PX"] == 4.0 and {r["sigma_px"] for r in rows} == {"4"}
+    assert all(float(r["margin_px"]) >= 5.0 for r in rows)
+    # Label counts on a copy of the frame layer agree with the CSV; the input layer is untouched.
+    counted = {f["frame_id"]: f["n_labels"] for f in result["OUTPUT_FRAMES"].getFeatures()}
+    per_frame = {}
+    for r in rows:
+        per_frame[int(r["frame_id"])] = per_frame.get(int(r["frame_id"]), 0) + 1
+    assert {k: v for k, v in counted.items() if v} == per_frame
+    assert "n_labels" not in frames.fields().names()
+    seen = {f["id"]: f["frames_seen"] for f in result["OUTPUT_GEOTAGS"].getFeatures()}
+    per_geotag = {}
+    for r in rows:
+        per_geotag[int(r["geotag_id"])] = per_geotag.get(int(r["geotag_id"]), 0) + 1
+    assert {k: v for k, v in seen.items() if v} == per_geotag
+    assert sorted(k for k, v in seen.items() if v == 0) == sorted(
+        summary["geotags_never_in_view"] + summary["geotags_only_at_edge"])
+    # One raster per frame, the image's size; tiles side by side.
+    n_frames = frames.featureCount()
+    assert len(list((out / "rasters").glob("*.png"))) == n_frames
+    images = sorted(p.name for p in (out / "tiles" / "images").iterdir())
+    assert images and images == sorted(p.name for p in (out / "tiles" / "labels").iterdir())
+    coco = json.loads((out / "coco_keypoints.json").read_text())
+    assert len(coco["annotations"]) == len(rows)
+
+
+def test_sigma_comes_from_the_project_or_a_bound_json(imported, tmp_path):
+    folder, geotags, frames = imported
+    base = {"GEOTAGS": geotags, "FRAMES": frames, "WRITE_RASTERS": False, "OUTPUT_FRAMES": None,
+            "OUTPUT_GEOTAGS": None}
+    QgsExpressionContextUtils.setProjectVariable(QgsProject.instance(), "birdseye_sigma_label_px", 7.5)
+    try:
+        assert run("writelabels", {**base, "OUTPUT_FOLDER": str(tmp_path / "a")})["SIGMA_USED_PX"] == 7.5
+    finally:
+        QgsExpressionContextUtils.removeProjectVariable(QgsProject.instance(), "birdseye_sigma_label_px")
+    assert run("writelabels", {**base, "OUTPUT_FOLDER": str(tmp_path / "b")})["SIGMA_USED_PX"] == 10.0
+    bound = tmp_path / "bound.json"
+    bound.write_text(json.dumps({"inputs": {"tolerance_px": 24.0},
+                                 "altitudes": [{"altitude_m": 10.0, "verdict_exact": "accept"}]}))
+    result = run("writelabels", {**base, "SENSOR_BOUND_JSON": str(bound), "OUTPUT_FOLDER": str(tmp_path / "c")})
+    assert result["SIGMA_USED_PX"] == 8.0
+    bound.write_text(json.dumps({"inputs": {"tolerance_px": 24.0},
+                                 "altitudes": [{"altitude_m": 10.0, "verdict_exact": "reject"}]}))
+    with pytest.raises(QgsProcessingException, match="rejected at 10 m"):
+        run("writelabels", {**base, "SENSOR_BOUND_JSON": str(bound), "OUTPUT_FOLDER": str(tmp_path / "d")})
+
+
+def test_a_layer_that_is_not_a_frame_layer_is_refused(imported, tmp_path):
+    folder, geotags, frames = imported
+    from qgis.core import QgsVectorLayer
+
+    polygons = QgsVectorLayer("Polygon?crs=EPSG:32756&field=name:string", "fields", "memory")
+    from qgis.core import QgsFeature, QgsGeometry
+    f = QgsFeature(polygons.fields())
+    f.setGeometry(QgsGeometry.fromWkt("POLYGON((0 0, 1 0, 1 1, 0 0))"))
+    f["name"] = "paddock"
+    polygons.dataProvider().addFeature(f)
+    with pytest.raises(QgsProcessingException, match="not a BirdsEye frame layer"):
+        run("writelabels", {"GEOTAGS": geotags, "FRAMES": polygons, "OUTPUT_FOLDER": str(tmp_path)})
