@@ -1,0 +1,271 @@
+"""QGIS glue shared by the algorithms: fields, features, sinks, styles, CRS helpers, layer readers.
+
+The schemas live in ``core`` (``FRAME_FIELDS`` and friends, lists of (name, type, description));
+this module turns them into :class:`QgsFields`, writes records to sinks, applies the ``.qml`` styles
+of ``resources/styles`` when Processing loads an output, and reads layers back into plain columns
+and records for the core functions. Nothing here computes geometry.
+"""
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+from qgis.core import (QgsCoordinateReferenceSystem, QgsCoordinateTransform, QgsFeature, QgsFeatureSink,
+                       QgsField, QgsFields, QgsGeometry, QgsLineString, QgsPoint, QgsPointXY, QgsPolygon,
+                       QgsProcessingLayerPostProcessorInterface, QgsProject, QgsUnitTypes,
+                       QgsWkbTypes)
+from qgis.PyQt.QtCore import QVariant
+
+from .core.errors import InputError
+from .core.frame_records import FRAME_FIELD_NAMES
+from .core.geodesy import ProjectedCRS, utm_epsg
+
+STYLE_DIR = Path(__file__).resolve().parents[1] / "resources" / "styles"
+WGS84 = "EPSG:4326"
+
+_QVARIANT = {"int": QVariant.Int, "double": QVariant.Double, "string": QVariant.String}
+
+
+# ------------------------------------------------------------------------------------------ fields
+def qgs_fields(spec) -> QgsFields:
+    """QgsFields from a core schema: (name, type, description) with type "int"/"double"/"string"."""
+    fields = QgsFields()
+    for name, kind, description in spec:
+        f = QgsField(name, _QVARIANT[kind])
+        f.setComment(description)
+        fields.append(f)
+    return fields
+
+
+# ------------------------------------------------------------------------------------------ geometry
+def polygon_z(ring: np.ndarray) -> QgsGeometry:
+    """A PolygonZ from an open ring (K, 3) of x, y, z."""
+    ring = np.asarray(ring, dtype=float)
+    closed = np.vstack([ring, ring[:1]])
+    return QgsGeometry(QgsPolygon(QgsLineString(closed[:, 0].tolist(), closed[:, 1].tolist(),
+                                                closed[:, 2].tolist())))
+
+
+def line_z(xyz: np.ndarray) -> QgsGeometry:
+    xyz = np.asarray(xyz, dtype=float)
+    return QgsGeometry(QgsLineString(xyz[:, 0].tolist(), xyz[:, 1].tolist(), xyz[:, 2].tolist()))
+
+
+def point_z(x: float, y: float, z: float) -> QgsGeometry:
+    return QgsGeometry(QgsPoint(float(x), float(y), float(z)))
+
+
+def write_records(sink, fields: QgsFields, records, geometries, feedback=None, start=0.0, end=100.0,
+                  total: int | None = None) -> int:
+    """Add one feature per (record, geometry) to ``sink``; a None geometry gives a feature without one.
+
+    Honours cancel between features and moves the progress bar from ``start`` to ``end`` percent.
+    """
+    names = [fields.at(i).name() for i in range(fields.count())]
+    count = 0
+    step = max(1, (total or 1) // 100)
+    for record, geometry in zip(records, geometries):
+        if feedback is not None and count % step == 0:
+            if feedback.isCanceled():
+                break
+            if total:
+                feedback.setProgress(start + (end - start) * count / total)
+        feature = QgsFeature(fields)
+        feature.setAttributes([record.get(n) for n in names])
+        if geometry is not None:
+            feature.setGeometry(geometry)
+        if not sink.addFeature(feature, QgsFeatureSink.FastInsert):
+            raise InputError(f"could not write feature {count + 1} to the output")
+        count += 1
+    return count
+
+
+# ------------------------------------------------------------------------------------------ styles
+class _StyleOnLoad(QgsProcessingLayerPostProcessorInterface):
+    """Applies a .qml style (and optionally a name) to an output when Processing loads it."""
+
+    def __init__(self, style_path: Path, layer_name: str | None):
+        super().__init__()
+        self.style_path = style_path
+        self.layer_name = layer_name
+
+    def postProcessLayer(self, layer, context, feedback):  # noqa: N802 (QGIS API)
+        if layer is None or not layer.isValid():
+            return
+        message, ok = layer.loadNamedStyle(str(self.style_path))
+        if not ok and feedback is not None:
+            feedback.pushInfo(f"Style {self.style_path.name} not applied: {message}")
+        if self.layer_name:
+            layer.setName(self.layer_name)
+        layer.triggerRepaint()
+
+
+# QGIS does not take ownership of Python post-processors: keep them alive until the run's layers load.
+_POST_PROCESSORS: dict[str, _StyleOnLoad] = {}
+
+
+def style_on_load(context, dest_id: str, style: str, layer_name: str | None = None) -> None:
+    """Style output ``dest_id`` with ``resources/styles/<style>`` once Processing loads it."""
+    if not dest_id or not context.willLoadLayerOnCompletion(dest_id):
+        return
+    post = _StyleOnLoad(STYLE_DIR / style, layer_name)
+    _POST_PROCESSORS[dest_id] = post
+    context.layerToLoadOnCompletionDetails(dest_id).setPostProcessor(post)
+
+
+# ------------------------------------------------------------------------------------------ CRS
+def pyproj_crs(crs: QgsCoordinateReferenceSystem) -> str:
+    """The CRS as pyproj understands it: ``EPSG:nnnn`` when it has one, else WKT2."""
+    authid = crs.authid()
+    if authid.upper().startswith("EPSG:"):
+        return authid
+    return crs.toWkt(QgsCoordinateReferenceSystem.WKT2_2019)
+
+
+def qgs_crs(crs: str) -> QgsCoordinateReferenceSystem:
+    """A QgsCoordinateReferenceSystem from an ``EPSG:nnnn`` string or WKT."""
+    out = QgsCoordinateReferenceSystem(crs) if crs.upper().startswith("EPSG:") \
+        else QgsCoordinateReferenceSystem.fromWkt(crs)
+    if not out.isValid():
+        raise InputError(f"CRS {crs[:60]} is not known to QGIS")
+    return out
+
+
+def chosen_projected_crs(crs: QgsCoordinateReferenceSystem | None, parameter: str = "OUTPUT_CRS"):
+    """The user's projected output CRS as a core :class:`ProjectedCRS`, or None to pick UTM automatically.
+
+    A geographic CRS (degrees) is refused: footprints, GSD and distances need metres.
+    """
+    if crs is None or not crs.isValid():
+        return None
+    if crs.isGeographic():
+        raise InputError(f"{crs.authid() or crs.description()} is a geographic CRS (degrees); choose a "
+                         "projected CRS in metres, or leave it empty for the UTM zone of the site",
+                         field=parameter)
+    if crs.mapUnits() != QgsUnitTypes.DistanceMeters:
+        raise InputError(f"{crs.authid() or crs.description()} is not in metres; choose a projected CRS in "
+                         "metres, or leave it empty for the UTM zone of the site", field=parameter)
+    return ProjectedCRS(pyproj_crs(crs))
+
+
+def output_crs(chosen: ProjectedCRS | None, lat, lon) -> tuple[ProjectedCRS, QgsCoordinateReferenceSystem]:
+    """The chosen CRS, else the UTM zone of the site (median position); as core and QGIS objects.
+
+    A chosen CRS whose area of use (widened by 1°) does not contain the site is refused: its
+    coordinates there would be distorted or meaningless.
+    """
+    lat, lon = np.asarray(lat, dtype=float), np.asarray(lon, dtype=float)
+    site_lat, site_lon = float(np.nanmedian(lat)), float(np.nanmedian(lon))
+    if chosen is None:
+        chosen = ProjectedCRS(utm_epsg(site_lat, site_lon))
+        return chosen, qgs_crs(chosen.crs)
+    crs = qgs_crs(chosen.crs)
+    bounds = crs.bounds()  # area of use, WGS84 degrees; empty when unknown
+    if not bounds.isEmpty() and not bounds.buffered(1.0).contains(QgsPointXY(site_lon, site_lat)):
+        raise InputError(
+            f"the site ({site_lat:.5f}°, {site_lon:.5f}°) lies outside the area of use of "
+            f"{crs.authid() or crs.description()} ({bounds.yMinimum():.1f}…{bounds.yMaximum():.1f}° N, "
+            f"{bounds.xMinimum():.1f}…{bounds.xMaximum():.1f}° E); choose a CRS for this area or leave "
+            "OUTPUT_CRS empty for the UTM zone of the site", field="OUTPUT_CRS")
+    return chosen, crs
+
+
+# ------------------------------------------------------------------------------------------ readers
+def read_point_layer(source, transform_context=None, attributes=(), source_name: str | None = None):
+    """Columns of a point layer/feature source: lat, lon (WGS84, deg), z (the geometry's Z, NaN if
+    none — taken as an ellipsoidal height), the feature numbers (1..) and the named attributes.
+
+    Any CRS is transformed to EPSG:4326; a source without a valid CRS is refused.
+    """
+    name = source_name or (source.sourceName() if hasattr(source, "sourceName") else "point layer")
+    crs = source.sourceCrs() if hasattr(source, "sourceCrs") else source.crs()
+    if not crs.isValid():
+        raise InputError("has no valid CRS; set the layer's CRS (Layer Properties › Source) and run again",
+                         source=name)
+    if QgsWkbTypes.geometryType(source.wkbType()) != QgsWkbTypes.PointGeometry:
+        raise InputError("is not a point layer", source=name)
+    names = source.fields().names()
+    for a in attributes:
+        if a and a not in names:
+            raise InputError(f"has no field '{a}' (fields: {', '.join(names)})", source=name, field=a)
+    transform = QgsCoordinateTransform(crs, QgsCoordinateReferenceSystem(WGS84),
+                                       transform_context or QgsProject.instance().transformContext())
+    lat, lon, z, rows = [], [], [], []
+    values = {a: [] for a in attributes if a}
+    for number, feature in enumerate(source.getFeatures(), start=1):
+        geometry = feature.geometry()
+        if geometry is None or geometry.isEmpty():
+            lat.append(np.nan), lon.append(np.nan), z.append(np.nan)
+        else:
+            vertex = geometry.vertexAt(0)
+            try:
+                p = transform.transform(vertex.x(), vertex.y())
+            except Exception as exc:  # noqa: BLE001 — QgsCsException: a point outside the CRS's area
+                raise InputError(f"cannot be transformed to WGS84 ({exc}); is the layer's CRS right?",
+                                 source=name, row=number, field="geometry") from exc
+            lat.append(p.y()), lon.append(p.x())
+            z.append(vertex.z() if vertex.is3D() else np.nan)
+        rows.append(number)
+        for a in values:
+            v = feature[a]
+            values[a].append(None if v is None or (hasattr(v, "isNull") and v.isNull()) else v)
+    return {"lat": np.asarray(lat, dtype=float), "lon": np.asarray(lon, dtype=float),
+            "z": np.asarray(z, dtype=float), "row": np.asarray(rows, dtype=np.int64), "attributes": values}
+
+
+def read_frame_layer(source, source_name: str | None = None) -> list[dict]:
+    """Records (dicts with the frame-layer field names) of a BirdsEye frame layer, in feature order,
+    for :func:`core.frame_records.poses_from_records`."""
+    name = source_name or (source.sourceName() if hasattr(source, "sourceName") else "frame layer")
+    present = [n for n in FRAME_FIELD_NAMES if n in source.fields().names()]
+    records = []
+    for feature in source.getFeatures():
+        rec = {}
+        for n in present:
+            v = feature[n]
+            rec[n] = None if v is None or (hasattr(v, "isNull") and v.isNull()) else v
+        records.append(rec)
+    if not records:
+        raise InputError("has no frames", source=name)
+    return records
+
+
+# ------------------------------------------------------------------------------------------ outputs
+def report_to_feedback(feedback, report) -> None:
+    """Bad input left out → errors (non-fatal); other notes → warnings; counts → info."""
+    if feedback is None:
+        return
+    for message in report.errors:
+        feedback.reportError(message, False)
+    for message in report.notes:
+        feedback.pushWarning(message)
+    if report.counts:
+        feedback.pushInfo(", ".join(f"{k}: {v:.4g}" if isinstance(v, float) else f"{k}: {v}"
+                                    for k, v in report.counts.items()))
+
+
+def write_frames(algorithm, parameters, context, feedback, result, crs: QgsCoordinateReferenceSystem,
+                 output: str = "OUTPUT", track_output: str | None = None, start: float = 80.0) -> dict:
+    """Write a core ``FlightImport`` (frames + footprints [+ flight line]) to the algorithm's sinks,
+    styled on load; returns the outputs dict entries."""
+    from .core.flight_log import FRAME_LAYER_FIELDS, TRACK_FIELDS, frame_records
+
+    fields = qgs_fields(FRAME_LAYER_FIELDS)
+    sink, dest_id = algorithm.parameterAsSink(parameters, output, context, fields, QgsWkbTypes.PolygonZ, crs)
+    if sink is None:
+        raise InputError("the frame output cannot be created", field=output)
+    geometries = (None if ring is None else polygon_z(ring) for ring in result.footprints.rings)
+    n = write_records(sink, fields, frame_records(result.frames, result.footprints), geometries, feedback,
+                      start, 99.0, total=len(result.frames))
+    style_on_load(context, dest_id, "frames.qml")
+    outputs = {output: dest_id, "FRAME_COUNT": n}
+    if track_output:
+        track_fields = qgs_fields(TRACK_FIELDS)
+        track_sink, track_id = algorithm.parameterAsSink(parameters, track_output, context, track_fields,
+                                                         QgsWkbTypes.LineStringZ, crs)
+        if track_sink is not None:
+            write_records(track_sink, track_fields, (s.attributes for s in result.track),
+                          (line_z(s.xyz) for s in result.track))
+            style_on_load(context, track_id, "track.qml")
+            outputs[track_output] = track_id
+    return outputs

@@ -1,0 +1,49 @@
+"""birdseye:importdjiimages — a folder of DJI drone JPEGs → frame footprints from their own metadata."""
+from __future__ import annotations
+
+from qgis.core import (QgsProcessing, QgsProcessingOutputNumber, QgsProcessingParameterCrs,
+                       QgsProcessingParameterFeatureSink, QgsProcessingParameterFile)
+
+from ...birdseye_qgis import layers
+from ...birdseye_qgis.core.camera import load_calibration
+from ...birdseye_qgis.core.dji import import_dji_images
+from .base import BirdsEyeAlgorithm
+
+
+class ImportDjiImages(BirdsEyeAlgorithm):
+    ALG_ID = "importdjiimages"
+    DISPLAY_NAME = "Import DJI images"
+    GROUP = "field"
+
+    def initAlgorithm(self, config=None):  # noqa: N802
+        self.addParameter(QgsProcessingParameterFile(
+            "IMAGES", self.tr("Folder of DJI images (JPEG)"), behavior=QgsProcessingParameterFile.Folder))
+        self.addParameter(QgsProcessingParameterFile(
+            "CALIBRATION", self.tr("Camera calibration (optional; Kalibr or OpenCV YAML)"), optional=True,
+            fileFilter="Calibration (*.yaml *.yml);;All files (*)"))
+        self.addParameter(QgsProcessingParameterCrs(
+            "OUTPUT_CRS", self.tr("Output CRS (empty: UTM zone of the site)"), optional=True))
+        self.addParameter(QgsProcessingParameterFeatureSink(
+            "OUTPUT", self.tr("DJI frames"), QgsProcessing.TypeVectorPolygon))
+        self.addOutput(QgsProcessingOutputNumber("FRAME_COUNT", self.tr("Frames written")))
+        self.addOutput(QgsProcessingOutputNumber("UNPLACED_COUNT", self.tr("Images that cannot be placed")))
+
+    def processAlgorithm(self, parameters, context, feedback):  # noqa: N802
+        folder = self.parameterAsFile(parameters, "IMAGES", context)
+        calibration_path = self.parameterAsFile(parameters, "CALIBRATION", context)
+        chosen = self.run_core(layers.chosen_projected_crs, self.parameterAsCrs(parameters, "OUTPUT_CRS", context))
+        calibration = self.run_core(load_calibration, calibration_path) if calibration_path else None
+        progress, is_canceled = self.progress_callbacks(feedback, 0.0, 80.0)
+        result = self.run_core(import_dji_images, folder, calibration, chosen, progress=progress,
+                               is_canceled=is_canceled)
+        layers.report_to_feedback(feedback, result.report)
+        for error in result.report.unplaced[5:]:
+            feedback.pushInfo(f"Not placed: {error}")
+        cameras = {id(c): c for c in result.frames.cameras}.values()
+        for cam in cameras:
+            feedback.pushInfo(f"Camera: {cam.width}×{cam.height} px, fx {cam.fx:.1f}, fy {cam.fy:.1f} ({cam.source})")
+        _, crs = self.run_core(layers.output_crs, chosen, result.frames.lat, result.frames.lon)
+        feedback.pushInfo(f"Output CRS: {crs.authid() or crs.description()}")
+        outputs = self.run_core(layers.write_frames, self, parameters, context, feedback, result, crs)
+        outputs["UNPLACED_COUNT"] = len(result.report.unplaced)
+        return outputs

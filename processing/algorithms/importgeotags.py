@@ -1,0 +1,112 @@
+"""birdseye:importgeotags — rover survey (file or point layer) → styled PointZ geotag layer."""
+from __future__ import annotations
+
+from qgis.core import (QgsProcessing, QgsProcessingException, QgsProcessingOutputNumber,
+                       QgsProcessingParameterCrs, QgsProcessingParameterEnum, QgsProcessingParameterFeatureSink,
+                       QgsProcessingParameterFeatureSource, QgsProcessingParameterFile,
+                       QgsProcessingParameterNumber, QgsProcessingParameterString, QgsWkbTypes)
+
+from ...birdseye_qgis import layers
+from ...birdseye_qgis.core.geotag_io import (FORMATS, GEOTAG_FIELDS, ColumnMapping, geotags_from_columns,
+                                             prepare_geotags, read_geotags)
+from .base import BirdsEyeAlgorithm
+
+
+class ImportGeotags(BirdsEyeAlgorithm):
+    ALG_ID = "importgeotags"
+    DISPLAY_NAME = "Import geotags"
+    GROUP = "field"
+
+    FORMAT_NAMES = ["Automatic (from the content)", "BirdsEye rover CSV (no header)", "CSV with a header",
+                    "NMEA GGA log"]
+    FIX_FILTERS = ["All geotags (float and no-RTK flagged)", "RTK fixed only"]
+    MAPPING = (("LAT_FIELD", "lat", "Latitude column (header CSV)"),
+               ("LON_FIELD", "lon", "Longitude column (header CSV)"),
+               ("HEIGHT_FIELD", "height", "Ellipsoidal height column/field"),
+               ("MSL_FIELD", "msl", "MSL height column/field"),
+               ("FIX_FIELD", "fix", "Fix quality column/field"),
+               ("LABEL_FIELD", "label", "Label column/field"))
+
+    def initAlgorithm(self, config=None):  # noqa: N802
+        self.addParameter(QgsProcessingParameterFile(
+            "INPUT", self.tr("Geotag file (rover CSV, CSV with header, NMEA)"), optional=True,
+            fileFilter="Geotags (*.csv *.txt *.nmea *.log *.gga);;All files (*)"))
+        self.addParameter(QgsProcessingParameterFeatureSource(
+            "INPUT_LAYER", self.tr("…or a point layer"), [QgsProcessing.TypeVectorPoint], optional=True))
+        self.addParameter(QgsProcessingParameterEnum(
+            "FORMAT", self.tr("File format"), options=self.FORMAT_NAMES, defaultValue=0))
+        for name, _, text in self.MAPPING:
+            self.addParameter(QgsProcessingParameterString(name, self.tr(text), optional=True))
+        self.addParameter(QgsProcessingParameterEnum(
+            "FIX_FILTER", self.tr("Fix filter"), options=self.FIX_FILTERS, defaultValue=0))
+        self.addParameter(QgsProcessingParameterNumber(
+            "POLE_HEIGHT_M", self.tr("Antenna pole height (m), subtracted from heights"),
+            QgsProcessingParameterNumber.Double, 0.0, minValue=0.0, maxValue=10.0))
+        self.addParameter(QgsProcessingParameterCrs(
+            "OUTPUT_CRS", self.tr("Output CRS (empty: UTM zone of the site)"), optional=True))
+        self.addParameter(QgsProcessingParameterFeatureSink(
+            "OUTPUT", self.tr("Geotags"), QgsProcessing.TypeVectorPoint))
+        for name, text in (("GEOTAG_COUNT", "Geotags written"), ("BAD_ROWS", "Bad rows left out"),
+                           ("NOT_FIXED_DROPPED", "Geotags dropped by the fix filter"),
+                           ("DUPLICATES", "Geotags flagged duplicate_2cm")):
+            self.addOutput(QgsProcessingOutputNumber(name, self.tr(text)))
+
+    def processAlgorithm(self, parameters, context, feedback):  # noqa: N802
+        path = self.parameterAsFile(parameters, "INPUT", context)
+        source = self.parameterAsSource(parameters, "INPUT_LAYER", context)
+        if bool(path) == (source is not None):
+            raise QgsProcessingException(self.tr(
+                "Give either a geotag file (INPUT) or a point layer (INPUT_LAYER), not both and not neither."))
+        mapping = {key: (self.parameterAsString(parameters, name, context) or "").strip() or None
+                   for name, key, _ in self.MAPPING}
+        chosen = self.run_core(layers.chosen_projected_crs, self.parameterAsCrs(parameters, "OUTPUT_CRS", context))
+        if path:
+            fmt = FORMATS[self.parameterAsEnum(parameters, "FORMAT", context)]
+            tags = self.run_core(read_geotags, path, fmt, ColumnMapping(**mapping))
+        else:
+            tags = self.run_core(self._from_layer, source, context, mapping)
+        feedback.setProgress(40)
+        if len(tags) == 0:
+            first = f" The first: {tags.problems[0]}" if tags.problems else ""
+            raise QgsProcessingException(self.tr("The input holds no usable geotag.") + first)
+        if tags.problems:
+            examples = "; ".join(str(e) for e in tags.problems[:5])
+            feedback.reportError(f"{len(tags.problems)} bad row(s) left out; first: {examples}", False)
+        prepared = self.run_core(prepare_geotags, tags,
+                                 fixed_only=self.parameterAsEnum(parameters, "FIX_FILTER", context) == 1,
+                                 pole_height_m=self.parameterAsDouble(parameters, "POLE_HEIGHT_M", context))
+        out = prepared.geotags
+        feedback.pushInfo("Fix quality of the input: " + ", ".join(f"{k}: {v}" for k, v in
+                                                                    prepared.counts_by_fix.items()))
+        if prepared.dropped_not_fixed:
+            feedback.pushWarning(f"{prepared.dropped_not_fixed} geotag(s) without an RTK fixed solution were "
+                                 "left out (fix filter: RTK fixed only)")
+        if prepared.duplicates:
+            feedback.pushWarning(f"{prepared.duplicates} geotag(s) lie within 2 cm of an earlier one "
+                                 "(flag duplicate_2cm)")
+        if len(out) == 0:
+            raise QgsProcessingException(self.tr("No geotag is left to write (all were filtered out)."))
+        crs_core, crs = self.run_core(layers.output_crs, chosen, out.lat, out.lon)
+        feedback.pushInfo(f"Output CRS: {crs.authid() or crs.description()}")
+        x, y = crs_core.from_geodetic(out.lat, out.lon)
+        fields = layers.qgs_fields(GEOTAG_FIELDS)
+        sink, dest_id = self.parameterAsSink(parameters, "OUTPUT", context, fields, QgsWkbTypes.PointZ, crs)
+        z = [h if h == h else 0.0 for h in out.h_ellipsoid.tolist()]
+        n = self.run_core(layers.write_records, sink, fields, out.records(),
+                          (layers.point_z(*p) for p in zip(x.tolist(), y.tolist(), z)),
+                          feedback, 50.0, 100.0, len(out))
+        layers.style_on_load(context, dest_id, "geotags.qml")
+        return {"OUTPUT": dest_id, "GEOTAG_COUNT": n, "BAD_ROWS": len(tags.problems),
+                "NOT_FIXED_DROPPED": prepared.dropped_not_fixed, "DUPLICATES": prepared.duplicates}
+
+    @staticmethod
+    def _from_layer(source, context, mapping):
+        attributes = [mapping[k] for k in ("height", "msl", "fix", "label")]
+        name = source.sourceName()
+        cols = layers.read_point_layer(source, context.transformContext(), attributes, name)
+        values = cols["attributes"]
+        height = values[mapping["height"]] if mapping["height"] else cols["z"].tolist()
+        return geotags_from_columns(
+            cols["lat"], cols["lon"], height, values.get(mapping["msl"]), values.get(mapping["fix"]),
+            values.get(mapping["label"]), cols["row"], source=name,
+            field_names={k: mapping[k] for k in ("height", "msl", "fix") if mapping[k]})
