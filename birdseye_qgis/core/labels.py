@@ -94,19 +94,33 @@ def project_labels(poses: FramePoses, geotags: Geotags, edge_buffer_px: float = 
     """Labels of every frame (in frame order; frames with nothing in view get an empty entry).
 
     Geotags are placed on the ground each frame sees (``ground``, default the level plane at the
-    altimeter depth), so a rover antenna height never shifts a label.
+    altimeter depth), so a rover antenna height never shifts a label. With the level plane, frames
+    without a ground height (no usable altimeter reading) get no labels: :func:`frames_without_ground`
+    tells which, so callers can report them.
     """
     local = local or LocalFrame.around(np.append(poses.lat, geotags.lat), np.append(poses.lon, geotags.lon),
                                        poses.height)
-    geom = FrameGeometry(poses, local)
+    empty = [FrameLabels(f, np.empty(0, np.int64), np.empty((0, 2)), np.empty(0), np.empty(0, bool))
+             for f in range(len(poses))]
+    usable = np.flatnonzero(~frames_without_ground(poses)) if ground is None else np.arange(len(poses))
+    if len(usable) == 0 or len(geotags) == 0:
+        return empty
+    geom = FrameGeometry(poses.subset(usable), local)
     ground_model = (ground or LevelPlaneGround)(geom)
     pts = local.from_geodetic(geotags.lat, geotags.lon, geotags.height)
     proj = project_in_view(geom, pts, ground_model, edge_buffer_px, keep_edge=True)
     order = np.lexsort((proj.point_idx, proj.frame_idx))
     proj = proj.select(order)
-    bounds = np.searchsorted(proj.frame_idx, np.arange(len(poses) + 1))
-    return [FrameLabels(f, proj.point_idx[a:b], proj.uv[a:b], proj.margin_px[a:b], ~proj.in_frame[a:b])
-            for f, (a, b) in enumerate(zip(bounds[:-1], bounds[1:]))]
+    bounds = np.searchsorted(proj.frame_idx, np.arange(len(usable) + 1))
+    for k, (a, b) in enumerate(zip(bounds[:-1], bounds[1:])):
+        f = int(usable[k])
+        empty[f] = FrameLabels(f, proj.point_idx[a:b], proj.uv[a:b], proj.margin_px[a:b], ~proj.in_frame[a:b])
+    return empty
+
+
+def frames_without_ground(poses: FramePoses) -> np.ndarray:
+    """Mask of frames whose level ground is unknown (no usable altimeter reading)."""
+    return ~np.isfinite(poses.ground_height)
 
 
 def soft_label_raster(width: int, height: int, uv: np.ndarray, sigma_px: float) -> np.ndarray:

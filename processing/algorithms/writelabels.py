@@ -15,7 +15,8 @@ from qgis.PyQt.QtCore import QVariant
 from ...birdseye_qgis import layers
 from ...birdseye_qgis.core.frame_records import poses_from_records
 from ...birdseye_qgis.core.geodesy import LocalFrame
-from ...birdseye_qgis.core.labels import Geotags, LabelRequest, LabelWriter, project_labels
+from ...birdseye_qgis.core.labels import (Geotags, LabelRequest, LabelWriter, frames_without_ground,
+                                          project_labels)
 from .base import BirdsEyeAlgorithm
 
 #: Project variable the sensor-bound dock sets ("Use σ_label in Write labels").
@@ -124,6 +125,11 @@ class WriteLabels(BirdsEyeAlgorithm):
         feedback.pushInfo(f"{len(records)} frames ({len(groups)} camera(s)), {len(geotags)} geotags, "
                           f"σ = {sigma:g} px, edge buffer {request.edge_buffer_px:g} px")
 
+        no_ground = [poses.frame_id[i] for poses, _ in groups for i in np.flatnonzero(frames_without_ground(poses))]
+        if no_ground:
+            feedback.pushWarning(f"{len(no_ground)} frame(s) have no ground height (no usable altimeter reading, "
+                                 f"flag no_ground_height) and get no labels; first: "
+                                 f"{', '.join(str(i) for i in no_ground[:5])}")
         label_counts = np.zeros(len(records), dtype=np.int64)
         steps.setCurrentStep(0)
         projected = [self.run_core(project_labels, poses, geotags, request.edge_buffer_px, local)

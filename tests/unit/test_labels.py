@@ -156,3 +156,10 @@ def test_tiles_keep_every_positive_and_a_seeded_share_of_negatives(tmp_path):
     assert names == sorted(p.name for p in (tmp_path / "b" / "tiles" / "images").iterdir())
     assert names == sorted(p.name for p in (tmp_path / "a" / "tiles" / "labels").iterdir())
     assert cv2.imread(str(tmp_path / "a" / "tiles" / "images" / names[0])).shape == (128, 128, 3)
+
+
+def test_frames_without_a_ground_height_get_no_labels():
+    poses, geotags, local = small_campaign()
+    poses.ground_height[0] = np.nan  # frame 101 had no usable altimeter reading
+    labels = project_labels(poses, geotags, local=local)
+    assert [fl.geotag_index.tolist() for fl in labels] == [[], [0], []]
