@@ -4,7 +4,7 @@ from __future__ import annotations
 import json
 
 import numpy as np
-from qgis.core import (QgsExpressionContextUtils, QgsFeature, QgsFeatureSink, QgsField, QgsFields,
+from qgis.core import (QgsFeature, QgsFeatureSink, QgsField, QgsFields,
                        QgsProcessing, QgsProcessingException, QgsProcessingMultiStepFeedback,
                        QgsProcessingOutputNumber, QgsProcessingParameterBoolean,
                        QgsProcessingParameterFeatureSink, QgsProcessingParameterFeatureSource,
@@ -17,10 +17,8 @@ from ...birdseye_qgis.core.frame_records import poses_from_records
 from ...birdseye_qgis.core.geodesy import LocalFrame
 from ...birdseye_qgis.core.labels import (Geotags, LabelRequest, LabelWriter, frames_without_ground,
                                           project_labels)
+from ..design_parameters import read_sigma_label_px
 from .base import BirdsEyeAlgorithm
-
-#: Project variable the sensor-bound dock sets ("Use σ_label in Write labels").
-SIGMA_VARIABLE = "birdseye_sigma_label_px"
 
 
 def sigma_from_bound_json(path: str) -> float:
@@ -93,11 +91,10 @@ class WriteLabels(BirdsEyeAlgorithm):
             return self.parameterAsDouble(parameters, "SIGMA_PX", context)
         if bound:
             return sigma_from_bound_json(bound)
-        scope = QgsExpressionContextUtils.projectScope(context.project() or QgsProject.instance())
-        value = scope.variable(SIGMA_VARIABLE)
-        if value not in (None, ""):
-            feedback.pushInfo(f"σ = {float(value):g} px from the project (sensor-bound calculator)")
-            return float(value)
+        value = read_sigma_label_px(context.project() or QgsProject.instance())
+        if value is not None:
+            feedback.pushInfo(f"σ = {value:g} px from the project (sensor-bound calculator)")
+            return value
         return 10.0
 
     def processAlgorithm(self, parameters, context, feedback):  # noqa: N802

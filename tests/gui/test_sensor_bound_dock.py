@@ -1,0 +1,254 @@
+"""The sensor-bound calculator dock, headless (pytest-qgis iface, qtbot).
+
+What the user does — type a value, pick a platform, load a calibration, press a button — and what must
+follow: the numbers shown are the core's for the inputs shown (preview grid while typing, every pixel
+on demand, identical to ``birdseye:sensorbound``), σ_label reaches the project for ``writelabels``,
+and "Run in Processing…" opens the algorithm with the dock's values.
+"""
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+from qgis.core import Qgis, QgsApplication, QgsExpressionContextUtils, QgsProject
+from qgis.PyQt.QtCore import Qt
+from qgis.PyQt.QtGui import QColor
+from qgis.PyQt.QtWidgets import QApplication
+
+from birdseye.birdseye_qgis.core import sensor_bound as sb
+from birdseye.birdseye_qgis.core.bound_report import ACCEPT_COLOUR, REJECT_COLOUR, stride_for
+from birdseye.birdseye_qgis.core.camera import CameraModel, write_kalibr_yaml
+from birdseye.birdseye_qgis.gui import sensor_bound_dock as dock_module
+from birdseye.processing.design_parameters import read_sigma_label_px
+
+REPO_ROOT = Path(__file__).resolve().parents[2]
+SCREENSHOT = REPO_ROOT / "build" / "screenshots" / "sensor_bound_dock.png"
+DEPLOYED = sb.Intrinsics(fx=4264.4945, fy=4262.8927, cx=958.4594, cy=592.5033, width=1920, height=1200)
+DEPLOYED_SIGMAS = [0.010, 0.010, 0.060, 0.04, 0.04, 0.13]
+PREVIEW_STRIDE = stride_for(DEPLOYED, dock_module.PREVIEW_MAX_POINTS)
+
+
+@pytest.fixture(scope="module")
+def provider(qgis_app, qgis_processing):
+    """The ``birdseye`` provider in the registry (registered here when the QGIS suite has not done it)."""
+    from birdseye.processing.provider import BirdsEyeProvider
+
+    registry = QgsApplication.processingRegistry()
+    if registry.providerById("birdseye") is None:
+        assert registry.addProvider(BirdsEyeProvider())
+    return registry.providerById("birdseye")
+
+
+@pytest.fixture(scope="module")
+def shown_dock(qgis_iface):
+    """One dock for the module (building the plot is the slow part), shown as a floating window."""
+    widget = dock_module.SensorBoundDock(qgis_iface)
+    widget.setFloating(True)
+    widget.resize(430, 1320)
+    widget.show()
+    yield widget
+    widget.close()
+    widget.deleteLater()
+
+
+@pytest.fixture
+def dock(shown_dock, qtbot):
+    """The dock back on the deployed platform, as the user gets it by picking that preset."""
+    shown_dock.calibration_widget.setFilePath("")
+    shown_dock.apply_preset(dock_module.PRESET_DEPLOYED)
+    shown_dock.altitude_combo.setCurrentIndex(0)
+    assert shown_dock.recompute()
+    qtbot.waitExposed(shown_dock)
+    return shown_dock
+
+
+def table_texts(dock):
+    table = dock.results_table
+    return [[table.item(r, c).text() for c in range(table.columnCount())] for r in range(table.rowCount())]
+
+
+def type_into(qtbot, spin, text):
+    """Replace a spin box's text by typing, as a user would."""
+    spin.setFocus()
+    spin.lineEdit().selectAll()
+    qtbot.keyClicks(spin.lineEdit(), text)
+
+
+def wait_for_update(qtbot, dock, before):
+    qtbot.waitUntil(lambda: dock.result is not before, timeout=5000)
+
+
+def test_opens_on_the_deployed_platform_with_its_verdicts(dock):
+    assert dock.preset_combo.currentText() == dock_module.PRESET_DEPLOYED
+    assert dock.camera() == DEPLOYED and dock.sigmas() == pytest.approx(DEPLOYED_SIGMAS)
+    expected = sb.evaluate_bounds(DEPLOYED, [10.0, 20.0], DEPLOYED_SIGMAS, 30.0, PREVIEW_STRIDE)
+    assert dock.result == expected
+    rows = table_texts(dock)
+    assert [r[0] for r in rows] == ["10 m", "20 m"]
+    assert rows[0][1] == f"{expected['altitudes'][0]['sup_trace_px2']:.4g}"
+    assert rows[0][3].endswith("✗") and rows[0][4].endswith("✓")  # trace rejects, exact accepts at 10 m
+    assert rows[0][4].startswith(f"{expected['altitudes'][0]['kappa_exact']:.3g}")
+    colours = [dock.results_table.item(0, c).background().color() for c in (3, 4)]
+    assert colours == [QColor(REJECT_COLOUR), QColor(ACCEPT_COLOUR)]
+    assert f"every {PREVIEW_STRIDE} px" in dock.status_label.text() and PREVIEW_STRIDE == 4
+
+
+def test_typing_a_sigma_updates_the_table_after_a_pause(dock, qtbot):
+    before = dock.result
+    yaw = dock.sigma_spins[5]
+    type_into(qtbot, yaw, "0.8")
+    assert dock._timer.isActive() and dock.result is before  # debounced: nothing computed while typing
+    wait_for_update(qtbot, dock, before)
+    sigmas = DEPLOYED_SIGMAS[:5] + [0.8]
+    assert dock.sigmas() == pytest.approx(sigmas)
+    expected = sb.evaluate_bounds(DEPLOYED, [10.0, 20.0], sigmas, 30.0, PREVIEW_STRIDE)
+    assert dock.result == expected
+    assert table_texts(dock)[0][4].startswith(f"{expected['altitudes'][0]['kappa_exact']:.3g}")
+    assert expected["altitudes"][0]["verdict_exact"] == "reject"  # a 0.8° heading error is too much at 10 m
+    assert table_texts(dock)[0][4].endswith("✗")
+    assert dock.preset_combo.currentText() == dock_module.PRESET_CUSTOM
+    # the budget table shows the typed sigma and the share moves to yaw
+    assert dock.budget_table.item(5, 0).text() == "0.800°"
+    shares = expected["altitudes"][0]["budget_share"]
+    assert dock.budget_table.item(5, 3).text() == f"{100 * shares[5]:.1f} %" and np.argmax(shares) == 5
+
+
+def test_altitudes_tolerance_and_invalid_input(dock, qtbot):
+    before = dock.result
+    dock.altitudes_edit.selectAll()
+    qtbot.keyClicks(dock.altitudes_edit, "12, 25, 40")
+    type_into(qtbot, dock.tolerance_spin, "21")
+    wait_for_update(qtbot, dock, before)
+    assert [r[0] for r in table_texts(dock)] == ["12 m", "25 m", "40 m"]
+    assert dock.result == sb.evaluate_bounds(DEPLOYED, [12.0, 25.0, 40.0], DEPLOYED_SIGMAS, 21.0, PREVIEW_STRIDE)
+    assert dock.sigma_label.text() == "σ_label = 7.00 px"
+
+    valid = dock.result
+    qtbot.keyClicks(dock.altitudes_edit, ", x")
+    qtbot.waitUntil(lambda: not dock.results_table.isEnabled(), timeout=5000)
+    assert "Altitudes" in dock.status_label.text() and "'x'" in dock.status_label.text()
+    assert dock.result is valid and not dock.processing_button.isEnabled()
+    dock.altitudes_edit.selectAll()
+    qtbot.keyClicks(dock.altitudes_edit, "0")
+    qtbot.waitUntil(lambda: "not above the ground" in dock.status_label.text(), timeout=5000)
+
+
+def test_platform_preset_restores_every_value(dock, qtbot):
+    type_into(qtbot, dock.fx_spin, "3000")
+    dock.altitudes_edit.setText("50")
+    type_into(qtbot, dock.sigma_spins[2], "0.2")
+    assert dock.preset_combo.currentText() == dock_module.PRESET_CUSTOM
+    deployed_index = dock.preset_combo.findText(dock_module.PRESET_DEPLOYED)
+    dock.preset_combo.setCurrentIndex(deployed_index)
+    dock.preset_combo.activated.emit(deployed_index)
+    assert dock.camera() == DEPLOYED and dock.sigmas() == pytest.approx(DEPLOYED_SIGMAS)
+    assert dock.tolerance_px() == 30.0 and dock.altitudes() == [10.0, 20.0]
+    assert dock.preset_combo.currentText() == dock_module.PRESET_DEPLOYED
+    before = dock.result
+    wait_for_update(qtbot, dock, before)
+    assert dock.result == sb.evaluate_bounds(DEPLOYED, [10.0, 20.0], DEPLOYED_SIGMAS, 30.0, PREVIEW_STRIDE)
+
+
+def test_calibration_file_sets_the_intrinsics(dock, qtbot, tmp_path):
+    camera = CameraModel(width=1600, height=1300, fx=1500.0, fy=1480.0, cx=790.0, cy=660.0)
+    path = tmp_path / "camchain.yaml"
+    write_kalibr_yaml(camera, path)
+    before = dock.result
+    dock.calibration_widget.setFilePath(str(path))
+    assert (dock.fx_spin.value(), dock.fy_spin.value(), dock.cx_spin.value(), dock.cy_spin.value(),
+            dock.width_spin.value(), dock.height_spin.value()) == (1500.0, 1480.0, 790.0, 660.0, 1600, 1300)
+    assert dock.preset_combo.currentText() == dock_module.PRESET_CUSTOM
+    assert dock.processing_parameters()["CALIBRATION"] == str(path)
+    wait_for_update(qtbot, dock, before)
+    assert dock.result["inputs"]["intrinsics"] == {"fx": 1500.0, "fy": 1480.0, "cx": 790.0, "cy": 660.0,
+                                                   "width": 1600, "height": 1300}
+    # once an intrinsic is edited the file no longer describes the camera: it is not passed on
+    type_into(qtbot, dock.fx_spin, "1510")
+    assert "CALIBRATION" not in dock.processing_parameters() and dock.calibration_widget.filePath() == ""
+
+    broken = tmp_path / "broken.yaml"
+    broken.write_text("cam0:\n  intrinsics: [1, 2]\n", encoding="utf-8")
+    dock.calibration_widget.setFilePath(str(broken))
+    assert "broken.yaml" in dock.status_label.text() and dock.fx_spin.value() == 1510.0
+
+
+def test_full_resolution_equals_the_processing_algorithm(dock, provider, qtbot, tmp_path):
+    import processing
+
+    qtbot.mouseClick(dock.full_button, Qt.LeftButton)
+    assert dock.full_resolution and dock.result["inputs"]["stride_px"] == 1
+    assert "every pixel" in dock.status_label.text()
+    parameters = dict(dock.processing_parameters(), OUTPUT_JSON=str(tmp_path / "bound.json"))
+    processing.run("birdseye:sensorbound", parameters)
+    written = json.loads((tmp_path / "bound.json").read_text(encoding="utf-8"))
+    assert written["altitudes"] == json.loads(json.dumps(dock.result["altitudes"]))
+
+
+def test_run_in_processing_opens_the_algorithm_with_the_dock_values(dock, provider, qtbot, monkeypatch):
+    import processing
+    from qgis.core import QgsProcessingContext
+
+    opened = []
+    monkeypatch.setattr(processing, "execAlgorithmDialog", lambda alg_id, params: opened.append((alg_id, params)))
+    type_into(qtbot, dock.sigma_spins[0], "0.025")
+    qtbot.mouseClick(dock.processing_button, Qt.LeftButton)
+    assert len(opened) == 1
+    alg_id, parameters = opened[0]
+    assert alg_id == "birdseye:sensorbound"
+    assert parameters["SIGMAS"] == "0.025,0.01,0.06,0.04,0.04,0.13" and parameters["ALTITUDES"] == "10, 20"
+    assert parameters["FX"] == DEPLOYED.fx and parameters["WIDTH"] == 1920 and parameters["TOLERANCE_PX"] == 30.0
+    alg = QgsApplication.processingRegistry().algorithmById(alg_id)
+    names = {p.name() for p in alg.parameterDefinitions()}
+    assert set(parameters) <= names
+    ok, message = alg.checkParameterValues(dict(parameters, OUTPUT_JSON="/tmp/x.json"), QgsProcessingContext())
+    assert ok, message
+
+
+def test_sigma_label_is_handed_to_the_project(dock, qtbot, qgis_iface):
+    project = QgsProject.instance()
+    type_into(qtbot, dock.tolerance_spin, "24")
+    qgis_iface.messageBar().clear_messages()
+    qtbot.mouseClick(dock.sigma_button, Qt.LeftButton)
+    assert project.readDoubleEntry("birdseye", "sigma_label_px") == (8.0, True)
+    assert QgsExpressionContextUtils.projectScope(project).variable("birdseye_sigma_label_px") == 8.0
+    assert read_sigma_label_px(project) == 8.0
+    assert any("8.00 px" in m for m in qgis_iface.messageBar().get_messages(Qgis.Success))
+    # a saved project keeps variables as text; the reader still gets the number
+    QgsExpressionContextUtils.setProjectVariable(project, "birdseye_sigma_label_px", "9.5")
+    assert read_sigma_label_px(project) == 9.5
+
+
+def test_plot_shows_the_chosen_altitude_field(dock, qtbot):
+    from birdseye.birdseye_qgis.core.bound_report import stride_for as plot_stride
+
+    dock.altitude_combo.setCurrentIndex(1)
+    image = dock.figure.axes[0].images[0]
+    expected = sb.lmax_field(DEPLOYED, 20.0, DEPLOYED_SIGMAS, plot_stride(DEPLOYED))
+    np.testing.assert_allclose(np.asarray(image.get_array()), expected)
+    assert "20 m" in dock.figure.axes[0].get_title()
+    assert dock.worst_label.text() == "worst at (1920, 1200)"
+
+
+def test_screenshot(qgis_iface, qtbot):
+    """A picture of the dock for the README, in QGIS's usual 9 pt interface font."""
+    font = QApplication.font()
+    smaller = QApplication.font()
+    smaller.setPointSizeF(9.0)
+    QApplication.setFont(smaller)
+    try:
+        widget = dock_module.SensorBoundDock(qgis_iface)
+        qtbot.addWidget(widget)
+        widget.setFloating(True)
+        widget.resize(400, 1240)
+        widget.show()
+        qtbot.waitExposed(widget)
+        qtbot.wait(100)
+        body = widget.widget().widget()
+        assert body.width() <= widget.widget().viewport().width(), "the dock needs a horizontal scroll bar"
+        SCREENSHOT.parent.mkdir(parents=True, exist_ok=True)
+        assert widget.grab().save(str(SCREENSHOT))
+    finally:
+        QApplication.setFont(font)
+    assert SCREENSHOT.stat().st_size > 20_000
