@@ -1,0 +1,240 @@
+"""``birdseye:planflight`` — geotags on the farm map → the shortest survey flight and mission files."""
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+from qgis.core import (QgsCoordinateReferenceSystem, QgsFeatureRequest, QgsGeometry, QgsLineString,
+                       QgsProcessing,
+                       QgsProcessingException, QgsProcessingOutputNumber, QgsProcessingOutputString,
+                       QgsProcessingParameterBoolean, QgsProcessingParameterCrs,
+                       QgsProcessingParameterDefinition, QgsProcessingParameterEnum,
+                       QgsProcessingParameterFeatureSink, QgsProcessingParameterField,
+                       QgsProcessingParameterFile, QgsProcessingParameterFileDestination,
+                       QgsProcessingParameterNumber, QgsProcessingParameterPoint,
+                       QgsProcessingParameterVectorLayer, QgsWkbTypes)
+
+from ...birdseye_qgis import layers
+from ...birdseye_qgis.core.camera import load_calibration
+from ...birdseye_qgis.core.flight_plan import (ROUTE_FIELDS, WAYPOINT_FIELDS, FlightSettings, plan_flight,
+                                               route_records, waypoint_records)
+from ...birdseye_qgis.core.mission_files import (CAPTURE_PHOTO, CAPTURE_TIMED, DJI_DRONES, DJI_PAYLOADS,
+                                                 FORMAT_NAMES, check_waypoint_limits, mission_file_paths,
+                                                 write_dji_kmz, write_kml, write_litchi_csv, write_qgc_plan)
+from .base import BirdsEyeAlgorithm
+
+
+class PlanFlight(BirdsEyeAlgorithm):
+    ALG_ID = "planflight"
+    DISPLAY_NAME = "Plan the survey flight"
+    GROUP = "plan"
+
+    CAPTURE_OPTIONS = [(CAPTURE_PHOTO, "Photo at each waypoint"), (CAPTURE_TIMED, "Timed capture (interval)")]
+    #: Mission file outputs: parameter, core format key, label, file filter.
+    FILE_OUTPUTS = [("OUTPUT_KMZ", "kmz", "DJI Pilot 2 route (WPML KMZ)", "DJI WPML (*.kmz)"),
+                    ("OUTPUT_PLAN", "plan", "QGroundControl plan", "QGroundControl plan (*.plan)"),
+                    ("OUTPUT_LITCHI", "litchi", "Litchi mission (CSV)", "Litchi CSV (*.csv)"),
+                    ("OUTPUT_KML", "kml", "Google Earth (KML)", "KML (*.kml)")]
+
+    def initAlgorithm(self, config=None):  # noqa: N802
+        self.addParameter(QgsProcessingParameterVectorLayer(
+            "GEOTAGS", self.tr("Geotags (point layer)"), [QgsProcessing.TypeVectorPoint]))
+        self.addParameter(QgsProcessingParameterBoolean(
+            "SELECTED_ONLY", self.tr("Selected geotags only"), defaultValue=False))
+        self.addParameter(QgsProcessingParameterField(
+            "ID_FIELD", self.tr("Geotag id field (empty: 'id' if present, else the feature number)"),
+            parentLayerParameterName="GEOTAGS", optional=True))
+        self.addParameter(QgsProcessingParameterPoint(
+            "HOME", self.tr("Home: take-off and landing point (optional)"), optional=True))
+        self._number("ALTITUDE_M", "Flight altitude above the ground, relative to take-off [m] (2–120)", 12.0)
+        self._number("SPEED_MS", "Flight speed [m/s]", 3.0, minimum=0.0)
+        self._number("MERGE_RADIUS_M", "Merge radius: geotags within this ground distance share a waypoint [m]",
+                     2.0, minimum=0.0)
+        self.addParameter(QgsProcessingParameterFile(
+            "CAMERA", self.tr("Camera calibration (Kalibr or OpenCV YAML; optional)"), optional=True,
+            fileFilter="Calibration (*.yaml *.yml);;All files (*)"))
+        self._number("FOOTPRINT_MARGIN_PX", "Edge margin kept around geotags in the image [px]", 50.0,
+                     minimum=0.0, advanced=True)
+        self._number("HOVER_S", "Hover at each waypoint [s]", 2.0, minimum=0.0)
+        self.addParameter(QgsProcessingParameterEnum(
+            "CAPTURE", self.tr("Capture"), options=[label for _, label in self.CAPTURE_OPTIONS], defaultValue=0))
+        self._number("CAPTURE_INTERVAL_S", "Capture interval for timed capture [s] (0: from the camera)", 2.0,
+                     minimum=0.0)
+        self._number("FORWARD_OVERLAP_PCT", "Forward overlap for the suggested interval [%]", 80.0,
+                     minimum=0.0, maximum=99.0, advanced=True)
+        self._number("MAX_WAYPOINTS", "Most waypoints per mission", 99, integer=True, minimum=1)
+        self._number("MAX_FLIGHT_MIN", "Longest flight per mission [min]", 20.0, minimum=0.0)
+        self._enum("DRONE", "DJI aircraft (KMZ)", list(DJI_DRONES))
+        self._enum("PAYLOAD", "DJI camera (KMZ)", list(DJI_PAYLOADS))
+        force = QgsProcessingParameterBoolean(
+            "FORCE", self.tr("Plan even if the points spread over more than 10 km"), defaultValue=False)
+        force.setFlags(force.flags() | QgsProcessingParameterDefinition.FlagAdvanced)
+        self.addParameter(force)
+        crs = QgsProcessingParameterCrs("OUTPUT_CRS", self.tr("Output CRS (empty: UTM zone of the site)"),
+                                        optional=True)
+        crs.setFlags(crs.flags() | QgsProcessingParameterDefinition.FlagAdvanced)
+        self.addParameter(crs)
+        self.addParameter(QgsProcessingParameterFeatureSink(
+            "OUTPUT_WAYPOINTS", self.tr("Waypoints"), QgsProcessing.TypeVectorPoint))
+        self.addParameter(QgsProcessingParameterFeatureSink(
+            "OUTPUT_ROUTE", self.tr("Route"), QgsProcessing.TypeVectorLine))
+        for name, _, label, file_filter in self.FILE_OUTPUTS:
+            self.addParameter(QgsProcessingParameterFileDestination(
+                name, self.tr(label), file_filter, optional=True, createByDefault=False))
+        for name, label in (("ROUTE_LENGTH_M", "Route length [m]"), ("FLIGHT_TIME_MIN", "Estimated flight time [min]"),
+                            ("WAYPOINT_COUNT", "Waypoints"), ("MISSION_COUNT", "Missions"),
+                            ("GEOTAG_COUNT", "Geotags")):
+            self.addOutput(QgsProcessingOutputNumber(name, self.tr(label)))
+        self.addOutput(QgsProcessingOutputString("MISSION_FILES", self.tr("Mission files written")))
+
+    def _number(self, name, label, default, minimum=None, maximum=None, integer=False, advanced=False):
+        kind = QgsProcessingParameterNumber.Integer if integer else QgsProcessingParameterNumber.Double
+        param = QgsProcessingParameterNumber(name, self.tr(label), kind, default)
+        if minimum is not None:
+            param.setMinimum(minimum)
+        if maximum is not None:
+            param.setMaximum(maximum)
+        if advanced:
+            param.setFlags(param.flags() | QgsProcessingParameterDefinition.FlagAdvanced)
+        self.addParameter(param)
+
+    def _enum(self, name, label, options):
+        param = QgsProcessingParameterEnum(name, self.tr(label), options=options, defaultValue=0)
+        param.setFlags(param.flags() | QgsProcessingParameterDefinition.FlagAdvanced)
+        self.addParameter(param)
+
+    # ------------------------------------------------------------------------------------------ run
+    def processAlgorithm(self, parameters, context, feedback):  # noqa: N802
+        layer = self.parameterAsVectorLayer(parameters, "GEOTAGS", context)
+        if layer is None:
+            raise QgsProcessingException(self.tr("GEOTAGS: the geotag layer could not be opened."))
+        source = layer
+        if self.parameterAsBool(parameters, "SELECTED_ONLY", context):
+            if layer.selectedFeatureCount() == 0:
+                raise QgsProcessingException(self.tr(
+                    "SELECTED_ONLY is set but no geotag of layer '{}' is selected: select the geotags"
+                    " of the partition to fly, or clear SELECTED_ONLY.").format(layer.name()))
+            source = layer.materialize(QgsFeatureRequest().setFilterFids(layer.selectedFeatureIds()))
+        id_field = self.parameterAsString(parameters, "ID_FIELD", context) or (
+            "id" if "id" in layer.fields().names() else "")
+        # Ground heights only feed the uneven-ground warning; a geotag layer's h_ellipsoid is NULL where
+        # unknown, while its Z is then 0, so the field is preferred.
+        height_field = "h_ellipsoid" if "h_ellipsoid" in layer.fields().names() else ""
+        columns = self.run_core(layers.read_point_layer, source, context.transformContext(),
+                                [a for a in (id_field, height_field) if a], layer.name())
+        if len(columns["lat"]) == 0:
+            raise QgsProcessingException(self.tr("GEOTAGS: layer '{}' has no features: there is nothing to fly"
+                                                 " over.").format(layer.name()))
+        ids = (columns["attributes"][id_field] if id_field else columns["row"].tolist())
+        ids = [str(columns["row"][k]) if v is None else str(v) for k, v in enumerate(ids)]
+
+        point = self.parameterAsPoint(parameters, "HOME", context, QgsCoordinateReferenceSystem(layers.WGS84))
+        home = None if point.isEmpty() else (point.y(), point.x())
+
+        camera = None
+        camera_path = self.parameterAsFile(parameters, "CAMERA", context)
+        if camera_path:
+            camera = self.run_core(load_calibration, camera_path)
+        settings = FlightSettings(
+            altitude_m=self.parameterAsDouble(parameters, "ALTITUDE_M", context),
+            speed_ms=self.parameterAsDouble(parameters, "SPEED_MS", context),
+            merge_radius_m=self.parameterAsDouble(parameters, "MERGE_RADIUS_M", context),
+            hover_s=self.parameterAsDouble(parameters, "HOVER_S", context),
+            max_waypoints=self.parameterAsInt(parameters, "MAX_WAYPOINTS", context),
+            max_flight_min=self.parameterAsDouble(parameters, "MAX_FLIGHT_MIN", context),
+            capture=self.CAPTURE_OPTIONS[self.parameterAsEnum(parameters, "CAPTURE", context)][0],
+            capture_interval_s=self.parameterAsDouble(parameters, "CAPTURE_INTERVAL_S", context),
+            forward_overlap=self.parameterAsDouble(parameters, "FORWARD_OVERLAP_PCT", context) / 100.0,
+            footprint_margin_px=self.parameterAsDouble(parameters, "FOOTPRINT_MARGIN_PX", context),
+            force=self.parameterAsBool(parameters, "FORCE", context))
+        chosen_crs = self.run_core(layers.chosen_projected_crs,
+                                   self.parameterAsCrs(parameters, "OUTPUT_CRS", context))
+        requested = {fmt: self.parameterAsFileOutput(parameters, name, context)
+                     for name, fmt, _, _ in self.FILE_OUTPUTS}
+        requested = {fmt: path for fmt, path in requested.items() if path}
+
+        heights = (np.array([np.nan if v is None else float(v) for v in columns["attributes"][height_field]])
+                   if height_field else columns["z"])
+        progress, is_canceled = self.progress_callbacks(feedback, 0.0, 80.0)
+        plan = self.run_core(plan_flight, columns["lat"], columns["lon"], ids, home, settings, camera,
+                             layer.name(), progress, is_canceled, ground_heights=heights)
+        for message in plan.warnings:
+            feedback.pushWarning(message)
+        if plan.suggested_interval_s is not None:
+            feedback.pushInfo(self.tr(
+                "With this camera at {alt:g} m and {v:g} m/s, one photo every {s:.2f} s gives {o:g} % forward"
+                " overlap.").format(alt=settings.altitude_m, v=settings.speed_ms, s=plan.suggested_interval_s,
+                                    o=100 * settings.forward_overlap))
+
+        # Every requested mission file must be possible before anything is written.
+        specs = {fmt: plan.mission_specs(Path(path).stem) for fmt, path in requested.items()}
+        for fmt, fmt_specs in specs.items():
+            self.run_core(check_waypoint_limits, fmt_specs, [fmt])
+        crs_core, crs = self.run_core(layers.output_crs, chosen_crs, columns["lat"], columns["lon"])
+        outputs = self._write_layers(parameters, context, feedback, plan, crs_core, crs)
+        outputs.update(self._write_mission_files(specs, requested, parameters, context, feedback))
+        outputs.update({"ROUTE_LENGTH_M": plan.total_length_m, "FLIGHT_TIME_MIN": plan.total_time_s / 60.0,
+                        "WAYPOINT_COUNT": plan.waypoint_count, "MISSION_COUNT": len(plan.missions),
+                        "GEOTAG_COUNT": len(ids)})
+        self._log_summary(feedback, plan, len(ids))
+        feedback.setProgress(100)
+        return outputs
+
+    def _write_layers(self, parameters, context, feedback, plan, crs_core, crs):
+        fields = layers.qgs_fields(WAYPOINT_FIELDS)
+        sink, waypoints_id = self.parameterAsSink(parameters, "OUTPUT_WAYPOINTS", context, fields,
+                                                  QgsWkbTypes.PointZ, crs)
+        records = waypoint_records(plan)
+        x, y = crs_core.from_geodetic([r["lat"] for r in records], [r["lon"] for r in records])
+        geometries = (layers.point_z(px, py, r["altitude"]) for px, py, r in zip(np.atleast_1d(x), np.atleast_1d(y),
+                                                                                   records))
+        self.run_core(layers.write_records, sink, fields, records, geometries, feedback, 80.0, 88.0, len(records))
+        layers.style_on_load(context, waypoints_id, "waypoints.qml")
+
+        route_fields = layers.qgs_fields(ROUTE_FIELDS)
+        route_sink, route_id = self.parameterAsSink(parameters, "OUTPUT_ROUTE", context, route_fields,
+                                                    QgsWkbTypes.LineString, crs)
+        lines = []
+        for mission in plan.missions:
+            lat, lon = plan.route_latlon(mission)
+            lx, ly = crs_core.from_geodetic(lat, lon)
+            # A single waypoint without home is no line: the feature keeps its attributes only.
+            lines.append(QgsGeometry(QgsLineString(np.atleast_1d(lx).tolist(), np.atleast_1d(ly).tolist()))
+                         if len(lat) > 1 else None)
+        self.run_core(layers.write_records, route_sink, route_fields, route_records(plan), lines)
+        layers.style_on_load(context, route_id, "route.qml")
+        return {"OUTPUT_WAYPOINTS": waypoints_id, "OUTPUT_ROUTE": route_id}
+
+    def _write_mission_files(self, specs, requested, parameters, context, feedback):
+        """Each requested format: one file per mission (suffixed _m1, _m2… when several), the KML
+        one file for all; returns the output values (first file of each format, all files)."""
+        drone = list(DJI_DRONES.values())[self.parameterAsEnum(parameters, "DRONE", context)]
+        payload = list(DJI_PAYLOADS.values())[self.parameterAsEnum(parameters, "PAYLOAD", context)]
+        writers = {"kmz": lambda p, s: write_dji_kmz(p, s, drone, payload),
+                   "plan": write_qgc_plan, "litchi": write_litchi_csv}
+        outputs, written = {}, []
+        for name, fmt, _, _ in self.FILE_OUTPUTS:
+            if fmt not in requested:
+                continue
+            if fmt == "kml":  # one file holds every mission
+                paths = [self.run_core(write_kml, requested[fmt], specs[fmt], Path(requested[fmt]).stem)]
+            else:
+                paths = [self.run_core(writers[fmt], path, spec)
+                         for path, spec in zip(mission_file_paths(requested[fmt], len(specs[fmt])), specs[fmt])]
+            outputs[name] = str(paths[0])
+            written += [str(p) for p in paths]
+            feedback.pushInfo(self.tr("{fmt}: {files}").format(
+                fmt=FORMAT_NAMES[fmt], files=", ".join(Path(p).name for p in paths)))
+        outputs["MISSION_FILES"] = ";".join(written)
+        return outputs
+
+    def _log_summary(self, feedback, plan, geotag_count):
+        s = plan.settings
+        feedback.pushInfo(self.tr(
+            "{g} geotag(s) → {w} waypoint(s) in {m} mission(s); route {km:.2f} km; estimated flight time"
+            " {t:.1f} min at {v:g} m/s and {alt:g} m.").format(
+            g=geotag_count, w=plan.waypoint_count, m=len(plan.missions), km=plan.total_length_m / 1000.0,
+            t=plan.total_time_s / 60.0, v=s.speed_ms, alt=s.altitude_m))
+        for mission in plan.missions:
+            feedback.pushInfo(self.tr("  mission {n}: {w} waypoint(s), {l:.0f} m, {t:.1f} min").format(
+                n=mission.number, w=len(mission.waypoints), l=mission.length_m, t=mission.time_s / 60.0))
