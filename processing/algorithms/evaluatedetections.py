@@ -1,0 +1,176 @@
+"""birdseye:evaluatedetections — recall and GMCF of one or several flights, before and after review."""
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+from qgis.core import (QgsProcessing, QgsProcessingException, QgsProcessingOutputNumber,
+                       QgsProcessingParameterFeatureSource, QgsProcessingParameterFile,
+                       QgsProcessingParameterFileDestination, QgsProcessingParameterMultipleLayers,
+                       QgsProcessingParameterVectorLayer, QgsWkbTypes)
+
+from ...birdseye_qgis.core import preregistration
+from ...birdseye_qgis.core.scoring import (Flight, OperatingPoint, VerdictLog, evaluate_flights,
+                                           evaluation_report_html)
+from .base import BirdsEyeAlgorithm
+from .clusterdetections import (add_clustering_parameters, read_detections, read_geotags, read_pose_groups,
+                                wgs84_of)
+
+
+def read_flights(alg, parameters, context, feedback, detections_name="DETECTIONS", frames_name="FRAMES"):
+    """Detection layers paired in order with frame layers (one flight each) as core Flights."""
+    det_layers = alg.parameterAsLayerList(parameters, detections_name, context)
+    frame_layers = alg.parameterAsLayerList(parameters, frames_name, context)
+    if not det_layers:
+        raise QgsProcessingException(f"{detections_name}: give at least one detection layer.")
+    if len(frame_layers) != len(det_layers):
+        raise QgsProcessingException(
+            f"{frames_name}: give one frame layer per detection layer, in the same order (got "
+            f"{len(det_layers)} detection layer(s) and {len(frame_layers)} frame layer(s)).")
+    flights = []
+    for det_layer, frame_layer in zip(det_layers, frame_layers):
+        det, dropped = alg.run_core(read_detections, det_layer, context, det_layer.name())
+        if dropped:
+            feedback.pushWarning(f"{det_layer.name()}: {dropped} detection(s) without a position or score left out")
+        groups = alg.run_core(read_pose_groups, frame_layer, frame_layer.name())[0]
+        flights.append(Flight(det, groups, det_layer.name()))
+    return flights
+
+
+def read_verdicts(layer, context) -> VerdictLog:
+    """The review dock's verdict table (append order = feature id order) as a :class:`VerdictLog`.
+
+    Positions come from ``lat``/``lon`` fields, else from a point geometry (transformed to WGS84).
+    """
+    names = layer.fields().names()
+    use_geometry = ("lat" not in names or "lon" not in names) and layer.isSpatial() and \
+        QgsWkbTypes.geometryType(layer.wkbType()) == QgsWkbTypes.PointGeometry
+    transform = wgs84_of(layer, context) if use_geometry else None
+    records = []
+    for feature in sorted(layer.getFeatures(), key=lambda f: f.id()):
+        rec = {n: (None if v is None or (hasattr(v, "isNull") and v.isNull()) else v)
+               for n, v in zip(names, feature.attributes())}
+        rec["sequence"] = feature.id()
+        if transform is not None and feature.hasGeometry():
+            p = transform.transform(feature.geometry().asPoint())
+            rec["lat"], rec["lon"] = p.y(), p.x()
+        records.append(rec)
+    return VerdictLog.from_records(records, source=layer.name())
+
+
+def operating_point_from_rule(path, flights, feedback) -> tuple[OperatingPoint, dict]:
+    """Verify a sealed rule and return the operating point of the arm the detections' model belongs to."""
+    doc = preregistration.read(path)
+    digests = {f.detections.model_digest for f in flights}
+    if "" in digests:
+        raise preregistration.SealError("a detection layer has no model_digest, so it cannot be checked "
+                                        "against the sealed rule", source=str(path))
+    if len(digests) != 1:
+        raise preregistration.SealError("the detection layers come from different models; a sealed rule "
+                                        "scores one arm at a time", source=str(path))
+    arm, op = preregistration.arm_for(doc, digests.pop(), source=str(path))
+    for f in flights:
+        t = f.detections.threshold
+        if t is not None and t > op.threshold + 1e-12:
+            raise preregistration.SealError(
+                f"{f.name} was detected at threshold {t}, above the sealed {op.threshold}: detections between "
+                "the two were never made; run Detect again at the sealed threshold", source=str(path))
+    feedback.pushInfo(f"Sealed rule verified (seal {doc['seal'][:12]}…, sealed {doc['sealed_at']}); arm "
+                      f"'{arm['name']}': its operating point replaces the dialog's values: {op.to_dict()}")
+    return op, {"seal": doc["seal"], "sealed_at": doc["sealed_at"], "arm": arm["name"],
+                "model_digest": arm["model_digest"]}
+
+
+class EvaluateDetections(BirdsEyeAlgorithm):
+    ALG_ID = "evaluatedetections"
+    DISPLAY_NAME = "Evaluate detections (recall, GMCF)"
+    GROUP = "detect"
+
+    def initAlgorithm(self, config=None):  # noqa: N802
+        self.addParameter(QgsProcessingParameterMultipleLayers(
+            "DETECTIONS", self.tr("Detection layers (one per flight)"), QgsProcessing.TypeVectorPoint))
+        self.addParameter(QgsProcessingParameterFeatureSource(
+            "GEOTAGS", self.tr("Geotags"), [QgsProcessing.TypeVectorPoint]))
+        self.addParameter(QgsProcessingParameterMultipleLayers(
+            "FRAMES", self.tr("Frame layers (one per flight, same order)"), QgsProcessing.TypeVector))
+        add_clustering_parameters(self)
+        self.addParameter(QgsProcessingParameterVectorLayer(
+            "REVIEW", self.tr("Review verdicts (optional: adds the POST scores)"), [QgsProcessing.TypeVector],
+            optional=True))
+        self.addParameter(QgsProcessingParameterFile(
+            "PREREGISTRATION", self.tr("Sealed selection rule (optional: verified, its operating point is used)"),
+            optional=True, fileFilter="Preregistration (*.json)"))
+        self.addParameter(QgsProcessingParameterFileDestination(
+            "OUTPUT_JSON", self.tr("Scores (JSON)"), "JSON (*.json)"))
+        self.addParameter(QgsProcessingParameterFileDestination(
+            "OUTPUT_REPORT", self.tr("Report (HTML)"), "HTML (*.html)", optional=True, createByDefault=True))
+        for name, text in (("N_IN_VIEW", "Geotags in view"), ("N_RECOVERED", "Geotags recovered"),
+                           ("RECALL_PRE", "recall_pre"), ("N_CLUSTERS", "Clusters"),
+                           ("N_HIT_CLUSTERS", "Hit clusters"), ("GMCF_PRE", "gmcf_pre")):
+            self.addOutput(QgsProcessingOutputNumber(name, self.tr(text)))
+
+    def processAlgorithm(self, parameters, context, feedback):  # noqa: N802
+        flights = read_flights(self, parameters, context, feedback)
+        geotag_source = self.parameterAsSource(parameters, "GEOTAGS", context)
+        if geotag_source is None:
+            raise QgsProcessingException(self.tr("GEOTAGS: the geotag layer cannot be read."))
+        geotags = self.run_core(read_geotags, geotag_source, context)
+        if len(geotags) == 0:
+            raise QgsProcessingException(self.tr("GEOTAGS: the layer holds no point with a position."))
+        rule_path = self.parameterAsFile(parameters, "PREREGISTRATION", context)
+        rule = None
+        if rule_path:
+            op, rule = self.run_core(operating_point_from_rule, rule_path, flights, feedback)
+        else:
+            op = self.run_core(OperatingPoint, None, self.parameterAsDouble(parameters, "DEDUP_CM", context),
+                               self.parameterAsDouble(parameters, "EPS_M", context),
+                               self.parameterAsInt(parameters, "MIN_SAMPLES", context),
+                               self.parameterAsDouble(parameters, "EPS_PRED_M", context),
+                               self.parameterAsDouble(parameters, "EDGE_BUFFER_PX", context))
+        review = self.parameterAsVectorLayer(parameters, "REVIEW", context)
+        log = self.run_core(read_verdicts, review, context) if review is not None else None
+        feedback.setProgress(20)
+        progress, is_canceled = self.progress_callbacks(feedback, 20.0, 90.0)
+        evaluation = self.run_core(evaluate_flights, flights, geotags, op, log, None, progress, is_canceled)
+        result = evaluation.to_dict()
+        if rule is not None:
+            result["preregistration"] = rule
+        for note in evaluation.review_notes:
+            feedback.pushWarning(note)
+        for f in evaluation.flights:
+            if f.in_view.n_frames_without_ground:
+                feedback.pushWarning(f"{f.name}: {f.in_view.n_frames_without_ground} frame(s) without a ground "
+                                     "height were not counted as processed")
+        out_json = self.parameterAsFileOutput(parameters, "OUTPUT_JSON", context)
+        try:
+            Path(out_json).write_text(json.dumps(result, indent=2, ensure_ascii=False) + "\n", encoding="utf-8")
+        except OSError as exc:
+            raise QgsProcessingException(f"OUTPUT_JSON: cannot write {out_json} ({exc})") from exc
+        outputs = {"OUTPUT_JSON": out_json}
+        out_report = self.parameterAsFileOutput(parameters, "OUTPUT_REPORT", context)
+        if out_report:
+            try:
+                Path(out_report).write_text(evaluation_report_html(evaluation), encoding="utf-8")
+            except OSError as exc:
+                raise QgsProcessingException(f"OUTPUT_REPORT: cannot write {out_report} ({exc})") from exc
+            outputs["OUTPUT_REPORT"] = out_report
+        p = evaluation.pooled
+        feedback.pushInfo(self._summary(result))
+        outputs.update({"N_IN_VIEW": p.n_in_view, "N_RECOVERED": p.n_recovered, "RECALL_PRE": p.recall_pre,
+                        "N_CLUSTERS": p.n_clusters, "N_HIT_CLUSTERS": p.n_hit_clusters, "GMCF_PRE": p.gmcf_pre})
+        feedback.setProgress(100)
+        return outputs
+
+    @staticmethod
+    def _summary(result: dict) -> str:
+        def fmt(v):
+            return "undefined" if v is None else f"{v:.3f}"
+
+        lines = [f"recall_pre = {result['n_recovered']}/{result['n_in_view']} = {fmt(result['recall_pre'])}; "
+                 f"gmcf_pre = {result['n_hit_clusters']}/{result['n_clusters']} = {fmt(result['gmcf_pre'])} "
+                 "(a lower bound on precision, not precision)"]
+        for conv, p in result.get("post", {}).items():
+            lines.append(f"POST {conv}: c = {p['c']}, a = {p['a']}, gmcf_post = {fmt(p['gmcf_post'])}, "
+                         f"recall_post {p['recall_post'] or 'undefined'}")
+        return "\n".join(lines)
+

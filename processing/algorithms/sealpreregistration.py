@@ -1,0 +1,87 @@
+"""birdseye:sealpreregistration — write a selection rule as canonical JSON sealed with SHA-256."""
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+from qgis.core import (QgsProcessing, QgsProcessingException, QgsProcessingOutputString,
+                       QgsProcessingParameterFile, QgsProcessingParameterFileDestination,
+                       QgsProcessingParameterMultipleLayers, QgsProcessingParameterNumber,
+                       QgsProcessingParameterString)
+
+from ...birdseye_qgis.core import preregistration
+from ...birdseye_qgis.core.detector import file_digest
+from ...birdseye_qgis.core.errors import InputError
+from ...birdseye_qgis.core.scoring import OperatingPoint
+from .base import BirdsEyeAlgorithm
+from .clusterdetections import add_clustering_parameters
+
+
+def read_descriptive(path) -> list:
+    """Configurations to record (a sweep's or screen's JSON output, or any JSON list/object)."""
+    try:
+        data = json.loads(Path(path).read_text(encoding="utf-8"))
+    except (OSError, UnicodeDecodeError, json.JSONDecodeError) as exc:
+        raise InputError(f"cannot be read as JSON ({exc})", source=str(path), field="DESCRIPTIVE") from exc
+    if isinstance(data, dict):
+        for key in ("pareto", "checkpoints", "configurations"):
+            if isinstance(data.get(key), list):
+                return data[key]
+        return [data]
+    if isinstance(data, list):
+        return data
+    raise InputError("holds neither a JSON list nor an object", source=str(path), field="DESCRIPTIVE")
+
+
+class SealPreregistration(BirdsEyeAlgorithm):
+    ALG_ID = "sealpreregistration"
+    DISPLAY_NAME = "Seal a preregistered selection rule"
+    GROUP = "detect"
+
+    def initAlgorithm(self, config=None):  # noqa: N802
+        self.addParameter(QgsProcessingParameterMultipleLayers(
+            "CHECKPOINTS", self.tr("ONNX checkpoints (one arm each)"), QgsProcessing.TypeFile))
+        self.addParameter(QgsProcessingParameterNumber(
+            "THRESHOLD", self.tr("Detection threshold of the arms"), QgsProcessingParameterNumber.Double, 0.5,
+            minValue=0.001, maxValue=0.999))
+        add_clustering_parameters(self)
+        self.addParameter(QgsProcessingParameterFile(
+            "DESCRIPTIVE", self.tr("Descriptive configurations (optional: a sweep or screen JSON, recorded only)"),
+            optional=True, fileFilter="JSON (*.json)"))
+        self.addParameter(QgsProcessingParameterString(
+            "NOTE", self.tr("Note (what was chosen on which flights, what will be scored)"), "", multiLine=True,
+            optional=True))
+        self.addParameter(QgsProcessingParameterFileDestination(
+            "OUTPUT", self.tr("Sealed rule (JSON)"), "JSON (*.json)"))
+        self.addOutput(QgsProcessingOutputString("SEAL", self.tr("Seal (SHA-256)")))
+
+    def processAlgorithm(self, parameters, context, feedback):  # noqa: N802
+        paths = self.parameterAsFileList(parameters, "CHECKPOINTS", context)
+        if not paths:
+            raise QgsProcessingException(self.tr("CHECKPOINTS: give at least one ONNX file."))
+        op = self.run_core(OperatingPoint, self.parameterAsDouble(parameters, "THRESHOLD", context),
+                           self.parameterAsDouble(parameters, "DEDUP_CM", context),
+                           self.parameterAsDouble(parameters, "EPS_M", context),
+                           self.parameterAsInt(parameters, "MIN_SAMPLES", context),
+                           self.parameterAsDouble(parameters, "EPS_PRED_M", context),
+                           self.parameterAsDouble(parameters, "EDGE_BUFFER_PX", context))
+        arms = []
+        for path in paths:
+            if not Path(path).is_file():
+                raise QgsProcessingException(f"CHECKPOINTS: {path} is not a file")
+            arms.append(self.run_core(preregistration.make_arm, path, file_digest(path), op))
+            feedback.pushInfo(f"Arm {arms[-1]['name']}: sha256 {arms[-1]['model_digest']}")
+        descriptive_path = self.parameterAsFile(parameters, "DESCRIPTIVE", context)
+        descriptive = self.run_core(read_descriptive, descriptive_path) if descriptive_path else []
+        rule = {"arms": arms, "descriptive": descriptive,
+                "note": self.parameterAsString(parameters, "NOTE", context) or ""}
+        document = self.run_core(preregistration.seal, rule)
+        out = self.parameterAsFileOutput(parameters, "OUTPUT", context)
+        try:
+            preregistration.write(document, out)
+        except OSError as exc:
+            raise QgsProcessingException(f"OUTPUT: cannot write {out} ({exc})") from exc
+        feedback.pushInfo(f"Sealed at {document['sealed_at']}: {document['seal']}")
+        feedback.pushInfo("Record this seal somewhere you cannot edit later (an e-mail, a lab notebook, a "
+                          "commit): the seal proves the rule unchanged only against a copy kept elsewhere.")
+        return {"OUTPUT": out, "SEAL": document["seal"]}

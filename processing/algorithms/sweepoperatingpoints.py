@@ -1,0 +1,168 @@
+"""birdseye:sweepoperatingpoints — pooled recall and GMCF over a grid of operating points."""
+from __future__ import annotations
+
+import csv
+import json
+from pathlib import Path
+
+import numpy as np
+from qgis.core import (QgsProcessing, QgsProcessingException, QgsProcessingOutputNumber,
+                       QgsProcessingParameterFeatureSource, QgsProcessingParameterFileDestination,
+                       QgsProcessingParameterMultipleLayers, QgsProcessingParameterNumber,
+                       QgsProcessingParameterString)
+
+from ...birdseye_qgis.core.clustering import DEFAULT_DEDUP_CM
+from ...birdseye_qgis.core.errors import InputError
+from ...birdseye_qgis.core.scoring import (DEFAULT_EDGE_BUFFER_PX, DEFAULT_MAX_GEOTAGS_PER_HIT,
+                                           DEFAULT_MAX_MEAN_EXTENT_M, SweepFlight, SweepGrid,
+                                           in_view, local_frame_for, sweep, sweep_figure)
+from .base import BirdsEyeAlgorithm
+from .clusterdetections import read_geotags
+from .evaluatedetections import read_flights
+
+LISTS = (("THRESHOLDS", "Detection thresholds (comma-separated probabilities)", "0.3,0.4,0.5,0.6,0.7"),
+         ("EPS_M", "DBSCAN radii EPS (m, comma-separated)", "0.05,0.10,0.15,0.20"),
+         ("MIN_SAMPLES", "DBSCAN minimum points (comma-separated whole numbers)", "2,3,4,6"),
+         ("EPS_PRED_M", "Match radii EPS_PRED (m, comma-separated)", "0.10,0.20,0.30"))
+
+
+def parse_list(text: str, name: str) -> list[float]:
+    values = []
+    for part in (text or "").replace(";", ",").split(","):
+        part = part.strip()
+        if not part:
+            continue
+        try:
+            values.append(float(part))
+        except ValueError as exc:
+            raise InputError(f"'{part}' is not a number (expected a comma-separated list, e.g. 0.1,0.2)",
+                             field=name) from exc
+    if not values:
+        raise InputError("needs at least one value", field=name)
+    return values
+
+
+def write_rows_csv(path, rows: list[dict]) -> None:
+    """One CSV line per row dict (None written as an empty cell)."""
+    with open(path, "w", newline="", encoding="utf-8") as f:
+        writer = csv.DictWriter(f, fieldnames=list(rows[0]) if rows else [])
+        writer.writeheader()
+        writer.writerows({k: ("" if v is None else v) for k, v in r.items()} for r in rows)
+
+
+def write_output(path, name: str, write) -> None:
+    """Run ``write(path)``, turning a file-system error into a message naming the output."""
+    try:
+        write(path)
+    except OSError as exc:
+        raise QgsProcessingException(f"{name}: cannot write {path} ({exc})") from exc
+
+
+class SweepOperatingPoints(BirdsEyeAlgorithm):
+    ALG_ID = "sweepoperatingpoints"
+    DISPLAY_NAME = "Sweep operating points"
+    GROUP = "detect"
+
+    def initAlgorithm(self, config=None):  # noqa: N802
+        self.addParameter(QgsProcessingParameterMultipleLayers(
+            "DETECTIONS", self.tr("Detection layers (one per flight, detected at the lowest threshold)"),
+            QgsProcessing.TypeVectorPoint))
+        self.addParameter(QgsProcessingParameterFeatureSource(
+            "GEOTAGS", self.tr("Geotags"), [QgsProcessing.TypeVectorPoint]))
+        self.addParameter(QgsProcessingParameterMultipleLayers(
+            "FRAMES", self.tr("Frame layers (one per flight, same order)"), QgsProcessing.TypeVector))
+        for name, text, default in LISTS:
+            self.addParameter(QgsProcessingParameterString(name, self.tr(text), default))
+        self.addParameter(QgsProcessingParameterNumber(
+            "DEDUP_CM", self.tr("De-duplication grid cell (cm)"), QgsProcessingParameterNumber.Double,
+            DEFAULT_DEDUP_CM, minValue=0.1, maxValue=100.0))
+        self.addParameter(QgsProcessingParameterNumber(
+            "EDGE_BUFFER_PX", self.tr("Edge buffer of the in-view test (px)"), QgsProcessingParameterNumber.Double,
+            DEFAULT_EDGE_BUFFER_PX, minValue=0.0, maxValue=1000.0))
+        self.addParameter(QgsProcessingParameterNumber(
+            "MAX_GEOTAGS_PER_HIT", self.tr("Credible: mean geotags per hit cluster at most"),
+            QgsProcessingParameterNumber.Double, DEFAULT_MAX_GEOTAGS_PER_HIT, minValue=1.0))
+        self.addParameter(QgsProcessingParameterNumber(
+            "MAX_MEAN_EXTENT_M", self.tr("Credible: mean median cluster extent at most (m)"),
+            QgsProcessingParameterNumber.Double, DEFAULT_MAX_MEAN_EXTENT_M, minValue=0.0))
+        self.addParameter(QgsProcessingParameterFileDestination(
+            "OUTPUT_TABLE", self.tr("Configurations (CSV)"), "CSV (*.csv)"))
+        self.addParameter(QgsProcessingParameterFileDestination(
+            "OUTPUT_JSON", self.tr("Configurations and Pareto front (JSON)"), "JSON (*.json)", optional=True,
+            createByDefault=True))
+        self.addParameter(QgsProcessingParameterFileDestination(
+            "OUTPUT_PLOT", self.tr("Frontier plot (PNG)"), "PNG (*.png)", optional=True, createByDefault=True))
+        for name, text in (("N_CONFIGURATIONS", "Configurations"), ("N_CREDIBLE", "Credible configurations"),
+                           ("N_PARETO", "Configurations on the Pareto front")):
+            self.addOutput(QgsProcessingOutputNumber(name, self.tr(text)))
+
+    def processAlgorithm(self, parameters, context, feedback):  # noqa: N802
+        lists = {name: self.run_core(parse_list, self.parameterAsString(parameters, name, context), name)
+                 for name, _, _ in LISTS}
+        grid = self.run_core(SweepGrid, lists["THRESHOLDS"], lists["EPS_M"], lists["MIN_SAMPLES"],
+                             lists["EPS_PRED_M"], self.parameterAsDouble(parameters, "DEDUP_CM", context))
+        flights = read_flights(self, parameters, context, feedback)
+        for f in flights:
+            t = f.detections.threshold
+            if t is not None and t > grid.thresholds.min() + 1e-12:
+                raise QgsProcessingException(
+                    f"THRESHOLDS: {f.name} was detected at threshold {t}, above the sweep's lowest threshold "
+                    f"{grid.thresholds.min()}; detections below {t} were never made. Run Detect at the lowest "
+                    "threshold of the sweep, or raise THRESHOLDS.")
+        geotag_source = self.parameterAsSource(parameters, "GEOTAGS", context)
+        if geotag_source is None:
+            raise QgsProcessingException(self.tr("GEOTAGS: the geotag layer cannot be read."))
+        geotags = self.run_core(read_geotags, geotag_source, context)
+        feedback.setProgress(10)
+        local = self.run_core(local_frame_for, [p for f in flights for p in f.pose_groups], geotags)
+        h = np.where(np.isfinite(geotags.height), geotags.height, local.h0)
+        g_local = local.from_geodetic(geotags.lat, geotags.lon, h) if len(geotags) else np.empty((0, 3))
+        edge = self.parameterAsDouble(parameters, "EDGE_BUFFER_PX", context)
+        sweep_flights = []
+        for f in flights:
+            visible = self.run_core(in_view, f.pose_groups, local, g_local, edge).mask
+            sweep_flights.append(SweepFlight(f.detections.local_xy(local), f.detections.score,
+                                             g_local[visible, :2], f.name))
+            feedback.pushInfo(f"{f.name}: {len(f.detections)} detections, {int(visible.sum())} geotags in view")
+        feedback.pushInfo(f"Sweeping {grid.size} configurations ({' × '.join(map(str, grid.shape))}: "
+                          "threshold × eps × min_samples × eps_pred)")
+        progress, is_canceled = self.progress_callbacks(feedback, 15.0, 95.0)
+        result = self.run_core(sweep, sweep_flights, grid,
+                               self.parameterAsDouble(parameters, "MAX_GEOTAGS_PER_HIT", context),
+                               self.parameterAsDouble(parameters, "MAX_MEAN_EXTENT_M", context),
+                               progress, is_canceled)
+        rows = result.rows()
+        for row in rows:
+            row["edge_buffer_px"] = edge
+        outputs = {"N_CONFIGURATIONS": len(rows), "N_CREDIBLE": int(result.credible.sum()),
+                   "N_PARETO": int(result.pareto.sum())}
+        table = self.parameterAsFileOutput(parameters, "OUTPUT_TABLE", context)
+        write_output(table, "OUTPUT_TABLE", lambda p: write_rows_csv(p, rows))
+        outputs["OUTPUT_TABLE"] = table
+        out_json = self.parameterAsFileOutput(parameters, "OUTPUT_JSON", context)
+        if out_json:
+            front = [r for r in rows if r["pareto"]]
+            document = {"pooling": "micro-average over flights (sums of counts, one division)",
+                        "flights": [f.name for f in flights],
+                        "grid": {"thresholds": grid.thresholds.tolist(), "eps_m": grid.eps_m.tolist(),
+                                 "min_samples": grid.min_samples.tolist(), "eps_pred_m": grid.eps_pred_m.tolist(),
+                                 "dedup_cm": grid.dedup_cm, "edge_buffer_px": edge},
+                        "credibility": {"max_geotags_per_hit": result.max_geotags_per_hit,
+                                        "max_mean_extent_m": result.max_mean_extent_m},
+                        "pareto": front, "configurations": rows}
+            write_output(out_json, "OUTPUT_JSON", lambda p: Path(p).write_text(
+                json.dumps(document, indent=1, ensure_ascii=False) + "\n", encoding="utf-8"))
+            outputs["OUTPUT_JSON"] = out_json
+        out_plot = self.parameterAsFileOutput(parameters, "OUTPUT_PLOT", context)
+        if out_plot:
+            write_output(out_plot, "OUTPUT_PLOT", lambda p: sweep_figure(result).savefig(p, dpi=110,
+                                                                                        bbox_inches="tight"))
+            outputs["OUTPUT_PLOT"] = out_plot
+        for r in sorted((r for r in rows if r["pareto"]), key=lambda r: -r["recall_pre"]):
+            feedback.pushInfo(f"Pareto: threshold {r['threshold']}, eps {r['eps_m']} m, min_samples "
+                              f"{r['min_samples']}, eps_pred {r['eps_pred_m']} m → recall_pre {r['recall_pre']:.3f}, "
+                              f"gmcf_pre {r['gmcf_pre']:.3f}")
+        if not outputs["N_CREDIBLE"]:
+            feedback.pushWarning("No configuration passed the credibility filter.")
+        feedback.setProgress(100)
+        return outputs
