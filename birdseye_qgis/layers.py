@@ -269,3 +269,33 @@ def write_frames(algorithm, parameters, context, feedback, result, crs: QgsCoord
             style_on_load(context, track_id, "track.qml")
             outputs[track_output] = track_id
     return outputs
+
+
+# ------------------------------------------------------------------------------------------ rasters
+def read_dem(layer, vertical_datum: str, geoid_undulation_m: float | None = None):
+    """A core :class:`~.core.dem.DemRaster` from band 1 of a raster layer (read with GDAL).
+
+    A geographic DEM (degrees) is refused with the fix: warp it to the site's UTM zone first.
+    """
+    from osgeo import gdal
+
+    from .core.dem import DemRaster
+
+    name = layer.name() or layer.source()
+    crs = layer.crs()
+    if not crs.isValid():
+        raise InputError("has no valid CRS; set it in Layer Properties › Source", source=name)
+    if crs.isGeographic():
+        raise InputError(f"is in a geographic CRS ({crs.authid()}, degrees); warp it to a projected CRS in "
+                         "metres first (Raster › Projections › Warp, e.g. to the UTM zone of the site)",
+                         source=name)
+    dataset = gdal.Open(layer.source())
+    if dataset is None:
+        raise InputError("cannot be read by GDAL", source=name)
+    gt = dataset.GetGeoTransform()
+    if gt[2] != 0 or gt[4] != 0:
+        raise InputError("is a rotated raster; warp it to a north-up grid first", source=name)
+    band = dataset.GetRasterBand(1)
+    heights = band.ReadAsArray().astype(float)
+    return DemRaster(heights, (gt[0], gt[1], gt[3], gt[5]), pyproj_crs(crs), vertical_datum, geoid_undulation_m,
+                     band.GetNoDataValue(), source=name)

@@ -28,7 +28,7 @@ import numpy as np
 
 from .errors import Cancelled
 from .geodesy import LocalFrame
-from .ground import GroundModel, LevelPlaneGround
+from .ground import LevelPlaneGround
 from .poses import FrameGeometry, FramePoses
 from .projection import project_in_view
 from .sparse_png import encode_gray_png
@@ -65,6 +65,7 @@ class FrameLabels:
     uv: np.ndarray
     margin_px: np.ndarray
     edge: np.ndarray
+    n_occluded: int = 0
 
 
 @dataclass
@@ -90,13 +91,15 @@ class LabelRequest:
 
 def project_labels(poses: FramePoses, geotags: Geotags, edge_buffer_px: float = 0.0,
                    local: LocalFrame | None = None,
-                   ground: type[GroundModel] | None = None) -> list[FrameLabels]:
+                   ground=None) -> list[FrameLabels]:
     """Labels of every frame (in frame order; frames with nothing in view get an empty entry).
 
-    Geotags are placed on the ground each frame sees (``ground``, default the level plane at the
-    altimeter depth), so a rover antenna height never shifts a label. With the level plane, frames
-    without a ground height (no usable altimeter reading) get no labels: :func:`frames_without_ground`
-    tells which, so callers can report them.
+    Geotags are placed on the ground each frame sees, so a rover antenna height never shifts a label.
+    ``ground`` builds the ground model from a :class:`FrameGeometry` (default: the level plane at the
+    altimeter depth; e.g. a DEM's ``DemGround.from_dem``). With the level plane, frames without a
+    ground height (no usable altimeter reading) get no labels: :func:`frames_without_ground` tells
+    which, so callers can report them. A ground model that can tell occlusion (a DEM) drops geotags
+    hidden behind terrain and counts them in ``n_occluded``.
     """
     local = local or LocalFrame.around(np.append(poses.lat, geotags.lat), np.append(poses.lon, geotags.lon),
                                        poses.height)
@@ -109,12 +112,19 @@ def project_labels(poses: FramePoses, geotags: Geotags, edge_buffer_px: float = 
     ground_model = (ground or LevelPlaneGround)(geom)
     pts = local.from_geodetic(geotags.lat, geotags.lon, geotags.height)
     proj = project_in_view(geom, pts, ground_model, edge_buffer_px, keep_edge=True)
+    occluded = np.zeros(len(proj.frame_idx), dtype=bool)
+    if hasattr(ground_model, "occluded") and len(proj.frame_idx):
+        placed = ground_model.place(proj.frame_idx, pts[proj.point_idx])
+        occluded = ground_model.occluded(proj.frame_idx, placed)
+    n_occluded = np.bincount(proj.frame_idx[occluded], minlength=len(usable))
+    proj = proj.select(~occluded)
     order = np.lexsort((proj.point_idx, proj.frame_idx))
     proj = proj.select(order)
     bounds = np.searchsorted(proj.frame_idx, np.arange(len(usable) + 1))
     for k, (a, b) in enumerate(zip(bounds[:-1], bounds[1:])):
         f = int(usable[k])
-        empty[f] = FrameLabels(f, proj.point_idx[a:b], proj.uv[a:b], proj.margin_px[a:b], ~proj.in_frame[a:b])
+        empty[f] = FrameLabels(f, proj.point_idx[a:b], proj.uv[a:b], proj.margin_px[a:b], ~proj.in_frame[a:b],
+                               int(n_occluded[k]))
     return empty
 
 
@@ -187,7 +197,7 @@ class LabelWriter:
         self.seen_at_edge = np.zeros(len(geotags), dtype=bool)
         self.labels_per_frame: list[int] = []
         self.missing_images: list[str] = []
-        self.n_edge = self.n_tiles_pos = self.n_tiles_neg = 0
+        self.n_edge = self.n_occluded = self.n_tiles_pos = self.n_tiles_neg = 0
         self.result: LabelSetResult | None = None
         self._csv_file = open(self.out / "labels.csv", "w", newline="", encoding="utf-8")
         self._txt_file = open(self.out / "labels.txt", "w", encoding="utf-8")
@@ -219,6 +229,7 @@ class LabelWriter:
         request, geotags, cam = self.request, self.geotags, poses.camera
         pos = ~fl.edge
         self.n_edge += int(fl.edge.sum())
+        self.n_occluded += fl.n_occluded
         self.seen_at_edge[fl.geotag_index[fl.edge]] = True
         gi, uv, margin = fl.geotag_index[pos], fl.uv[pos], fl.margin_px[pos]
         frame_id = poses.frame_id[fl.frame_index]
@@ -259,6 +270,7 @@ class LabelWriter:
             "n_frames_with_labels": int((lpf > 0).sum()),
             "n_labels": int(lpf.sum()),
             "n_edge": self.n_edge,
+            "n_occluded": self.n_occluded,
             "labels_per_frame": _stats(lpf[lpf > 0]),
             "frames_per_geotag": _stats(fpg[fpg > 0]),
             "n_geotags": len(geotags),

@@ -17,6 +17,7 @@ from ...birdseye_qgis.core.frame_records import poses_from_records
 from ...birdseye_qgis.core.geodesy import LocalFrame
 from ...birdseye_qgis.core.labels import (Geotags, LabelRequest, LabelWriter, frames_without_ground,
                                           project_labels)
+from ..dem_parameters import DemParametersMixin
 from ..design_parameters import read_sigma_label_px
 from .base import BirdsEyeAlgorithm
 
@@ -37,7 +38,7 @@ def sigma_from_bound_json(path: str) -> float:
     return tolerance / 3.0
 
 
-class WriteLabels(BirdsEyeAlgorithm):
+class WriteLabels(DemParametersMixin, BirdsEyeAlgorithm):
     ALG_ID = "writelabels"
     DISPLAY_NAME = "Write training labels"
     GROUP = "labels"
@@ -57,6 +58,7 @@ class WriteLabels(BirdsEyeAlgorithm):
         self.addParameter(QgsProcessingParameterNumber(
             "EDGE_BUFFER_PX", self.tr("Edge buffer (px): geotags this close to the border are 'edge', not labels"),
             QgsProcessingParameterNumber.Double, 0.0, minValue=0.0, maxValue=1000.0))
+        self.add_dem_parameters()
         self.addParameter(QgsProcessingParameterBoolean(
             "WRITE_RASTERS", self.tr("Write one soft-label raster per frame"), defaultValue=True))
         self.addParameter(QgsProcessingParameterBoolean(
@@ -104,6 +106,8 @@ class WriteLabels(BirdsEyeAlgorithm):
         if geotag_source is None or frame_source is None:
             raise QgsProcessingException(self.tr("GEOTAGS and FRAMES are both required."))
         sigma = self.sigma(parameters, context, feedback)
+        dem = self.read_dem(parameters, context)
+        self.report_dem(feedback, dem)
         geotags = self.run_core(self._read_geotags, geotag_source, context)
         records = self.run_core(layers.read_frame_layer, frame_source)
         groups = self.run_core(poses_from_records, records, frame_source.sourceName())
@@ -123,14 +127,14 @@ class WriteLabels(BirdsEyeAlgorithm):
                           f"σ = {sigma:g} px, edge buffer {request.edge_buffer_px:g} px")
 
         no_ground = [poses.frame_id[i] for poses, _ in groups for i in np.flatnonzero(frames_without_ground(poses))]
-        if no_ground:
+        if no_ground and dem is None:
             feedback.pushWarning(f"{len(no_ground)} frame(s) have no ground height (no usable altimeter reading, "
                                  f"flag no_ground_height) and get no labels; first: "
                                  f"{', '.join(str(i) for i in no_ground[:5])}")
         label_counts = np.zeros(len(records), dtype=np.int64)
         steps.setCurrentStep(0)
-        projected = [self.run_core(project_labels, poses, geotags, request.edge_buffer_px, local)
-                     for poses, _ in groups]
+        projected = [self.run_core(project_labels, poses, geotags, request.edge_buffer_px, local,
+                                   self.dem_ground(dem)) for poses, _ in groups]
         steps.setCurrentStep(1)
         done = 0
         with LabelWriter(out_dir, geotags, request) as writer:
@@ -172,6 +176,8 @@ class WriteLabels(BirdsEyeAlgorithm):
             f"(labels per labelled frame: mean {lpf['mean']:g}, max {lpf['max']}); "
             f"{summary['n_geotags_in_view']} of {summary['n_geotags']} geotags in view "
             f"(frames per geotag: mean {fpg['mean']:g}, max {fpg['max']})")
+        if summary["n_occluded"]:
+            feedback.pushInfo(f"{summary['n_occluded']} projections were hidden behind terrain (not written)")
         if summary["n_edge"]:
             feedback.pushInfo(f"{summary['n_edge']} projections fell within the edge buffer (not written)")
         never = summary["geotags_never_in_view"]

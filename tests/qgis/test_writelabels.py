@@ -17,17 +17,20 @@ def run(alg_id, params):
     return processing.run(f"birdseye:{alg_id}", params)
 
 
-@pytest.fixture(scope="module")
-def imported(birdseye_provider, tmp_path_factory):
-    folder = tmp_path_factory.mktemp("campaign")
+def simulate_and_import(folder, **config):
     cfg = CampaignConfig(seed=3, n_targets=6, field_width_m=8.0, field_length_m=6.0, image_width=480,
-                         image_height=300, n_missed=1, n_spurious=1)
+                         image_height=300, n_missed=1, n_spurious=1, **config)
     simulate_campaign(cfg, folder)
     geotags = run("importgeotags", {"INPUT": str(folder / "geotags.csv"), "OUTPUT": "TEMPORARY_OUTPUT"})["OUTPUT"]
     frames = run("importflightlog", {"POSE_LOG": str(folder / "poses.csv"), "IMAGES": str(folder / "frames"),
                                      "CALIBRATION": str(folder / "calibration.yaml"),
                                      "OUTPUT": "TEMPORARY_OUTPUT"})["OUTPUT"]
     return folder, geotags, frames
+
+
+@pytest.fixture(scope="module")
+def imported(birdseye_provider, tmp_path_factory):
+    return simulate_and_import(tmp_path_factory.mktemp("campaign"))
 
 
 def test_writelabels_writes_the_training_set_and_counts(imported, tmp_path):
@@ -98,3 +101,48 @@ def test_a_layer_that_is_not_a_frame_layer_is_refused(imported, tmp_path):
     polygons.dataProvider().addFeature(f)
     with pytest.raises(QgsProcessingException, match="not a BirdsEye frame layer"):
         run("writelabels", {"GEOTAGS": geotags, "FRAMES": polygons, "OUTPUT_FOLDER": str(tmp_path)})
+
+
+def write_geotiff(dem, path):
+    from osgeo import gdal, osr
+
+    rows, cols = dem.heights.shape
+    ds = gdal.GetDriverByName("GTiff").Create(str(path), cols, rows, 1, gdal.GDT_Float32)
+    x0, dx, y0, dy = dem.geotransform
+    ds.SetGeoTransform((x0, dx, 0.0, y0, 0.0, dy))
+    srs = osr.SpatialReference()
+    srs.SetFromUserInput(str(dem.crs))
+    ds.SetProjection(srs.ExportToWkt())
+    ds.GetRasterBand(1).WriteArray(dem.heights)
+    ds.GetRasterBand(1).SetNoDataValue(-9999.0)
+    ds = None
+    return str(path)
+
+
+def test_a_flat_dem_gives_the_level_plane_labels_and_a_wrong_datum_is_refused(birdseye_provider, tmp_path):
+    from qgis.core import QgsRasterLayer
+
+    from birdseye.birdseye_qgis.core.dem import synthetic_terrain
+
+    # Noise off: the altimeter's level plane and a flat DEM at the true ground must agree exactly
+    # (with noise, the DEM path takes its depth from the INS height, the level plane from the altimeter).
+    folder, geotags, frames = simulate_and_import(tmp_path / "campaign", noise_off=True)
+    campaign = json.loads((folder / "truth" / "campaign.json").read_text())
+    lat, lon = campaign["site"]["lat"], campaign["site"]["lon"]
+    ground = campaign["site"]["ground_height_m"]
+    dem = synthetic_terrain(lat, lon, kind="plane", slope_deg=0.0, base_height_m=ground, size_m=80.0, cell_m=1.0,
+                            vertical_datum="ellipsoidal")
+    layer = QgsRasterLayer(write_geotiff(dem, tmp_path / "dem.tif"), "dem")
+    assert layer.isValid()
+    base = {"GEOTAGS": geotags, "FRAMES": frames, "SIGMA_PX": 4.0, "WRITE_RASTERS": False,
+            "OUTPUT_FRAMES": None, "OUTPUT_GEOTAGS": None}
+    run("writelabels", {**base, "OUTPUT_FOLDER": str(tmp_path / "plane")})
+    run("writelabels", {**base, "DEM": layer, "DEM_VERTICAL_DATUM": 0, "OUTPUT_FOLDER": str(tmp_path / "dem")})
+    read = lambda name: {(r["frame_id"], r["geotag_id"]): (float(r["u"]), float(r["v"]))  # noqa: E731
+                         for r in csv.DictReader(open(tmp_path / name / "labels.csv"))}
+    plane, with_dem = read("plane"), read("dem")
+    common = set(plane) & set(with_dem)
+    assert set(plane) == set(with_dem) and len(plane) > 5
+    assert max(np.hypot(plane[k][0] - with_dem[k][0], plane[k][1] - with_dem[k][1]) for k in common) < 0.01
+    with pytest.raises(QgsProcessingException, match="MSL|undulation|vertical"):
+        run("writelabels", {**base, "DEM": layer, "DEM_VERTICAL_DATUM": 1, "OUTPUT_FOLDER": str(tmp_path / "x")})

@@ -1,0 +1,65 @@
+"""The optional DEM ground model, shared by writelabels, detect and the importers.
+
+Parameters: ``DEM`` (raster layer, optional), ``DEM_VERTICAL_DATUM`` (what the DEM's heights are
+measured from) and ``GEOID_UNDULATION_M`` (N, ellipsoidal = MSL + N, needed for an MSL DEM). Without a
+DEM every algorithm keeps the level plane at the altimeter depth, unchanged.
+"""
+from __future__ import annotations
+
+import numpy as np
+from qgis.core import (QgsProcessingException, QgsProcessingParameterEnum, QgsProcessingParameterNumber,
+                       QgsProcessingParameterRasterLayer)
+
+from ..birdseye_qgis import layers
+from ..birdseye_qgis.core.dem import VERTICAL_DATUMS, DemGround, DemRaster
+from ..birdseye_qgis.core.errors import InputError
+
+DATUM_LABELS = ("Ellipsoidal (WGS84), like RTK and INS heights",
+                "Mean sea level (give the geoid undulation N)",
+                "Unknown: check it against the altimeter's ground")
+
+
+class DemParametersMixin:
+    """Adds and reads the DEM parameters; ``dem_ground`` gives the ground-model factory."""
+
+    def add_dem_parameters(self) -> None:
+        self.addParameter(QgsProcessingParameterRasterLayer(
+            "DEM", self.tr("Terrain model (DEM/DSM raster, projected CRS in metres; empty: level ground)"),
+            optional=True))
+        self.addParameter(QgsProcessingParameterEnum(
+            "DEM_VERTICAL_DATUM", self.tr("DEM heights are measured from"), options=list(DATUM_LABELS),
+            defaultValue=2))
+        self.addParameter(QgsProcessingParameterNumber(
+            "GEOID_UNDULATION_M", self.tr("Geoid undulation N at the site (m; ellipsoidal = MSL + N)"),
+            QgsProcessingParameterNumber.Double, None, optional=True, minValue=-120.0, maxValue=120.0))
+
+    def read_dem(self, parameters, context) -> DemRaster | None:
+        layer = self.parameterAsRasterLayer(parameters, "DEM", context)
+        if layer is None:
+            return None
+        datum = VERTICAL_DATUMS[self.parameterAsEnum(parameters, "DEM_VERTICAL_DATUM", context)]
+        undulation = (self.parameterAsDouble(parameters, "GEOID_UNDULATION_M", context)
+                      if parameters.get("GEOID_UNDULATION_M") not in (None, "") else None)
+        try:
+            return layers.read_dem(layer, datum, undulation)
+        except InputError as exc:
+            raise QgsProcessingException(str(exc)) from exc
+
+    @staticmethod
+    def dem_ground(dem: DemRaster | None):
+        """A ground-model factory (``geometry -> GroundModel``) for core code, or None for the level plane.
+
+        Poses are ellipsoidal (RTK/INS); the DEM's datum is checked against them and against the
+        altimeter's ground where the frames have one.
+        """
+        if dem is None:
+            return None
+        return lambda geometry: DemGround.from_dem(geometry, dem, "ellipsoidal")
+
+    @staticmethod
+    def report_dem(feedback, dem: DemRaster | None) -> None:
+        if dem is None:
+            return
+        z = dem.heights
+        feedback.pushInfo(f"DEM {dem.source}: {z.shape[1]}×{z.shape[0]} cells of {dem.cell_size_m:g} m, heights "
+                          f"{np.nanmin(z):.1f}…{np.nanmax(z):.1f} m ({dem.vertical_datum})")
