@@ -1,0 +1,60 @@
+# BirdsEye for QGIS — every target installs what it needs first (scripts/setup.sh: Debian packages
+# and .venv, only when something is missing). `make help` lists the targets.
+SHELL := /bin/bash
+.SHELLFLAGS := -eu -o pipefail -c
+.DEFAULT_GOAL := help
+.PHONY: help setup test test-unit test-qgis demo bench package qgis-process clean distclean
+
+VENV := .venv
+PYTHON := $(VENV)/bin/python
+# The pytest script, not `python -m pytest`: -m would put the repository root on sys.path, where
+# our processing/ package shadows QGIS's own `processing`.
+PYTEST := $(VENV)/bin/pytest
+# Exit status 5 means "no tests collected": not a failure while a suite folder is still empty.
+ALLOW_EMPTY := || { rc=$$?; [[ $$rc == 5 ]] || exit $$rc; }
+
+help:
+	@echo "make demo          set up, then run the whole chain on a simulated campaign -> birdseye-demo/"
+	@echo "make test          set up, then run every test suite (unit, QGIS, desktop under Xvfb, qgis_process)"
+	@echo "make setup         install missing Debian packages and the pinned Python packages into $(VENV)"
+	@echo "make bench         run each benchmarks/bench_*.py and print its figures and ratios"
+	@echo "make package       build/birdseye-<version>.zip, the plugin zip for QGIS's 'Install from ZIP'"
+	@echo "make qgis-process ARGS='run birdseye:<id> -- PARAM=value'   run qgis_process with the plugin loaded"
+	@echo "make clean         remove build/, birdseye-demo/ and caches (keeps $(VENV)); distclean also $(VENV)"
+
+setup:
+	@scripts/setup.sh
+
+test: setup
+	@$(MAKE) --no-print-directory test-unit test-qgis
+
+test-unit:
+	$(PYTEST) -p no:qgis -q tests/unit $(ALLOW_EMPTY)
+
+# tests/gui starts its own Xvfb for the real desktop; everything else is headless.
+test-qgis:
+	QT_QPA_PLATFORM=offscreen $(PYTEST) -q tests/qgis tests/gui tests/e2e $(ALLOW_EMPTY)
+
+demo: setup
+	QT_QPA_PLATFORM=offscreen $(PYTHON) scripts/demo.py
+
+bench: setup
+	@shopt -s nullglob; benches=(benchmarks/bench_*.py); \
+	(($${#benches[@]})) || { echo "no benchmarks/bench_*.py yet"; exit 0; }; \
+	for bench in "$${benches[@]}"; do \
+		echo "== $$bench"; \
+		QT_QPA_PLATFORM=offscreen $(PYTHON) "$$bench"; \
+	done
+
+package:
+	@/usr/bin/python3 scripts/package.py --out build
+
+qgis-process: setup
+	@scripts/qgis_process.sh $(ARGS)
+
+clean:
+	rm -rf build birdseye-demo .pytest_cache .hypothesis .qgis-settings
+	find . -path ./$(VENV) -prune -o \( -name __pycache__ -o -name '*.pyc' \) -exec rm -rf {} +
+
+distclean: clean
+	rm -rf $(VENV)

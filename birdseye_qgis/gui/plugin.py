@@ -1,0 +1,215 @@
+"""The QGIS plugin object: the ``birdseye`` Processing provider, a BirdsEye menu and toolbar, and docks.
+
+QGIS creates :class:`BirdsEyePlugin` through ``classFactory`` in the plugin's root ``__init__.py``.
+The desktop calls :meth:`BirdsEyePlugin.initGui` and :meth:`BirdsEyePlugin.unload`; ``qgis_process``
+has no interface (``iface is None``) and calls only :meth:`BirdsEyePlugin.initProcessing`.
+"""
+from __future__ import annotations
+
+import importlib
+import importlib.util
+from pathlib import Path
+from typing import NamedTuple
+
+from qgis.core import Qgis, QgsApplication, QgsMessageLog
+from qgis.PyQt.QtCore import QCoreApplication, Qt
+from qgis.PyQt.QtGui import QIcon
+from qgis.PyQt.QtWidgets import QAction, QMenu, QToolBar
+
+from ...processing.provider import BirdsEyeProvider
+
+# The name QGIS imported the plugin under ("birdseye" when installed from the zip), so dock modules
+# are found whatever the plugin folder is called.
+PLUGIN_PACKAGE = __name__.rsplit(".birdseye_qgis.", 1)[0]
+PLUGIN_ROOT = Path(__file__).resolve().parents[2]
+ICON_PATH = PLUGIN_ROOT / "resources" / "icons" / "birdseye.svg"
+LOG_TAG = "BirdsEye"
+MENU_OBJECT_NAME = "mBirdsEyeMenu"
+TOOLBAR_OBJECT_NAME = "mBirdsEyeToolBar"
+TOOLBOX_FILTER = "birdseye"
+
+
+class DockEntry(NamedTuple):
+    """A dock widget the plugin offers; its module is imported only when the user first opens it.
+
+    ``module`` is relative to the plugin package; the class is called as ``cls(iface)`` and must be a
+    ``QDockWidget``. ``icon`` is a path relative to the plugin root (the plugin icon when empty).
+    """
+
+    module: str
+    class_name: str
+    title: str
+    icon: str = ""
+
+
+# Later features append their dock here; an entry whose module does not exist yet is simply not shown.
+DOCKS: list[DockEntry] = [
+    DockEntry("birdseye_qgis.gui.review_dock", "ReviewDock", "Review clusters"),
+    DockEntry("birdseye_qgis.gui.sensor_bound_dock", "SensorBoundDock", "Sensor-bound calculator"),
+]
+
+
+def tr(text: str) -> str:
+    return QCoreApplication.translate("BirdsEyePlugin", text)
+
+
+def log(message: str, level=Qgis.Info) -> None:
+    QgsMessageLog.logMessage(message, LOG_TAG, level)
+
+
+def dock_module_available(entry: DockEntry) -> bool:
+    """True when the dock's module file exists (without importing it)."""
+    try:
+        return importlib.util.find_spec(f"{PLUGIN_PACKAGE}.{entry.module}") is not None
+    except ImportError:
+        return False
+
+
+class BirdsEyePlugin:
+    """Registers the Processing provider and, in the desktop, the BirdsEye menu, toolbar and docks."""
+
+    def __init__(self, iface):
+        self.iface = iface
+        self.provider: BirdsEyeProvider | None = None
+        self.menu: QMenu | None = None
+        self.toolbar: QToolBar | None = None
+        self.toolbox_action: QAction | None = None
+        self.dock_actions: dict[DockEntry, QAction] = {}
+        self.docks: dict[DockEntry, object] = {}
+
+    # ------------------------------------------------------------------ Processing
+    def initProcessing(self) -> None:  # noqa: N802 (QGIS API name)
+        """Register the ``birdseye`` provider once (desktop and ``qgis_process`` both call this)."""
+        if self.provider is not None:
+            return
+        self.provider = BirdsEyeProvider()
+        if not QgsApplication.processingRegistry().addProvider(self.provider):
+            log(tr("The BirdsEye Processing provider could not be registered."), Qgis.Critical)
+            self.provider = None
+
+    # ------------------------------------------------------------------ desktop
+    def initGui(self) -> None:  # noqa: N802 (QGIS API name)
+        self.initProcessing()
+        main_window = self.iface.mainWindow()
+        icon = QIcon(str(ICON_PATH))
+
+        self.menu = QMenu(tr("&BirdsEye"), main_window)
+        self.menu.setObjectName(MENU_OBJECT_NAME)
+        self.toolbar = QToolBar(tr("BirdsEye"), main_window)
+        self.toolbar.setObjectName(TOOLBAR_OBJECT_NAME)
+
+        self.toolbox_action = QAction(icon, tr("BirdsEye algorithms…"), main_window)
+        self.toolbox_action.setObjectName("mActionBirdsEyeAlgorithms")
+        self.toolbox_action.setToolTip(tr("Open the Processing toolbox showing the BirdsEye algorithms"))
+        self.toolbox_action.triggered.connect(self.show_algorithms)
+        self.menu.addAction(self.toolbox_action)
+        self.toolbar.addAction(self.toolbox_action)
+
+        available = [entry for entry in DOCKS if dock_module_available(entry)]
+        if available:
+            self.menu.addSeparator()
+        for entry in available:
+            action = QAction(self._icon_for(entry), tr(entry.title), main_window)
+            action.setObjectName(f"mActionBirdsEye{entry.class_name}")
+            action.setCheckable(True)
+            action.toggled.connect(lambda checked, e=entry: self.set_dock_visible(e, checked))
+            self.menu.addAction(action)
+            self.toolbar.addAction(action)
+            self.dock_actions[entry] = action
+
+        self._insert_menu(main_window.menuBar())
+        self.iface.addToolBar(self.toolbar)
+
+    def unload(self) -> None:
+        """Remove everything :meth:`initGui` and :meth:`initProcessing` added."""
+        for action in self.dock_actions.values():
+            action.blockSignals(True)  # hiding the docks below must not re-enter set_dock_visible
+            action.deleteLater()
+        self.dock_actions.clear()
+        for dock in self.docks.values():
+            self.iface.removeDockWidget(dock)
+            dock.deleteLater()
+        self.docks.clear()
+        if self.menu is not None:
+            menu_bar = self.iface.mainWindow().menuBar()
+            menu_bar.removeAction(self.menu.menuAction())
+            self.menu.deleteLater()
+            self.menu = None
+        if self.toolbar is not None:
+            self.iface.mainWindow().removeToolBar(self.toolbar)
+            self.toolbar.deleteLater()
+            self.toolbar = None
+        if self.toolbox_action is not None:
+            self.toolbox_action.deleteLater()
+            self.toolbox_action = None
+        if self.provider is not None:
+            QgsApplication.processingRegistry().removeProvider(self.provider)
+            self.provider = None
+
+    # ------------------------------------------------------------------ actions
+    def show_algorithms(self) -> None:
+        """Show the Processing toolbox filtered to the BirdsEye algorithms."""
+        from qgis import utils
+
+        toolbox = getattr(utils.plugins.get("processing"), "toolbox", None)
+        if toolbox is None:
+            self._warn(tr("The Processing plugin is not active: enable it under Plugins ▸ Manage and "
+                          "Install Plugins, then try again."))
+            return
+        toolbox.setUserVisible(True)
+        toolbox.raise_()
+        toolbox.searchBox.setText(TOOLBOX_FILTER)
+
+    def set_dock_visible(self, entry: DockEntry, visible: bool) -> None:
+        """Show or hide a dock, creating it (and importing its module) the first time."""
+        dock = self.docks.get(entry)
+        if dock is None:
+            if not visible:
+                return
+            dock = self._create_dock(entry)
+            if dock is None:
+                action = self.dock_actions.get(entry)
+                if action is not None:
+                    action.blockSignals(True)
+                    action.setChecked(False)
+                    action.blockSignals(False)
+                return
+        dock.setVisible(visible)
+        if visible:
+            dock.raise_()
+
+    def _create_dock(self, entry: DockEntry):
+        try:
+            module = importlib.import_module(f"{PLUGIN_PACKAGE}.{entry.module}")
+            dock = getattr(module, entry.class_name)(self.iface)
+        except Exception as exc:  # noqa: BLE001 — a broken dock must never take QGIS down
+            self._warn(tr("The '{title}' panel could not be opened ({module}.{cls}: {error}).").format(
+                title=tr(entry.title), module=entry.module, cls=entry.class_name, error=exc))
+            return None
+        if not dock.objectName():
+            dock.setObjectName(f"BirdsEye{entry.class_name}")
+        self.iface.addDockWidget(Qt.RightDockWidgetArea, dock)
+        action = self.dock_actions.get(entry)
+        if action is not None:
+            dock.visibilityChanged.connect(action.setChecked)
+        self.docks[entry] = dock
+        return dock
+
+    # ------------------------------------------------------------------ helpers
+    def _insert_menu(self, menu_bar) -> None:
+        """Put the BirdsEye menu just before Help, as QGIS's own plugin menus (Raster, Web…) sit."""
+        help_action = next((a for a in menu_bar.actions()
+                            if a.menu() is not None and a.menu().objectName() == "mHelpMenu"), None)
+        if help_action is None:
+            menu_bar.addMenu(self.menu)
+        else:
+            menu_bar.insertMenu(help_action, self.menu)
+
+    @staticmethod
+    def _icon_for(entry: DockEntry) -> QIcon:
+        return QIcon(str(PLUGIN_ROOT / entry.icon)) if entry.icon else QIcon(str(ICON_PATH))
+
+    def _warn(self, message: str) -> None:
+        log(message, Qgis.Warning)
+        if self.iface is not None:
+            self.iface.messageBar().pushMessage(LOG_TAG, message, Qgis.Warning, 8)

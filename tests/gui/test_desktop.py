@@ -1,0 +1,153 @@
+"""The real QGIS desktop, under its own Xvfb, with the plugin enabled in a fresh profile.
+
+QGIS is started once for the module with ``--code desktop_probe.py``; the probe inspects the running
+application, saves build/screenshots/desktop.png, writes a JSON report and quits. The tests below
+read that report. A Python error while QGIS loads the plugin opens a modal dialog that nobody
+clicks: QGIS then never quits, and the test fails after a timeout with a screenshot of the screen.
+"""
+from __future__ import annotations
+
+import json
+import os
+import shutil
+import subprocess
+from contextlib import contextmanager
+from pathlib import Path
+
+import pytest
+
+REPO_ROOT = Path(__file__).resolve().parents[2]
+PLUGIN_PATH = REPO_ROOT / "build" / "pluginpath"
+SCREENSHOTS = REPO_ROOT / "build" / "screenshots"
+PROBE = Path(__file__).with_name("desktop_probe.py")
+QGIS_BIN = Path("/usr/bin/qgis.bin")  # Debian's /usr/bin/qgis only adds $QGIS_OPTS from /etc/default
+ALGORITHM_DIR = REPO_ROOT / "processing" / "algorithms"
+ALGORITHM_IDS = sorted(f"birdseye:{p.stem}" for p in ALGORITHM_DIR.glob("*.py")
+                       if p.stem not in {"__init__", "base"})
+DESKTOP_TIMEOUT_S = 90
+
+pytestmark = [
+    pytest.mark.slow,
+    pytest.mark.skipif(not QGIS_BIN.exists() or shutil.which("Xvfb") is None,
+                       reason="needs Debian's qgis and xvfb (make setup installs them)"),
+]
+
+
+@contextmanager
+def xvfb_display(screen: str = "1600x1000x24"):
+    """A private X server; Xvfb picks a free display number itself and reports it (-displayfd)."""
+    read_end, write_end = os.pipe()
+    server = subprocess.Popen(["Xvfb", "-displayfd", str(write_end), "-screen", "0", screen,
+                               "-nolisten", "tcp"], pass_fds=(write_end,),
+                              stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    os.close(write_end)
+    with os.fdopen(read_end) as reader:
+        number = reader.readline().strip()  # written once the server accepts connections
+    try:
+        if not number:
+            server.kill()
+            pytest.fail(f"Xvfb did not start: {server.communicate()[1].decode(errors='replace')}")
+        yield f":{number}"
+    finally:
+        server.terminate()
+        try:
+            server.wait(timeout=10)
+        except subprocess.TimeoutExpired:
+            server.kill()
+
+
+def grab_screen(display: str, path: Path) -> None:
+    """Screenshot of the whole X screen, taken from outside QGIS (QGIS may be stuck in a dialog)."""
+    code = ("import sys; from qgis.PyQt.QtWidgets import QApplication; app = QApplication([]); "
+            "app.primaryScreen().grabWindow(0).save(sys.argv[1])")
+    subprocess.run([str(REPO_ROOT / ".venv" / "bin" / "python"), "-c", code, str(path)],
+                   env={**os.environ, "DISPLAY": display, "QT_QPA_PLATFORM": "xcb"},
+                   timeout=30, check=False, capture_output=True)
+
+
+def fresh_profile(root: Path) -> Path:
+    """A profiles folder whose default profile enables BirdsEye and Processing, offline."""
+    ini = root / "profiles" / "default" / "QGIS" / "QGIS3.ini"
+    ini.parent.mkdir(parents=True)
+    ini.write_text("[PythonPlugins]\nbirdseye=true\nprocessing=true\n\n"
+                   "[core]\nNewsFeed\\httpsfeedqgisorg\\disabled=true\n")
+    return root
+
+
+def desktop_env(display: str, runtime_dir: Path, **extra: str) -> dict[str, str]:
+    env = {k: v for k, v in os.environ.items() if k not in {"QGIS_CUSTOM_CONFIG_PATH", "PYTHONPATH"}}
+    site_packages = sorted((REPO_ROOT / ".venv" / "lib").glob("python3*/site-packages"))
+    env.update(DISPLAY=display, QT_QPA_PLATFORM="xcb", QGIS_PLUGINPATH=str(PLUGIN_PATH),
+               XDG_RUNTIME_DIR=str(runtime_dir), PYTHONPATH=os.pathsep.join(map(str, site_packages)),
+               **extra)
+    return env
+
+
+@pytest.fixture(scope="module")
+def desktop(tmp_path_factory) -> dict:
+    """Start QGIS once, let the probe inspect it, and return its report plus QGIS's output."""
+    work = tmp_path_factory.mktemp("desktop")
+    runtime_dir = work / "runtime"
+    runtime_dir.mkdir(mode=0o700)
+    report_path = work / "report.json"
+    SCREENSHOTS.mkdir(parents=True, exist_ok=True)
+    screenshot = SCREENSHOTS / "desktop.png"
+    screenshot.unlink(missing_ok=True)
+    command = [str(QGIS_BIN), "--nologo", "--noversioncheck", "--profiles-path",
+               str(fresh_profile(work / "profiles")), "--code", str(PROBE)]
+    with xvfb_display() as display:
+        env = desktop_env(display, runtime_dir, BIRDSEYE_PROBE_RESULT=str(report_path),
+                          BIRDSEYE_PROBE_SCREENSHOT=str(screenshot))
+        qgis = subprocess.Popen(command, env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                                text=True)
+        try:
+            output, _ = qgis.communicate(timeout=DESKTOP_TIMEOUT_S)
+        except subprocess.TimeoutExpired:
+            stuck = SCREENSHOTS / "desktop-timeout.png"
+            grab_screen(display, stuck)
+            qgis.kill()
+            output, _ = qgis.communicate()
+            pytest.fail(f"QGIS did not quit within {DESKTOP_TIMEOUT_S} s — most likely a modal dialog "
+                        f"(a Python error while loading a plugin?); screen saved to {stuck}.\n{output}")
+    assert report_path.is_file(), f"the probe wrote no report (QGIS exit {qgis.returncode}):\n{output}"
+    report = json.loads(report_path.read_text(encoding="utf-8"))
+    return {"report": report, "output": output, "returncode": qgis.returncode, "screenshot": screenshot}
+
+
+def test_probe_ran_cleanly(desktop):
+    assert desktop["report"]["errors"] == []
+    assert desktop["returncode"] == 0, desktop["output"]
+
+
+def test_plugin_and_provider_loaded(desktop):
+    report = desktop["report"]
+    assert "birdseye" in report["plugins"]
+    assert "Loaded BirdsEye (package: birdseye)" in report["message_log"].get("Plugins", "")
+    assert report["provider_algorithms"] == ALGORITHM_IDS
+
+
+def test_no_python_error(desktop):
+    log = desktop["report"]["message_log"]
+    assert "Python error" not in log, log.get("Python error")
+    ours = [line for line in log.get("BirdsEye", "").splitlines() if "WARNING" in line or "CRITICAL" in line]
+    assert ours == []
+    assert "Traceback" not in desktop["output"], desktop["output"]
+    assert not any("error" in title.lower() for title, _ in desktop["report"]["message_bar"])
+
+
+def test_menu_toolbar_toolbox_and_docks(desktop):
+    report = desktop["report"]
+    menus = report["menu_bar"]
+    assert "mBirdsEyeMenu" in menus and menus.index("mBirdsEyeMenu") < menus.index("mHelpMenu")
+    assert report["toolbar_actions"] and report["toolbar_actions"][0] == "BirdsEye algorithms…"
+    assert report["toolbox"]["visible"] and report["toolbox"]["filter"] == "birdseye"
+    assert report["toolbox"]["algorithms"] == ALGORITHM_IDS, "the filtered toolbox shows other algorithms"
+    assert all(report["docks"].values()), report["docks"]
+
+
+def test_screenshot_saved(desktop):
+    from qgis.PyQt.QtGui import QImage
+
+    assert desktop["report"]["screenshot_saved"]
+    image = QImage(str(desktop["screenshot"]))
+    assert image.width() >= 1024 and image.height() >= 700

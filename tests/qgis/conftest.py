@@ -1,0 +1,119 @@
+"""Fixtures for the QGIS suites: the ``birdseye`` provider in the registry and a fuller iface stub.
+
+pytest-qgis creates the one ``QgsApplication`` of the run (with widgets, offscreen); nothing here
+builds QGIS objects at import time.
+"""
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+import pytest
+
+REPO_ROOT = Path(__file__).resolve().parents[2]
+QGIS_PYTHON_PLUGINS = Path("/usr/share/qgis/python/plugins")
+
+
+def _let_qgis_processing_win() -> None:
+    """Make ``import processing`` find QGIS's Processing framework, never our ``processing/`` folder.
+
+    ``python -m pytest`` run from the repository puts the repository root (as ``''`` or its path) on
+    ``sys.path``; there our top-level ``processing`` package would shadow QGIS's. Tests import the
+    plugin as ``birdseye`` through build/pluginpath, so the root itself is never needed.
+    """
+    sys.path[:] = [p for p in sys.path if Path(p or ".").resolve() != REPO_ROOT]
+    if str(QGIS_PYTHON_PLUGINS) not in sys.path:
+        sys.path.append(str(QGIS_PYTHON_PLUGINS))
+
+
+_let_qgis_processing_win()
+
+
+@pytest.fixture(scope="session")
+def birdseye_provider(qgis_app, qgis_processing):
+    """The ``birdseye`` provider, registered once per session after QGIS's Processing is initialised.
+
+    ``qgis_processing`` (pytest-qgis) runs ``Processing.initialize()``, so ``processing.run`` works
+    with native algorithms as well as ours.
+    """
+    import processing
+    from qgis.core import QgsApplication
+
+    from birdseye.processing.provider import BirdsEyeProvider
+
+    assert Path(processing.__file__).resolve().is_relative_to(QGIS_PYTHON_PLUGINS), (
+        f"'processing' resolves to {processing.__file__}, not QGIS's Processing framework")
+    registry = QgsApplication.processingRegistry()
+    provider = registry.providerById("birdseye")
+    if provider is None:
+        provider = BirdsEyeProvider()
+        assert registry.addProvider(provider), "the birdseye provider could not be registered"
+    return provider
+
+
+class _IfaceUiPatches:
+    """What pytest-qgis's iface stub only pretends to do, done on its real QMainWindow.
+
+    The stub's ``addDockWidget``/``removeDockWidget`` do nothing and ``addToolBar(QToolBar)`` only
+    records the toolbar; plugins and docks under test need them to act as in the desktop, so their
+    widgets can be found, shown and removed.
+    """
+
+    def __init__(self, iface):
+        self.iface = iface
+        self.plugin_menus = {}
+
+    def addDockWidget(self, area, dock):  # noqa: N802 (QGIS API name)
+        self.iface.mainWindow().addDockWidget(area, dock)
+
+    def removeDockWidget(self, dock):  # noqa: N802
+        self.iface.mainWindow().removeDockWidget(dock)
+
+    def addToolBar(self, toolbar, area=None):  # noqa: N802
+        from qgis.PyQt.QtCore import Qt
+        from qgis.PyQt.QtWidgets import QToolBar
+
+        main_window = self.iface.mainWindow()
+        if isinstance(toolbar, str):
+            toolbar = QToolBar(toolbar, main_window)
+            toolbar.setObjectName(toolbar.windowTitle())
+        main_window.addToolBar(area if area is not None else Qt.TopToolBarArea, toolbar)
+        return toolbar
+
+    def pluginMenu(self):  # noqa: N802
+        from qgis.PyQt.QtWidgets import QMenu
+
+        menu_bar = self.iface.mainWindow().menuBar()
+        for action in menu_bar.actions():
+            if action.menu() is not None and action.menu().objectName() == "mPluginMenu":
+                return action.menu()
+        menu = QMenu("&Plugins", self.iface.mainWindow())
+        menu.setObjectName("mPluginMenu")
+        menu_bar.addMenu(menu)
+        return menu
+
+    def addPluginToMenu(self, name, action):  # noqa: N802
+        submenu = self.plugin_menus.get(name)
+        if submenu is None:
+            submenu = self.plugin_menus[name] = self.pluginMenu().addMenu(name)
+        submenu.addAction(action)
+
+    def removePluginMenu(self, name, action):  # noqa: N802
+        submenu = self.plugin_menus.get(name)
+        if submenu is not None:
+            submenu.removeAction(action)
+            if submenu.isEmpty():
+                self.pluginMenu().removeAction(submenu.menuAction())
+                del self.plugin_menus[name]
+
+
+@pytest.fixture(scope="session", autouse=True)
+def _iface_acts_on_main_window(qgis_iface):
+    """Install :class:`_IfaceUiPatches` on the session's iface stub (instance attributes)."""
+    patches = _IfaceUiPatches(qgis_iface)
+    names = ["addDockWidget", "removeDockWidget", "addToolBar", "pluginMenu", "addPluginToMenu",
+             "removePluginMenu"]
+    with pytest.MonkeyPatch.context() as monkeypatch:
+        for name in names:
+            monkeypatch.setattr(qgis_iface, name, getattr(patches, name), raising=False)
+        yield patches
