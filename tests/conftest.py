@@ -26,3 +26,12 @@ def _ensure_plugin_link() -> None:
 
 _ensure_plugin_link()
 os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
+
+
+def pytest_configure(config):
+    """With pytest-qgis active (not under ``-p no:qgis``), every suite gets the QGIS fixtures."""
+    if config.pluginmanager.has_plugin("qgis") or config.pluginmanager.has_plugin("pytest_qgis"):
+        sys.path.insert(0, str(Path(__file__).resolve().parent))
+        import qgis_fixtures
+
+        config.pluginmanager.register(qgis_fixtures, "birdseye_qgis_fixtures")

@@ -1,4 +1,4 @@
-"""Fixtures for the QGIS suites: the ``birdseye`` provider in the registry and a fuller iface stub.
+"""Fixtures for every suite that runs with pytest-qgis (registered by tests/conftest.py): the ``birdseye`` provider in the registry and a fuller iface stub.
 
 pytest-qgis creates the one ``QgsApplication`` of the run (with widgets, offscreen); nothing here
 builds QGIS objects at import time.
@@ -10,7 +10,7 @@ from pathlib import Path
 
 import pytest
 
-REPO_ROOT = Path(__file__).resolve().parents[2]
+REPO_ROOT = Path(__file__).resolve().parents[1]
 QGIS_PYTHON_PLUGINS = Path("/usr/share/qgis/python/plugins")
 
 
