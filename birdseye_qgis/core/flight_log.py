@@ -57,6 +57,8 @@ MAX_EXAMPLES = 20
 #: A strobe row whose altimeter reading is bad takes the ground height interpolated from good
 #: readings at most this far (s) before and after it; beyond, the frame has no ground height.
 RADALT_WINDOW_S = 1.0
+#: Terrain slope (deg) up to which the method measured the level-plane ground model to hold.
+FLAT_ENVELOPE_DEG = 10.0
 #: The flight line is split where the pose log has a gap longer than this (s).
 TRACK_GAP_S = 2.0
 
@@ -65,6 +67,7 @@ FRAME_EXTRA_FIELDS = [
     ("rtk_std_lon_m", "double", "RTK standard deviation east-west (m), DJI RtkStdLon"),
     ("rtk_std_lat_m", "double", "RTK standard deviation north-south (m), DJI RtkStdLat"),
     ("rtk_std_hgt_m", "double", "RTK standard deviation of height (m), DJI RtkStdHgt"),
+    ("terrain_slope_deg", "double", "terrain slope under the footprint from the DEM (deg; NULL without a DEM)"),
 ]
 FRAME_LAYER_FIELDS = FRAME_FIELDS + FRAME_EXTRA_FIELDS
 
@@ -535,25 +538,29 @@ class Footprints:
     depth_m: np.ndarray
     gsd_cm: np.ndarray
     crs: ProjectedCRS
+    slope_deg: np.ndarray | None = None
 
 
 def compute_footprints(frames: Frames, crs: ProjectedCRS, per_edge: int = 4, block: int = 4096,
-                       progress=None, is_canceled=None) -> Footprints:
-    """Ground footprints of every frame over its level ground, in ``crs``.
+                       progress=None, is_canceled=None, ground=None) -> Footprints:
+    """Ground footprints of every frame, in ``crs``: over its level ground, or draped on a DEM.
 
     Geometry runs in one :class:`.geodesy.LocalFrame` around all frames (true-north attitudes, no
-    grid convergence); ring points go local → WGS84 → ``crs``. A frame without a ground height, or
-    whose border rays do not all reach the ground (a view above the horizon), gets no ring and the
+    grid convergence); ring points go local → WGS84 → ``crs``. ``ground`` builds another ground model
+    from a :class:`FrameGeometry` (a DEM's ``DemGround.from_dem``); with it every frame is placed and
+    the terrain slope under each footprint is measured. A frame without a ground height (level plane),
+    or whose border rays do not all reach the ground (a view above the horizon), gets no ring and the
     flag ``no_ground_height`` / ``footprint_unbounded`` (added to ``frames.flags``).
     """
     n = len(frames)
     rings: list = [None] * n
     depth = np.full(n, np.nan)
     gsd = np.full(n, np.nan)
+    slope = np.full(n, np.nan)
     if n == 0:
-        return Footprints(rings, depth, gsd, crs)
+        return Footprints(rings, depth, gsd, crs, slope)
     local = LocalFrame.around(frames.lat, frames.lon, frames.height)
-    placeable = np.isfinite(frames.ground_h)
+    placeable = np.isfinite(frames.ground_h) | (ground is not None)
     for i in np.flatnonzero(~placeable):
         frames.flags[i].append("no_ground_height")
     by_camera: dict[int, list[int]] = {}
@@ -569,9 +576,15 @@ def compute_footprints(frames: Frames, crs: ProjectedCRS, per_edge: int = 4, blo
             poses = FramePoses(frames.frame_id[idx], frames.lat[idx], frames.lon[idx], frames.height[idx],
                                frames.quat[idx], frames.ground_h[idx], camera)
             geometry = FrameGeometry(poses, local)
-            pts, complete = footprints(geometry, LevelPlaneGround(geometry), per_edge)
-            depth[idx] = geometry.depth_below()
-            gsd[idx] = geometry.gsd_m() * 100.0
+            model = LevelPlaneGround(geometry) if ground is None else ground(geometry)
+            pts, complete = footprints(geometry, model, per_edge)
+            if ground is None:
+                depth[idx] = geometry.depth_below()
+            else:
+                depth[idx], slope[idx] = _terrain_depth_and_slope(geometry, model)
+                for f in idx[np.nan_to_num(slope[idx]) > FLAT_ENVELOPE_DEG]:
+                    frames.flags[f].append("steep_terrain")
+            gsd[idx] = depth[idx] / np.sqrt(camera.fx * camera.fy) * 100.0
             k = pts.shape[1]
             ok = np.flatnonzero(complete)
             if len(ok):
@@ -585,7 +598,16 @@ def compute_footprints(frames: Frames, crs: ProjectedCRS, per_edge: int = 4, blo
             done += len(idx)
             if progress is not None:
                 progress(done / total)
-    return Footprints(rings, depth, gsd, crs)
+    return Footprints(rings, depth, gsd, crs, slope)
+
+
+def _terrain_depth_and_slope(geometry: FrameGeometry, model):
+    """Depth along the local vertical to the terrain under each camera, and the footprint's slope."""
+    from .dem import frame_terrain_slope
+
+    below, valid = model.intersect(np.arange(len(geometry)), geometry.C, -geometry.up)
+    depth = np.where(valid, np.einsum("fi,fi->f", geometry.C - below, geometry.up), np.nan)
+    return depth, frame_terrain_slope(geometry, model).slope_deg
 
 
 def frame_records(frames: Frames, fp: Footprints):
@@ -611,6 +633,8 @@ def frame_records(frames: Frames, fp: Footprints):
                "flags": ",".join(dict.fromkeys(frames.flags[i]))}
         for name, _, _ in FRAME_EXTRA_FIELDS:
             rec[name] = _value(frames.extra[name][i]) if name in frames.extra else None
+        if fp.slope_deg is not None:
+            rec["terrain_slope_deg"] = _value(fp.slope_deg[i])
         yield rec
 
 
@@ -654,7 +678,7 @@ def _names(paths, limit=3) -> str:
 
 def import_pose_log(pose_log, images_folder, camera: CameraModel, fps: float = 5.0,
                     radalt_snr_min: float = 13.0, fixed_only: bool = False, crs: ProjectedCRS | None = None,
-                    with_track: bool = True, progress=None, is_canceled=None) -> FlightImport:
+                    with_track: bool = True, progress=None, is_canceled=None, ground=None) -> FlightImport:
     """Pose log + image folder + camera → frames with footprints, flight line and a report.
 
     ``crs`` None: the UTM zone of the site. Progress: parsing 0–45 %, sync/ground 45–50 %,
@@ -714,7 +738,7 @@ def import_pose_log(pose_log, images_folder, camera: CameraModel, fps: float = 5
         raise InputError("no frame is left after the RTK filter (no frame has an RTK fixed solution); "
                          "choose 'all' to import float frames flagged", source=log.source)
     crs = crs or ProjectedCRS.for_site(frames.lat, frames.lon)
-    fp = compute_footprints(frames, crs, progress=sub(0.5, 0.97), is_canceled=is_canceled)
+    fp = compute_footprints(frames, crs, progress=sub(0.5, 0.97), is_canceled=is_canceled, ground=ground)
     _report_ground(report, frames)
     track = []
     if with_track:
@@ -769,7 +793,9 @@ def _apply_rtk_filter(frames: Frames, fixed_only: bool, report: ImportReport) ->
 def _report_ground(report: ImportReport, frames: Frames) -> None:
     for flag, text in (("no_ground_height", "have no ground height (no good altimeter reading nearby); "
                         "they are kept without a footprint"),
-                       ("footprint_unbounded", "look above the horizon; they are kept without a footprint")):
+                       ("footprint_unbounded", "look above the horizon; they are kept without a footprint"),
+                       ("steep_terrain", f"lie on terrain steeper than the level plane's {FLAT_ENVELOPE_DEG:g}° "
+                                         "envelope; give the DEM to Write labels and Detect too")):
         n = sum(flag in f for f in frames.flags)
         report.counts[flag] = n
         if n:
@@ -826,7 +852,7 @@ _DB_TIME_COLUMNS = ("time_s", "time", "timestamp", "stamp", "t_img")
 def read_flight_db_frames(path, camera: CameraModel, utm_crs=None, images_folder=None,
                           radalt_snr_min: float = 13.0, fixed_only: bool = False,
                           crs: ProjectedCRS | None = None, with_track: bool = True,
-                          progress=None, is_canceled=None) -> FlightImport:
+                          progress=None, is_canceled=None, ground=None) -> FlightImport:
     """Frames from the reference payload's ``flight_data.db`` (already one row per saved image).
 
     ``utm_crs`` (EPSG code or WKT) is the projected CRS of the table's ``x, y``; it is required
@@ -948,7 +974,7 @@ def read_flight_db_frames(path, camera: CameraModel, utm_crs=None, images_folder
     if len(frames) == 0:
         raise InputError("no frame is left after the RTK filter", source=source)
     crs = crs or ProjectedCRS.for_site(frames.lat, frames.lon)
-    fp = compute_footprints(frames, crs, progress=progress, is_canceled=is_canceled)
+    fp = compute_footprints(frames, crs, progress=progress, is_canceled=is_canceled, ground=ground)
     _report_ground(report, frames)
     track = []
     if with_track and np.all(np.isfinite(frames.time_s)):

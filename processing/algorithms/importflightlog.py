@@ -8,10 +8,11 @@ from qgis.core import (QgsProcessingParameterCrs, QgsProcessingParameterEnum, Qg
 from ...birdseye_qgis import layers
 from ...birdseye_qgis.core.camera import load_calibration
 from ...birdseye_qgis.core.flight_log import import_flight_log
+from ..dem_parameters import DemParametersMixin
 from .base import BirdsEyeAlgorithm
 
 
-class ImportFlightLog(BirdsEyeAlgorithm):
+class ImportFlightLog(DemParametersMixin, BirdsEyeAlgorithm):
     ALG_ID = "importflightlog"
     DISPLAY_NAME = "Import flight log"
     GROUP = "field"
@@ -39,6 +40,7 @@ class ImportFlightLog(BirdsEyeAlgorithm):
             "UTM_CRS", self.tr("UTM zone of flight_data.db x, y (only for flight_data.db)"), optional=True))
         self.addParameter(QgsProcessingParameterCrs(
             "OUTPUT_CRS", self.tr("Output CRS (empty: UTM zone of the site)"), optional=True))
+        self.add_dem_parameters()
         self.addParameter(QgsProcessingParameterFeatureSink(
             "OUTPUT", self.tr("Frames"), QgsProcessing.TypeVectorPolygon))
         self.addParameter(QgsProcessingParameterFeatureSink(
@@ -58,9 +60,11 @@ class ImportFlightLog(BirdsEyeAlgorithm):
         camera = self.run_core(load_calibration, calibration)
         feedback.pushInfo(f"Camera: {camera.width}×{camera.height} px, fx {camera.fx:.1f}, fy {camera.fy:.1f} "
                           f"({camera.source})")
+        dem = self.read_dem(parameters, context)
+        self.report_dem(feedback, dem)
         progress, is_canceled = self.progress_callbacks(feedback, 0.0, 80.0)
         result = self.run_core(
-            import_flight_log, pose_log, images, camera,
+            import_flight_log, pose_log, images, camera, ground=self.dem_ground(dem),
             fps=self.parameterAsDouble(parameters, "FPS", context),
             radalt_snr_min=self.parameterAsDouble(parameters, "RADALT_SNR_MIN", context),
             fixed_only=self.parameterAsEnum(parameters, "RTK_FILTER", context) == 1,

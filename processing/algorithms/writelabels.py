@@ -127,6 +127,11 @@ class WriteLabels(DemParametersMixin, BirdsEyeAlgorithm):
                           f"σ = {sigma:g} px, edge buffer {request.edge_buffer_px:g} px")
 
         no_ground = [poses.frame_id[i] for poses, _ in groups for i in np.flatnonzero(frames_without_ground(poses))]
+        steep = [r["frame_id"] for r in records if "steep_terrain" in (r.get("flags") or "")]
+        if steep and dem is None:
+            feedback.pushWarning(f"{len(steep)} frame(s) lie on terrain steeper than the level plane's 10° envelope "
+                                 f"(flag steep_terrain; first: {', '.join(str(i) for i in steep[:5])}): their labels "
+                                 "drift off target — give the DEM (parameter DEM)")
         if no_ground and dem is None:
             feedback.pushWarning(f"{len(no_ground)} frame(s) have no ground height (no usable altimeter reading, "
                                  f"flag no_ground_height) and get no labels; first: "

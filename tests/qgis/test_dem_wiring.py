@@ -1,0 +1,50 @@
+"""The DEM parameter on importflightlog: footprints drape on the terrain, slope measured and flagged."""
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+from qgis.core import QgsRasterLayer
+
+from birdseye.birdseye_qgis.core.dem import synthetic_terrain
+from birdseye.birdseye_qgis.core.simulate import CampaignConfig, simulate_campaign
+
+from test_writelabels import write_geotiff
+
+
+@pytest.fixture(scope="module")
+def campaign(birdseye_provider, tmp_path_factory):
+    folder = tmp_path_factory.mktemp("campaign")
+    simulate_campaign(CampaignConfig(seed=5, n_targets=3, field_width_m=6.0, field_length_m=5.0, image_width=320,
+                                     image_height=200, noise_off=True), folder)
+    return folder
+
+
+def import_frames(folder, **extra):
+    import processing
+
+    return processing.run("birdseye:importflightlog", {
+        "POSE_LOG": str(folder / "poses.csv"), "IMAGES": str(folder / "frames"),
+        "CALIBRATION": str(folder / "calibration.yaml"), "OUTPUT": "TEMPORARY_OUTPUT", **extra})["OUTPUT"]
+
+
+def test_footprints_drape_on_a_sloped_dem_and_steep_frames_are_flagged(campaign, tmp_path):
+    site = json.loads((campaign / "truth" / "campaign.json").read_text())["site"]
+    dem = synthetic_terrain(site["lat"], site["lon"], kind="plane", slope_deg=20.0, aspect_deg=90.0,
+                            base_height_m=site["ground_height_m"], size_m=60.0, cell_m=0.5,
+                            vertical_datum="ellipsoidal")
+    layer = QgsRasterLayer(write_geotiff(dem, tmp_path / "slope.tif"), "slope")
+    level = {f["frame_id"]: f for f in import_frames(campaign).getFeatures()}
+    draped = {f["frame_id"]: f for f in import_frames(campaign, DEM=layer, DEM_VERTICAL_DATUM=0).getFeatures()}
+    assert level.keys() == draped.keys()
+    for fid, f in draped.items():
+        assert f["terrain_slope_deg"] == pytest.approx(20.0, abs=0.2)
+        assert "steep_terrain" in f["flags"] and "steep_terrain" not in (level[fid]["flags"] or "")
+        zs = [v.z() for v in f.geometry().vertices()]
+        assert max(zs) - min(zs) > 0.5  # the ring follows the slope; the level ring is flat
+        zl = [v.z() for v in level[fid].geometry().vertices()]
+        assert max(zl) - min(zl) < 0.05
+    # Without a DEM no slope is claimed.
+    assert all(v is None or (hasattr(v, "isNull") and v.isNull())
+               for v in (f["terrain_slope_deg"] for f in level.values()))
