@@ -1,0 +1,100 @@
+"""birdseye:simulatecampaign — a deterministic synthetic campaign in the BirdsEye file formats."""
+from __future__ import annotations
+
+from qgis.core import (QgsProcessingOutputFile, QgsProcessingOutputNumber, QgsProcessingParameterBoolean,
+                       QgsProcessingParameterDefinition, QgsProcessingParameterFolderDestination,
+                       QgsProcessingParameterNumber, QgsProcessingParameterString)
+
+from ...birdseye_qgis.core.simulate import CampaignConfig, parse_sigmas, simulate_campaign
+from .base import BirdsEyeAlgorithm
+
+DEFAULTS = CampaignConfig()
+INT, DOUBLE = QgsProcessingParameterNumber.Integer, QgsProcessingParameterNumber.Double
+
+# (name, label, type, default, min, max, advanced), in the dialog's order; the advanced ones follow
+# the switches (SIGMAS, NOISE_OFF, RENDER).
+NUMBERS = [
+    ("SEED", "Random seed (same seed → identical files)", INT, DEFAULTS.seed, 0, 2147483647, False),
+    ("N_TARGETS", "Number of targets (burrows)", INT, DEFAULTS.n_targets, 1, 5000, False),
+    ("FIELD_WIDTH_M", "Field width, east–west (m)", DOUBLE, DEFAULTS.field_width_m, 2.0, 500.0, False),
+    ("FIELD_LENGTH_M", "Field length, north–south (m)", DOUBLE, DEFAULTS.field_length_m, 2.0, 500.0, False),
+    ("ALTITUDE_M", "Flying height above ground (m)", DOUBLE, DEFAULTS.altitude_m, 1.0, 120.0, False),
+    ("SPEED_MS", "Flight speed (m/s)", DOUBLE, DEFAULTS.speed_ms, 0.2, 20.0, False),
+    ("SITE_LAT", "Site latitude (deg, WGS84)", DOUBLE, DEFAULTS.site_lat, -80.0, 84.0, True),
+    ("SITE_LON", "Site longitude (deg, WGS84)", DOUBLE, DEFAULTS.site_lon, -180.0, 180.0, True),
+    ("GROUND_HEIGHT_M", "Ground height (m, WGS84 ellipsoidal)", DOUBLE, DEFAULTS.ground_height_m, -500.0, 9000.0, True),
+    ("FPS", "Camera frame rate (frames/s)", DOUBLE, DEFAULTS.fps, 0.2, 60.0, True),
+    ("INS_RATE_HZ", "INS message rate (Hz)", DOUBLE, DEFAULTS.ins_rate_hz, 1.0, 1000.0, True),
+    ("IMAGE_WIDTH", "Image width (px)", INT, DEFAULTS.image_width, 32, 8192, True),
+    ("IMAGE_HEIGHT", "Image height (px)", INT, DEFAULTS.image_height, 32, 8192, True),
+    ("SIDE_OVERLAP", "Side overlap of neighbouring lines (fraction)", DOUBLE, DEFAULTS.side_overlap, 0.0, 0.9, True),
+    ("RADALT_SIGMA_M", "Radar altimeter noise σ (m)", DOUBLE, DEFAULTS.radalt_sigma_m, 0.0, 10.0, True),
+    ("RTK_SIGMA_M", "Rover RTK noise σ of the geotags (m)", DOUBLE, DEFAULTS.rtk_sigma_m, 0.0, 10.0, True),
+    ("N_MISSED", "Targets not surveyed", INT, DEFAULTS.n_missed, 0, 5000, True),
+    ("N_SPURIOUS", "Spurious geotags (no target)", INT, DEFAULTS.n_spurious, 0, 5000, True),
+    ("RTK_FLOAT_EPISODES", "RTK-float episodes in the pose log", INT, DEFAULTS.rtk_float_episodes, 0, 100, True),
+]
+
+
+class SimulateCampaign(BirdsEyeAlgorithm):
+    ALG_ID = "simulatecampaign"
+    DISPLAY_NAME = "Simulate a campaign"
+    GROUP = "simulate"
+
+    def initAlgorithm(self, config=None):  # noqa: N802
+        for advanced in (False, True):
+            for name, label, kind, default, lo, hi, is_advanced in NUMBERS:
+                if is_advanced == advanced:
+                    self._add(QgsProcessingParameterNumber(
+                        name, self.tr(label), kind, default, minValue=lo, maxValue=hi), advanced)
+            if not advanced:
+                self.addParameter(QgsProcessingParameterString(
+                    "SIGMAS", self.tr("Pose noise Σ0: x, y, z (m), roll, pitch, yaw (deg)"),
+                    ",".join(f"{s:g}" for s in DEFAULTS.sigmas)))
+                self.addParameter(QgsProcessingParameterBoolean(
+                    "NOISE_OFF", self.tr("Noise off (ideal poses, altimeter and geotags)"), False))
+                self.addParameter(QgsProcessingParameterBoolean(
+                    "RENDER", self.tr("Render frames (off: poses and geotags only)"), True))
+        geoid = QgsProcessingParameterNumber(
+            "GEOID_UNDULATION_M", self.tr("Geoid undulation N for altMSL (m; empty: EGM96 at the site)"),
+            DOUBLE, None, optional=True, minValue=-120.0, maxValue=120.0)
+        self._add(geoid, True)
+        self.addParameter(QgsProcessingParameterFolderDestination("OUTPUT_FOLDER", self.tr("Output folder")))
+        for name, text in (("GEOTAGS", "Geotags (rover CSV)"), ("POSES", "Pose log (CSV)"),
+                           ("IMAGES", "Image list (images.csv)"), ("CALIBRATION", "Calibration (Kalibr YAML)")):
+            self.addOutput(QgsProcessingOutputFile(name, self.tr(text)))
+        self.addOutput(QgsProcessingOutputNumber("FRAME_COUNT", self.tr("Frames")))
+
+    def _add(self, param, advanced: bool) -> None:
+        if advanced:
+            param.setFlags(param.flags() | QgsProcessingParameterDefinition.FlagAdvanced)
+        self.addParameter(param)
+
+    def processAlgorithm(self, parameters, context, feedback):  # noqa: N802
+        values = {name: (self.parameterAsInt if kind == INT else self.parameterAsDouble)(parameters, name, context)
+                  for name, _, kind, *_ in NUMBERS}
+        geoid = parameters.get("GEOID_UNDULATION_M")
+        config = CampaignConfig(
+            seed=values["SEED"], n_targets=values["N_TARGETS"], field_width_m=values["FIELD_WIDTH_M"],
+            field_length_m=values["FIELD_LENGTH_M"], site_lat=values["SITE_LAT"], site_lon=values["SITE_LON"],
+            ground_height_m=values["GROUND_HEIGHT_M"], altitude_m=values["ALTITUDE_M"],
+            speed_ms=values["SPEED_MS"], fps=values["FPS"], ins_rate_hz=values["INS_RATE_HZ"],
+            image_width=values["IMAGE_WIDTH"], image_height=values["IMAGE_HEIGHT"],
+            sigmas=self.run_core(parse_sigmas, self.parameterAsString(parameters, "SIGMAS", context)),
+            radalt_sigma_m=values["RADALT_SIGMA_M"], rtk_sigma_m=values["RTK_SIGMA_M"],
+            n_missed=values["N_MISSED"], n_spurious=values["N_SPURIOUS"],
+            render=self.parameterAsBool(parameters, "RENDER", context),
+            noise_off=self.parameterAsBool(parameters, "NOISE_OFF", context),
+            side_overlap=values["SIDE_OVERLAP"], rtk_float_episodes=values["RTK_FLOAT_EPISODES"],
+            geoid_undulation_m=None if geoid in (None, "") else self.parameterAsDouble(parameters, "GEOID_UNDULATION_M", context))
+        folder = self.parameterAsString(parameters, "OUTPUT_FOLDER", context)
+        feedback.pushInfo(f"Simulating seed {config.seed}: {config.n_targets} targets in a "
+                          f"{config.field_width_m:g} × {config.field_length_m:g} m field, flown at "
+                          f"{config.altitude_m:g} m, {config.speed_ms:g} m/s, {config.fps:g} frames/s.")
+        progress, is_canceled = self.progress_callbacks(feedback, 2.0, 100.0)
+        result = self.run_core(simulate_campaign, config, folder, progress=progress, is_canceled=is_canceled)
+        feedback.pushInfo(f"Wrote {result.n_frames} frames, {result.n_poses} pose rows and "
+                          f"{result.n_geotags} geotags to {result.folder}.")
+        return {"OUTPUT_FOLDER": str(result.folder), "GEOTAGS": str(result.files["geotags"]),
+                "POSES": str(result.files["poses"]), "IMAGES": str(result.files.get("images", "")),
+                "CALIBRATION": str(result.files["calibration"]), "FRAME_COUNT": result.n_frames}
