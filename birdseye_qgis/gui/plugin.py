@@ -127,6 +127,8 @@ class BirdsEyePlugin:
             action.deleteLater()
         self.dock_actions.clear()
         for dock in self.docks.values():
+            if hasattr(dock, "shutdown"):  # stop worker threads and close files before the widget goes
+                dock.shutdown()
             self.iface.removeDockWidget(dock)
             dock.deleteLater()
         self.docks.clear()

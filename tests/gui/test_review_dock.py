@@ -1,0 +1,446 @@
+"""The review dock, headless (pytest-qgis iface, qtbot), over a small simulated campaign.
+
+The campaign is simulated and imported with the importers; two detection layers ("checkpoints") are
+made by projecting the simulator's true targets and look-alikes into the imported frames (so chips show
+the real target under the circle) and back-projecting through the logged poses, as Detect would. Then
+the dock is driven as a reviewer drives it — by keyboard — and what must follow is checked: every unit
+judged, undo, an added target, the log's rows, the scores equal to ``evaluatedetections`` on the same
+verdict table, resume after reopening the project, changed inputs reported, chip latency with prefetch.
+"""
+from __future__ import annotations
+
+import csv
+import json
+import shutil
+import statistics
+import time
+from pathlib import Path
+from types import SimpleNamespace
+
+import numpy as np
+import pytest
+from qgis.core import (QgsApplication, QgsCoordinateReferenceSystem, QgsFeature, QgsField, QgsGeometry, QgsPoint,
+                       QgsPointXY, QgsProject, QgsVectorFileWriter, QgsVectorLayer)
+from qgis.PyQt.QtCore import QPoint, Qt, QVariant
+
+from birdseye.birdseye_qgis.core.geodesy import LocalFrame, ProjectedCRS
+from birdseye.birdseye_qgis.core.ground import LevelPlaneGround
+from birdseye.birdseye_qgis.core.poses import FrameGeometry
+from birdseye.birdseye_qgis.core.projection import pixel_to_ground, project_in_view
+from birdseye.birdseye_qgis.core.simulate import CampaignConfig, simulate_campaign
+from birdseye.birdseye_qgis.gui import review_dock as dock_module
+from birdseye.birdseye_qgis.review_store import VERDICT_TABLE, VerdictStore
+
+REPO_ROOT = Path(__file__).resolve().parents[2]
+SCREENSHOT = REPO_ROOT / "build" / "screenshots" / "review_dock.png"
+UTM = 32756
+KEYS = {"confirmed_real": Qt.Key_1, "hard_negative": Qt.Key_2, "uncertain": Qt.Key_3}
+
+
+def run(alg_id, params):
+    import processing
+
+    return processing.run(f"birdseye:{alg_id}", params)
+
+
+@pytest.fixture(scope="module")
+def provider(qgis_app, qgis_processing):
+    from birdseye.processing.provider import BirdsEyeProvider
+
+    registry = QgsApplication.processingRegistry()
+    if registry.providerById("birdseye") is None:
+        assert registry.addProvider(BirdsEyeProvider())
+    return registry.providerById("birdseye")
+
+
+# ---------------------------------------------------------------------------------------------- campaign
+def read_truth(folder):
+    targets = list(csv.DictReader(open(folder / "truth" / "targets.csv")))
+    distractors = list(csv.DictReader(open(folder / "truth" / "distractors.csv")))
+    return targets, distractors
+
+
+def detections_of(points, groups, local, rng, score):
+    """(frame_id, u, v, score, x, y, z) of every point in view of every frame: its projection with a
+    detector's 2.5 px localisation noise (about 2.4 cm here), back-projected through the logged pose
+    onto the frame's level ground."""
+    lat = np.array([p[0] for p in points])
+    lon = np.array([p[1] for p in points])
+    h = np.array([p[2] for p in points])
+    rows = []
+    for poses in groups:
+        geometry = FrameGeometry(poses, local)
+        ground = LevelPlaneGround(geometry)
+        proj = project_in_view(geometry, local.from_geodetic(lat, lon, h), ground, edge_buffer_px=3)
+        uv = proj.uv + rng.normal(0, 2.5, proj.uv.shape)
+        pts, ok = pixel_to_ground(geometry, ground, proj.frame_idx, uv)
+        plat, plon, ph = local.to_geodetic(pts)
+        x, y = ProjectedCRS(UTM).from_geodetic(plat, plon)
+        for k in np.flatnonzero(ok):
+            rows.append((int(poses.frame_id[proj.frame_idx[k]]), float(uv[k, 0]), float(uv[k, 1]),
+                         float(score[proj.point_idx[k]]), float(x[k]), float(y[k]), float(ph[k])))
+    return rows
+
+
+def write_detection_layer(path, name, rows):
+    layer = QgsVectorLayer(f"PointZ?crs=EPSG:{UTM}", name, "memory")
+    layer.dataProvider().addAttributes([QgsField("frame_id", QVariant.Int), QgsField("u", QVariant.Double),
+                                        QgsField("v", QVariant.Double), QgsField("score", QVariant.Double),
+                                        QgsField("model", QVariant.String), QgsField("model_digest", QVariant.String),
+                                        QgsField("threshold", QVariant.Double)])
+    layer.updateFields()
+    features = []
+    for frame_id, u, v, score, x, y, z in rows:
+        f = QgsFeature(layer.fields())
+        f.setAttributes([frame_id, u, v, score, f"{name}.onnx", name * 4, 0.3])
+        f.setGeometry(QgsGeometry(QgsPoint(x, y, z)))
+        features.append(f)
+    layer.dataProvider().addFeatures(features)
+    options = QgsVectorFileWriter.SaveVectorOptions()
+    options.driverName = "GPKG"
+    options.layerName = name
+    options.actionOnExistingFile = (QgsVectorFileWriter.CreateOrOverwriteLayer if Path(path).exists()
+                                    else QgsVectorFileWriter.CreateOrOverwriteFile)
+    error = QgsVectorFileWriter.writeAsVectorFormatV3(layer, str(path), QgsProject.instance().transformContext(),
+                                                      options)
+    assert error[0] == QgsVectorFileWriter.NoError, error
+
+
+@pytest.fixture(scope="module")
+def campaign(provider, tmp_path_factory):
+    """A simulated flight with geotags, frames and two detection layers, in GeoPackages."""
+    from birdseye.processing.algorithms.clusterdetections import read_pose_groups
+
+    folder = tmp_path_factory.mktemp("review_campaign")
+    cfg = CampaignConfig(seed=5, n_targets=6, field_width_m=8.0, field_length_m=6.0, image_width=480,
+                         image_height=300, n_missed=1, n_spurious=1)
+    simulate_campaign(cfg, folder)
+    run("importgeotags", {"INPUT": str(folder / "geotags.csv"), "OUTPUT": str(folder / "geotags.gpkg")})
+    run("importflightlog", {"POSE_LOG": str(folder / "poses.csv"), "IMAGES": str(folder / "frames"),
+                            "CALIBRATION": str(folder / "calibration.yaml"), "OUTPUT": str(folder / "frames.gpkg")})
+    frames = QgsVectorLayer(str(folder / "frames.gpkg"), "frames", "ogr")
+    groups = read_pose_groups(frames)[0]
+    local = LocalFrame.around(np.concatenate([g.lat for g in groups]), np.concatenate([g.lon for g in groups]),
+                              np.concatenate([g.ground_height for g in groups]))
+    targets, distractors = read_truth(folder)
+    in_view = lambda pts: len(detections_of(pts, groups, local, np.random.default_rng(0), np.ones(len(pts))))  # noqa
+    real = [(float(t["lat"]), float(t["lon"]), float(t["h_ground"])) for t in targets]
+    real = [p for p in real if in_view([p]) >= 4]
+    fakes = [(float(d["lat"]), float(d["lon"]), 400.0) for d in distractors]
+    fakes = [p for p in fakes if in_view([p]) >= 4][:3]
+    assert len(real) >= 5 and len(fakes) == 3, (len(real), len(fakes))
+    missed = real[0]                                   # no layer fires there: the reviewer adds it
+    rng = np.random.default_rng(7)
+    a_points = real[1:] + fakes[:2]
+    b_points = real[2:] + fakes[1:]
+    det = folder / "detections.gpkg"
+    for name, points, (lo, hi) in (("model_a", a_points, (0.5, 0.95)), ("model_b", b_points, (0.4, 0.9))):
+        write_detection_layer(det, name, detections_of(points, groups, local, rng, rng.uniform(lo, hi, len(points))))
+    return SimpleNamespace(folder=folder, real=real[1:], fakes=fakes, missed=missed)
+
+
+def copy_campaign(campaign, tmp_path):
+    """The campaign's GeoPackages copied (each test keeps its own verdict log) and loaded."""
+    for name in ("geotags.gpkg", "frames.gpkg", "detections.gpkg"):
+        shutil.copy(campaign.folder / name, tmp_path / name)
+    layers = SimpleNamespace(
+        a=QgsVectorLayer(f"{tmp_path / 'detections.gpkg'}|layername=model_a", "model_a", "ogr"),
+        b=QgsVectorLayer(f"{tmp_path / 'detections.gpkg'}|layername=model_b", "model_b", "ogr"),
+        frames=QgsVectorLayer(str(tmp_path / "frames.gpkg"), "frames", "ogr"),
+        geotags=QgsVectorLayer(str(tmp_path / "geotags.gpkg"), "geotags", "ogr"))
+    for layer in vars(layers).values():
+        assert layer.isValid()
+    QgsProject.instance().addMapLayers(list(vars(layers).values()))
+    return layers
+
+
+@pytest.fixture
+def clean_project(qgis_iface, qtbot):
+    project = QgsProject.instance()
+    project.clear()
+    canvas = qgis_iface.mapCanvas()
+    canvas.setDestinationCrs(QgsCoordinateReferenceSystem(f"EPSG:{UTM}"))
+    canvas.resize(800, 600)
+    canvas.show()
+    qtbot.waitExposed(canvas)
+    yield project
+    project.clear()
+
+
+@pytest.fixture
+def make_dock(qgis_iface, qtbot):
+    docks = []
+
+    def make():
+        dock = dock_module.ReviewDock(qgis_iface)
+        dock.setFloating(True)
+        dock.resize(460, 1340)
+        dock.show()
+        qtbot.waitExposed(dock)
+        docks.append(dock)
+        return dock
+
+    yield make
+    for dock in docks:
+        dock.shutdown()
+        dock.close()
+        dock.deleteLater()
+
+
+def start(dock, layers, detection_layers=None, store=None):
+    dock.set_inputs(detection_layers or [layers.a, layers.b], layers.frames, layers.geotags, store)
+    assert dock.start_review(), dock.banner.text()
+    dock.panel.setFocus()
+
+
+def wait_chips(qtbot, dock, key=None):
+    key = key or dock.current_key
+    qtbot.waitUntil(lambda: dock.chips_shown_for == key, timeout=10000)
+
+
+def wait_scores(qtbot, dock):
+    qtbot.waitUntil(lambda: not dock._score_timer.isActive() and
+                    dock._shown_score_generation == dock._score_generation, timeout=20000)
+    assert dock.scores_error is None and dock.scores
+
+
+def nearest(points, lat, lon):
+    d = [np.hypot((p[0] - lat) * 111320, (p[1] - lon) * 98700) for p in points]
+    return int(np.argmin(d)), float(min(d))
+
+
+def truth_verdict(campaign, dock, key):
+    i = dock.units.index[key]
+    lat, lon = dock.units.lat[i], dock.units.lon[i]
+    k_real, d_real = nearest(campaign.real, lat, lon)
+    k_fake, d_fake = nearest(campaign.fakes, lat, lon)
+    assert min(d_real, d_fake) < 0.1, "every unit lies on a simulated target or look-alike"
+    return "confirmed_real" if d_real < d_fake else "hard_negative"
+
+
+# ---------------------------------------------------------------------------------------------- the review
+def test_a_whole_review_by_keyboard(campaign, clean_project, make_dock, qtbot, qgis_iface, tmp_path):
+    layers = copy_campaign(campaign, tmp_path)
+    dock = make_dock()
+    start(dock, layers)
+    store_path = tmp_path / "detections.gpkg"          # default: the first detection layer's GeoPackage
+    assert Path(dock.session.store.path) == store_path
+    assert not dock.propagate_check.isChecked()          # propagation is off by default
+    units = dock.units
+    assert len(units) == len(campaign.real) + len(campaign.fakes)
+    # model_a alone: the first real target and the first look-alike; model_b alone: the last look-alike.
+    assert sorted(map(tuple, units.layers_fired)) == sorted(
+        [("model_a",)] * 2 + [("model_a", "model_b")] * len(campaign.real) + [("model_b",)])
+    # Unmatched units come first.
+    matched = [bool(units.matched[units.index[k]]) for k in dock.entries]
+    assert matched == sorted(matched) and not matched[0] and matched[-1]
+    assert dock.banner.isHidden()
+    wait_scores(qtbot, dock)                            # before any verdict: POST = PRE, c = a = 0
+    before = json.loads(json.dumps(dock.scores))
+    for d in before.values():
+        assert {(p["c"], p["a"], p["gmcf_post"]) for p in d["post"].values()} == {(0, 0, d["gmcf_pre"])}
+
+    wait_chips(qtbot, dock)
+    decided = {}
+    mistake_done = False
+    while True:
+        key = dock.current_key
+        verdict = truth_verdict(campaign, dock, key)
+        if key == dock.entries[2]:
+            verdict = "uncertain"
+        if not mistake_done and verdict == "confirmed_real":
+            # A slip of the finger, undone: the log gets the row and its undo, the unit is unreviewed.
+            qtbot.keyClick(dock.panel, Qt.Key_2)
+            assert dock.session.ledger.direct(key) == "hard_negative" and dock.current_key != key
+            qtbot.keyClick(dock.panel, Qt.Key_Z, Qt.ControlModifier)
+            assert dock.current_key == key and dock.session.ledger.direct(key) == "unreviewed"
+            mistake_done = True
+        # A reviewer looks at the chips before deciding; moving on must show the next chips at once.
+        nxt = dock._neighbour(key, +1)
+        if nxt is not None:
+            qtbot.waitUntil(lambda: nxt in dock._chips, timeout=10000)
+        qtbot.keyClick(dock.panel, KEYS[verdict])
+        decided[key] = verdict
+        if nxt is None:
+            break
+        assert dock.current_key == nxt
+        wait_chips(qtbot, dock)
+    assert mistake_done
+    assert set(decided) == set(units.keys)
+    for key, verdict in decided.items():
+        assert dock.status(key).direct == verdict
+    assert "of {n} units reviewed".format(n=len(units)) in dock.progress_label.text()
+    assert f"{len(units)} of {len(units)} units reviewed" in dock.progress_label.text()
+
+    # Chips: up to four frames that detected the unit, each with a circle; latency with prefetch.
+    latencies = dock.chip_latencies_ms[1:]
+    assert len(latencies) >= len(units) - 1
+    print(f"\nchip latency with prefetch: median {statistics.median(latencies):.1f} ms, "
+          f"max {max(latencies):.1f} ms over {len(latencies)} moves")
+    assert statistics.median(latencies) < 200.0
+
+    # Add the target no layer detected: A, then a click on the map where it is.
+    canvas = qgis_iface.mapCanvas()
+    qtbot.keyClick(dock.panel, Qt.Key_A)
+    assert canvas.mapTool() is dock._tool
+    mlat, mlon, _ = campaign.missed
+    x, y = ProjectedCRS(UTM).from_geodetic(np.array([mlat]), np.array([mlon]))
+    canvas.setCenter(QgsPointXY(float(x[0]), float(y[0])))
+    canvas.zoomScale(100)
+    pixel = canvas.getCoordinateTransform().transform(QgsPointXY(float(x[0]), float(y[0])))
+    qtbot.mouseClick(canvas.viewport(), Qt.LeftButton, Qt.NoModifier, QPoint(round(pixel.x()), round(pixel.y())))
+    added = dock.session.ledger.added_targets()
+    assert len(added) == 1 and canvas.mapTool() is not dock._tool
+    assert nearest([campaign.missed], added[0].lat, added[0].lon)[1] < 0.05   # 1:100, 1 px ≈ 2.6 cm
+    assert dock.entries[-1] == added[0].key
+
+    # The log: append-only rows, complete, one action per verdict, the undo naming its action.
+    store = VerdictStore(store_path, create=False)
+    rows = store.rows()
+    assert len(rows) == len(units) + 2 + 1
+    undo = [r for r in rows if r["action"] == "undo"]
+    assert len(undo) == 1 and undo[0]["verdict"] == "unreviewed" and undo[0]["undoes"] == undo[0]["action_id"] - 1
+    assert all(r["reviewer"] and r["time"].endswith("Z") and json.loads(r["input_digests"]) for r in rows)
+    assert [r["time"] for r in rows] == sorted(r["time"] for r in rows)
+    with pytest.raises(Exception, match="append-only"):
+        store.connection.execute(f"DELETE FROM {VERDICT_TABLE}")
+    assert store.integrity_check() == "ok"
+    store.close()
+    # On the map: the verdict layer shows each unit's current verdict and the added target.
+    layer = dock.verdict_layer
+    assert layer is not None and QgsProject.instance().mapLayer(layer.id()) is layer
+    qtbot.waitUntil(lambda: layer.featureCount() == len(units) + 1, timeout=5000)
+    shown = {f["unit_key"]: f["verdict"] for f in layer.getFeatures()}
+    assert shown == {**decided, added[0].key: "added"}
+
+    # Scores: identical to evaluatedetections on the same verdict table, to the last digit.
+    wait_scores(qtbot, dock)
+    review = QgsVectorLayer(f"{store_path}|layername={VERDICT_TABLE}", "verdicts", "ogr")
+    assert review.isValid() and review.featureCount() == len(rows)
+    for layer in (layers.a, layers.b):
+        out = tmp_path / f"scores_{layer.name()}.json"
+        run("evaluatedetections", {"DETECTIONS": [layer], "GEOTAGS": layers.geotags, "FRAMES": [layers.frames],
+                                   "REVIEW": review, "OUTPUT_JSON": str(out), "OUTPUT_REPORT": None})
+        assert json.loads(json.dumps(dock.scores[layer.name()])) == json.loads(out.read_text())
+    # … and they are what the verdicts say: c = confirmed units a layer fired at with no geotag near.
+    for name in ("model_a", "model_b"):
+        c = sum(1 for k in units.keys if decided[k] == "confirmed_real" and not units.matched[units.index[k]]
+                and name in units.layers_fired[units.index[k]])
+        for convention in ("positive_wins", "majority_wins", "hard_negative_wins"):
+            post = dock.scores[name]["post"][convention]
+            assert (post["c"], post["a"]) == (c, 1)
+    assert dock.scores_table.item(0, 0).text() == "model_a" and "≥" in dock.scores_table.item(1, 2).text()
+    assert dock.scores["model_a"]["post"]["positive_wins"]["gmcf_post"] > before["model_a"]["gmcf_pre"]
+
+    # Screenshot of a matched unit with its chips.
+    dock.go_to(dock.entries[len(dock.entries) - 2])
+    wait_chips(qtbot, dock)
+    qtbot.wait(50)
+    SCREENSHOT.parent.mkdir(parents=True, exist_ok=True)
+    assert dock.grab().save(str(SCREENSHOT))
+
+
+def test_chips_show_the_frames_that_detected_the_unit(campaign, clean_project, make_dock, qtbot, tmp_path):
+    layers = copy_campaign(campaign, tmp_path)
+    dock = make_dock()
+    start(dock, layers)
+    wait_chips(qtbot, dock)
+    key = dock.current_key
+    plans, images, n_frames, error = dock._chips[key]
+    i = dock.units.index[key]
+    assert error is None and n_frames == dock.units.n_frames[i] and len(plans) == min(4, n_frames)
+    assert len(dock.chips.pixmaps) == len(plans) and dock.chips.pixmaps[0].width() == dock_module.CHIP_DISPLAY_PX
+    frames_seen = {int(f) for f in dock.units.detection_frame[dock.units.detection_unit == i]}
+    assert {int(p.frame_id) for p in plans} <= frames_seen
+    # Cold (no prefetch): the figure to compare the prefetched latency with.
+    dock._chips.clear()
+    dock._image_cache = type(dock._image_cache)(24)
+    t0 = time.perf_counter()
+    dock.go_to(dock._neighbour(key, +1))
+    wait_chips(qtbot, dock)
+    print(f"\nchip latency without prefetch (cold): {(time.perf_counter() - t0) * 1000:.1f} ms")
+
+
+def test_filters_by_layer_and_verdict_and_the_map_follows(campaign, clean_project, make_dock, qtbot, qgis_iface,
+                                                          tmp_path):
+    layers = copy_campaign(campaign, tmp_path)
+    dock = make_dock()
+    start(dock, layers)
+    units = dock.units
+    # The map follows the unit: centred on it at the review scale.
+    canvas = qgis_iface.mapCanvas()
+    i = units.index[dock.current_key]
+    x, y = ProjectedCRS(UTM).from_geodetic(units.lat[i:i + 1], units.lon[i:i + 1])
+    assert (canvas.center().x(), canvas.center().y()) == pytest.approx((x[0], y[0]), abs=1e-3)
+    assert canvas.scale() == pytest.approx(dock_module.DEFAULT_SCALE, rel=1e-3)
+    dock.layer_filter.setCurrentIndex(dock.layer_filter.findData("model_b"))
+    assert dock.visible == [k for k in dock.entries if "model_b" in units.layers_fired[units.index[k]]]
+    assert dock.current_key in dock.visible
+    dock.layer_filter.setCurrentIndex(0)
+    dock.verdict_filter.setCurrentIndex(dock.verdict_filter.findData("todo"))
+    first = dock.current_key
+    qtbot.keyClick(dock.panel, Qt.Key_H)
+    assert first not in dock.visible and dock.current_key == dock.visible[0]
+    dock.verdict_filter.setCurrentIndex(dock.verdict_filter.findData("hard_negative"))
+    assert dock.visible == [first]
+    dock.verdict_filter.setCurrentIndex(dock.verdict_filter.findData("unmatched"))
+    assert dock.visible == [k for k in dock.entries if not units.matched[units.index[k]]]
+
+
+def test_reopening_the_project_resumes_exactly_where_the_reviewer_stopped(campaign, clean_project, make_dock,
+                                                                         qtbot, tmp_path):
+    layers = copy_campaign(campaign, tmp_path)
+    dock = make_dock()
+    start(dock, layers)
+    dock.propagate_check.setChecked(True)
+    for key in (Qt.Key_1, Qt.Key_2, Qt.Key_3):
+        qtbot.keyClick(dock.panel, key)
+    qtbot.keyClick(dock.panel, Qt.Key_N)
+    qtbot.keyClick(dock.panel, Qt.Key_P)
+    qtbot.keyClick(dock.panel, Qt.Key_P)            # moved back without a verdict: the cursor must still hold
+    dock.verdict_filter.setCurrentIndex(dock.verdict_filter.findData("all"))
+    stopped_at, decided = dock.current_key, {k: dock.status(k).direct for k in dock.units.keys}
+    project_file = tmp_path / "review.qgz"
+    assert QgsProject.instance().write(str(project_file))
+    QgsProject.instance().clear()
+    assert dock.session is None and not dock.panel.isEnabled()
+    assert QgsProject.instance().read(str(project_file))
+    qtbot.waitUntil(lambda: dock.session is not None, timeout=10000)
+    assert dock.current_key == stopped_at and dock.propagate_check.isChecked()
+    assert {k: dock.status(k).direct for k in dock.units.keys} == decided
+    # A new dock on the reopened project does the same, and undo still knows the last action.
+    dock.shutdown()
+    second = make_dock()
+    qtbot.waitUntil(lambda: second.session is not None, timeout=10000)
+    assert second.current_key == stopped_at and second.banner.isHidden()
+    qtbot.keyClick(second.panel, Qt.Key_Z, Qt.ControlModifier)
+    assert sum(1 for v in (second.status(k).direct for k in second.units.keys) if v != "unreviewed") == 2
+
+
+def test_changed_input_layers_are_detected_and_reported(campaign, clean_project, make_dock, qtbot, tmp_path):
+    layers = copy_campaign(campaign, tmp_path)
+    dock = make_dock()
+    start(dock, layers)
+    qtbot.keyClick(dock.panel, Qt.Key_1)
+    qtbot.keyClick(dock.panel, Qt.Key_2)
+    start(dock, layers)                                # same inputs: nothing to report
+    assert dock.input_check.ok and dock.banner.isHidden()
+    feature = next(layers.b.getFeatures())
+    assert layers.b.dataProvider().changeAttributeValues({feature.id(): {layers.b.fields().indexOf("score"): 0.123}})
+    start(dock, layers)
+    assert dock.input_check.changed == {"detections:model_b": 2}
+    assert not dock.banner.isHidden() and "model_b" in dock.banner.text() and "changed" in dock.banner.text()
+    # Parameters count too: the units were made with another EPS.
+    dock.eps_spin.setValue(0.12)
+    start(dock, layers)
+    assert "eps_m" in dock.input_check.parameters and "eps_m" in dock.banner.text()
+
+
+def test_a_layer_that_cannot_be_reviewed_is_reported_by_name(campaign, clean_project, make_dock, tmp_path):
+    layers = copy_campaign(campaign, tmp_path)
+    dock = make_dock()
+    dock.set_inputs([layers.a], layers.geotags, layers.geotags)
+    assert not dock.start_review()
+    assert "geotags" in dock.banner.text() and "not a BirdsEye frame layer" in dock.banner.text()
+    assert dock.session is None and not dock.panel.isEnabled()
+    assert not (tmp_path / "detections.gpkg-journal").exists()
