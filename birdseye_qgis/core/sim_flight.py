@@ -12,6 +12,12 @@ accelerates at most 0.8 m/s². Its attitude follows from the forces: the thrust 
 the path's acceleration and to hold against the drag of the wind (plus gusts), the heading follows the
 track, and small random wobble (correlated over fractions of a second) is added about every axis.
 The height above the ground and the track wander by centimetres, as a GNSS-guided aircraft does.
+
+Over terrain the aircraft follows it (a terrain-following mode, as survey drones fly at ~10 m above
+the crop): its height is the terrain height directly beneath it plus the set height above ground
+(plus that wander), so the climb and descent enter its velocity, acceleration and hence attitude. The
+alternative, a constant altitude above take-off, would bring a 10 m flight down to 3 m over the upper
+edge of a 40 m field on a 20° slope.
 """
 from __future__ import annotations
 
@@ -165,7 +171,10 @@ class FlightTruth:
 class SimulatedFlight:
     """One flight of a plan: the path, its timing and the random disturbances (seeded)."""
 
-    def __init__(self, plan: SurveyPlan, altitude_m: float, speed_ms: float, rng: np.random.Generator):
+    def __init__(self, plan: SurveyPlan, altitude_m: float, speed_ms: float, rng: np.random.Generator,
+                 terrain_rise=None):
+        """``terrain_rise(east, north)``: height (m) of the terrain above the site's ground height under
+        local horizontal positions, which the aircraft follows; None: level ground."""
         from scipy.ndimage import gaussian_filter1d
 
         pts, s, curv, self._line_idx = _path(plan)
@@ -192,6 +201,8 @@ class SimulatedFlight:
         s_grid = np.interp(grid, self._t_path, s)
         track = np.stack([np.interp(s_grid, s, pts[:, 0]), np.interp(s_grid, s, pts[:, 1])], -1)
         pos = np.concatenate([track + track_err, (altitude_m + height_err)[:, None]], axis=1)
+        if terrain_rise is not None:
+            pos[:, 2] += terrain_rise(pos[:, 0], pos[:, 1])
         vel = np.gradient(pos, dt, axis=0)
         acc = gaussian_filter1d(np.gradient(vel, dt, axis=0), 0.15 / dt, axis=0, mode="nearest")
         tangent = np.gradient(track, axis=0)
@@ -211,8 +222,9 @@ class SimulatedFlight:
         self.wind = wind
 
     def states(self, times_ns, local: LocalFrame, ground_height_m: float) -> FlightTruth:
-        """True IMU states at ``times_ns`` (int64 ns from the start of the path); the height above
-        the ground is measured along the ellipsoid normal (``ground_height_m`` ellipsoidal)."""
+        """True IMU states at ``times_ns`` (int64 ns from the start of the path); heights are
+        ``ground_height_m`` (ellipsoidal, the site's ground) plus the flight's height above it (terrain
+        rise included), along the ellipsoid normal."""
         times_ns = np.asarray(times_ns, np.int64)
         t = times_ns * 1e-9
         if t[0] < 0.0 or t[-1] > self.duration_s + 1e-9:

@@ -109,8 +109,8 @@ class FrameRenderer:
         c, r = geometry.C[frame], geometry.R_local_cam[frame]
         east, north = self.terrain.intersect_grid(c, r, self.xn, self.yn)
         if np.isnan(east[[0, 0, -1, -1], [0, -1, 0, -1]]).any() or np.isnan(east).any():
-            raise ValueError(f"frame {frame}: some pixels look above the horizon; the simulator "
-                             "renders near-nadir views only")
+            raise ValueError(f"frame {frame}: some pixels do not meet the ground (above the horizon or "
+                             "past the terrain); the simulator renders near-nadir views only")
         east_c, north_c = self.terrain.intersect_grid(c, r, self.xn_c, self.yn_c)
         return east, north, east_c, north_c
 

@@ -6,19 +6,34 @@ is what lets a campaign show the error a level-plane assumption makes over real 
 
 Coordinates are the site's :class:`~.geodesy.LocalFrame` (east, north, up; metres). A terrain
 implements :meth:`Terrain.height_at` (ellipsoidal height under a local point), :meth:`Terrain.intersect`
-(rays with their own origins, e.g. the altimeter beam) and :meth:`Terrain.intersect_grid` (one camera's
-whole pixel grid, the renderer's hot path). A DEM terrain (ray marching + refinement) can replace
-:class:`FlatTerrain` behind these three methods.
+(rays with their own origins, e.g. the altimeter beam), :meth:`Terrain.intersect_grid` (one camera's
+whole pixel grid, the renderer's hot path) and :meth:`Terrain.ground_model` (the same surface behind
+the :class:`~.ground.GroundModel` interface, for footprints).
+
+* :class:`FlatTerrain` — a field of constant ellipsoidal height (the default campaign).
+* :class:`DemTerrain` — a DEM (:class:`~.dem.DemRaster`, e.g. from :func:`~.dem.synthetic_terrain`)
+  resampled once into the local frame as a :class:`~.dem.Heightfield`; rays are cast with
+  :func:`~.dem.intersect_heightfield` (first hit, bilinear heights), the same code the DEM ground
+  model of the label writer uses. The surface the frames show is that heightfield: bilinear between
+  its nodes, exactly the DEM's plane on planar terrain and within the DEM's own interpolation error
+  (cell²·|curvature|/8, well under a millimetre for the simulator's hills) elsewhere.
 """
 from __future__ import annotations
 
 import numpy as np
 
+from .dem import DemGround, DemRaster, heightfield_from_dem, intersect_heightfield
+from .errors import InputError
 from .geodesy import LocalFrame
+from .ground import GroundModel, LevelPlaneGround
+from .poses import FrameGeometry
 
 
 class Terrain:
     """Interface of the simulated ground surface (local frame, metres)."""
+
+    #: Boundary pixels per image edge that outline a frame's footprint on this terrain.
+    edge_samples = 2
 
     def height_at(self, east, north) -> np.ndarray:
         """Ellipsoidal height (m) of the ground under local horizontal positions."""
@@ -32,6 +47,10 @@ class Terrain:
         """Local east, north (float32 arrays shaped like ``xn``) where the camera's pixel rays meet the
         ground. ``centre`` is the camera centre (3,), ``r_local_cam`` its camera→local rotation, and
         ``(xn, yn, 1)`` the camera-frame ray of each pixel (ideal normalised coordinates)."""
+        raise NotImplementedError
+
+    def ground_model(self, geometry: FrameGeometry) -> GroundModel:
+        """This surface as the ground model of ``geometry``'s frames (footprints, visibility)."""
         raise NotImplementedError
 
 
@@ -84,3 +103,92 @@ class FlatTerrain(Terrain):
         east += np.float32(centre[0])
         north += np.float32(centre[1])
         return east, north
+
+    def ground_model(self, geometry: FrameGeometry) -> GroundModel:
+        """The level plane at each frame's ground height (the frames fly over this very surface)."""
+        return LevelPlaneGround(geometry)
+
+
+class DemTerrain(Terrain):
+    """Terrain from a DEM, resampled once into ``local`` over ``extent`` (local east_min, east_max,
+    north_min, north_max; m) at the DEM's cell size. The DEM's heights must be ellipsoidal (the
+    simulator's poses are) and cover the extent without no-data: rays leaving it are reported as
+    misses (NaN), never guessed."""
+
+    edge_samples = 8
+    #: Rays per call of the ray caster (bounds its temporaries to some hundred MB per million pixels).
+    CHUNK_RAYS = 1 << 18
+
+    def __init__(self, local: LocalFrame, dem: DemRaster, extent):
+        if dem.vertical_datum != "ellipsoidal":
+            raise InputError(f"the simulator's terrain must hold ellipsoidal heights, not {dem.vertical_datum}",
+                             source=dem.source)
+        self.local = local
+        self.dem = dem
+        self.heightfield = heightfield_from_dem(dem, local, extent, dem.cell_size_m)
+        if np.isnan(self.heightfield.z).any():
+            raise InputError("the DEM does not cover the whole area of the flight", source=dem.source)
+
+    def height_at(self, east, north) -> np.ndarray:
+        """Ellipsoidal height of the terrain point at local (east, north) (NaN off the terrain)."""
+        east, north = np.broadcast_arrays(np.asarray(east, dtype=float), np.asarray(north, dtype=float))
+        up = self.heightfield.height_at(east, north)
+        _, _, h = self.local.to_geodetic(np.stack([east, north, up], axis=-1))
+        return np.asarray(h).reshape(east.shape)
+
+    def intersect(self, origins, directions) -> np.ndarray:
+        origins = np.asarray(origins, dtype=float).reshape(-1, 3)
+        directions = np.asarray(directions, dtype=float).reshape(-1, 3)
+        t = np.full(len(origins), np.nan)
+        for a in range(0, len(origins), self.CHUNK_RAYS):
+            o, d = origins[a:a + self.CHUNK_RAYS], directions[a:a + self.CHUNK_RAYS]
+            hits = intersect_heightfield(self.heightfield, o, d, self.heightfield.height_at(o[:, 0], o[:, 1]))
+            t[a:a + len(o)] = np.where(hits.valid, hits.t, np.nan)
+        return t
+
+    def intersect_grid(self, centre, r_local_cam, xn, yn):
+        centre = np.asarray(centre, dtype=float)
+        r = np.asarray(r_local_cam, dtype=float)
+        shape = np.shape(xn)
+        xn, yn = np.ravel(xn).astype(float), np.ravel(yn).astype(float)
+        east = np.full(xn.size, np.nan, dtype=np.float32)
+        north = np.full(xn.size, np.nan, dtype=np.float32)
+        start = self.heightfield.height_at(centre[0], centre[1])
+        for a in range(0, xn.size, self.CHUNK_RAYS):
+            rays = np.stack([xn[a:a + self.CHUNK_RAYS], yn[a:a + self.CHUNK_RAYS],
+                             np.ones(min(self.CHUNK_RAYS, xn.size - a))], axis=-1) @ r.T
+            hits = intersect_heightfield(self.heightfield, np.broadcast_to(centre, rays.shape), rays,
+                                         np.full(len(rays), start))
+            east[a:a + len(rays)] = np.where(hits.valid, hits.points[:, 0], np.nan)
+            north[a:a + len(rays)] = np.where(hits.valid, hits.points[:, 1], np.nan)
+        return east.reshape(shape), north.reshape(shape)
+
+    def ground_model(self, geometry: FrameGeometry) -> GroundModel:
+        return DemGround(geometry, self.heightfield)
+
+
+def write_dem_geotiff(dem: DemRaster, path) -> str:
+    """Write ``dem`` as a single-band Float64 GeoTIFF (heights in metres, its CRS and geotransform;
+    the vertical reference in the metadata) with GDAL, and return the path."""
+    try:
+        from osgeo import gdal, osr
+    except ImportError as exc:  # GDAL's Python bindings come with QGIS
+        raise InputError("writing the DEM needs GDAL's Python bindings (osgeo), which QGIS installs") from exc
+    rows, cols = dem.heights.shape
+    x0, dx, y0, dy = dem.geotransform
+    dataset = gdal.GetDriverByName("GTiff").Create(str(path), cols, rows, 1, gdal.GDT_Float64)
+    if dataset is None:
+        raise InputError("cannot create the GeoTIFF (disk full or no permission?)", source=str(path))
+    dataset.SetGeoTransform((x0, dx, 0.0, y0, 0.0, dy))
+    srs = osr.SpatialReference()
+    srs.SetFromUserInput(f"EPSG:{dem.crs}" if isinstance(dem.crs, int) else str(dem.crs))
+    dataset.SetProjection(srs.ExportToWkt())
+    dataset.SetMetadataItem("VERTICAL_DATUM", {"ellipsoidal": "WGS84 ellipsoid", "msl": "mean sea level"}
+                            .get(dem.vertical_datum, "unknown"))
+    band = dataset.GetRasterBand(1)
+    band.SetUnitType("m")
+    band.SetDescription("terrain height")
+    band.WriteArray(np.asarray(dem.heights, dtype=float))
+    band.FlushCache()
+    dataset = None  # closes and writes the file
+    return str(path)

@@ -2,15 +2,18 @@
 
 What it simulates (every random draw from the SEED; same seed → identical files):
 
-* a field (:mod:`.sim_field`) centred on the site, with burrow targets and look-alikes;
+* a field (:mod:`.sim_field`) centred on the site, with burrow targets and look-alikes, on level
+  ground or on terrain (:mod:`.sim_terrain`): a tilted plane or a plane with smooth hills, given as a
+  DEM (ellipsoidal heights, the site's UTM zone) that is written with the campaign;
 * the rover survey: a geotag per target (RTK noise, a few float fixes), a few targets missed and a
   few spurious points;
-* the flight (:mod:`.sim_flight`): lawnmower lines at the set height and speed, a multirotor's
-  attitude, an INS log at ``ins_rate_hz`` with Σ0 noise (position in the local east/north/up axes,
-  attitude as small body rotations about roll/pitch/yaw), a radar altimeter ranging along the body
-  z axis, and strobe rows at the camera's exposures;
+* the flight (:mod:`.sim_flight`): lawnmower lines at the set speed and height above the ground
+  (following the terrain), a multirotor's attitude, an INS log at ``ins_rate_hz`` with Σ0 noise
+  (position in the local east/north/up axes, attitude as small body rotations about roll/pitch/yaw),
+  a radar altimeter ranging along the body z axis to the terrain, and strobe rows at the camera's
+  exposures;
 * the frames (:mod:`.sim_render`): every pixel's ray through the *true* pose and the lens onto the
-  field, with a real camera's photometry, written as timestamped JPEGs.
+  field's terrain, with a real camera's photometry, written as timestamped JPEGs.
 
 Written to the output folder::
 
@@ -21,6 +24,7 @@ Written to the output folder::
     frames/<sec>.<nsec>.jpg
     calibration.yaml     Kalibr camchain-imucam (+ T_rad_imu, the altimeter lever arm)
     truth/targets.csv, truth/distractors.csv, truth/frames_true.csv, truth/campaign.json
+    truth/dem.tif        the terrain (GeoTIFF; not written for level ground)
 
 Heights are ellipsoidal (WGS84); ``altMSL = altWGS84 − N`` with N the geoid undulation stated in
 ``campaign.json`` (EGM96 at the site unless given). Times are seconds on the log's clock (a Unix-like
@@ -40,16 +44,16 @@ from typing import Callable, Optional
 import numpy as np
 
 from .camera import CameraModel, write_kalibr_yaml
+from .dem import synthetic_terrain
 from .errors import Cancelled, InputError
-from .geodesy import LocalFrame, _ensure_proj_data, utm_epsg
-from .ground import LevelPlaneGround
+from .geodesy import LocalFrame, _ensure_proj_data, meridian_convergence_deg, utm_epsg
 from .poses import FrameGeometry, FramePoses
 from .projection import footprints
 from .rotations import quat_to_rotmat, rotmat_to_euler_zyx, rotmat_to_quat, so3_exp
 from .sim_field import FEATURE_NAMES, P_CONTRAST, P_OUTER, P_R, FieldScene
-from .sim_flight import SimulatedFlight, correlated_noise, plan_survey
+from .sim_flight import RUN_OUT_M, SimulatedFlight, correlated_noise, plan_survey
 from .sim_render import FrameRenderer, Photometry, motion_blur_px
-from .sim_terrain import FlatTerrain
+from .sim_terrain import DemTerrain, FlatTerrain, Terrain, write_dem_geotiff
 
 # The deployed payload camera (1920 × 1200) and its mounting; other image sizes scale the intrinsics.
 DEPLOYED_SIZE = (1920, 1200)
@@ -75,6 +79,10 @@ RTK_FLOAT_SIGMA_M = (0.05, 0.05, 0.12)   # extra position error while the INS is
 GEOTAG_FLOAT_FRACTION = 0.05
 GEOTAG_FLOAT_SIGMA_M = 0.06
 DISTRACTOR_CLEARANCE_M = 0.5         # spurious geotags are at least this far from every target
+TERRAIN_KINDS = ("flat", "plane", "hills")
+DEM_CELL_M = 0.25                    # the written DEM's cell size, doubled while it would exceed …
+DEM_MAX_CELLS = 2_000_000            # … this many cells
+MAX_TILT_DEG = 15.0                  # the aircraft's largest tilt, which the terrain's extent allows for
 
 POSE_HEADER = ["time_s", "lat_deg", "lon_deg", "height_m", "qw", "qx", "qy", "qz", "rtk_status",
                "radalt_m", "radalt_snr", "strobe"]
@@ -90,7 +98,13 @@ SIGMA_NAMES = ("x (m)", "y (m)", "z (m)", "roll (deg)", "pitch (deg)", "yaw (deg
 class CampaignConfig:
     """Parameters of a simulated campaign (units in the names; sigmas: x, y, z in m, roll, pitch,
     yaw in degrees). ``noise_off`` turns every measurement error off (Σ0, altimeter, RTK of the
-    geotags, RTK-float episodes, low-SNR bursts); the images keep their photometric realism."""
+    geotags, RTK-float episodes, low-SNR bursts); the images keep their photometric realism.
+
+    Terrain: ``terrain`` is ``flat`` (level ground at ``ground_height_m``), ``plane`` (rising at
+    ``slope_deg`` away from ``slope_aspect_deg``, the direction the slope faces = downhill, degrees
+    clockwise from true north; ``ground_height_m`` at the site) or ``hills`` (that plane plus smooth
+    random hills of ``relief_m`` peak to peak, one hill and valley every ``hill_wavelength_m``). The
+    aircraft keeps ``altitude_m`` above the terrain beneath it."""
 
     seed: int = 1
     n_targets: int = 40
@@ -116,6 +130,11 @@ class CampaignConfig:
     rtk_float_episodes: int = 1
     geoid_undulation_m: Optional[float] = None
     label: str = "burrow"
+    terrain: str = "flat"
+    slope_deg: float = 0.0
+    slope_aspect_deg: float = 0.0
+    relief_m: float = 0.0
+    hill_wavelength_m: float = 40.0
 
     def validated(self) -> "CampaignConfig":
         """This configuration, checked; raises :class:`InputError` naming the parameter."""
@@ -145,6 +164,13 @@ class CampaignConfig:
         need(self.n_spurious >= 0, "N_SPURIOUS", "must not be negative")
         need(0.0 <= self.side_overlap <= 0.9, "SIDE_OVERLAP", "must lie in 0…0.9")
         need(self.rtk_float_episodes >= 0, "RTK_FLOAT_EPISODES", "must not be negative")
+        need(self.terrain in TERRAIN_KINDS, "TERRAIN",
+             f"must be one of {', '.join(TERRAIN_KINDS)}, got {self.terrain!r}")
+        need(0.0 <= self.slope_deg <= 45.0, "SLOPE_DEG", f"must lie in 0…45°, got {self.slope_deg}")
+        need(math.isfinite(self.slope_aspect_deg), "SLOPE_ASPECT_DEG", "must be a finite angle in degrees")
+        need(0.0 <= self.relief_m <= 50.0, "RELIEF_M", f"must lie in 0…50 m, got {self.relief_m}")
+        need(5.0 <= self.hill_wavelength_m <= 1000.0, "HILL_WAVELENGTH_M",
+             f"must lie in 5…1000 m, got {self.hill_wavelength_m}")
         return self
 
     @property
@@ -208,7 +234,9 @@ def simulate_campaign(config: CampaignConfig, output_folder, progress: Callable[
     out = Path(output_folder)
     (out / "truth").mkdir(parents=True, exist_ok=True)
     _remove_previous_frames(out)
-    seeds = np.random.SeedSequence(int(cfg.seed)).spawn(8)
+    # Children 0–7 are those spawn(8) gave before terrain existed (level-ground campaigns are unchanged);
+    # child 8 draws the hills.
+    seeds = np.random.SeedSequence(int(cfg.seed)).spawn(9)
     rng_flight, rng_pose, rng_radalt, rng_geotag, rng_photo, rng_time = (
         np.random.default_rng(s) for s in (seeds[1], seeds[2], seeds[3], seeds[4], seeds[5], seeds[6]))
     undulation = (geoid_undulation(cfg.site_lat, cfg.site_lon) if cfg.geoid_undulation_m is None
@@ -216,9 +244,10 @@ def simulate_campaign(config: CampaignConfig, output_folder, progress: Callable[
 
     camera = deployed_camera(cfg.image_width, cfg.image_height)
     local = LocalFrame(cfg.site_lat, cfg.site_lon, cfg.ground_height_m)
-    terrain = FlatTerrain(local, cfg.ground_height_m)
     plan = plan_survey(camera, cfg.altitude_m, cfg.field_width_m, cfg.field_length_m, cfg.side_overlap)
-    flight = SimulatedFlight(plan, cfg.altitude_m, cfg.speed_ms, rng_flight)
+    terrain, dem = _terrain(cfg, local, camera, plan, int(seeds[8].generate_state(1)[0]))
+    rise = None if dem is None else (lambda east, north: terrain.height_at(east, north) - cfg.ground_height_m)
+    flight = SimulatedFlight(plan, cfg.altitude_m, cfg.speed_ms, rng_flight, terrain_rise=rise)
 
     times_ns, strobe = _log_times(cfg, flight.duration_s)
     truth = flight.states(times_ns, local, cfg.ground_height_m)
@@ -230,8 +259,11 @@ def simulate_campaign(config: CampaignConfig, output_folder, progress: Callable[
                              terrain.height_at(truth.local[frame_rows, 0], truth.local[frame_rows, 1]), camera)
     geometry = FrameGeometry(frame_poses, local)
 
-    # The field covers everything a frame sees (its footprint on the level ground, plus a margin).
-    corners, _ = footprints(geometry, LevelPlaneGround(geometry), per_edge=2)
+    # The field covers everything a frame sees (its footprint on the ground, plus a margin).
+    corners, complete = footprints(geometry, terrain.ground_model(geometry), per_edge=terrain.edge_samples)
+    if not np.all(complete):
+        raise InputError(f"{int(np.sum(~complete))} frames see past the simulated terrain; lower the slope or "
+                         "relief, or fly higher", field="SLOPE_DEG")
     margin = 1.0
     domain = (np.nanmin(corners[..., 0]) - margin, np.nanmax(corners[..., 0]) + margin,
               np.nanmin(corners[..., 1]) - margin, np.nanmax(corners[..., 1]) + margin)
@@ -247,7 +279,8 @@ def simulate_campaign(config: CampaignConfig, output_folder, progress: Callable[
 
     logged = _logged_poses(cfg, truth, local, rng_pose)
     radalt_true, radalt, snr = _altimeter(cfg, camera, truth, terrain, rng_radalt)
-    geotags, geotag_row = _geotags(cfg, scene, feature_lat, feature_lon, feature_h, undulation, local, rng_geotag)
+    geotags, geotag_row = _geotags(cfg, scene, feature_lat, feature_lon, feature_h, undulation, local, terrain,
+                                   rng_geotag)
     image_ns = _image_times(cfg, strobe_ns=times_ns[frame_rows], rng=rng_time)
     image_names = [f"frames/{_ns_text(START_TIME_NS + t)}.jpg" for t in image_ns]
 
@@ -256,6 +289,10 @@ def simulate_campaign(config: CampaignConfig, output_folder, progress: Callable[
     files["poses"] = _write_csv(out / "poses.csv", POSE_HEADER, _pose_rows(times_ns, logged, radalt, snr, strobe))
     files["calibration"] = out / "calibration.yaml"
     write_kalibr_yaml(camera, files["calibration"])
+    if dem is not None:
+        files["dem"] = Path(write_dem_geotiff(dem, out / "truth" / "dem.tif"))
+    else:
+        (out / "truth" / "dem.tif").unlink(missing_ok=True)  # an earlier run's terrain is not this one's
     files["targets"] = _write_csv(out / "truth" / "targets.csv", TARGETS_HEADER,
                                   _target_rows(scene, feature_lat, feature_lon, feature_h, geotag_row))
     files["distractors"] = _write_csv(
@@ -273,7 +310,7 @@ def simulate_campaign(config: CampaignConfig, output_folder, progress: Callable[
         _frame_truth_rows(frame_rows, times_ns, image_ns, image_names, truth, radalt_true, frame_poses, photometry))
     files["campaign"] = out / "truth" / "campaign.json"
     files["campaign"].write_text(json.dumps(_campaign_record(
-        cfg, camera, local, undulation, plan, scene, n_frames, len(times_ns), len(geotags), flight),
+        cfg, camera, local, undulation, plan, scene, n_frames, len(times_ns), len(geotags), flight, dem),
         indent=2), encoding="utf-8")
 
     if cfg.render:
@@ -285,6 +322,54 @@ def simulate_campaign(config: CampaignConfig, output_folder, progress: Callable[
     elif progress is not None:
         progress(1.0)
     return CampaignResult(out, n_frames, len(times_ns), len(geotags), files)
+
+
+def _terrain(cfg: CampaignConfig, local: LocalFrame, camera: CameraModel, plan, seed: int):
+    """The simulated ground and, over terrain, the DEM behind it (None for level ground).
+
+    The DEM is centred on the site in its UTM zone and covers every point a frame can see: the flight
+    path (the survey lines, turns and run-outs) widened by the horizontal reach of the image corners,
+    with the aircraft tilted by up to ``MAX_TILT_DEG``, over terrain falling away at its steepest. On a
+    slope of gradient G below the aircraft a ray of horizontal ratio r from ``altitude_m`` above the
+    ground reaches d = r·altitude / (1 − r·G). The hills' steepest gradient is taken as 2π·relief /
+    wavelength, twice that of a sine of that height and wavelength; the footprints and the altimeter
+    are checked against the terrain afterwards, so a rougher draw is reported, not rendered wrong.
+    """
+    if cfg.terrain == "flat":
+        return FlatTerrain(local, cfg.ground_height_m), None
+    corners = camera.pixel_rays(camera.corner_pixels())
+    view = math.atan(float(np.max(np.hypot(corners[:, 0], corners[:, 1]))))
+    ratio = math.tan(view + math.radians(MAX_TILT_DEG))
+    steepest = math.tan(math.radians(cfg.slope_deg))
+    if cfg.terrain == "hills":
+        steepest += 2.0 * math.pi * cfg.relief_m / cfg.hill_wavelength_m
+    if ratio * steepest >= 0.8:
+        raise InputError(f"terrain rising up to {math.degrees(math.atan(steepest)):.0f}° is too steep for the "
+                         f"camera's {math.degrees(view):.0f}° half field of view: the frames would look along it; "
+                         "lower SLOPE_DEG or RELIEF_M, or lengthen HILL_WAVELENGTH_M", field="SLOPE_DEG")
+    pad = RUN_OUT_M + 0.5 * plan.spacing_m + 0.5 + cfg.altitude_m * ratio / (1.0 - ratio * steepest) + 1.0
+    e0, e1, n0, n1 = plan.extent
+    extent = (e0 - pad, e1 + pad, n0 - pad, n1 + pad)
+    # The DEM's north-up UTM grid is turned against the local frame by the meridian convergence γ
+    # and scaled by the map's scale factor (< 1.001 in a UTM zone): its half sides must hold the
+    # local box turned by γ, plus two cells.
+    half_e, half_n = max(-extent[0], extent[1]), max(-extent[2], extent[3])
+    gamma = math.radians(float(meridian_convergence_deg(cfg.site_lat, cfg.site_lon,
+                                                        f"EPSG:{utm_epsg(cfg.site_lat, cfg.site_lon)}")))
+    cos_g, sin_g = abs(math.cos(gamma)), abs(math.sin(gamma))
+    cell = DEM_CELL_M
+    while True:
+        size = (2.0 * (1.001 * (half_e * cos_g + half_n * sin_g) + 2 * cell),
+                2.0 * (1.001 * (half_e * sin_g + half_n * cos_g) + 2 * cell))
+        if size[0] * size[1] / cell ** 2 <= DEM_MAX_CELLS:
+            break
+        cell *= 2.0
+    dem = synthetic_terrain(cfg.site_lat, cfg.site_lon, kind=cfg.terrain, slope_deg=cfg.slope_deg,
+                            aspect_deg=cfg.slope_aspect_deg, relief_m=cfg.relief_m,
+                            base_height_m=cfg.ground_height_m, size_m=size, cell_m=cell,
+                            wavelength_m=cfg.hill_wavelength_m, seed=seed, vertical_datum="ellipsoidal")
+    dem.source = "simulated terrain (truth/dem.tif)"
+    return DemTerrain(local, dem, extent), dem
 
 
 def _log_times(cfg: CampaignConfig, duration_s: float):
@@ -342,6 +427,9 @@ def _altimeter(cfg: CampaignConfig, camera: CameraModel, truth, terrain, rng):
     n = len(truth.time_ns)
     origin = truth.local + np.einsum("nij,j->ni", truth.r_local_body, np.asarray(camera.t_imu_rad))
     true_range = terrain.intersect(origin, truth.r_local_body[:, :, 2])
+    if np.any(np.isnan(true_range)):
+        raise InputError("the radar altimeter's beam misses the simulated terrain; lower the slope or relief",
+                         field="SLOPE_DEG")
     sigma = 0.0 if cfg.noise_off else cfg.radalt_sigma_m
     logged = true_range + rng.standard_normal(n) * sigma
     snr = np.maximum(SNR_NORMAL[0] + SNR_NORMAL[1] * rng.standard_normal(n), 13.5)
@@ -355,7 +443,8 @@ def _altimeter(cfg: CampaignConfig, camera: CameraModel, truth, terrain, rng):
     return true_range, logged, snr
 
 
-def _geotags(cfg: CampaignConfig, scene: FieldScene, lat, lon, h, undulation, local: LocalFrame, rng):
+def _geotags(cfg: CampaignConfig, scene: FieldScene, lat, lon, h, undulation, local: LocalFrame,
+             terrain: Terrain, rng):
     """Rover rows in walking order, and each target's 1-based geotag row (0: missed)."""
     n = scene.n_targets
     xy = scene.features.xy[:n]
@@ -381,7 +470,7 @@ def _geotags(cfg: CampaignConfig, scene: FieldScene, lat, lon, h, undulation, lo
             ground = float(h[item])
         else:
             point = item
-            ground = cfg.ground_height_m
+            ground = float(terrain.height_at(point[:1], point[1:])[0])
         err = rng.standard_normal(3) * np.array([s, s, 2 * s])
         g_lat, g_lon, _ = local.to_geodetic(np.array([point[0] + err[0], point[1] + err[1], 0.0]))
         alt = ground + err[2]
@@ -491,7 +580,8 @@ def _frame_truth_rows(frame_rows, times_ns, image_ns, image_names, truth, radalt
                f"{np.linalg.norm(truth.velocity[row]):.3f}", f"{photometry[i].gain:.4f}" if photometry else ""]
 
 
-def _campaign_record(cfg, camera, local, undulation, plan, scene, n_frames, n_poses, n_geotags, flight) -> dict:
+def _campaign_record(cfg, camera, local, undulation, plan, scene, n_frames, n_poses, n_geotags, flight,
+                     dem) -> dict:
     import cv2
     import scipy
 
@@ -533,11 +623,31 @@ def _campaign_record(cfg, camera, local, undulation, plan, scene, n_frames, n_po
         "field": {"width_m": cfg.field_width_m, "length_m": cfg.field_length_m,
                   "domain_m": [round(v, 3) for v in scene.domain], "style": scene.style.to_dict(),
                   "features": {FEATURE_NAMES[k]: int(np.sum(kinds == k)) for k in FEATURE_NAMES}},
+        "terrain": _terrain_record(cfg, dem),
         "counts": {"frames": n_frames, "pose_rows": n_poses, "targets": cfg.n_targets,
                    "geotags": n_geotags, "missed": cfg.n_missed, "spurious": cfg.n_spurious},
         "versions": {"python": platform.python_version(), "numpy": np.__version__, "scipy": scipy.__version__,
                      "opencv": cv2.__version__, "pyproj": pyproj.__version__, "birdseye": _plugin_version()},
     }
+
+
+def _terrain_record(cfg: CampaignConfig, dem) -> dict:
+    if dem is None:
+        return {"kind": "flat", "height_m": cfg.ground_height_m, "flight": "ALTITUDE_M above the level ground"}
+    x0, dx, y0, dy = dem.geotransform
+    rows, cols = dem.heights.shape
+    record = {"kind": cfg.terrain, "slope_deg": cfg.slope_deg,
+              "slope_aspect_deg": cfg.slope_aspect_deg,
+              "aspect": "direction the slope faces (downhill), degrees clockwise from true north",
+              "height_at_site_m": cfg.ground_height_m,
+              "dem": "truth/dem.tif", "dem_crs": str(dem.crs), "dem_cell_m": dx,
+              "dem_extent": {"xmin": x0, "ymin": y0 + rows * dy, "xmax": x0 + cols * dx, "ymax": y0},
+              "dem_heights": "WGS84 ellipsoidal (m), bilinear between cell centres",
+              "dem_height_range_m": [round(float(np.min(dem.heights)), 4), round(float(np.max(dem.heights)), 4)],
+              "flight": "terrain following: ALTITUDE_M above the terrain beneath the aircraft"}
+    if cfg.terrain == "hills":
+        record.update(relief_m=cfg.relief_m, hill_wavelength_m=cfg.hill_wavelength_m)
+    return record
 
 
 def _plugin_version() -> str:

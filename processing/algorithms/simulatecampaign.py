@@ -1,11 +1,12 @@
 """birdseye:simulatecampaign — a deterministic synthetic campaign in the BirdsEye file formats."""
 from __future__ import annotations
 
-from qgis.core import (QgsProcessingOutputFile, QgsProcessingOutputNumber, QgsProcessingParameterBoolean,
-                       QgsProcessingParameterDefinition, QgsProcessingParameterFolderDestination,
-                       QgsProcessingParameterNumber, QgsProcessingParameterString)
+from qgis.core import (QgsProcessingOutputFile, QgsProcessingOutputNumber, QgsProcessingOutputRasterLayer,
+                       QgsProcessingParameterBoolean, QgsProcessingParameterDefinition, QgsProcessingParameterEnum,
+                       QgsProcessingParameterFolderDestination, QgsProcessingParameterNumber,
+                       QgsProcessingParameterString)
 
-from ...birdseye_qgis.core.simulate import CampaignConfig, parse_sigmas, simulate_campaign
+from ...birdseye_qgis.core.simulate import TERRAIN_KINDS, CampaignConfig, parse_sigmas, simulate_campaign
 from .base import BirdsEyeAlgorithm
 
 DEFAULTS = CampaignConfig()
@@ -34,6 +35,16 @@ NUMBERS = [
     ("N_SPURIOUS", "Spurious geotags (no target)", INT, DEFAULTS.n_spurious, 0, 5000, True),
     ("RTK_FLOAT_EPISODES", "RTK-float episodes in the pose log", INT, DEFAULTS.rtk_float_episodes, 0, 100, True),
 ]
+# The terrain, after the TERRAIN choice (same layout as NUMBERS).
+TERRAIN_LABELS = ("Flat (level ground)", "Plane (a uniform slope)", "Hills (the slope plus smooth random hills)")
+TERRAIN_NUMBERS = [
+    ("SLOPE_DEG", "Terrain slope (deg; plane and hills)", DOUBLE, DEFAULTS.slope_deg, 0.0, 45.0, False),
+    ("SLOPE_ASPECT_DEG", "Direction the slope faces, downhill (deg clockwise from true north)", DOUBLE,
+     DEFAULTS.slope_aspect_deg, 0.0, 360.0, False),
+    ("RELIEF_M", "Hill relief, peak to peak (m; hills)", DOUBLE, DEFAULTS.relief_m, 0.0, 50.0, False),
+    ("HILL_WAVELENGTH_M", "Hill wavelength: one hill and valley every … (m; hills)", DOUBLE,
+     DEFAULTS.hill_wavelength_m, 5.0, 1000.0, True),
+]
 
 
 class SimulateCampaign(BirdsEyeAlgorithm):
@@ -55,6 +66,13 @@ class SimulateCampaign(BirdsEyeAlgorithm):
                     "NOISE_OFF", self.tr("Noise off (ideal poses, altimeter and geotags)"), False))
                 self.addParameter(QgsProcessingParameterBoolean(
                     "RENDER", self.tr("Render frames (off: poses and geotags only)"), True))
+                self.addParameter(QgsProcessingParameterEnum(
+                    "TERRAIN", self.tr("Terrain"), options=[self.tr(t) for t in TERRAIN_LABELS],
+                    defaultValue=TERRAIN_KINDS.index(DEFAULTS.terrain)))
+            for name, label, kind, default, lo, hi, is_advanced in TERRAIN_NUMBERS:
+                if is_advanced == advanced:
+                    self._add(QgsProcessingParameterNumber(
+                        name, self.tr(label), kind, default, minValue=lo, maxValue=hi), advanced)
         geoid = QgsProcessingParameterNumber(
             "GEOID_UNDULATION_M", self.tr("Geoid undulation N for altMSL (m; empty: EGM96 at the site)"),
             DOUBLE, None, optional=True, minValue=-120.0, maxValue=120.0)
@@ -63,6 +81,8 @@ class SimulateCampaign(BirdsEyeAlgorithm):
         for name, text in (("GEOTAGS", "Geotags (rover CSV)"), ("POSES", "Pose log (CSV)"),
                            ("IMAGES", "Image list (images.csv)"), ("CALIBRATION", "Calibration (Kalibr YAML)")):
             self.addOutput(QgsProcessingOutputFile(name, self.tr(text)))
+        self.addOutput(QgsProcessingOutputRasterLayer(
+            "DEM", self.tr("Terrain model (truth/dem.tif, ellipsoidal heights; none for flat terrain)")))
         self.addOutput(QgsProcessingOutputNumber("FRAME_COUNT", self.tr("Frames")))
 
     def _add(self, param, advanced: bool) -> None:
@@ -72,7 +92,8 @@ class SimulateCampaign(BirdsEyeAlgorithm):
 
     def processAlgorithm(self, parameters, context, feedback):  # noqa: N802
         values = {name: (self.parameterAsInt if kind == INT else self.parameterAsDouble)(parameters, name, context)
-                  for name, _, kind, *_ in NUMBERS}
+                  for name, _, kind, *_ in NUMBERS + TERRAIN_NUMBERS}
+        terrain = TERRAIN_KINDS[self.parameterAsEnum(parameters, "TERRAIN", context)]
         geoid = parameters.get("GEOID_UNDULATION_M")
         config = CampaignConfig(
             seed=values["SEED"], n_targets=values["N_TARGETS"], field_width_m=values["FIELD_WIDTH_M"],
@@ -86,15 +107,27 @@ class SimulateCampaign(BirdsEyeAlgorithm):
             render=self.parameterAsBool(parameters, "RENDER", context),
             noise_off=self.parameterAsBool(parameters, "NOISE_OFF", context),
             side_overlap=values["SIDE_OVERLAP"], rtk_float_episodes=values["RTK_FLOAT_EPISODES"],
-            geoid_undulation_m=None if geoid in (None, "") else self.parameterAsDouble(parameters, "GEOID_UNDULATION_M", context))
+            geoid_undulation_m=None if geoid in (None, "")
+            else self.parameterAsDouble(parameters, "GEOID_UNDULATION_M", context),
+            terrain=terrain, slope_deg=values["SLOPE_DEG"], slope_aspect_deg=values["SLOPE_ASPECT_DEG"],
+            relief_m=values["RELIEF_M"], hill_wavelength_m=values["HILL_WAVELENGTH_M"])
         folder = self.parameterAsString(parameters, "OUTPUT_FOLDER", context)
         feedback.pushInfo(f"Simulating seed {config.seed}: {config.n_targets} targets in a "
                           f"{config.field_width_m:g} × {config.field_length_m:g} m field, flown at "
                           f"{config.altitude_m:g} m, {config.speed_ms:g} m/s, {config.fps:g} frames/s.")
+        if terrain == "flat" and (config.slope_deg or config.relief_m):
+            feedback.pushWarning("TERRAIN is flat: SLOPE_DEG and RELIEF_M are ignored (choose plane or hills).")
+        elif terrain == "plane" and config.relief_m:
+            feedback.pushWarning("TERRAIN is a plane: RELIEF_M is ignored (choose hills).")
+        elif terrain != "flat":
+            feedback.pushInfo(f"Terrain: {terrain}, {config.slope_deg:g}° slope facing {config.slope_aspect_deg:g}°"
+                              + (f", hills of {config.relief_m:g} m every {config.hill_wavelength_m:g} m"
+                                 if terrain == "hills" else "") + "; the drone follows it.")
         progress, is_canceled = self.progress_callbacks(feedback, 2.0, 100.0)
         result = self.run_core(simulate_campaign, config, folder, progress=progress, is_canceled=is_canceled)
         feedback.pushInfo(f"Wrote {result.n_frames} frames, {result.n_poses} pose rows and "
                           f"{result.n_geotags} geotags to {result.folder}.")
         return {"OUTPUT_FOLDER": str(result.folder), "GEOTAGS": str(result.files["geotags"]),
                 "POSES": str(result.files["poses"]), "IMAGES": str(result.files.get("images", "")),
-                "CALIBRATION": str(result.files["calibration"]), "FRAME_COUNT": result.n_frames}
+                "CALIBRATION": str(result.files["calibration"]), "DEM": str(result.files.get("dem", "")),
+                "FRAME_COUNT": result.n_frames}

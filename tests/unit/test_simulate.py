@@ -389,3 +389,193 @@ def test_cancel_stops_between_frames_and_a_rerun_clears_the_old_frames(tmp_path)
     simulate_campaign(CampaignConfig(**{**SMALL, "render": False}), tmp_path)
     assert not (tmp_path / "images.csv").exists()
     assert [p.name for p in (tmp_path / "frames").iterdir()] == ["notes.txt"]
+
+
+# ------------------------------------------------------------------------------ terrain
+# A 20° slope facing east-south-east, flown terrain-following at 10 m (noise off, no frames).
+SLOPE = dict(seed=8, n_targets=6, field_width_m=6.0, field_length_m=5.0, noise_off=True, n_spurious=2,
+             render=False, terrain="plane", slope_deg=20.0, slope_aspect_deg=120.0)
+
+
+def read_dem(path: Path):
+    """The written GeoTIFF as a core DemRaster (read with GDAL), its EPSG code and its metadata."""
+    from osgeo import gdal
+
+    from birdseye.birdseye_qgis.core.dem import DemRaster
+
+    dataset = gdal.Open(str(path))
+    gt = dataset.GetGeoTransform()
+    assert gt[2] == gt[4] == 0.0
+    srs = dataset.GetSpatialRef()
+    epsg = int(srs.GetAuthorityCode(None))
+    heights = dataset.GetRasterBand(1).ReadAsArray().astype(float)
+    return DemRaster(heights, (gt[0], gt[1], gt[3], gt[5]), epsg, "ellipsoidal"), epsg, dataset.GetMetadata()
+
+
+@pytest.fixture(scope="module")
+def slope(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("slope")
+    simulate_campaign(CampaignConfig(**SLOPE), folder)
+    return folder, read_dem(folder / "truth" / "dem.tif")
+
+
+def test_the_terrain_is_written_as_a_dem_of_the_set_slope_and_aspect(slope):
+    from birdseye.birdseye_qgis.core.geodesy import ProjectedCRS, utm_epsg
+
+    folder, (dem, epsg, metadata) = slope
+    cfg = CampaignConfig(**SLOPE)
+    assert epsg == utm_epsg(cfg.site_lat, cfg.site_lon) and metadata["VERTICAL_DATUM"] == "WGS84 ellipsoid"
+    assert 0.25 <= dem.cell_size_m <= 0.5 and not np.isnan(dem.heights).any()
+    # A plane in the site's east/north/up frame (from the cells' own coordinates, through geodetic):
+    # U = a + b·E + c·N, slope atan|∇U|, facing (downhill) towards the azimuth of −∇U from true north.
+    x, y = dem.cell_centres()
+    xx, yy = np.meshgrid(x, y)
+    lat, lon = ProjectedCRS(epsg).to_geodetic(xx.ravel(), yy.ravel())
+    local = LocalFrame(cfg.site_lat, cfg.site_lon, cfg.ground_height_m)
+    enu = local.from_geodetic(lat, lon, dem.heights.ravel())
+    (a, b, c), *_ = np.linalg.lstsq(np.c_[np.ones(len(enu)), enu[:, :2]], enu[:, 2], rcond=None)
+    assert math.degrees(math.atan(math.hypot(b, c))) == pytest.approx(cfg.slope_deg, abs=0.02)
+    assert math.degrees(math.atan2(-b, -c)) % 360 == pytest.approx(cfg.slope_aspect_deg, abs=0.02)
+    assert a == pytest.approx(0.0, abs=1e-3)  # the site's ground height at the site
+    # It covers the field and every frame's view with room to spare.
+    truth = read_csv(folder / "truth" / "frames_true.csv")
+    fx, fy = ProjectedCRS(epsg).from_geodetic(column(truth, "lat_deg"), column(truth, "lon_deg"))
+    reach = 0.3 * cfg.altitude_m / (1 - 0.3 * math.tan(math.radians(cfg.slope_deg)))
+    assert x.min() < fx.min() - reach and fx.max() + reach < x.max()
+    assert y.min() < fy.min() - reach and fy.max() + reach < y.max()
+
+
+def test_the_flight_follows_the_terrain_and_the_altimeter_ranges_to_it(slope):
+    folder, (dem, _, _) = slope
+    cfg = CampaignConfig(**SLOPE)
+    camera = load_calibration(folder / "calibration.yaml")
+    rows = read_csv(folder / "poses.csv")
+    lat, lon, height, quat = pose_arrays(rows)
+    below = dem.sample_geodetic(lat, lon)
+    # Terrain following: a constant height above the terrain (± the cm-level wander) while it climbs.
+    assert np.ptp(below) > 3.0
+    assert np.mean(height - below) == pytest.approx(cfg.altitude_m, abs=0.1) and np.std(height - below) < 0.15
+    # The altimeter's range along the body z axis ends on the DEM.
+    local = LocalFrame(cfg.site_lat, cfg.site_lon, cfg.ground_height_m)
+    r_local_body = local.rotation_from_ned(lat, lon) @ quat_to_rotmat(quat)
+    origin = local.from_geodetic(lat, lon, height) + r_local_body @ np.asarray(camera.t_imu_rad)
+    end = origin + column(rows, "radalt_m")[:, None] * r_local_body[:, :, 2]
+    e_lat, e_lon, e_h = local.to_geodetic(end)
+    assert np.max(np.abs(e_h - dem.sample_geodetic(e_lat, e_lon))) < 5e-4  # the log's 0.1 mm rounding
+    truth = read_csv(folder / "truth" / "frames_true.csv")
+    under = dem.sample_geodetic(column(truth, "lat_deg"), column(truth, "lon_deg"))
+    assert np.max(np.abs(column(truth, "ground_h_m") - under)) < 2e-4
+
+
+def test_targets_and_geotags_lie_on_the_terrain(slope):
+    folder, (dem, _, _) = slope
+    targets = read_csv(folder / "truth" / "targets.csv")
+    terrain = dem.sample_geodetic(column(targets, "lat"), column(targets, "lon"))
+    assert np.max(np.abs(column(targets, "h_ground") - terrain)) < 2e-4
+    assert np.ptp(terrain) > 0.3
+    geotags = np.array(read_csv(folder / "geotags.csv", header=False))[:, :3].astype(float)
+    assert len(geotags) == SLOPE["n_targets"] - CampaignConfig().n_missed + SLOPE["n_spurious"]
+    assert np.max(np.abs(geotags[:, 2] - dem.sample_geodetic(geotags[:, 0], geotags[:, 1]))) < 2e-4
+
+
+def test_rendered_targets_sit_where_the_true_pose_projects_them_over_terrain(tmp_path):
+    """Frames over a 20° slope show each hole where the true pose projects the target's point on the
+    terrain (within 0.5 px), and far from where a level ground under the frame would put it."""
+    import cv2
+
+    simulate_campaign(CampaignConfig(noise_off=True, terrain="plane", slope_deg=20.0, slope_aspect_deg=300.0,
+                                     **{**SMALL, "n_targets": 8, "field_width_m": 5.0, "field_length_m": 4.0,
+                                        "altitude_m": 8.0}), tmp_path)
+    camera = load_calibration(tmp_path / "calibration.yaml")
+    truth = read_csv(tmp_path / "truth" / "frames_true.csv")
+    lat, lon, height, quat = pose_arrays(truth)
+    frames = FramePoses(np.arange(len(truth)), lat, lon, height, quat, column(truth, "ground_h_m"), camera)
+    geometry = FrameGeometry(frames, LocalFrame.around(lat, lon, height))
+    targets = read_csv(tmp_path / "truth" / "targets.csv")
+    points = geometry.local.from_geodetic(column(targets, "lat"), column(targets, "lon"), column(targets, "h_ground"))
+    proj = project_all(geometry, points)
+    level = project_all(geometry, points, LevelPlaneGround(geometry))
+    f_px = math.sqrt(camera.fx * camera.fy)
+    errors, level_errors = [], []
+    for k in np.flatnonzero(proj.in_view):
+        f, t = proj.frame_idx[k], proj.point_idx[k]
+        gsd = proj.depth[k] / f_px
+        radius, outer = float(targets[t]["radius_m"]) / gsd, float(targets[t]["mound_radius_m"]) / gsd
+        if proj.margin_px[k] < 1.8 * outer:
+            continue
+        gray = cv2.imread(str(tmp_path / truth[f]["image"])).astype(float).mean(axis=2)
+        hole = dark_core_centroid(gray, proj.uv[k], radius, outer)
+        errors.append(np.hypot(*(hole - proj.uv[k])))
+        level_errors.append(np.hypot(*(hole - level.uv[k])))
+    print(f"holes vs true projection over a 20° slope: {np.round(errors, 3)} px; level plane: "
+          f"{np.round(level_errors, 1)} px")
+    assert len(errors) >= 8
+    assert max(errors) < 0.5
+    assert max(level_errors) > 5.0
+
+
+def test_dem_terrain_casts_rays_onto_the_dem():
+    from birdseye.birdseye_qgis.core.dem import synthetic_terrain
+    from birdseye.birdseye_qgis.core.sim_terrain import DemTerrain
+
+    lat0, lon0, h0 = -27.55, 151.95, 400.0
+    local = LocalFrame(lat0, lon0, h0)
+    extent = (-20.0, 20.0, -20.0, 20.0)
+    plane = synthetic_terrain(lat0, lon0, "plane", slope_deg=25.0, aspect_deg=200.0, base_height_m=h0, size_m=50.0,
+                              cell_m=0.5)
+    hills = synthetic_terrain(lat0, lon0, "hills", slope_deg=10.0, aspect_deg=30.0, relief_m=3.0, base_height_m=h0,
+                              size_m=50.0, cell_m=0.25, wavelength_m=30.0, seed=3)
+    rng = np.random.default_rng(0)
+    xn, yn = rng.uniform(-0.4, 0.4, (2, 50, 40)).astype(np.float32)
+    r_local_cam = np.array([[0.0, -1.0, 0.0], [-1.0, 0.0, 0.0], [0.0, 0.0, -1.0]])  # nadir, image up = north
+    centre = np.array([1.0, -2.0, 10.0])
+    for dem in (plane, hills):
+        terrain = DemTerrain(local, dem, extent)
+        east, north = terrain.intersect_grid(centre, r_local_cam, xn, yn)
+        rays = np.stack([xn.ravel(), yn.ravel(), np.ones(xn.size)], -1) @ r_local_cam.T
+        t = terrain.intersect(np.broadcast_to(centre, rays.shape), rays)
+        hits = centre + t[:, None] * rays
+        np.testing.assert_allclose(east.ravel(), hits[:, 0], atol=1e-5)
+        np.testing.assert_allclose(north.ravel(), hits[:, 1], atol=1e-5)
+        # The hits lie on the DEM, read independently: local → geodetic → the DEM's UTM cells.
+        h_lat, h_lon, h_h = local.to_geodetic(hits)
+        # Planar: exact. Hills: the heightfield is the DEM's bilinear surface resampled on the local grid,
+        # off by the interpolation error (cell²·curvature/8 ≈ |second difference|/8 per resampling).
+        second_difference = max(np.abs(np.diff(dem.heights, 2, axis=axis)).max() for axis in (0, 1))
+        tolerance = 1e-6 if dem is plane else 2 * second_difference / 8
+        assert np.max(np.abs(h_h - dem.sample_geodetic(h_lat, h_lon))) < tolerance
+        np.testing.assert_allclose(terrain.height_at(hits[:, 0], hits[:, 1]), h_h, atol=1e-6)
+    # A ray leaving the terrain model is a miss, not a guess.
+    assert np.isnan(terrain.intersect(centre[None], np.array([[1.0, 0.0, -0.05]])))[0]
+
+
+def test_terrain_campaigns_are_deterministic_and_the_hills_follow_the_seed(tmp_path):
+    hills = dict(seed=2, n_targets=4, field_width_m=6.0, field_length_m=4.0, render=False, terrain="hills",
+                 relief_m=2.0, hill_wavelength_m=15.0)
+    simulate_campaign(CampaignConfig(**hills), tmp_path / "a")
+    simulate_campaign(CampaignConfig(**hills), tmp_path / "b")
+    simulate_campaign(CampaignConfig(**{**hills, "seed": 3}), tmp_path / "c")
+    first, second, third = (all_files(tmp_path / k) for k in "abc")
+    assert first == second and "truth/dem.tif" in first
+    assert third["truth/dem.tif"] != first["truth/dem.tif"]
+    dem, _, _ = read_dem(tmp_path / "a" / "truth" / "dem.tif")
+    assert np.ptp(dem.heights) == pytest.approx(2.0, abs=1e-6)  # no slope: the relief, peak to peak
+    truth = read_csv(tmp_path / "a" / "truth" / "frames_true.csv")
+    agl = column(truth, "height_m") - dem.sample_geodetic(column(truth, "lat_deg"), column(truth, "lon_deg"))
+    assert np.std(agl) < 0.15 and np.ptp(column(truth, "ground_h_m")) > 0.3
+    # A flat campaign into the same folder takes the old terrain away.
+    simulate_campaign(CampaignConfig(**{**hills, "terrain": "flat"}), tmp_path / "a")
+    assert not (tmp_path / "a" / "truth" / "dem.tif").exists()
+
+
+def test_bad_terrain_parameters_are_named(tmp_path):
+    with pytest.raises(InputError, match="TERRAIN"):
+        CampaignConfig(terrain="mountains").validated()
+    with pytest.raises(InputError, match="SLOPE_DEG"):
+        CampaignConfig(terrain="plane", slope_deg=60.0).validated()
+    with pytest.raises(InputError, match="RELIEF_M"):
+        CampaignConfig(terrain="hills", relief_m=-1.0).validated()
+    with pytest.raises(InputError, match="SLOPE_DEG.*too steep"):
+        simulate_campaign(CampaignConfig(terrain="hills", slope_deg=40.0, relief_m=10.0, hill_wavelength_m=20.0,
+                                         render=False, **{k: SMALL[k] for k in ("field_width_m", "field_length_m")}),
+                          tmp_path)
