@@ -43,16 +43,6 @@ def run(alg_id, params):
     return processing.run(f"birdseye:{alg_id}", params)
 
 
-@pytest.fixture(scope="module")
-def provider(qgis_app, qgis_processing):
-    from birdseye.processing.provider import BirdsEyeProvider
-
-    registry = QgsApplication.processingRegistry()
-    if registry.providerById("birdseye") is None:
-        assert registry.addProvider(BirdsEyeProvider())
-    return registry.providerById("birdseye")
-
-
 # ---------------------------------------------------------------------------------------------- campaign
 def read_truth(folder):
     targets = list(csv.DictReader(open(folder / "truth" / "targets.csv")))
@@ -107,7 +97,7 @@ def write_detection_layer(path, name, rows):
 
 
 @pytest.fixture(scope="module")
-def campaign(provider, tmp_path_factory):
+def campaign(birdseye_provider, tmp_path_factory):
     """A simulated flight with geotags, frames and two detection layers, in GeoPackages."""
     from birdseye.processing.algorithms.clusterdetections import read_pose_groups
 

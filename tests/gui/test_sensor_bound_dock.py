@@ -31,17 +31,6 @@ PREVIEW_STRIDE = stride_for(DEPLOYED, dock_module.PREVIEW_MAX_POINTS)
 
 
 @pytest.fixture(scope="module")
-def provider(qgis_app, qgis_processing):
-    """The ``birdseye`` provider in the registry (registered here when the QGIS suite has not done it)."""
-    from birdseye.processing.provider import BirdsEyeProvider
-
-    registry = QgsApplication.processingRegistry()
-    if registry.providerById("birdseye") is None:
-        assert registry.addProvider(BirdsEyeProvider())
-    return registry.providerById("birdseye")
-
-
-@pytest.fixture(scope="module")
 def shown_dock(qgis_iface):
     """One dock for the module (building the plot is the slow part), shown as a floating window."""
     widget = dock_module.SensorBoundDock(qgis_iface)
@@ -174,7 +163,7 @@ def test_calibration_file_sets_the_intrinsics(dock, qtbot, tmp_path):
     assert "broken.yaml" in dock.status_label.text() and dock.fx_spin.value() == 1510.0
 
 
-def test_full_resolution_equals_the_processing_algorithm(dock, provider, qtbot, tmp_path):
+def test_full_resolution_equals_the_processing_algorithm(dock, birdseye_provider, qtbot, tmp_path):
     import processing
 
     qtbot.mouseClick(dock.full_button, Qt.LeftButton)
@@ -186,7 +175,7 @@ def test_full_resolution_equals_the_processing_algorithm(dock, provider, qtbot, 
     assert written["altitudes"] == json.loads(json.dumps(dock.result["altitudes"]))
 
 
-def test_run_in_processing_opens_the_algorithm_with_the_dock_values(dock, provider, qtbot, monkeypatch):
+def test_run_in_processing_opens_the_algorithm_with_the_dock_values(dock, birdseye_provider, qtbot, monkeypatch):
     import processing
     from qgis.core import QgsProcessingContext
 
