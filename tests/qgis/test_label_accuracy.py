@@ -12,7 +12,6 @@ import sys
 from pathlib import Path
 
 import numpy as np
-import pytest
 
 from birdseye.birdseye_qgis.core.camera import load_calibration
 from birdseye.birdseye_qgis.core.geodesy import LocalFrame

@@ -17,7 +17,7 @@ import pytest
 from qgis.core import Qgis, QgsApplication
 from qgis.PyQt import sip
 from qgis.PyQt.QtCore import QCoreApplication, QEvent
-from qgis.PyQt.QtWidgets import QDockWidget, QMenu, QToolBar
+from qgis.PyQt.QtWidgets import QDockWidget, QToolBar
 
 REPO_ROOT = Path(__file__).resolve().parents[2]
 ALGORITHM_DIR = REPO_ROOT / "processing" / "algorithms"

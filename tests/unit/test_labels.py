@@ -140,7 +140,7 @@ def test_tiles_keep_every_positive_and_a_seeded_share_of_negatives(tmp_path):
     labels = project_labels(poses, geotags, local=local)
     req = LabelRequest(sigma_px=3.0, write_rasters=False, tile_size=128, negative_ratio=1.0, seed=5)
     r1 = write_label_set(poses, images, geotags, labels, tmp_path / "a", req)
-    r2 = write_label_set(poses, images, geotags, labels, tmp_path / "b", req)
+    write_label_set(poses, images, geotags, labels, tmp_path / "b", req)
     tiles = r1.summary["tiles"]
     xs, ys = tile_origins(640, 128), tile_origins(400, 128)
     n_tiles = len(xs) * len(ys)
