@@ -1,0 +1,138 @@
+"""birdseye:detect — run an ONNX heatmap model over the frames of a frame layer → detections on the ground."""
+from __future__ import annotations
+
+import numpy as np
+from qgis.core import (QgsProcessing, QgsProcessingOutputNumber, QgsProcessingOutputString,
+                       QgsProcessingParameterFeatureSink, QgsProcessingParameterFeatureSource,
+                       QgsProcessingParameterFile, QgsProcessingParameterFolderDestination,
+                       QgsProcessingParameterNumber, QgsWkbTypes)
+
+from ...birdseye_qgis import layers
+from ...birdseye_qgis.core.detector import DetectRequest, HeatmapModel, detect_frames
+from ...birdseye_qgis.core.errors import InputError
+from ...birdseye_qgis.core.frame_records import poses_from_records
+from ...birdseye_qgis.core.geodesy import LocalFrame, ProjectedCRS
+from .base import PLUGIN_ROOT, BirdsEyeAlgorithm
+
+DEFAULT_MODEL = PLUGIN_ROOT / "models" / "birdseye_demo_heatmap.onnx"
+
+#: (name, type, description) of the detection layer.
+DETECTION_FIELDS = [
+    ("frame_id", "int", "frame the detection was made in"),
+    ("u", "double", "column of the peak in the original (distorted) image, px, pixel-centre convention"),
+    ("v", "double", "row of the peak, px"),
+    ("score", "double", "peak value of the smoothed probability heatmap (0..1)"),
+    ("model", "string", "model file name"),
+    ("model_digest", "string", "SHA-256 of the model file"),
+    ("threshold", "double", "probability threshold of the run"),
+]
+
+
+class Detect(BirdsEyeAlgorithm):
+    ALG_ID = "detect"
+    DISPLAY_NAME = "Detect targets (ONNX heatmap model)"
+    GROUP = "detect"
+
+    def initAlgorithm(self, config=None):  # noqa: N802
+        self.addParameter(QgsProcessingParameterFeatureSource(
+            "FRAMES", self.tr("Frames (from Import flight log or Import DJI images)"),
+            [QgsProcessing.TypeVectorPolygon, QgsProcessing.TypeVectorPoint]))
+        self.addParameter(QgsProcessingParameterFile(
+            "MODEL", self.tr("ONNX heatmap model (empty: the bundled demo model)"),
+            fileFilter="ONNX models (*.onnx)", defaultValue=str(DEFAULT_MODEL), optional=True))
+        self.addParameter(QgsProcessingParameterNumber(
+            "THRESHOLD", self.tr("Probability threshold (empty: the model's default)"),
+            QgsProcessingParameterNumber.Double, optional=True, minValue=0.0, maxValue=1.0))
+        self.addParameter(QgsProcessingParameterNumber(
+            "EDGE_BUFFER_PX", self.tr("Edge buffer (px): detections closer to the image border are dropped"),
+            QgsProcessingParameterNumber.Double, 0.0, minValue=0.0))
+        self.addParameter(QgsProcessingParameterFeatureSink(
+            "OUTPUT", self.tr("Detections"), QgsProcessing.TypeVectorPoint))
+        self.addParameter(QgsProcessingParameterFolderDestination(
+            "OUTPUT_HEATMAPS", self.tr("Heatmap folder (one PNG per frame)"), optional=True,
+            createByDefault=False))
+        for name, text in (("DETECTION_COUNT", "Detections written"), ("FRAMES_PROCESSED", "Frames processed"),
+                           ("FRAMES_SKIPPED", "Frames skipped"), ("THRESHOLD_USED", "Threshold used")):
+            self.addOutput(QgsProcessingOutputNumber(name, self.tr(text)))
+        self.addOutput(QgsProcessingOutputString("MODEL_DIGEST", self.tr("SHA-256 of the model")))
+
+    def processAlgorithm(self, parameters, context, feedback):  # noqa: N802
+        source = self.parameterAsSource(parameters, "FRAMES", context)
+        if source is None:
+            raise self.user_error(InputError("no frame layer given", field="FRAMES"))
+        model_path = self.parameterAsFile(parameters, "MODEL", context) or str(DEFAULT_MODEL)
+        threshold = None
+        if parameters.get("THRESHOLD") not in (None, ""):
+            threshold = self.parameterAsDouble(parameters, "THRESHOLD", context)
+        heat_dir = None
+        if parameters.get("OUTPUT_HEATMAPS") not in (None, ""):
+            heat_dir = self.parameterAsString(parameters, "OUTPUT_HEATMAPS", context) or None
+        request = DetectRequest(threshold=threshold,
+                                edge_buffer_px=self.parameterAsDouble(parameters, "EDGE_BUFFER_PX", context),
+                                heatmap_dir=heat_dir)
+
+        model = self.run_core(HeatmapModel, model_path, log=feedback.pushInfo)
+        meta = model.metadata
+        used = meta.default_threshold if threshold is None else threshold
+        feedback.pushInfo(f"Model {model.name} (sha256 {model.digest[:12]}…): {meta.resolution_cm:g} cm/px, "
+                          f"tiles {meta.tile_size} px with {meta.overlap_px} px overlap, threshold {used:g}"
+                          f"{' (the model default)' if threshold is None else ''}.")
+        records = self.run_core(layers.read_frame_layer, source, self.tr("FRAMES"))
+        groups = self.run_core(poses_from_records, records, source.sourceName() or "FRAMES")
+        crs = source.sourceCrs()
+        to_crs = ProjectedCRS(layers.pyproj_crs(crs))
+
+        fields = layers.qgs_fields(DETECTION_FIELDS)
+        sink, dest_id = self.parameterAsSink(parameters, "OUTPUT", context, fields, QgsWkbTypes.PointZ, crs)
+        if sink is None:
+            raise self.user_error(InputError("the detection output cannot be created", field="OUTPUT"))
+        counts = self.run_core(self._detect, model, groups, records, request, to_crs, sink, fields, feedback)
+        layers.style_on_load(context, dest_id, "detections.qml")
+        feedback.pushInfo(f"{counts['detections']} detections in {counts['processed']} frames "
+                          f"({counts['detections'] / max(1, counts['processed']):.2f} per frame); "
+                          f"{counts['edge']} dropped within {request.edge_buffer_px:g} px of the border, "
+                          f"{counts['no_ground']} whose ray missed the ground; {counts['skipped']} frames skipped.")
+        return {"OUTPUT": dest_id, "OUTPUT_HEATMAPS": heat_dir, "DETECTION_COUNT": counts["detections"],
+                "FRAMES_PROCESSED": counts["processed"], "FRAMES_SKIPPED": counts["skipped"],
+                "THRESHOLD_USED": used, "MODEL_DIGEST": model.digest}
+
+    def _detect(self, model, groups, records, request, to_crs, sink, fields, feedback) -> dict:
+        """Stream every camera group's frames through the detector into the sink."""
+        all_lat = np.concatenate([p.lat for p, _ in groups])
+        all_lon = np.concatenate([p.lon for p, _ in groups])
+        local = LocalFrame.around(all_lat, all_lon, np.concatenate([p.height for p, _ in groups]))
+        threshold = model.metadata.default_threshold if request.threshold is None else request.threshold
+        total = sum(len(p) for p, _ in groups)
+        counts = dict(detections=0, processed=0, skipped=0, edge=0, no_ground=0)
+        coarse = []
+        done = 0
+        for poses, record_index in groups:
+            images = [records[i].get("image") or "" for i in record_index]
+            progress, is_canceled = self.progress_callbacks(feedback, 100.0 * done / total,
+                                                            100.0 * (done + len(poses)) / total)
+            for found in detect_frames(model, poses, images, request, local=local, progress=progress,
+                                       is_canceled=is_canceled):
+                if found.skipped:
+                    counts["skipped"] += 1
+                    feedback.pushWarning(f"Frame {found.frame_id}: {found.skipped}; skipped.")
+                    continue
+                counts["processed"] += 1
+                counts["edge"] += found.n_edge
+                counts["no_ground"] += found.n_no_ground
+                if found.gsd_cm > 1.5 * model.metadata.resolution_cm:
+                    coarse.append(found.frame_id)
+                if len(found):
+                    x, y = to_crs.from_geodetic(found.lat, found.lon)
+                    rows = ({"frame_id": int(found.frame_id), "u": float(u), "v": float(v), "score": float(s),
+                             "model": model.name, "model_digest": model.digest, "threshold": threshold}
+                            for (u, v), s in zip(found.uv, found.score))
+                    geoms = (layers.point_z(a, b, c) for a, b, c in zip(np.atleast_1d(x), np.atleast_1d(y),
+                                                                       found.height))
+                    counts["detections"] += layers.write_records(sink, fields, rows, geoms)
+            done += len(poses)
+        if coarse:
+            feedback.pushWarning(
+                f"{len(coarse)} frame(s) (e.g. {', '.join(str(f) for f in coarse[:5])}) are coarser than 1.5× the "
+                f"model's resolution of {model.metadata.resolution_cm:g} cm/px: targets look smaller than in "
+                "training, so expect fewer detections (fly lower or use a model trained at that resolution).")
+        return counts

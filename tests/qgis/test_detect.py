@@ -1,0 +1,204 @@
+"""birdseye:detect through the registry: a frame layer in, PointZ detections on the ground out.
+
+Frames are synthetic (targets painted where the geometry core projects them) and the model is a
+fixed convolution whose heatmap is the image itself, so every output can be checked exactly.
+"""
+from __future__ import annotations
+
+import hashlib
+import json
+
+import numpy as np
+import pytest
+from qgis.core import QgsFeature, QgsGeometry, QgsPointXY, QgsProcessingException, QgsVectorLayer
+
+from birdseye.birdseye_qgis.core.camera import CameraModel
+from birdseye.birdseye_qgis.core.frame_records import FRAME_FIELDS, euler_degrees
+from birdseye.birdseye_qgis.core.geodesy import LocalFrame, ProjectedCRS
+from birdseye.birdseye_qgis.core.ground import LevelPlaneGround
+from birdseye.birdseye_qgis.core.model_metadata import ModelMetadata, embed_metadata
+from birdseye.birdseye_qgis.core.poses import FrameGeometry, FramePoses
+from birdseye.birdseye_qgis.core.projection import project_pairs
+from birdseye.birdseye_qgis.core.rotations import euler_zyx_to_rotmat, rotmat_to_quat
+
+cv2 = pytest.importorskip("cv2")
+onnx = pytest.importorskip("onnx")
+from onnx import TensorProto, helper  # noqa: E402
+
+UTM = "EPSG:32756"
+NADIR = np.array([[0.0, 1.0, 0.0], [-1.0, 0.0, 0.0], [0.0, 0.0, 1.0]])
+TARGETS = np.array([[0.15, 0.2, 0.0], [-0.3, -0.1, 0.0], [0.4, -0.15, 0.0]])  # local ENU, on the ground
+
+
+def run(params):
+    import processing
+
+    return processing.run("birdseye:detect", params)
+
+
+def identity_model(path, threshold=0.3, **changes):
+    """Heatmap = mean of the channels / 255 (a 1×1 convolution), 1 cm/px, 64 px tiles."""
+    x = helper.make_tensor_value_info("image", TensorProto.FLOAT, ["n", 3, "h", "w"])
+    y = helper.make_tensor_value_info("heat", TensorProto.FLOAT, ["n", 1, "h", "w"])
+    w = helper.make_tensor("k", TensorProto.FLOAT, [1, 3, 1, 1], [1 / 3] * 3)
+    model = helper.make_model(helper.make_graph([helper.make_node("Conv", ["image", "k"], ["heat"])], "g", [x], [y], [w]),
+                              opset_imports=[helper.make_opsetid("", 17)])
+    embed_metadata(model, ModelMetadata(**{**dict(resolution_cm=1.0, tile_size=64, tiles_overlap_pct=12.5,
+                                                  output_kind="probability", default_threshold=threshold), **changes}))
+    onnx.save(model, str(path))
+    return str(path)
+
+
+@pytest.fixture(scope="module")
+def scene(tmp_path_factory):
+    """Three frames 10 m above level ground (1 cm/px), their images, and a frame layer in UTM."""
+    folder = tmp_path_factory.mktemp("frames")
+    t = np.eye(4)
+    t[:3, :3] = NADIR
+    cam = CameraModel(240, 180, 1000.0, 1000.0, 121.0, 88.5, (-0.05, 0.02, 0, 0, 0), t)
+    local = LocalFrame(-27.55, 151.95, 400.0)
+    n = 3
+    lat, lon, h = local.to_geodetic(np.column_stack([[0.0, 0.2, 0.45], [0.0, 0.05, -0.05], [10.0, 10.1, 9.9]]))
+    q = rotmat_to_quat(euler_zyx_to_rotmat(np.radians([1.0, -2.0, 0.5]), np.radians([0.5, 1.0, -1.5]),
+                                           np.radians([5.0, 20.0, 40.0])))
+    poses = FramePoses(np.array([7, 8, 9]), lat, lon, h, q, np.full(n, 400.0), cam)
+    geom = FrameGeometry(poses, local)
+    proj = project_pairs(geom, np.repeat(np.arange(n), len(TARGETS)), np.tile(TARGETS, (n, 1)),
+                         LevelPlaneGround(geom))
+    yy, xx = np.mgrid[0:180, 0:240]
+    roll, pitch, yaw = euler_degrees(q)
+    layer = QgsVectorLayer(f"Polygon?crs={UTM}", "frames", "memory")
+    from birdseye.birdseye_qgis.layers import qgs_fields
+
+    layer.dataProvider().addAttributes(qgs_fields(FRAME_FIELDS).toList())
+    layer.updateFields()
+    utm = ProjectedCRS(UTM)
+    features = []
+    for k in range(n):
+        sel = (proj.frame_idx == k) & proj.in_view
+        img = np.zeros((180, 240))
+        for u, v in proj.uv[sel]:
+            img = np.maximum(img, 0.9 * np.exp(-((xx - u) ** 2 + (yy - v) ** 2) / (2 * 3.0 ** 2)))
+        path = folder / f"{poses.frame_id[k]}.png"
+        cv2.imwrite(str(path), np.repeat(np.rint(255 * img).astype(np.uint8)[:, :, None], 3, axis=2))
+        rec = {"frame_id": int(poses.frame_id[k]), "image": str(path), "time_s": float(k), "lat": lat[k],
+               "lon": lon[k], "height_m": h[k], "qw": q[k, 0], "qx": q[k, 1], "qy": q[k, 2], "qz": q[k, 3],
+               "roll_deg": roll[k], "pitch_deg": pitch[k], "yaw_deg": yaw[k], "ground_h_m": 400.0,
+               "depth_m": float(geom.depth_below()[k]), "rtk_status": 3, "sync_offset_s": 0.0,
+               "gsd_cm": float(geom.gsd_m()[k] * 100), "camera": cam.to_json(), "flags": ""}
+        f = QgsFeature(layer.fields())
+        f.setAttributes([v.item() if isinstance(v, np.generic) else v for v in (rec[n] for n, _, _ in FRAME_FIELDS)])
+        x, y = utm.from_geodetic(lat[k], lon[k])
+        f.setGeometry(QgsGeometry.fromPolygonXY([[QgsPointXY(float(x) + dx, float(y) + dy)
+                                                  for dx, dy in ((-1, -1), (1, -1), (1, 1), (-1, 1))]]))
+        features.append(f)
+    assert layer.dataProvider().addFeatures(features)[0]
+    t_lat, t_lon, t_h = local.to_geodetic(TARGETS)
+    tx, ty = utm.from_geodetic(t_lat, t_lon)
+    return {"layer": layer, "folder": folder, "targets_xyz": np.column_stack([tx, ty, t_h]),
+            "views": {int(poses.frame_id[k]): proj.uv[(proj.frame_idx == k) & proj.in_view] for k in range(n)}}
+
+
+def test_detections_are_written_on_the_ground_in_the_layer_crs(birdseye_provider, scene, tmp_path):
+    model = identity_model(tmp_path / "m.onnx")
+    result = run({"FRAMES": scene["layer"], "MODEL": model, "OUTPUT": "TEMPORARY_OUTPUT",
+                  "OUTPUT_HEATMAPS": str(tmp_path / "heat")})
+    out = result["OUTPUT"]
+    assert out.crs().authid() == UTM and out.wkbType() == 1001  # PointZ
+    assert out.fields().names() == ["frame_id", "u", "v", "score", "model", "model_digest", "threshold"]
+    feats = list(out.getFeatures())
+    expected = sum(len(v) for v in scene["views"].values())
+    assert result["DETECTION_COUNT"] == len(feats) == expected >= 6
+    assert result["FRAMES_PROCESSED"] == 3 and result["FRAMES_SKIPPED"] == 0
+    digest = hashlib.sha256(open(model, "rb").read()).hexdigest()
+    assert result["MODEL_DIGEST"] == digest and result["THRESHOLD_USED"] == pytest.approx(0.3)
+    for f in feats:
+        assert f["model"] == "m.onnx" and f["model_digest"] == digest and f["threshold"] == pytest.approx(0.3)
+        truth = scene["views"][f["frame_id"]]
+        assert np.min(np.hypot(truth[:, 0] - f["u"], truth[:, 1] - f["v"])) < 0.05
+        p = f.geometry().constGet()
+        d = np.linalg.norm(scene["targets_xyz"] - [p.x(), p.y(), p.z()], axis=1)
+        assert d.min() < 0.002  # m, through pose, lens and level ground (Z: ellipsoidal height)
+    heat = cv2.imread(str(tmp_path / "heat" / "7.png"), cv2.IMREAD_UNCHANGED)
+    assert heat.shape == (180, 240)
+
+
+def test_threshold_edge_buffer_and_skipped_frames(birdseye_provider, scene, tmp_path):
+    model = identity_model(tmp_path / "m.onnx", threshold=0.95)
+    assert run({"FRAMES": scene["layer"], "MODEL": model, "OUTPUT": "TEMPORARY_OUTPUT"})["DETECTION_COUNT"] == 0
+    all_ = run({"FRAMES": scene["layer"], "MODEL": model, "THRESHOLD": 0.3, "OUTPUT": "TEMPORARY_OUTPUT"})
+    assert all_["THRESHOLD_USED"] == pytest.approx(0.3) and all_["DETECTION_COUNT"] > 0
+    margin = min(min(uv[:, 0].min(), uv[:, 1].min(), 239 - uv[:, 0].max(), 179 - uv[:, 1].max())
+                 for uv in scene["views"].values())
+    cut = run({"FRAMES": scene["layer"], "MODEL": model, "THRESHOLD": 0.3, "EDGE_BUFFER_PX": float(margin + 1),
+               "OUTPUT": "TEMPORARY_OUTPUT"})
+    assert cut["DETECTION_COUNT"] < all_["DETECTION_COUNT"]
+    # A frame whose image is gone is skipped with a warning; the others are processed.
+    layer = scene["layer"].clone()
+    layer.startEditing()
+    first = next(layer.getFeatures())
+    layer.changeAttributeValue(first.id(), layer.fields().indexOf("image"), str(tmp_path / "gone.png"))
+    layer.commitChanges()
+    result = run({"FRAMES": layer, "MODEL": model, "THRESHOLD": 0.3, "OUTPUT": "TEMPORARY_OUTPUT"})
+    assert result["FRAMES_SKIPPED"] == 1 and result["FRAMES_PROCESSED"] == 2
+
+
+def test_a_model_with_bad_metadata_is_refused_with_every_problem(birdseye_provider, scene, tmp_path):
+    bad = onnx.load(identity_model(tmp_path / "bad.onnx"))
+    props = {p.key: p for p in bad.metadata_props}
+    props["output_kind"].value = json.dumps("scores")
+    bad.metadata_props.remove(props["resolution"])
+    onnx.save(bad, str(tmp_path / "bad.onnx"))
+    with pytest.raises(QgsProcessingException) as err:
+        run({"FRAMES": scene["layer"], "MODEL": str(tmp_path / "bad.onnx"), "OUTPUT": "TEMPORARY_OUTPUT"})
+    assert "missing key(s): resolution" in str(err.value) and "'output_kind' must be one of" in str(err.value)
+
+
+def test_the_bundled_model_is_the_default(birdseye_provider, scene):
+    from birdseye.processing.algorithms.detect import DEFAULT_MODEL
+
+    if not DEFAULT_MODEL.is_file():
+        pytest.skip("the bundled model has not been trained yet (models/train_heatmap.py demo)")
+    result = run({"FRAMES": scene["layer"], "OUTPUT": "TEMPORARY_OUTPUT"})
+    assert result["MODEL_DIGEST"] == hashlib.sha256(DEFAULT_MODEL.read_bytes()).hexdigest()
+    assert result["FRAMES_PROCESSED"] == 3
+    meta = json.loads(dict((p.key, p.value) for p in onnx.load(str(DEFAULT_MODEL)).metadata_props)["default_threshold"])
+    assert result["THRESHOLD_USED"] == pytest.approx(meta)
+
+
+def test_the_bundled_model_finds_simulated_burrows_end_to_end(birdseye_provider, tmp_path):
+    """Simulate → import → detect with the defaults: ≥ 80 % of the in-view burrows get a detection
+    within 0.2 m. Small frames flown low keep the demo's ground resolution (≈ 0.23 cm/px) cheaply."""
+    import csv
+
+    import processing
+
+    from birdseye.birdseye_qgis.core.frame_records import poses_from_records
+    from birdseye.birdseye_qgis.core.labels import Geotags, project_labels
+    from birdseye.birdseye_qgis.core.simulate import CampaignConfig, simulate_campaign
+    from birdseye.birdseye_qgis.layers import pyproj_crs, read_frame_layer
+    from birdseye.processing.algorithms.detect import DEFAULT_MODEL
+
+    if not DEFAULT_MODEL.is_file():
+        pytest.skip("the bundled model has not been trained yet (models/train_heatmap.py demo)")
+    folder = tmp_path / "campaign"
+    simulate_campaign(CampaignConfig(seed=404, n_targets=6, field_width_m=4.0, field_length_m=3.0, altitude_m=2.5,
+                                     image_width=480, image_height=300, n_missed=0, n_spurious=0), folder)
+    frames = processing.run("birdseye:importflightlog", {
+        "POSE_LOG": str(folder / "poses.csv"), "IMAGES": str(folder / "frames"),
+        "CALIBRATION": str(folder / "calibration.yaml"), "OUTPUT": "TEMPORARY_OUTPUT"})["OUTPUT"]
+    result = run({"FRAMES": frames, "OUTPUT": "TEMPORARY_OUTPUT"})
+    rows = list(csv.DictReader(open(folder / "truth" / "targets.csv", encoding="utf-8")))
+    truth = Geotags([int(r["id"]) for r in rows], ["burrow"] * len(rows), [float(r["lat"]) for r in rows],
+                    [float(r["lon"]) for r in rows], [float(r["h_ground"]) for r in rows])
+    (poses, _), = poses_from_records(read_frame_layer(frames))
+    in_view = np.zeros(len(truth), bool)
+    for fl in project_labels(poses, truth):
+        in_view[fl.geotag_index[~fl.edge]] = True
+    tx, ty = ProjectedCRS(pyproj_crs(frames.crs())).from_geodetic(truth.lat, truth.lon)
+    points = np.array([[f.geometry().constGet().x(), f.geometry().constGet().y(), f.geometry().constGet().z()]
+                       for f in result["OUTPUT"].getFeatures()])
+    assert len(points) and np.all(np.abs(points[:, 2] - 400.0) < 0.5)  # on the altimeter's ground (ellipsoidal)
+    d = np.hypot(tx[:, None] - points[None, :, 0], ty[:, None] - points[None, :, 1]).min(axis=1)
+    assert in_view.sum() >= 4
+    assert (d[in_view] <= 0.2).mean() >= 0.8
