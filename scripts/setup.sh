@@ -16,11 +16,12 @@ debian_packages=(
     qgis python3-qgis qgis-providers  # QGIS 3.22 desktop, qgis_process and the Python bindings
     python3-venv python3-pyproj python3-numpy  # the venv's base; numpy 1.x that GDAL was built with
     xvfb xauth fonts-dejavu-core  # headless X server and a font for the desktop test
+    pyqt5-dev-tools qttools5-dev-tools  # pylupdate5 and lrelease for `make translations`
 )
 system_python=/usr/bin/python3
 venv="${BIRDSEYE_VENV_DIR:-$repo/.venv}"
 stamp="$venv/.requirements.sha256"
-requirement_files=(requirements.txt requirements-dev.txt constraints.txt)
+requirement_files=(requirements.txt requirements-dev.txt requirements-train.txt constraints.txt)
 
 say() { echo "setup: $*"; }
 
@@ -69,9 +70,9 @@ install_requirements() {
     local wanted
     wanted="$(cat "${requirement_files[@]}" | sha256sum | cut -d' ' -f1)"
     [[ -f "$stamp" && "$(cat "$stamp")" == "$wanted" ]] && return 0
-    say "installing Python packages (requirements-dev.txt, constraints.txt) into $venv"
+    say "installing Python packages (requirements-dev.txt, requirements-train.txt, constraints.txt) into $venv"
     "$venv/bin/python" -m pip install --quiet --disable-pip-version-check \
-        -c constraints.txt -r requirements-dev.txt
+        -c constraints.txt -r requirements-dev.txt -r requirements-train.txt
     echo "$wanted" >"$stamp"
 }
 

@@ -350,13 +350,14 @@ def read_reduction(width: int, height: int, size: tuple[int, int]) -> int:
 def detect_frames(model: HeatmapModel, poses: FramePoses, images, request: DetectRequest | None = None,
                   local: LocalFrame | None = None,
                   read_image: Callable[[str, int], np.ndarray | None] = read_bgr,
-                  progress=None, is_canceled=None) -> Iterator[FrameDetections]:
+                  progress=None, is_canceled=None, ground=None) -> Iterator[FrameDetections]:
     """Detections of every frame of ``poses`` (one camera), yielded frame by frame, in order.
 
     ``images[k]`` is the image path of frame k, read with ``read_image(path, reduction)`` (see
-    :func:`read_bgr`). Detections go onto the level plane at each frame's altimeter depth; a frame
-    without a ground height is skipped (with the reason). Progress is reported after each frame;
-    cancel is checked before each.
+    :func:`read_bgr`). Detections go onto the level plane at each frame's altimeter depth — a frame
+    without a ground height is skipped (with the reason) — or, given ``ground`` (a factory
+    ``FrameGeometry -> GroundModel``, e.g. a DEM's ``DemGround.from_dem``), onto that ground.
+    Progress is reported after each frame; cancel is checked before each.
     """
     request = request or DetectRequest()
     meta = model.metadata
@@ -364,9 +365,9 @@ def detect_frames(model: HeatmapModel, poses: FramePoses, images, request: Detec
     if not 0.0 < threshold < 1.0:
         raise InputError(f"the threshold must be a probability between 0 and 1 (got {threshold})")
     local = local or LocalFrame.around(poses.lat, poses.lon, poses.height)
-    has_ground = np.isfinite(poses.ground_height)
+    has_ground = np.isfinite(poses.ground_height) | (ground is not None)
     geom = FrameGeometry(poses.subset(has_ground), local)
-    ground = LevelPlaneGround(geom)
+    ground = LevelPlaneGround(geom) if ground is None else ground(geom)
     geom_index = np.cumsum(has_ground) - 1
     gsd_cm = np.full(len(poses), np.nan)
     gsd_cm[has_ground] = geom.gsd_m() * 100.0

@@ -12,6 +12,7 @@ from ...birdseye_qgis.core.detector import DetectRequest, HeatmapModel, detect_f
 from ...birdseye_qgis.core.errors import InputError
 from ...birdseye_qgis.core.frame_records import poses_from_records
 from ...birdseye_qgis.core.geodesy import LocalFrame, ProjectedCRS
+from ..dem_parameters import DemParametersMixin
 from .base import PLUGIN_ROOT, BirdsEyeAlgorithm
 
 DEFAULT_MODEL = PLUGIN_ROOT / "models" / "birdseye_demo_heatmap.onnx"
@@ -28,7 +29,7 @@ DETECTION_FIELDS = [
 ]
 
 
-class Detect(BirdsEyeAlgorithm):
+class Detect(DemParametersMixin, BirdsEyeAlgorithm):
     ALG_ID = "detect"
     DISPLAY_NAME = "Detect targets (ONNX heatmap model)"
     GROUP = "detect"
@@ -46,6 +47,7 @@ class Detect(BirdsEyeAlgorithm):
         self.addParameter(QgsProcessingParameterNumber(
             "EDGE_BUFFER_PX", self.tr("Edge buffer (px): detections closer to the image border are dropped"),
             QgsProcessingParameterNumber.Double, 0.0, minValue=0.0))
+        self.add_dem_parameters()
         self.addParameter(QgsProcessingParameterFeatureSink(
             "OUTPUT", self.tr("Detections"), QgsProcessing.TypeVectorPoint))
         self.addParameter(QgsProcessingParameterFolderDestination(
@@ -60,6 +62,8 @@ class Detect(BirdsEyeAlgorithm):
         source = self.parameterAsSource(parameters, "FRAMES", context)
         if source is None:
             raise self.user_error(InputError("no frame layer given", field="FRAMES"))
+        self.dem = self.read_dem(parameters, context)
+        self.report_dem(feedback, self.dem)
         model_path = self.parameterAsFile(parameters, "MODEL", context) or str(DEFAULT_MODEL)
         threshold = None
         if parameters.get("THRESHOLD") not in (None, ""):
@@ -111,7 +115,7 @@ class Detect(BirdsEyeAlgorithm):
             progress, is_canceled = self.progress_callbacks(feedback, 100.0 * done / total,
                                                             100.0 * (done + len(poses)) / total)
             for found in detect_frames(model, poses, images, request, local=local, progress=progress,
-                                       is_canceled=is_canceled):
+                                       is_canceled=is_canceled, ground=self.dem_ground(self.dem)):
                 if found.skipped:
                     counts["skipped"] += 1
                     feedback.pushWarning(f"Frame {found.frame_id}: {found.skipped}; skipped.")

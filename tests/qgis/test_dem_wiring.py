@@ -47,3 +47,36 @@ def test_footprints_drape_on_a_sloped_dem_and_steep_frames_are_flagged(campaign,
     # Without a DEM no slope is claimed.
     assert all(v is None or (hasattr(v, "isNull") and v.isNull())
                for v in (f["terrain_slope_deg"] for f in level.values()))
+
+
+def test_detect_back_projects_onto_the_dem(campaign, tmp_path):
+    """On flat terrain a DEM at the true ground and the altimeter's level plane put detections at the
+    same place; on a DEM 1 m higher they move towards the nadir by the similar-triangle amount."""
+    import processing
+
+    site = json.loads((campaign / "truth" / "campaign.json").read_text())["site"]
+    frames = import_frames(campaign)
+
+    def detections(**extra):
+        out = processing.run("birdseye:detect", {"FRAMES": frames, "THRESHOLD": 0.05, "OUTPUT": "TEMPORARY_OUTPUT",
+                                                 **extra})["OUTPUT"]
+        points = {}
+        for f in out.getFeatures():
+            p = f.geometry().constGet()
+            points[(f["frame_id"], round(f["u"], 3), round(f["v"], 3))] = (p.x(), p.y(), p.z())
+        return points
+
+    level = detections()
+    assert level, "the demo model finds the simulated burrows"
+    for name, offset in (("same", 0.0), ("raised", 1.0)):
+        dem = synthetic_terrain(site["lat"], site["lon"], kind="plane", slope_deg=0.0,
+                                base_height_m=site["ground_height_m"] + offset, size_m=60.0, cell_m=0.5,
+                                vertical_datum="ellipsoidal")
+        layer = QgsRasterLayer(write_geotiff(dem, tmp_path / f"{name}.tif"), name)
+        on_dem = detections(DEM=layer, DEM_VERTICAL_DATUM=0)
+        assert on_dem.keys() == level.keys()
+        for key, p in on_dem.items():
+            q = level[key]
+            assert p[2] - q[2] == pytest.approx(offset, abs=0.01)
+            if offset == 0.0:
+                assert p[0] == pytest.approx(q[0], abs=0.005) and p[1] == pytest.approx(q[1], abs=0.005)
