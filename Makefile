@@ -3,7 +3,8 @@
 SHELL := /bin/bash
 .SHELLFLAGS := -eu -o pipefail -c
 .DEFAULT_GOAL := help
-.PHONY: help setup test test-unit test-qgis demo bench package qgis-process clean distclean
+.PHONY: help setup test test-unit test-qgis demo bench package qgis-process chain-model translations clean \
+	distclean
 
 VENV := .venv
 PYTHON := $(VENV)/bin/python
@@ -20,6 +21,8 @@ help:
 	@echo "make bench         run each benchmarks/bench_*.py and print its figures and ratios"
 	@echo "make package       build/birdseye-<version>.zip, the plugin zip for QGIS's 'Install from ZIP'"
 	@echo "make qgis-process ARGS='run birdseye:<id> -- PARAM=value'   run qgis_process with the plugin loaded"
+	@echo "make chain-model   regenerate resources/models/birdseye_chain.model3 (Graphical Modeler model)"
+	@echo "make translations  update i18n/birdseye_en.ts from the tr() strings; compile other i18n/*.ts to .qm"
 	@echo "make clean         remove build/, birdseye-demo/ and caches (keeps $(VENV)); distclean also $(VENV)"
 
 setup:
@@ -35,8 +38,9 @@ test-unit:
 test-qgis:
 	QT_QPA_PLATFORM=offscreen $(PYTEST) -q tests/qgis tests/gui tests/e2e $(ALLOW_EMPTY)
 
+# DEMO_ARGS, e.g. "--size small" for a quick check or "--out elsewhere" (see scripts/demo.py --help).
 demo: setup
-	QT_QPA_PLATFORM=offscreen $(PYTHON) scripts/demo.py
+	QT_QPA_PLATFORM=offscreen $(PYTHON) scripts/demo.py $(DEMO_ARGS)
 
 bench: setup
 	@shopt -s nullglob; benches=(benchmarks/bench_*.py); \
@@ -51,6 +55,20 @@ package:
 
 qgis-process: setup
 	@scripts/qgis_process.sh $(ARGS)
+
+chain-model: setup
+	QT_QPA_PLATFORM=offscreen $(PYTHON) scripts/make_chain_model.py
+
+# Every file with tr() strings (core/ has none: it never imports Qt). English is the source language:
+# birdseye_en.ts lists the strings; a translator copies it to birdseye_<locale>.ts and fills it in
+# (Qt Linguist), and this target compiles it to the .qm the plugin loads for that QGIS locale.
+TR_SOURCES = $(sort __init__.py $(shell find birdseye_qgis processing -name '*.py' -not -path '*/core/*'))
+translations: setup
+	@PYTHONWARNINGS=ignore::DeprecationWarning pylupdate5 -noobsolete $(TR_SOURCES) -ts i18n/birdseye_en.ts
+	@echo "i18n/birdseye_en.ts: $$(grep -c '<source>' i18n/birdseye_en.ts) strings from $(words $(TR_SOURCES)) files"
+	@shopt -s nullglob; for ts in i18n/birdseye_*.ts; do \
+		[[ $$ts == i18n/birdseye_en.ts ]] || lrelease -silent "$$ts" -qm "$${ts%.ts}.qm"; \
+	done
 
 clean:
 	rm -rf build birdseye-demo .pytest_cache .hypothesis .qgis-settings

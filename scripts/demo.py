@@ -1,38 +1,96 @@
-"""`make demo`: the BirdsEye chain on a simulated campaign, ending in birdseye-demo/birdseye_demo.qgz.
+"""`make demo`: the whole BirdsEye chain on simulated flights, ending in birdseye-demo/birdseye_demo.qgz.
 
 Runs in a standalone QGIS application (no desktop): initialises Processing, registers the BirdsEye
-provider and runs :data:`STEPS` in order through the Processing registry — exactly what the toolbox
-and ``qgis_process`` run. Every layer an algorithm writes is loaded into a project, styled by the
-algorithm itself, under the step's layer-tree group, and the project is saved beside the outputs.
+provider and runs the steps of :func:`build_steps` in order through the Processing registry — exactly
+what the toolbox, the Graphical Modeler and ``qgis_process`` run:
 
-A step is one declarative :class:`Step` entry. Its parameter values may refer to the demo folder
-(``{out}``) and to earlier steps' outputs (``{campaign[GEOTAGS]}``). A step whose algorithm is not
-there yet, whose parameters do not match the algorithm, or whose inputs were not made is skipped
-with a note; a step that fails is reported and the chain goes on without it.
+1. simulate two training flights and one held-out flight over three fields (``simulatecampaign``);
+2. import each flight's rover geotags and flight log (``importgeotags``, ``importflightlog``);
+3. write training labels, with tiles, for the training flights (``writelabels``);
+4. detect targets on the held-out flight with the bundled model (``detect``);
+5. cluster the detections and score them against the survey (``clusterdetections``,
+   ``evaluatedetections``);
+6. plan the next flight over the held-out field's geotags, with its mission files (``planflight``);
+7. the sensor bound of the simulated platform's pose noise (``sensorbound``).
 
-    .venv/bin/python scripts/demo.py [--out birdseye-demo]
+Every layer an algorithm writes is loaded into a project, styled by the algorithm's own post-processor
+(``layers.style_on_load``, which Processing calls when it loads an output), put in its group (survey,
+flight, labels, detections, clusters, plan) and saved with relative paths, so the folder can be moved.
+The project is then read back and every layer checked valid. A step that fails stops the demo with a
+non-zero exit status; a missing algorithm or model is reported before anything runs.
+
+    .venv/bin/python scripts/demo.py [--out birdseye-demo] [--size full|small] [--model FILE.onnx]
 """
 from __future__ import annotations
 
 import argparse
+import json
 import os
 import shutil
 import sys
 import time
+import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
 
 REPO_ROOT = Path(__file__).resolve().parents[1]
 PLUGIN_PATH = REPO_ROOT / "build" / "pluginpath"
 QGIS_PYTHON_PLUGINS = "/usr/share/qgis/python/plugins"
+BUNDLED_MODEL = REPO_ROOT / "models" / "birdseye_demo_heatmap.onnx"
 PROJECT_NAME = "birdseye_demo.qgz"
+SUMMARY_NAME = "demo_summary.json"
+GROUP_ORDER = ["survey", "flight", "labels", "detections", "clusters", "plan"]
+
+SIGMAS = "0.01,0.01,0.06,0.04,0.04,0.13"  # the deployed platform's pose noise Σ0 (m, m, m, °, °, °)
+ALTITUDE_M = 10.0  # flying height of the simulated flights and of the sensor bound (m above ground)
+
+
+@dataclass(frozen=True)
+class Flight:
+    """One simulated flight: ``key`` names its files and steps, ``title`` its layers."""
+
+    key: str
+    title: str
+    seed: int
+    training: bool
+    field_offset: int  # fields lie side by side, this many field spacings east of the first
+
+
+@dataclass(frozen=True)
+class DemoSize:
+    """How big the simulated flights are. ``full`` matches the bundled model's training flights
+    (8 m × 6 m fields with 20 burrows, 1920 × 1200 frames at 10 m); ``small`` is a quick check."""
+
+    n_targets: int
+    field_width_m: float
+    field_length_m: float
+    image_width: int
+    image_height: int
+    training_fps: float
+    held_out_fps: float
+    tile_size: int
+    field_spacing_deg: float  # longitude between neighbouring fields (≈ 20 m at the site)
+
+
+SIZES = {
+    "full": DemoSize(20, 8.0, 6.0, 1920, 1200, 5.0, 5.0, 448, 0.0002),
+    "small": DemoSize(6, 4.0, 3.0, 480, 300, 1.0, 2.0, 112, 0.0001),
+}
+FLIGHTS = [
+    Flight("train1", "training flight 1", 11, True, 0),
+    Flight("train2", "training flight 2", 12, True, 1),
+    Flight("heldout", "held-out flight", 13, False, 2),
+]
+SITE_LAT, SITE_LON = -27.55, 151.95
 
 
 @dataclass(frozen=True)
 class Step:
     """One algorithm run: ``birdseye:<alg_id>`` with ``params``; its layers go into ``group``.
 
-    ``name`` is how later steps refer to this step's outputs, e.g. ``"{campaign[CALIBRATION]}"``.
+    ``name`` is how later steps refer to this step's outputs, e.g. ``"{campaign_heldout[CALIBRATION]}"``;
+    ``{out}`` is the demo folder. Loaded layers are named "<output description> (<layer_suffix>)"; the
+    outputs named in ``hidden`` start unticked in the Layers panel (they repeat what other layers show).
     """
 
     name: str
@@ -40,49 +98,74 @@ class Step:
     title: str
     params: dict = field(default_factory=dict)
     group: str | None = None
+    layer_suffix: str = ""
+    hidden: tuple = ()
 
 
-SIGMAS = "0.01,0.01,0.06,0.04,0.04,0.13"  # the deployed platform's pose noise Σ0 (m, m, m, °, °, °)
+def build_steps(size: DemoSize, model: Path | None) -> list[Step]:
+    """The chain, in order (see the module docstring)."""
+    held_out = next(f for f in FLIGHTS if not f.training)
+    steps = []
+    for flight in FLIGHTS:
+        steps.append(Step(f"campaign_{flight.key}", "simulatecampaign", f"Simulate the {flight.title}", {
+            "SEED": flight.seed, "N_TARGETS": size.n_targets, "FIELD_WIDTH_M": size.field_width_m,
+            "FIELD_LENGTH_M": size.field_length_m, "ALTITUDE_M": ALTITUDE_M, "SPEED_MS": 2.5,
+            "FPS": size.training_fps if flight.training else size.held_out_fps,
+            "IMAGE_WIDTH": size.image_width, "IMAGE_HEIGHT": size.image_height, "SIGMAS": SIGMAS,
+            "SITE_LAT": SITE_LAT, "SITE_LON": SITE_LON + flight.field_offset * size.field_spacing_deg,
+            "OUTPUT_FOLDER": f"{{out}}/campaigns/{flight.key}"}))
+    for flight in FLIGHTS:
+        campaign = f"campaign_{flight.key}"
+        steps.append(Step(f"geotags_{flight.key}", "importgeotags", f"Import the geotags of the {flight.title}", {
+            "INPUT": f"{{{campaign}[GEOTAGS]}}", "OUTPUT": f"{{out}}/survey/geotags_{flight.key}.gpkg"},
+            group="survey", layer_suffix=flight.title))
+        steps.append(Step(f"flight_{flight.key}", "importflightlog", f"Import the {flight.title}'s log", {
+            "POSE_LOG": f"{{{campaign}[POSES]}}", "IMAGES": f"{{{campaign}[OUTPUT_FOLDER]}}",
+            "CALIBRATION": f"{{{campaign}[CALIBRATION]}}",
+            "FPS": size.training_fps if flight.training else size.held_out_fps,
+            "OUTPUT": f"{{out}}/flight/frames_{flight.key}.gpkg",
+            "OUTPUT_TRACK": f"{{out}}/flight/track_{flight.key}.gpkg"}, group="flight", layer_suffix=flight.title,
+            hidden=("OUTPUT",) if flight.training else ()))  # the map shows the held-out flight's frames
+    for flight in FLIGHTS:
+        if flight.training:
+            steps.append(Step(f"labels_{flight.key}", "writelabels", f"Write labels for the {flight.title}", {
+                "GEOTAGS": f"{{geotags_{flight.key}[OUTPUT]}}", "FRAMES": f"{{flight_{flight.key}[OUTPUT]}}",
+                "SIGMA_PX": 10.0, "EDGE_BUFFER_PX": 20.0, "WRITE_TILES": True, "TILE_SIZE": size.tile_size,
+                "NEGATIVE_RATIO": 1.5, "OUTPUT_FOLDER": f"{{out}}/labels/{flight.key}",
+                "OUTPUT_FRAMES": f"{{out}}/labels/frames_labelled_{flight.key}.gpkg",
+                "OUTPUT_GEOTAGS": f"{{out}}/labels/geotags_seen_{flight.key}.gpkg"},
+                group="labels", layer_suffix=flight.title, hidden=("OUTPUT_FRAMES", "OUTPUT_GEOTAGS")))
+    h = held_out.key
+    detect = {"FRAMES": f"{{flight_{h}[OUTPUT]}}", "OUTPUT": "{out}/detections/detections.gpkg"}
+    if model is not None:
+        detect["MODEL"] = str(model)
+    steps += [
+        Step("detect", "detect", f"Detect targets on the {held_out.title}", detect, group="detections",
+             layer_suffix=held_out.title),
+        Step("clusters", "clusterdetections", "Cluster the detections", {
+            "DETECTIONS": "{detect[OUTPUT]}", "GEOTAGS": f"{{geotags_{h}[OUTPUT]}}",
+            "FRAMES": f"{{flight_{h}[OUTPUT]}}", "OUTPUT": "{out}/clusters/clusters.gpkg",
+            "OUTPUT_POINTS": "{out}/clusters/cluster_points.gpkg"}, group="clusters", layer_suffix=held_out.title,
+            hidden=("OUTPUT_POINTS",)),
+        Step("evaluation", "evaluatedetections", "Evaluate recall and GMCF against the survey", {
+            "DETECTIONS": ["{detect[OUTPUT]}"], "GEOTAGS": f"{{geotags_{h}[OUTPUT]}}",
+            "FRAMES": [f"{{flight_{h}[OUTPUT]}}"], "OUTPUT_JSON": "{out}/evaluation.json",
+            "OUTPUT_REPORT": "{out}/evaluation.html"}),
+        Step("plan", "planflight", f"Plan the next flight over the {held_out.title}'s geotags", {
+            "GEOTAGS": f"{{geotags_{h}[OUTPUT]}}", "CAMERA": f"{{campaign_{h}[CALIBRATION]}}",
+            "ALTITUDE_M": ALTITUDE_M, "OUTPUT_WAYPOINTS": "{out}/plan/waypoints.gpkg",
+            "OUTPUT_ROUTE": "{out}/plan/route.gpkg", "OUTPUT_KMZ": "{out}/plan/mission.kmz",
+            "OUTPUT_PLAN": "{out}/plan/mission.plan", "OUTPUT_LITCHI": "{out}/plan/mission_litchi.csv",
+            "OUTPUT_KML": "{out}/plan/mission.kml"}, group="plan", layer_suffix="next flight"),
+        Step("bound", "sensorbound", "Sensor bound for the simulated platform", {
+            "CALIBRATION": f"{{campaign_{h}[CALIBRATION]}}", "ALTITUDES": f"{ALTITUDE_M:g}", "SIGMAS": SIGMAS,
+            "OUTPUT_JSON": "{out}/sensor_bound.json", "OUTPUT_REPORT": "{out}/sensor_bound.html"}),
+    ]
+    return steps
 
-STEPS = [
-    Step("campaign", "simulatecampaign", "Simulate a survey campaign", {
-        "SEED": 2024, "N_TARGETS": 8, "FIELD_WIDTH_M": 8, "FIELD_LENGTH_M": 6,
-        "SIGMAS": SIGMAS, "OUTPUT_FOLDER": "{out}/campaign"}),
-    Step("geotags", "importgeotags", "Import the rover geotags", {
-        "INPUT": "{campaign[GEOTAGS]}", "OUTPUT": "{out}/survey/geotags.gpkg"}, group="survey"),
-    Step("flight", "importflightlog", "Import the flight log and frames", {
-        "POSE_LOG": "{campaign[POSES]}", "IMAGES": "{campaign[OUTPUT_FOLDER]}",
-        "CALIBRATION": "{campaign[CALIBRATION]}", "OUTPUT": "{out}/flight/frames.gpkg",
-        "OUTPUT_TRACK": "{out}/flight/track.gpkg"}, group="flight"),
-    Step("labels", "writelabels", "Write training labels", {
-        "GEOTAGS": "{geotags[OUTPUT]}", "FRAMES": "{flight[OUTPUT]}", "OUTPUT_FOLDER": "{out}/labels",
-        "OUTPUT_FRAMES": "{out}/labels/frames_labelled.gpkg",
-        "OUTPUT_GEOTAGS": "{out}/labels/geotags_seen.gpkg"}, group="labels"),
-    Step("detections", "detect", "Detect targets (bundled model)", {
-        "FRAMES": "{flight[OUTPUT]}", "OUTPUT": "{out}/detections/detections.gpkg",
-        "OUTPUT_HEATMAPS": "{out}/detections/heatmaps"}, group="detections"),
-    Step("clusters", "clusterdetections", "Cluster the detections", {
-        "DETECTIONS": "{detections[OUTPUT]}", "GEOTAGS": "{geotags[OUTPUT]}", "FRAMES": "{flight[OUTPUT]}",
-        "OUTPUT": "{out}/clusters/clusters.gpkg", "OUTPUT_POINTS": "{out}/clusters/points.gpkg"},
-        group="clusters"),
-    Step("evaluation", "evaluatedetections", "Evaluate recall and GMCF", {
-        "DETECTIONS": ["{detections[OUTPUT]}"], "GEOTAGS": "{geotags[OUTPUT]}",
-        "FRAMES": ["{flight[OUTPUT]}"], "OUTPUT_JSON": "{out}/evaluation.json",
-        "OUTPUT_REPORT": "{out}/evaluation.html"}),
-    Step("plan", "planflight", "Plan the next flight over the geotags", {
-        "GEOTAGS": "{geotags[OUTPUT]}", "CAMERA": "{campaign[CALIBRATION]}",
-        "OUTPUT_WAYPOINTS": "{out}/plan/waypoints.gpkg", "OUTPUT_ROUTE": "{out}/plan/route.gpkg",
-        "OUTPUT_KMZ": "{out}/plan/mission.kmz", "OUTPUT_PLAN": "{out}/plan/mission.plan",
-        "OUTPUT_LITCHI": "{out}/plan/litchi.csv", "OUTPUT_KML": "{out}/plan/mission.kml"}, group="plan"),
-    Step("bound", "sensorbound", "Sensor bound for the simulated platform", {
-        "CALIBRATION": "{campaign[CALIBRATION]}", "ALTITUDES": "10", "SIGMAS": SIGMAS,
-        "OUTPUT_JSON": "{out}/sensor_bound.json", "OUTPUT_REPORT": "{out}/sensor_bound.html"}),
-]
-GROUP_ORDER = ["survey", "flight", "labels", "detections", "clusters", "plan"]
 
-
-class MissingInput(KeyError):
-    """A parameter refers to the output of a step that did not run."""
+class DemoError(RuntimeError):
+    """A step failed or the demo cannot run; the message says which and why."""
 
 
 def resolve(value, values: dict):
@@ -94,7 +177,7 @@ def resolve(value, values: dict):
     try:
         return value.format_map(values)
     except KeyError as exc:
-        raise MissingInput(exc.args[0]) from None
+        raise DemoError(f"a parameter refers to the outputs of step '{exc.args[0]}', which did not run") from None
 
 
 # ------------------------------------------------------------------------------------------ terminal
@@ -110,14 +193,15 @@ class TerminalFeedback:
                 super().__init__()
                 self.live = sys.stdout.isatty()
                 self.last_shown = -10
+                self.errors: list[str] = []
                 self.progressChanged.connect(self.show_progress)
 
             def show_progress(self, percent: float) -> None:
                 if self.live:
                     filled = int(percent / 100 * 30)
                     print(f"\r    [{'#' * filled}{'.' * (30 - filled)}] {percent:5.1f} %", end="", flush=True)
-                elif percent >= self.last_shown + 10:
-                    self.last_shown = percent - percent % 10
+                elif percent >= self.last_shown + 25:
+                    self.last_shown = percent - percent % 25
                     print(f"    {self.last_shown:.0f} %", flush=True)
 
             def end_line(self) -> None:
@@ -136,6 +220,7 @@ class TerminalFeedback:
 
             def reportError(self, error, fatalError=False):  # noqa: N802, N803
                 self.end_line()
+                self.errors.append(error)
                 print(f"    error: {error}", flush=True)
 
         return Feedback()
@@ -145,6 +230,9 @@ class TerminalFeedback:
 def start_qgis():
     """A headless QgsApplication with Processing and the BirdsEye provider, settings kept in build/."""
     os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
+    # The venv's matplotlib sees Debian's older mpl_toolkits and warns that 3-D plots are unavailable;
+    # the reports draw 2-D plots only, so the warning would only be noise on the demo's screen.
+    warnings.filterwarnings("ignore", message="Unable to import Axes3D")
     os.environ["QGIS_CUSTOM_CONFIG_PATH"] = str(REPO_ROOT / "build" / "qgis-demo")
     PLUGIN_PATH.mkdir(parents=True, exist_ok=True)
     link = PLUGIN_PATH / "birdseye"
@@ -169,6 +257,32 @@ def start_qgis():
     return app, provider
 
 
+def preflight(steps: list[Step], model: Path | None) -> None:
+    """Everything the chain needs is there before minutes are spent simulating: each algorithm,
+    each parameter name the demo passes, and the detector model."""
+    from qgis.core import QgsApplication
+
+    registry = QgsApplication.processingRegistry()
+    problems = []
+    for step in steps:
+        algorithm = registry.algorithmById(f"birdseye:{step.alg_id}")
+        if algorithm is None:
+            problems.append(f"algorithm birdseye:{step.alg_id} is not registered (a module of "
+                            "processing/algorithms failed to import? see the QGIS log)")
+            continue
+        unknown = sorted(set(step.params) - {p.name() for p in algorithm.parameterDefinitions()})
+        if unknown:
+            problems.append(f"step '{step.title}': birdseye:{step.alg_id} has no parameter(s) {', '.join(unknown)}")
+    chosen = model or BUNDLED_MODEL
+    if not chosen.is_file():
+        problems.append(
+            f"the detector model {chosen} is missing, so the held-out flight cannot be detected, clustered or "
+            "evaluated. " + ("It is part of the plugin; rebuild it with `.venv/bin/python models/train_heatmap.py "
+                             "demo` or run the demo with --model FILE.onnx." if model is None else ""))
+    if problems:
+        raise DemoError("the demo cannot run:\n  - " + "\n  - ".join(problems))
+
+
 def layer_destinations(algorithm) -> set[str]:
     """Names of the parameters whose output is a map layer (those get loaded into the project)."""
     from qgis.core import (QgsProcessingParameterFeatureSink, QgsProcessingParameterRasterDestination,
@@ -179,30 +293,22 @@ def layer_destinations(algorithm) -> set[str]:
     return {p.name() for p in algorithm.destinationParameterDefinitions() if isinstance(p, kinds)}
 
 
-def run_step(step: Step, values: dict, project) -> tuple[str, dict, list]:
-    """Run one step; returns (status, results, loaded layers). Status: ok / skipped: … / failed: …"""
+def run_step(step: Step, values: dict, project) -> tuple[dict, list]:
+    """Run one step; returns (results, [(loaded and styled layer, hidden?)]). Raises DemoError when it fails."""
     import processing
     from qgis.core import (QgsApplication, QgsProcessingContext, QgsProcessingException,
                            QgsProcessingOutputLayerDefinition, QgsProcessingUtils)
 
     algorithm = QgsApplication.processingRegistry().algorithmById(f"birdseye:{step.alg_id}")
-    if algorithm is None:
-        return f"skipped: birdseye:{step.alg_id} is not in the provider yet", {}, []
-    known = {p.name() for p in algorithm.parameterDefinitions()}
-    unknown = sorted(set(step.params) - known)
-    if unknown:
-        return f"skipped: scripts/demo.py passes parameters it does not have: {', '.join(unknown)}", {}, []
-    try:
-        params = {name: resolve(value, values) for name, value in step.params.items()}
-    except MissingInput as exc:
-        return f"skipped: needs the outputs of step '{exc.args[0]}', which did not run", {}, []
-
+    params = {name: resolve(value, values) for name, value in step.params.items()}
     to_load = layer_destinations(algorithm)
     for definition in algorithm.destinationParameterDefinitions():
         value = params.get(definition.name())
         if isinstance(value, str) and value:
             Path(value).parent.mkdir(parents=True, exist_ok=True)
             if definition.name() in to_load:
+                # Loaded on completion, into this project: Processing then runs the algorithm's
+                # post-processor, which applies its .qml style (layers.style_on_load).
                 params[definition.name()] = QgsProcessingOutputLayerDefinition(value, project)
 
     context = QgsProcessingContext()
@@ -214,26 +320,36 @@ def run_step(step: Step, values: dict, project) -> tuple[str, dict, list]:
                                  context=context)
     except QgsProcessingException as exc:
         feedback.end_line()
-        return f"failed: {exc}", {}, []
+        detail = "; ".join(feedback.errors[-3:]) or str(exc)
+        raise DemoError(f"step '{step.title}' (birdseye:{step.alg_id}) failed: {detail}") from None
     feedback.end_line()
 
     layers = []
     for layer_ref, details in context.layersToLoadOnCompletion().items():
         layer = QgsProcessingUtils.mapLayerFromString(layer_ref, context)
         if layer is None or not layer.isValid():
-            print(f"    note: output {layer_ref} could not be loaded as a layer")
-            continue
+            raise DemoError(f"step '{step.title}': its output {layer_ref} cannot be opened as a layer")
         context.temporaryLayerStore().takeMapLayer(layer)
-        if details.name:
-            layer.setName(details.name)
         post_processor = details.postProcessor()
         if post_processor is not None:
             post_processor.postProcessLayer(layer, context, feedback)
-        layers.append(layer)
-    return "ok", dict(results), layers
+        name = details.name or layer.name()
+        layer.setName(f"{name} ({step.layer_suffix})" if step.layer_suffix else name)
+        layers.append((layer, details.outputName in step.hidden))
+    return dict(results), layers
 
 
-def add_to_group(project, group_name: str | None, layers: list) -> None:
+def draw_rank(layer) -> int:
+    """Points over lines over polygons (then rasters), so nothing hides the survey points."""
+    from qgis.core import QgsMapLayerType, QgsWkbTypes
+
+    if layer.type() != QgsMapLayerType.VectorLayer:
+        return 3
+    return {QgsWkbTypes.PointGeometry: 0, QgsWkbTypes.LineGeometry: 1}.get(layer.geometryType(), 2)
+
+
+def add_to_group(project, group_name: str | None, layers: list[tuple]) -> None:
+    """Add (layer, hidden) pairs under their group, points first; hidden ones start unticked."""
     root = project.layerTreeRoot()
     target = root
     if group_name:
@@ -241,81 +357,195 @@ def add_to_group(project, group_name: str | None, layers: list) -> None:
         if target is None:  # keep the groups in workflow order whatever order they are filled in
             position = sum(1 for g in GROUP_ORDER[:GROUP_ORDER.index(group_name)] if root.findGroup(g))
             target = root.insertGroup(position, group_name)
-    for layer in layers:
+    for layer, hidden in sorted(layers, key=lambda pair: draw_rank(pair[0])):
         project.addMapLayer(layer, False)
-        target.addLayer(layer)
+        node = target.addLayer(layer)
+        node.setExpanded(False)  # one line per layer in the Layers panel; the legend is a click away
+        node.setItemVisibilityChecked(not hidden)
+
+
+def finish_project(project, held_out_layers: list) -> None:
+    """Drawing order points > lines > polygons whatever the group, later steps over earlier ones (clusters
+    over frames); open on the held-out field."""
+    from qgis.core import QgsRectangle, QgsReferencedRectangle
+
+    root = project.layerTreeRoot()
+    workflow_position = {name: k for k, name in enumerate(GROUP_ORDER)}
+    ordered = sorted(root.layerOrder(), key=lambda layer: (
+        draw_rank(layer), -workflow_position.get(root.findLayer(layer.id()).parent().name(), -1)))
+    root.setHasCustomLayerOrder(True)
+    root.setCustomLayerOrder(ordered)
+    extent = QgsRectangle()
+    extent.setMinimal()
+    for layer in held_out_layers:
+        extent.combineExtentWith(layer.extent())
+    if not extent.isEmpty():
+        project.viewSettings().setDefaultViewExtent(QgsReferencedRectangle(extent.buffered(2.0), project.crs()))
+    project.writeEntryBool("Paths", "/Absolute", False)  # the demo folder can be moved
+
+
+def check_saved_project(project_path: Path) -> list[str]:
+    """Read the saved project back in a fresh QgsProject; the names of layers that are not valid."""
+    from qgis.core import QgsProject
+
+    reread = QgsProject()
+    if not reread.read(str(project_path)):
+        return [f"(the project itself: {reread.error()})"]
+    return [layer.name() for layer in reread.mapLayers().values() if not layer.isValid()]
 
 
 # ------------------------------------------------------------------------------------------ summary
-def numbers(results: dict) -> str:
-    """The counts and scores an algorithm reports, e.g. 'FRAME_COUNT=96, LABEL_COUNT=812'."""
-    shown = [f"{k}={v:g}" if isinstance(v, float) else f"{k}={v}"
-             for k, v in results.items() if isinstance(v, (int, float)) and not isinstance(v, bool)]
-    return ", ".join(shown[:4])
+def figures(values: dict, out: Path, project, model: Path | None) -> dict:
+    """The key figures of the run, for the summary screen and demo_summary.json."""
+    def get(step, key, default=None):
+        return values.get(step, {}).get(key, default)
+
+    bound = json.loads((out / "sensor_bound.json").read_text(encoding="utf-8"))
+    held_out = next(f for f in FLIGHTS if not f.training)
+    return {
+        "frames": {f.key: get(f"flight_{f.key}", "FRAME_COUNT") for f in FLIGHTS},
+        "geotags": {f.key: get(f"geotags_{f.key}", "GEOTAG_COUNT") for f in FLIGHTS},
+        "labels": {f.key: get(f"labels_{f.key}", "LABEL_COUNT") for f in FLIGHTS if f.training},
+        "frames_with_labels": {f.key: get(f"labels_{f.key}", "FRAMES_WITH_LABELS") for f in FLIGHTS if f.training},
+        "held_out": held_out.title,
+        "detections": get("detect", "DETECTION_COUNT"),
+        "frames_detected": get("detect", "FRAMES_PROCESSED"),
+        "threshold": get("detect", "THRESHOLD_USED"),
+        "model": (model or BUNDLED_MODEL).name,
+        "model_digest": get("detect", "MODEL_DIGEST"),
+        "clusters": get("clusters", "CLUSTER_COUNT"),
+        "hit_clusters": get("clusters", "HIT_COUNT"),
+        "n_in_view": get("evaluation", "N_IN_VIEW"),
+        "n_recovered": get("evaluation", "N_RECOVERED"),
+        "recall_pre": get("evaluation", "RECALL_PRE"),
+        "gmcf_pre": get("evaluation", "GMCF_PRE"),
+        "eval_clusters": get("evaluation", "N_CLUSTERS"),
+        "eval_hit_clusters": get("evaluation", "N_HIT_CLUSTERS"),
+        "waypoints": get("plan", "WAYPOINT_COUNT"),
+        "route_length_m": get("plan", "ROUTE_LENGTH_M"),
+        "flight_time_min": get("plan", "FLIGHT_TIME_MIN"),
+        "mission_files": [Path(p).name for p in (get("plan", "MISSION_FILES") or "").split(";") if p],
+        "sensor_bound": [{k: a[k] for k in ("altitude_m", "kappa_trace", "verdict_trace", "kappa_exact",
+                                            "verdict_exact")} for a in bound["altitudes"]],
+        "layers": {group.name(): [layer.name() for layer in group.findLayers()]
+                   for group in project.layerTreeRoot().findGroups()},
+    }
 
 
-def summary(out: Path, outcomes: list, project, project_path: Path, elapsed: float) -> str:
-    lines = ["", "=" * 78, f"BirdsEye demo — {elapsed / 60:.1f} min, outputs in {out}/", "-" * 78]
-    for step, status, seconds, results in outcomes:
-        mark = {"ok": "done", "skipped": "skip", "failed": "FAIL"}[status.split(":")[0]]
-        detail = numbers(results) if status == "ok" else status.split(": ", 1)[1]
-        lines.append(f" {mark:4}  {step.title:<40} {seconds:6.1f} s  {detail}"[:160])
-    lines.append("-" * 78)
-    root = project.layerTreeRoot()
-    for group in [root] + [g for g in (root.findGroup(n) for n in GROUP_ORDER) if g is not None]:
-        names = [node.name() for node in group.children() if hasattr(node, "layerId")]
-        if names:
-            lines.append(f" {group.name() or '(top)'}: {', '.join(names)}")
-    reports = sorted(p.name for p in out.glob("*.html")) + sorted(p.name for p in out.glob("*.json"))
-    if reports:
-        lines.append(f" reports: {', '.join(reports)}")
-    lines.append(f" project: {project_path}  (open it with: qgis {project_path})")
-    lines.append("=" * 78)
+def fmt(value, digits: int = 3) -> str:
+    if value is None:
+        return "undefined"
+    return f"{value:.{digits}f}" if isinstance(value, float) else str(value)
+
+
+def summary(shown_out: str, numbers: dict, timings: list, elapsed: float) -> str:
+    """The one-screen summary (at most 100 columns): what was made, where, and the key figures."""
+    f = numbers
+    slowest = max(timings, key=lambda t: t[1])
+    n_layers = sum(len(names) for names in f["layers"].values())
+    lines = [
+        "", "=" * 78,
+        f" BirdsEye demo finished in {elapsed / 60:.1f} min ({len(timings)} steps; slowest: {slowest[1]:.0f} s, "
+        f"{slowest[0].lower()})",
+        f" Everything is in {shown_out}/",
+        "-" * 78,
+        *[f" {'Simulated' if k == 0 else '':11} {fl.title:<18} {f['frames'][fl.key]:>4} frames, "
+          f"{f['geotags'][fl.key]:>3} geotags → campaigns/{fl.key}/" for k, fl in enumerate(FLIGHTS)],
+        f" Labels      {sum(f['labels'].values())} labels in {sum(f['frames_with_labels'].values())} frames of the "
+        "training flights, with tiles → labels/",
+        f" Detections  {f['detections']} in {f['frames_detected']} held-out frames ({f['model']}, "
+        f"threshold {fmt(f['threshold'], 2)})",
+        f" Clusters    {f['clusters']}, of which {f['hit_clusters']} on a geotag → clusters/",
+        f" Evaluation  recall_pre {f['n_recovered']}/{f['n_in_view']} = {fmt(f['recall_pre'])}, "
+        f"gmcf_pre {f['eval_hit_clusters']}/{f['eval_clusters']} = {fmt(f['gmcf_pre'])} → evaluation.html",
+        f" Next flight {f['waypoints']} waypoints over the held-out geotags, route {f['route_length_m']:.1f} m, "
+        f"{f['flight_time_min']:.1f} min → plan/",
+    ]
+    for entry in f["sensor_bound"]:
+        lines.append(f" Sensor bound at {entry['altitude_m']:g} m: trace κ* {entry['kappa_trace']:.2f} "
+                     f"{entry['verdict_trace']}, exact κ* {entry['kappa_exact']:.2f} {entry['verdict_exact']} "
+                     "→ sensor_bound.html")
+    lines += [
+        "-" * 78,
+        f" Project     {shown_out}/{PROJECT_NAME}: {n_layers} layers, styled, in {len(f['layers'])} groups",
+        f"             {', '.join(f['layers'])}",
+        f" Open it     qgis {shown_out}/{PROJECT_NAME}",
+        "=" * 78,
+    ]
     return "\n".join(lines)
 
 
-def main() -> int:
-    parser = argparse.ArgumentParser(description="Run the BirdsEye chain on a simulated campaign.")
-    parser.add_argument("--out", type=Path, default=Path("birdseye-demo"), help="output folder")
-    args = parser.parse_args()
-    out = args.out.resolve()
-    started = time.monotonic()
-
-    app, _provider = start_qgis()
-    from qgis.core import QgsProject
-
+def prepare_folder(out: Path) -> None:
+    """An empty demo folder; a previous demo there is replaced, anything else is left alone."""
     if out.exists():
+        previous_demo = (out / PROJECT_NAME).exists() or (out / SUMMARY_NAME).exists() or (out / "campaigns").is_dir()
+        if any(out.iterdir()) and not previous_demo:
+            raise DemoError(f"{out} exists and is not a BirdsEye demo folder; choose another --out")
         print(f"Removing the previous demo in {out}/")
         shutil.rmtree(out)
     out.mkdir(parents=True)
-    project = QgsProject.instance()
-    project.clear()
-    project.setTitle("BirdsEye demo")
-    values = {"out": str(out)}
-    outcomes = []
-    for number, step in enumerate(STEPS, 1):
-        print(f"[{number}/{len(STEPS)}] {step.title} (birdseye:{step.alg_id})", flush=True)
-        step_start = time.monotonic()
-        status, results, layers = run_step(step, values, project)
-        seconds = time.monotonic() - step_start
-        if status == "ok":
+
+
+def run(out: Path, size: DemoSize, model: Path | None) -> int:
+    started = time.monotonic()
+    app, _provider = start_qgis()
+    from qgis.core import QgsProject
+
+    steps = build_steps(size, model)
+    try:
+        preflight(steps, model)
+        prepare_folder(out)
+        project = QgsProject.instance()
+        project.clear()
+        project.setTitle("BirdsEye demo")
+        values = {"out": str(out)}
+        timings, held_out_layers = [], []
+        for number, step in enumerate(steps, 1):
+            print(f"[{number}/{len(steps)}] {step.title} (birdseye:{step.alg_id})", flush=True)
+            step_start = time.monotonic()
+            results, layers = run_step(step, values, project)
+            seconds = time.monotonic() - step_start
             values[step.name] = results
             add_to_group(project, step.group, layers)
             if layers and not project.crs().isValid():
-                project.setCrs(layers[0].crs())
-            print(f"    done in {seconds:.1f} s{': ' + numbers(results) if numbers(results) else ''}")
-        else:
-            print(f"    {status}")
-        outcomes.append((step, status, seconds, results))
+                project.setCrs(layers[0][0].crs())
+            if step.layer_suffix.startswith("held-out"):
+                held_out_layers += [layer for layer, _ in layers]
+            timings.append((step.title, seconds))
+            print(f"    done in {seconds:.1f} s", flush=True)
 
-    project_path = out / PROJECT_NAME
-    if not project.write(str(project_path)):
-        print(f"error: could not write {project_path}: {project.error()}")
-        return 1
-    print(summary(out, outcomes, project, project_path, time.monotonic() - started))
-    project.clear()
+        finish_project(project, held_out_layers)
+        project_path = out / PROJECT_NAME
+        if not project.write(str(project_path)):
+            raise DemoError(f"could not write {project_path}: {project.error()}")
+        invalid = check_saved_project(project_path)
+        if invalid:
+            raise DemoError(f"{project_path} opens with invalid layers: {', '.join(invalid)}")
+        numbers = figures(values, out, project, model)
+        numbers["seconds"] = round(time.monotonic() - started, 1)
+        numbers["steps"] = [{"title": t, "seconds": round(s, 1)} for t, s in timings]
+        (out / SUMMARY_NAME).write_text(json.dumps(numbers, indent=2) + "\n", encoding="utf-8")
+        shown = os.path.relpath(out) if not os.path.relpath(out).startswith("..") else str(out)
+        print(summary(shown, numbers, timings, time.monotonic() - started))
+        status = 0
+    except DemoError as exc:
+        print(f"\nBirdsEye demo FAILED: {exc}", file=sys.stderr, flush=True)
+        status = 1
+    QgsProject.instance().clear()
     app.exitQgis()
-    return 1 if any(status.startswith("failed") for _, status, _, _ in outcomes) else 0
+    return status
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description="Run the BirdsEye chain on simulated flights.")
+    parser.add_argument("--out", type=Path, default=Path("birdseye-demo"), help="output folder (default birdseye-demo)")
+    parser.add_argument("--size", choices=sorted(SIZES), default="full",
+                        help="full: flights like the bundled model's training flights; small: a quick check")
+    parser.add_argument("--model", type=Path, default=None,
+                        help="ONNX heatmap model for the detection step (default: the bundled demo model)")
+    args = parser.parse_args()
+    model = args.model.resolve() if args.model else None
+    return run(args.out.resolve(), SIZES[args.size], model)
 
 
 if __name__ == "__main__":

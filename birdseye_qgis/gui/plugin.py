@@ -12,7 +12,7 @@ from pathlib import Path
 from typing import NamedTuple
 
 from qgis.core import Qgis, QgsApplication, QgsMessageLog
-from qgis.PyQt.QtCore import QCoreApplication, Qt
+from qgis.PyQt.QtCore import QCoreApplication, QLocale, Qt, QTranslator
 from qgis.PyQt.QtGui import QIcon
 from qgis.PyQt.QtWidgets import QAction, QMenu, QToolBar
 
@@ -23,6 +23,7 @@ from ...processing.provider import BirdsEyeProvider
 PLUGIN_PACKAGE = __name__.rsplit(".birdseye_qgis.", 1)[0]
 PLUGIN_ROOT = Path(__file__).resolve().parents[2]
 ICON_PATH = PLUGIN_ROOT / "resources" / "icons" / "birdseye.svg"
+I18N_DIR = PLUGIN_ROOT / "i18n"  # birdseye_<locale>.qm, compiled from the .ts files by `make translations`
 LOG_TAG = "BirdsEye"
 MENU_OBJECT_NAME = "mBirdsEyeMenu"
 TOOLBAR_OBJECT_NAME = "mBirdsEyeToolBar"
@@ -50,11 +51,27 @@ DOCKS: list[DockEntry] = [
 
 
 def tr(text: str) -> str:
-    return QCoreApplication.translate("BirdsEyePlugin", text)
+    # pylupdate5 files calls of a module-level tr() under the context "@default" (i18n/*.ts): look
+    # them up there, or their translations would never be found.
+    return QCoreApplication.translate("@default", text)
 
 
 def log(message: str, level=Qgis.Info) -> None:
     QgsMessageLog.logMessage(message, LOG_TAG, level)
+
+
+def load_translator() -> QTranslator | None:
+    """Install the translation for the locale QGIS runs in (Settings ▸ Options ▸ General, e.g. ``de_CH``,
+    else ``de``) when the plugin ships one; English, the source language, needs none."""
+    locale = QgsApplication.locale() or QLocale().name()
+    for name in (locale, locale[:2]):
+        path = I18N_DIR / f"birdseye_{name}.qm"
+        if name and path.is_file():
+            translator = QTranslator()
+            if translator.load(str(path)):
+                QCoreApplication.installTranslator(translator)
+                return translator
+    return None
 
 
 def dock_module_available(entry: DockEntry) -> bool:
@@ -76,6 +93,8 @@ class BirdsEyePlugin:
         self.toolbox_action: QAction | None = None
         self.dock_actions: dict[DockEntry, QAction] = {}
         self.docks: dict[DockEntry, object] = {}
+        # Before anything builds a user-visible string: the provider's names come from tr() too.
+        self.translator = load_translator()
 
     # ------------------------------------------------------------------ Processing
     def initProcessing(self) -> None:  # noqa: N802 (QGIS API name)
@@ -147,6 +166,9 @@ class BirdsEyePlugin:
         if self.provider is not None:
             QgsApplication.processingRegistry().removeProvider(self.provider)
             self.provider = None
+        if self.translator is not None:
+            QCoreApplication.removeTranslator(self.translator)
+            self.translator = None
 
     # ------------------------------------------------------------------ actions
     def show_algorithms(self) -> None:

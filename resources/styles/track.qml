@@ -82,7 +82,7 @@
   </renderer-v2>
   <labeling type="simple">
     <settings calloutType="simple">
-      <text-style fontSize="9" fontItalic="0" fontSizeUnit="Point" fontKerning="1" fontFamily="DejaVu LGC Sans" fieldName="label" fontSizeMapUnitScale="3x:0,0,0,0,0,0" blendMode="0" namedStyle="" textOpacity="1" fontWeight="50" allowHtml="0" fontStrikeout="0" textOrientation="horizontal" multilineHeight="1" fontLetterSpacing="0" textColor="20,60,110,255" capitalization="0" fontWordSpacing="0" fontUnderline="0" isExpression="0" legendString="Aa" useSubstitutions="0" previewBkgrdColor="255,255,255,255">
+      <text-style fontSize="9" fontItalic="0" fontSizeUnit="Point" fontKerning="1" fontFamily="DejaVu Sans" fieldName="label" fontSizeMapUnitScale="3x:0,0,0,0,0,0" blendMode="0" namedStyle="" textOpacity="1" fontWeight="50" allowHtml="0" fontStrikeout="0" textOrientation="horizontal" multilineHeight="1" fontLetterSpacing="0" textColor="20,60,110,255" capitalization="0" fontWordSpacing="0" fontUnderline="0" isExpression="0" legendString="Aa" useSubstitutions="0" previewBkgrdColor="255,255,255,255">
         <families/>
         <text-buffer bufferNoFill="1" bufferDraw="1" bufferSizeUnits="MM" bufferColor="255,255,255,255" bufferOpacity="1" bufferBlendMode="0" bufferSizeMapUnitScale="3x:0,0,0,0,0,0" bufferJoinStyle="128" bufferSize="1"/>
         <text-mask maskEnabled="0" maskSize="1.5" maskJoinStyle="128" maskOpacity="1" maskSizeUnits="MM" maskSizeMapUnitScale="3x:0,0,0,0,0,0" maskType="0" maskedSymbolLayers=""/>

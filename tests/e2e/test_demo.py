@@ -1,0 +1,188 @@
+"""`make demo`, reduced: scripts/demo.py --size small runs the whole chain (simulate → import → labels →
+detect with the bundled model → cluster → evaluate → plan → sensor bound) in seconds, and what it
+leaves must be what a user opens: a project whose layers are valid, styled, grouped and found again
+after the folder is moved, the reports beside it, and a summary whose figures agree with the files.
+
+The demo runs once for the module (a subprocess, as `make demo` runs it); the failure tests start it
+again with a broken input and check that it stops loudly.
+"""
+from __future__ import annotations
+
+import json
+import os
+import shutil
+import subprocess
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+import pytest
+
+REPO_ROOT = Path(__file__).resolve().parents[2]
+DEMO = REPO_ROOT / "scripts" / "demo.py"
+PYTHON = REPO_ROOT / ".venv" / "bin" / "python"
+STYLES = REPO_ROOT / "resources" / "styles"
+GROUPS = ["survey", "flight", "labels", "detections", "clusters", "plan"]
+# Each output file of the demo and the style its algorithm gives it.
+EXPECTED_STYLE = {
+    "geotags_train1": "geotags.qml", "geotags_train2": "geotags.qml", "geotags_heldout": "geotags.qml",
+    "frames_train1": "frames.qml", "frames_train2": "frames.qml", "frames_heldout": "frames.qml",
+    "track_train1": "track.qml", "track_train2": "track.qml", "track_heldout": "track.qml",
+    "frames_labelled_train1": "frames.qml", "frames_labelled_train2": "frames.qml",
+    "geotags_seen_train1": "geotags.qml", "geotags_seen_train2": "geotags.qml",
+    "detections": "detections.qml", "clusters": "clusters.qml", "cluster_points": "detections.qml",
+    "waypoints": "waypoints.qml", "route": "route.qml",
+}
+EXPECTED_GROUP = {name: group for group, names in {
+    "survey": ["geotags_train1", "geotags_train2", "geotags_heldout"],
+    "flight": ["frames_train1", "frames_train2", "frames_heldout", "track_train1", "track_train2", "track_heldout"],
+    "labels": ["frames_labelled_train1", "frames_labelled_train2", "geotags_seen_train1", "geotags_seen_train2"],
+    "detections": ["detections"], "clusters": ["clusters", "cluster_points"], "plan": ["waypoints", "route"],
+}.items() for name in names}
+
+pytestmark = pytest.mark.slow
+
+
+def run_demo(out: Path, *extra: str, timeout: float = 240) -> subprocess.CompletedProcess:
+    env = {k: v for k, v in os.environ.items() if k not in {"QGIS_CUSTOM_CONFIG_PATH", "PYTHONPATH"}}
+    env["QT_QPA_PLATFORM"] = "offscreen"
+    return subprocess.run([str(PYTHON), str(DEMO), "--out", str(out), "--size", "small", *extra], cwd=REPO_ROOT,
+                          env=env, capture_output=True, text=True, timeout=timeout, check=False)
+
+
+@pytest.fixture(scope="module")
+def demo(tmp_path_factory) -> dict:
+    out = tmp_path_factory.mktemp("demo") / "birdseye-demo"
+    result = run_demo(out)
+    assert result.returncode == 0, result.stdout[-4000:] + result.stderr[-4000:]
+    return {"out": out, "stdout": result.stdout,
+            "summary": json.loads((out / "demo_summary.json").read_text(encoding="utf-8"))}
+
+
+def source_stem(layer) -> str:
+    return Path(layer.source().split("|")[0]).stem
+
+
+def open_project(path: Path):
+    from qgis.core import QgsProject
+
+    project = QgsProject()
+    assert project.read(str(path)), project.error()
+    return project
+
+
+def renderer_signature(element) -> tuple:
+    """Renderer type, its classification field and the colour of each symbol's first layer."""
+    colours = [opt.get("value") for sym in element.iter("symbol")
+               for layer in sym.findall("layer")[:1]
+               for opt in layer.iter("Option") if opt.get("name") == "color"]
+    return element.get("type"), element.get("attr"), tuple(colours)
+
+
+def test_summary_screen(demo):
+    stdout = demo["stdout"]
+    assert "BirdsEye demo finished" in stdout
+    for figure in ("frames", "labels in", "Detections", "Clusters", "recall_pre", "gmcf_pre", "route",
+                   "Sensor bound at 10 m", "birdseye_demo.qgz"):
+        assert figure in stdout, figure
+    screen = stdout[stdout.rindex("=" * 78, 0, stdout.rindex("=" * 78)):]
+    assert len(screen.splitlines()) <= 24, "the summary must fit one screen"
+    as_for_a_user = screen.replace(str(demo["out"]), "birdseye-demo")  # make demo's folder, not pytest's
+    assert max(len(line) for line in as_for_a_user.splitlines()) <= 100, "and a terminal's width"
+    for step in range(1, 17):
+        assert f"[{step}/16]" in stdout  # progress names every step
+
+
+def test_project_layers_valid_grouped_and_styled(qgis_app, demo):
+    project = open_project(demo["out"] / "birdseye_demo.qgz")
+    root = project.layerTreeRoot()
+    assert [g.name() for g in root.children()] == GROUPS
+    layers = list(project.mapLayers().values())
+    assert sorted(source_stem(layer) for layer in layers) == sorted(EXPECTED_STYLE)
+    for layer in layers:
+        stem = source_stem(layer)
+        assert layer.isValid(), layer.name()
+        assert root.findLayer(layer.id()).parent().name() == EXPECTED_GROUP[stem], stem
+        style = ET.parse(STYLES / EXPECTED_STYLE[stem]).getroot().find("renderer-v2")
+        from qgis.PyQt.QtXml import QDomDocument
+
+        doc = QDomDocument()
+        layer.exportNamedStyle(doc)
+        applied = ET.fromstring(doc.toString()).find("renderer-v2")
+        assert renderer_signature(applied) == renderer_signature(style), f"{stem} is not styled by {style}"
+    # Points are drawn over lines over polygons, whatever their group.
+    order = [layer.geometryType() for layer in root.customLayerOrder()]
+    assert root.hasCustomLayerOrder() and order == sorted(order)
+
+
+def test_project_opens_after_the_folder_is_moved(qgis_app, demo, tmp_path):
+    moved = tmp_path / "somewhere" / "else"
+    shutil.copytree(demo["out"], moved)
+    project = open_project(moved / "birdseye_demo.qgz")
+    assert project.mapLayers()
+    for layer in project.mapLayers().values():
+        assert layer.isValid(), layer.name()
+        assert Path(layer.source().split("|")[0]).resolve().is_relative_to(moved.resolve()), layer.source()
+
+
+def test_reports_and_files_beside_the_project(demo):
+    out = demo["out"]
+    for name in ("evaluation.html", "evaluation.json", "sensor_bound.html", "sensor_bound.json"):
+        assert (out / name).stat().st_size > 0, name
+    assert "<html" in (out / "evaluation.html").read_text(encoding="utf-8").lower()
+    for name in ("mission.kmz", "mission.plan", "mission_litchi.csv", "mission.kml"):
+        assert (out / "plan" / name).stat().st_size > 0, name
+    for key in ("train1", "train2"):
+        labels = out / "labels" / key
+        assert (labels / "labels.csv").is_file()
+        assert any(labels.rglob("*.png")), f"no label rasters or tiles for {key}"
+
+
+def test_summary_figures_agree_with_the_outputs(qgis_app, demo):
+    """Counted again from the layers and reports the demo wrote, independently of its own bookkeeping."""
+    out, figures = demo["out"], demo["summary"]
+    project = open_project(out / "birdseye_demo.qgz")
+    by_stem = {source_stem(layer): layer for layer in project.mapLayers().values()}
+    for key, count in figures["frames"].items():
+        assert by_stem[f"frames_{key}"].featureCount() == count > 0
+    for key, count in figures["geotags"].items():
+        assert by_stem[f"geotags_{key}"].featureCount() == count > 0
+    for key, count in figures["labels"].items():
+        rows = (out / "labels" / key / "labels.csv").read_text(encoding="utf-8").splitlines()
+        assert len(rows) - 1 == count
+    assert by_stem["detections"].featureCount() == figures["detections"]
+    assert by_stem["clusters"].featureCount() == figures["clusters"]
+    evaluation = json.loads((out / "evaluation.json").read_text(encoding="utf-8"))
+    assert figures["n_in_view"] == evaluation["n_in_view"] and figures["n_recovered"] == evaluation["n_recovered"]
+    if figures["n_in_view"]:
+        assert figures["recall_pre"] == pytest.approx(figures["n_recovered"] / figures["n_in_view"])
+    route = next(by_stem["route"].getFeatures()).geometry().length()
+    assert figures["route_length_m"] == pytest.approx(route, rel=0.02)
+    bound = json.loads((out / "sensor_bound.json").read_text(encoding="utf-8"))
+    assert [a["verdict_exact"] for a in figures["sensor_bound"]] == [a["verdict_exact"] for a in bound["altitudes"]]
+
+
+def test_missing_model_stops_before_anything_runs(tmp_path):
+    missing = tmp_path / "no_such_model.onnx"
+    result = run_demo(tmp_path / "out", "--model", str(missing), timeout=120)
+    assert result.returncode != 0
+    assert str(missing) in result.stderr and "FAILED" in result.stderr
+    assert not (tmp_path / "out").exists(), "nothing may be simulated before the check"
+
+
+def test_failing_step_stops_the_demo_with_a_clear_message(tmp_path):
+    broken = tmp_path / "broken.onnx"
+    broken.write_bytes(b"this is not an ONNX model")
+    result = run_demo(tmp_path / "out", "--model", str(broken))
+    assert result.returncode != 0
+    assert "FAILED" in result.stderr and "birdseye:detect" in result.stderr
+    assert "[13/16]" not in result.stdout, "steps after the failed one must not run"
+    assert not (tmp_path / "out" / "birdseye_demo.qgz").exists()
+
+
+def test_refuses_to_wipe_a_folder_that_is_not_a_demo(tmp_path):
+    precious = tmp_path / "thesis"
+    precious.mkdir()
+    (precious / "chapter1.tex").write_text("…")
+    result = run_demo(precious, timeout=120)
+    assert result.returncode != 0 and "not a BirdsEye demo folder" in result.stderr
+    assert (precious / "chapter1.tex").is_file()

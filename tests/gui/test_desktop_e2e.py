@@ -1,0 +1,139 @@
+"""End to end in the real QGIS desktop, under its own Xvfb: the demo project, every dock, a Processing dialog.
+
+A small demo is made first (``scripts/demo.py --size small``: the whole chain, bundled model included,
+in seconds), then QGIS starts with a fresh profile and ``--code desktop_e2e_probe.py``, which opens the
+project, opens and uses each dock, runs *Plan the survey flight* through its dialog, saves screenshots
+to build/screenshots/e2e/ and writes a JSON report that the tests below read.
+
+Set ``BIRDSEYE_E2E_DEMO`` to a demo folder made by ``make demo`` to run the same session on the full demo
+(how the README's screenshots are made).
+"""
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+from pathlib import Path
+
+import pytest
+import test_desktop
+from test_desktop import QGIS_BIN, REPO_ROOT, desktop_env, fresh_profile, grab_screen, xvfb_display
+
+PROBE = Path(__file__).with_name("desktop_e2e_probe.py")
+SCREENSHOTS = REPO_ROOT / "build" / "screenshots" / "e2e"
+DESKTOP_TIMEOUT_S = 150
+
+pytestmark = test_desktop.pytestmark  # slow, and skipped without Debian's qgis or Xvfb
+
+
+@pytest.fixture(scope="module")
+def demo_project(tmp_path_factory) -> Path:
+    chosen = os.environ.get("BIRDSEYE_E2E_DEMO")
+    if chosen:
+        return Path(chosen).resolve() / "birdseye_demo.qgz"
+    out = tmp_path_factory.mktemp("e2e") / "birdseye-demo"
+    env = {k: v for k, v in os.environ.items() if k not in {"QGIS_CUSTOM_CONFIG_PATH", "PYTHONPATH"}}
+    env["QT_QPA_PLATFORM"] = "offscreen"
+    result = subprocess.run([str(REPO_ROOT / ".venv" / "bin" / "python"), str(REPO_ROOT / "scripts" / "demo.py"),
+                             "--size", "small", "--out", str(out)], cwd=REPO_ROOT, env=env, capture_output=True,
+                            text=True, timeout=240, check=False)
+    assert result.returncode == 0, f"the small demo failed:\n{result.stdout[-3000:]}\n{result.stderr[-3000:]}"
+    return out / "birdseye_demo.qgz"
+
+
+@pytest.fixture(scope="module")
+def session(demo_project, tmp_path_factory) -> dict:
+    """Start QGIS once, let the probe play the session, and return its report plus QGIS's output."""
+    work = tmp_path_factory.mktemp("desktop-e2e")
+    runtime_dir = work / "runtime"
+    runtime_dir.mkdir(mode=0o700)
+    report_path = work / "report.json"
+    SCREENSHOTS.mkdir(parents=True, exist_ok=True)
+    for old in SCREENSHOTS.glob("*.png"):
+        old.unlink()
+    command = [str(QGIS_BIN), "--nologo", "--noversioncheck", "--profiles-path",
+               str(fresh_profile(work / "profiles")), "--code", str(PROBE)]
+    with xvfb_display() as display:
+        env = desktop_env(display, runtime_dir, BIRDSEYE_PROBE_RESULT=str(report_path),
+                          BIRDSEYE_E2E_PROJECT=str(demo_project), BIRDSEYE_E2E_SCREENSHOTS=str(SCREENSHOTS),
+                          BIRDSEYE_E2E_VERDICTS=str(work / "verdicts.gpkg"))
+        qgis = subprocess.Popen(command, env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+        try:
+            output, _ = qgis.communicate(timeout=DESKTOP_TIMEOUT_S)
+        except subprocess.TimeoutExpired:
+            stuck = SCREENSHOTS / "timeout.png"
+            grab_screen(display, stuck)
+            qgis.kill()
+            output, _ = qgis.communicate()
+            pytest.fail(f"QGIS did not quit within {DESKTOP_TIMEOUT_S} s — a modal dialog (a Python error?); "
+                        f"screen saved to {stuck}.\n{output}")
+    (SCREENSHOTS / "qgis-output.txt").write_text(output, encoding="utf-8")  # for a look after a failure
+    assert report_path.is_file(), f"the probe wrote no report (QGIS exit {qgis.returncode}):\n{output}"
+    return {"report": json.loads(report_path.read_text(encoding="utf-8")), "output": output,
+            "returncode": qgis.returncode}
+
+
+def test_session_ran_to_the_end(session):
+    report = session["report"]
+    assert report["errors"] == []
+    assert report["timeouts"] == []
+    assert session["returncode"] == 0, session["output"]
+
+
+def test_demo_project_opens_with_every_layer_valid(session):
+    report = session["report"]
+    assert report["plugin_loaded"] and report["project_opened"]
+    assert report["layers"] and all(report["layers"].values()), report["layers"]
+    assert report["groups"] == ["survey", "flight", "labels", "detections", "clusters", "plan"]
+    assert report["canvas_shows_held_out_flight"], "the project must open on its fields, not on the whole world"
+
+
+def test_every_dock_opens_and_works_on_the_demo(session):
+    report = session["report"]
+    assert report["docks"] == {"ReviewDock": True, "SensorBoundDock": True}
+    from birdseye.birdseye_qgis.core.camera import load_calibration
+
+    camera = load_calibration(report["bound_calibration"])
+    used = report["bound_intrinsics"]
+    assert (used["width"], used["height"]) == (camera.width, camera.height)
+    assert used["fx"] == pytest.approx(camera.fx) and used["cy"] == pytest.approx(camera.cy)
+    assert report["bound_verdicts"]
+    assert set(report["bound_verdicts"]) <= {"accept", "reject"}
+    assert report["review_started"], report["review_banner"]
+    assert report["review_units"] > 0 and report["review_scores_error"] is None
+    assert report["review_progress"].startswith("1 ") or " 1 " in report["review_progress"], report["review_progress"]
+
+
+def test_algorithm_runs_from_its_processing_dialog(session):
+    report = session["report"]
+    assert report["dialog_run_ok"] is True
+    assert report["dialog_results"]["GEOTAG_COUNT"] > 0 and report["dialog_results"]["WAYPOINT_COUNT"] > 0
+    layers = report["dialog_layers"]
+    assert sorted(layers) == ["Route", "Waypoints"], layers
+    assert all(valid and count > 0 for valid, count in layers.values()), layers
+
+
+def test_no_python_error_in_the_log(session):
+    log = session["report"]["message_log"]
+    assert "Python error" not in log, log.get("Python error")
+    ours = [line for line in log.get("BirdsEye", "").splitlines() if "WARNING" in line or "CRITICAL" in line]
+    assert ours == []
+    assert "Traceback" not in session["output"], session["output"]
+    from qgis.core import Qgis
+
+    warnings = [item for item in session["report"]["message_bar"] if item[2] in (Qgis.Warning, Qgis.Critical)]
+    assert warnings == [], "the message bar shows warnings (a style's font missing? a layer not loading?)"
+
+
+def test_screenshots_saved(session):
+    from qgis.PyQt.QtGui import QImage
+
+    shots = session["report"]["screenshots"]
+    assert set(shots) == {"project", "sensor_bound_dock", "review_dock", "desktop_with_docks",
+                          "processing_dialog_parameters", "processing_dialog", "after_dialog"}
+    for name, path in shots.items():
+        assert path, f"{name} was not saved"
+        image = QImage(path)
+        assert image.width() >= 300 and image.height() >= 300, name
+    assert QImage(shots["project"]).width() >= 1024
+
