@@ -5,6 +5,7 @@ builds QGIS objects at import time.
 """
 from __future__ import annotations
 
+import os
 import sys
 from pathlib import Path
 
@@ -117,3 +118,23 @@ def _iface_acts_on_main_window(qgis_iface):
         for name in names:
             monkeypatch.setattr(qgis_iface, name, getattr(patches, name), raising=False)
         yield patches
+
+
+def pytest_sessionfinish(session, exitstatus):
+    session.config._birdseye_exitstatus = int(exitstatus)
+
+
+@pytest.hookimpl(tryfirst=True)
+def pytest_unconfigure(config):
+    """End the process once every report is written, before QGIS tears itself down.
+
+    QGIS 3.22's teardown of a session that loaded the desktop widgets, ONNX Runtime and GDAL can
+    segfault after the last test has passed (exit 139 with a green summary). The run's result is final
+    by now, so exit with it instead of letting the crash decide.
+    """
+    status = getattr(config, "_birdseye_exitstatus", None)
+    if status is None:
+        return
+    sys.stdout.flush()
+    sys.stderr.flush()
+    os._exit(status)
