@@ -19,11 +19,8 @@ from pathlib import Path  # noqa: E402
 import numpy as np  # noqa: E402
 
 import _path  # noqa: E402,F401
-from birdseye.birdseye_qgis.core.camera import CameraModel  # noqa: E402
-from birdseye.birdseye_qgis.core.geodesy import LocalFrame  # noqa: E402
 from birdseye.birdseye_qgis.core.labels import Geotags, LabelRequest, project_labels, write_label_set  # noqa: E402
-from birdseye.birdseye_qgis.core.poses import FramePoses  # noqa: E402
-from birdseye.birdseye_qgis.core.rotations import euler_zyx_to_rotmat, rotmat_to_quat  # noqa: E402
+from _frames import random_frames, random_ground_points  # noqa: E402
 
 N_FRAMES, TARGET_LABELS = 3_976, 25_315
 BASELINE_S = 14 * 60 + 27
@@ -32,24 +29,12 @@ BASELINE_S = 14 * 60 + 27
 def partition(seed=0):
     """Frames over a field whose geotag density gives ~6.4 labels per frame, as in the method."""
     rng = np.random.default_rng(seed)
-    t = np.eye(4)
-    t[:3, :3] = [[0, 1, 0], [-1, 0, 0], [0, 0, 1]]
-    cam = CameraModel(1920, 1200, 4264.4945, 4262.8927, 958.4594, 592.5033,
-                      (-0.08, 0.12, 4e-4, -3e-4, 0.0), t)
-    local = LocalFrame(-27.55, 151.95, 400.0)
     side = 60.0
-    enu = np.column_stack([rng.uniform(0, side, N_FRAMES), rng.uniform(0, side, N_FRAMES),
-                           rng.uniform(9.5, 10.5, N_FRAMES)])
-    lat, lon, h = local.to_geodetic(enu)
-    q = rotmat_to_quat(euler_zyx_to_rotmat(np.radians(rng.normal(0, 1.5, N_FRAMES)),
-                                           np.radians(rng.normal(0, 1.5, N_FRAMES)),
-                                           np.radians(rng.uniform(0, 360, N_FRAMES))))
-    poses = FramePoses(np.arange(N_FRAMES), lat, lon, h, q, np.full(N_FRAMES, 400.0), cam)
+    poses, local = random_frames(rng, N_FRAMES, (side, side), height_m=(9.5, 10.5), tilt_sd_deg=1.5)
     # footprint ≈ 4.50 m × 2.81 m at 10 m ⇒ labels/frame ≈ n · 12.7 m² / side²
     n_geotags = int(round(TARGET_LABELS / N_FRAMES * side ** 2 / 12.66))
-    g = np.column_stack([rng.uniform(0, side, n_geotags), rng.uniform(0, side, n_geotags), np.zeros(n_geotags)])
-    g_lat, g_lon, g_h = local.to_geodetic(g)
-    geotags = Geotags(np.arange(n_geotags), np.full(n_geotags, "burrow"), g_lat, g_lon, g_h)
+    geotags = Geotags(np.arange(n_geotags), np.full(n_geotags, "burrow"),
+                      *random_ground_points(rng, local, n_geotags, (side, side)))
     images = [f"/data/frames/{i}.png" for i in range(N_FRAMES)]
     return poses, geotags, images
 

@@ -13,12 +13,11 @@ import time  # noqa: E402
 import numpy as np  # noqa: E402
 
 import _path  # noqa: E402,F401
-from birdseye.birdseye_qgis.core.camera import CameraModel  # noqa: E402
 from birdseye.birdseye_qgis.core.geodesy import LocalFrame  # noqa: E402
 from birdseye.birdseye_qgis.core.ground import LevelPlaneGround  # noqa: E402
-from birdseye.birdseye_qgis.core.poses import FrameGeometry, FramePoses  # noqa: E402
+from birdseye.birdseye_qgis.core.poses import FrameGeometry  # noqa: E402
 from birdseye.birdseye_qgis.core.projection import project_all, project_in_view  # noqa: E402
-from birdseye.birdseye_qgis.core.rotations import euler_zyx_to_rotmat, rotmat_to_quat  # noqa: E402
+from _frames import random_frames, random_ground_points  # noqa: E402
 
 N_FRAMES, N_POINTS = 12_524, 3_317
 # 55,600 labels over 12,524 frames in the method ⇒ ~4.4 points per frame: a ~100 m × 94 m field.
@@ -27,23 +26,8 @@ FIELD = (100.0, 94.0)
 
 def campaign(seed=0):
     rng = np.random.default_rng(seed)
-    t = np.eye(4)
-    t[:3, :3] = [[0, 1, 0], [-1, 0, 0], [0, 0, 1]]
-    t[:3, 3] = [0.03, -0.08, 0.05]
-    cam = CameraModel(1920, 1200, 4264.4945, 4262.8927, 958.4594, 592.5033,
-                      (-0.08, 0.12, 4e-4, -3e-4, 0.0), t)
-    local = LocalFrame(-27.55, 151.95, 400.0)
-    enu = np.column_stack([rng.uniform(0, FIELD[0], N_FRAMES), rng.uniform(0, FIELD[1], N_FRAMES),
-                           rng.uniform(9.0, 11.0, N_FRAMES)])
-    lat, lon, h = local.to_geodetic(enu)
-    q = rotmat_to_quat(euler_zyx_to_rotmat(np.radians(rng.normal(0, 2, N_FRAMES)),
-                                           np.radians(rng.normal(0, 2, N_FRAMES)),
-                                           np.radians(rng.uniform(0, 360, N_FRAMES))))
-    poses = FramePoses(np.arange(N_FRAMES), lat, lon, h, q, np.full(N_FRAMES, 400.0), cam)
-    pts = np.column_stack([rng.uniform(0, FIELD[0], N_POINTS), rng.uniform(0, FIELD[1], N_POINTS),
-                           rng.normal(0, 0.03, N_POINTS)])
-    p_lat, p_lon, p_h = local.to_geodetic(pts)
-    return poses, (p_lat, p_lon, p_h)
+    poses, local = random_frames(rng, N_FRAMES, FIELD)
+    return poses, random_ground_points(rng, local, N_POINTS, FIELD, height_sd_m=0.03)
 
 
 def prefiltered(poses, geotags):
