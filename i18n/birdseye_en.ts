@@ -886,32 +886,32 @@ error</source>
 <context>
     <name>ImportDjiImages</name>
     <message>
-        <location filename="../processing/algorithms/importdjiimages.py" line="19"/>
+        <location filename="../processing/algorithms/importdjiimages.py" line="23"/>
         <source>Folder of DJI images (JPEG)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importdjiimages.py" line="21"/>
+        <location filename="../processing/algorithms/importdjiimages.py" line="25"/>
         <source>Camera calibration (optional; Kalibr or OpenCV YAML)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importdjiimages.py" line="24"/>
+        <location filename="../processing/algorithms/importdjiimages.py" line="28"/>
         <source>Output CRS (empty: UTM zone of the site)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importdjiimages.py" line="26"/>
+        <location filename="../processing/algorithms/importdjiimages.py" line="31"/>
         <source>DJI frames</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importdjiimages.py" line="28"/>
+        <location filename="../processing/algorithms/importdjiimages.py" line="33"/>
         <source>Frames written</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importdjiimages.py" line="29"/>
+        <location filename="../processing/algorithms/importdjiimages.py" line="34"/>
         <source>Images that cannot be placed</source>
         <translation type="unfinished"></translation>
     </message>

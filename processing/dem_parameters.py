@@ -46,15 +46,15 @@ class DemParametersMixin:
             raise QgsProcessingException(str(exc)) from exc
 
     @staticmethod
-    def dem_ground(dem: DemRaster | None):
+    def dem_ground(dem: DemRaster | None, pose_heights_datum: str = "ellipsoidal", tolerance_m: float = 5.0):
         """A ground-model factory (``geometry -> GroundModel``) for core code, or None for the level plane.
 
-        Poses are ellipsoidal (RTK/INS); the DEM's datum is checked against them and against the
-        altimeter's ground where the frames have one.
+        RTK/INS poses are ellipsoidal; the DEM's datum is checked against them and, where the frames
+        have one, against their ground height (``tolerance_m``, median over the frames).
         """
         if dem is None:
             return None
-        return lambda geometry: DemGround.from_dem(geometry, dem, "ellipsoidal")
+        return lambda geometry: DemGround.from_dem(geometry, dem, pose_heights_datum, tolerance_m)
 
     @staticmethod
     def report_dem(feedback, dem: DemRaster | None) -> None:

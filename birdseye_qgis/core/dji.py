@@ -350,7 +350,7 @@ def list_jpegs(folder) -> list[Path]:
 
 
 def import_dji_images(folder, calibration: CameraModel | None = None, crs: ProjectedCRS | None = None,
-                      progress=None, is_canceled=None) -> FlightImport:
+                      progress=None, is_canceled=None, ground=None) -> FlightImport:
     """Frames with footprints from a folder of DJI JPEGs; images that cannot be placed are reported.
 
     ``frame_id`` is the image's index in the name-sorted folder listing (stable across re-imports).
@@ -407,7 +407,7 @@ def import_dji_images(folder, calibration: CameraModel | None = None, crs: Proje
             report.notes.append(f"{n} frame(s) flagged {flag}: {text}")
     crs = crs or ProjectedCRS.for_site(frames.lat, frames.lon)
     sub = None if progress is None else (lambda f: progress(0.5 + 0.5 * f))
-    fp = compute_footprints(frames, crs, progress=sub, is_canceled=is_canceled)
+    fp = compute_footprints(frames, crs, progress=sub, is_canceled=is_canceled, ground=ground)
     n = sum("footprint_unbounded" in f for f in frames.flags)
     if n:
         report.notes.append(f"{n} frame(s) look above the horizon and have no footprint (flag footprint_unbounded)")

@@ -7,10 +7,14 @@ from qgis.core import (QgsProcessing, QgsProcessingOutputNumber, QgsProcessingPa
 from ...birdseye_qgis import layers
 from ...birdseye_qgis.core.camera import load_calibration
 from ...birdseye_qgis.core.dji import import_dji_images
+from ..dem_parameters import DemParametersMixin
 from .base import BirdsEyeAlgorithm
 
 
-class ImportDjiImages(BirdsEyeAlgorithm):
+DJI_TAKEOFF_TOLERANCE_M = 100.0
+
+
+class ImportDjiImages(DemParametersMixin, BirdsEyeAlgorithm):
     ALG_ID = "importdjiimages"
     DISPLAY_NAME = "Import DJI images"
     GROUP = "field"
@@ -23,6 +27,7 @@ class ImportDjiImages(BirdsEyeAlgorithm):
             fileFilter="Calibration (*.yaml *.yml);;All files (*)"))
         self.addParameter(QgsProcessingParameterCrs(
             "OUTPUT_CRS", self.tr("Output CRS (empty: UTM zone of the site)"), optional=True))
+        self.add_dem_parameters()
         self.addParameter(QgsProcessingParameterFeatureSink(
             "OUTPUT", self.tr("DJI frames"), QgsProcessing.TypeVectorPolygon))
         self.addOutput(QgsProcessingOutputNumber("FRAME_COUNT", self.tr("Frames written")))
@@ -33,9 +38,14 @@ class ImportDjiImages(BirdsEyeAlgorithm):
         calibration_path = self.parameterAsFile(parameters, "CALIBRATION", context)
         chosen = self.run_core(layers.chosen_projected_crs, self.parameterAsCrs(parameters, "OUTPUT_CRS", context))
         calibration = self.run_core(load_calibration, calibration_path) if calibration_path else None
+        dem = self.read_dem(parameters, context)
+        self.report_dem(feedback, dem)
         progress, is_canceled = self.progress_callbacks(feedback, 0.0, 80.0)
+        # DJI AbsoluteAltitude is above mean sea level; the frames' "ground" is the take-off point,
+        # which hilly terrain under the frames may differ from by tens of metres.
         result = self.run_core(import_dji_images, folder, calibration, chosen, progress=progress,
-                               is_canceled=is_canceled)
+                               is_canceled=is_canceled,
+                               ground=self.dem_ground(dem, "msl", DJI_TAKEOFF_TOLERANCE_M))
         layers.report_to_feedback(feedback, result.report)
         for error in result.report.unplaced[5:]:
             feedback.pushInfo(f"Not placed: {error}")

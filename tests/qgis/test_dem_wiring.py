@@ -80,3 +80,28 @@ def test_detect_back_projects_onto_the_dem(campaign, tmp_path):
             assert p[2] - q[2] == pytest.approx(offset, abs=0.01)
             if offset == 0.0:
                 assert p[0] == pytest.approx(q[0], abs=0.005) and p[1] == pytest.approx(q[1], abs=0.005)
+
+
+def test_dji_footprints_on_a_dem_at_the_take_off_height_match_the_level_ones(birdseye_provider, tmp_path):
+    """Real DJI frames (Brighton Beach): a flat MSL DEM at the take-off height gives the level footprints;
+    one 10 m lower (the field below the take-off point) gives footprints larger by (40 + 10) / 40."""
+    import processing
+    from pathlib import Path
+
+    brighton = Path(__file__).resolve().parents[1] / "data" / "brighton_beach"
+    run = lambda **extra: {f["frame_id"]: f for f in processing.run(  # noqa: E731
+        "birdseye:importdjiimages", {"IMAGES": str(brighton), "OUTPUT": "TEMPORARY_OUTPUT", **extra})["OUTPUT"]
+        .getFeatures()}
+    level = run()
+    first = next(iter(level.values()))
+    takeoff = first["ground_h_m"]
+    for drop in (0.0, 10.0):
+        dem = synthetic_terrain(first["lat"], first["lon"], kind="plane", base_height_m=takeoff - drop,
+                                size_m=400.0, cell_m=2.0, vertical_datum="msl")
+        layer = QgsRasterLayer(write_geotiff(dem, tmp_path / f"dem{drop:g}.tif"), "dem")
+        draped = run(DEM=layer, DEM_VERTICAL_DATUM=1)
+        assert draped.keys() == level.keys()
+        for fid, f in draped.items():
+            depth = level[fid]["depth_m"]
+            ratio = (f.geometry().area() / level[fid].geometry().area()) ** 0.5
+            assert ratio == pytest.approx((depth + drop) / depth, rel=0.01)
