@@ -83,35 +83,48 @@ def desktop_env(display: str, runtime_dir: Path, **extra: str) -> dict[str, str]
     return env
 
 
-@pytest.fixture(scope="module")
-def desktop(tmp_path_factory) -> dict:
-    """Start QGIS once, let the probe inspect it, and return its report plus QGIS's output."""
-    work = tmp_path_factory.mktemp("desktop")
+def run_probe(probe: Path, work: Path, timeout_s: float, stuck_screenshot: Path, output_copy: Path | None = None,
+              **env: str) -> dict:
+    """Start the real QGIS desktop under Xvfb with a fresh profile, let ``probe`` (a ``--code`` script)
+    play its session and write ``work/report.json``, and return the report plus QGIS's output.
+
+    A QGIS that has not quit after ``timeout_s`` is almost always stuck in a modal dialog (a Python
+    error while loading a plugin): the screen is saved to ``stuck_screenshot`` and the test fails.
+    ``output_copy`` keeps QGIS's output in a file, for a look after a failure.
+    """
     runtime_dir = work / "runtime"
     runtime_dir.mkdir(mode=0o700)
     report_path = work / "report.json"
+    command = [str(QGIS_BIN), "--nologo", "--noversioncheck", "--profiles-path",
+               str(fresh_profile(work / "profiles")), "--code", str(probe)]
+    with xvfb_display() as display:
+        qgis = subprocess.Popen(command, env=desktop_env(display, runtime_dir, BIRDSEYE_PROBE_RESULT=str(report_path),
+                                                         **env),
+                                stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+        try:
+            output, _ = qgis.communicate(timeout=timeout_s)
+        except subprocess.TimeoutExpired:
+            grab_screen(display, stuck_screenshot)
+            qgis.kill()
+            output, _ = qgis.communicate()
+            pytest.fail(f"QGIS did not quit within {timeout_s} s — most likely a modal dialog "
+                        f"(a Python error while loading a plugin?); screen saved to {stuck_screenshot}.\n{output}")
+    if output_copy is not None:
+        output_copy.write_text(output, encoding="utf-8")
+    assert report_path.is_file(), f"the probe wrote no report (QGIS exit {qgis.returncode}):\n{output}"
+    return {"report": json.loads(report_path.read_text(encoding="utf-8")), "output": output,
+            "returncode": qgis.returncode}
+
+
+@pytest.fixture(scope="module")
+def desktop(tmp_path_factory) -> dict:
+    """Start QGIS once, let the probe inspect it, and return its report plus QGIS's output."""
     SCREENSHOTS.mkdir(parents=True, exist_ok=True)
     screenshot = SCREENSHOTS / "desktop.png"
     screenshot.unlink(missing_ok=True)
-    command = [str(QGIS_BIN), "--nologo", "--noversioncheck", "--profiles-path",
-               str(fresh_profile(work / "profiles")), "--code", str(PROBE)]
-    with xvfb_display() as display:
-        env = desktop_env(display, runtime_dir, BIRDSEYE_PROBE_RESULT=str(report_path),
-                          BIRDSEYE_PROBE_SCREENSHOT=str(screenshot))
-        qgis = subprocess.Popen(command, env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                                text=True)
-        try:
-            output, _ = qgis.communicate(timeout=DESKTOP_TIMEOUT_S)
-        except subprocess.TimeoutExpired:
-            stuck = SCREENSHOTS / "desktop-timeout.png"
-            grab_screen(display, stuck)
-            qgis.kill()
-            output, _ = qgis.communicate()
-            pytest.fail(f"QGIS did not quit within {DESKTOP_TIMEOUT_S} s — most likely a modal dialog "
-                        f"(a Python error while loading a plugin?); screen saved to {stuck}.\n{output}")
-    assert report_path.is_file(), f"the probe wrote no report (QGIS exit {qgis.returncode}):\n{output}"
-    report = json.loads(report_path.read_text(encoding="utf-8"))
-    return {"report": report, "output": output, "returncode": qgis.returncode, "screenshot": screenshot}
+    result = run_probe(PROBE, tmp_path_factory.mktemp("desktop"), DESKTOP_TIMEOUT_S,
+                       SCREENSHOTS / "desktop-timeout.png", BIRDSEYE_PROBE_SCREENSHOT=str(screenshot))
+    return {**result, "screenshot": screenshot}
 
 
 def test_probe_ran_cleanly(desktop):

@@ -10,14 +10,13 @@ Set ``BIRDSEYE_E2E_DEMO`` to a demo folder made by ``make demo`` to run the same
 """
 from __future__ import annotations
 
-import json
 import os
 import subprocess
 from pathlib import Path
 
 import pytest
 import test_desktop
-from test_desktop import QGIS_BIN, REPO_ROOT, desktop_env, fresh_profile, grab_screen, xvfb_display
+from test_desktop import REPO_ROOT, run_probe
 
 PROBE = Path(__file__).with_name("desktop_e2e_probe.py")
 SCREENSHOTS = REPO_ROOT / "build" / "screenshots" / "e2e"
@@ -45,32 +44,12 @@ def demo_project(tmp_path_factory) -> Path:
 def session(demo_project, tmp_path_factory) -> dict:
     """Start QGIS once, let the probe play the session, and return its report plus QGIS's output."""
     work = tmp_path_factory.mktemp("desktop-e2e")
-    runtime_dir = work / "runtime"
-    runtime_dir.mkdir(mode=0o700)
-    report_path = work / "report.json"
     SCREENSHOTS.mkdir(parents=True, exist_ok=True)
     for old in SCREENSHOTS.glob("*.png"):
         old.unlink()
-    command = [str(QGIS_BIN), "--nologo", "--noversioncheck", "--profiles-path",
-               str(fresh_profile(work / "profiles")), "--code", str(PROBE)]
-    with xvfb_display() as display:
-        env = desktop_env(display, runtime_dir, BIRDSEYE_PROBE_RESULT=str(report_path),
-                          BIRDSEYE_E2E_PROJECT=str(demo_project), BIRDSEYE_E2E_SCREENSHOTS=str(SCREENSHOTS),
-                          BIRDSEYE_E2E_VERDICTS=str(work / "verdicts.gpkg"))
-        qgis = subprocess.Popen(command, env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
-        try:
-            output, _ = qgis.communicate(timeout=DESKTOP_TIMEOUT_S)
-        except subprocess.TimeoutExpired:
-            stuck = SCREENSHOTS / "timeout.png"
-            grab_screen(display, stuck)
-            qgis.kill()
-            output, _ = qgis.communicate()
-            pytest.fail(f"QGIS did not quit within {DESKTOP_TIMEOUT_S} s — a modal dialog (a Python error?); "
-                        f"screen saved to {stuck}.\n{output}")
-    (SCREENSHOTS / "qgis-output.txt").write_text(output, encoding="utf-8")  # for a look after a failure
-    assert report_path.is_file(), f"the probe wrote no report (QGIS exit {qgis.returncode}):\n{output}"
-    return {"report": json.loads(report_path.read_text(encoding="utf-8")), "output": output,
-            "returncode": qgis.returncode}
+    return run_probe(PROBE, work, DESKTOP_TIMEOUT_S, SCREENSHOTS / "timeout.png", SCREENSHOTS / "qgis-output.txt",
+                     BIRDSEYE_E2E_PROJECT=str(demo_project), BIRDSEYE_E2E_SCREENSHOTS=str(SCREENSHOTS),
+                     BIRDSEYE_E2E_VERDICTS=str(work / "verdicts.gpkg"))
 
 
 def test_session_ran_to_the_end(session):
