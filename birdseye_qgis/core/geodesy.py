@@ -23,7 +23,7 @@ import numpy as np
 from .rotations import R_ENU_NED
 
 
-def _ensure_proj_data() -> None:
+def ensure_proj_data() -> None:
     """Point pyproj at Debian's PROJ data when it cannot find it (it does not look in a venv's parent)."""
     if os.environ.get("PROJ_DATA") or os.environ.get("PROJ_LIB"):
         return
@@ -35,7 +35,7 @@ def _ensure_proj_data() -> None:
 
 @functools.lru_cache(maxsize=None)
 def _transformer(src: str, dst: str):
-    _ensure_proj_data()
+    ensure_proj_data()
     import pyproj
 
     return pyproj.Transformer.from_crs(src, dst, always_xy=True)
@@ -148,7 +148,7 @@ def meridian_convergence_deg(lat, lon, crs: str | int) -> np.ndarray:
     γ > 0 means grid north is clockwise (east) of true north, as east of a UTM central meridian in
     the northern hemisphere; grid azimuth = true azimuth − γ.
     """
-    _ensure_proj_data()
+    ensure_proj_data()
     import pyproj
 
     proj = pyproj.Proj(f"EPSG:{crs}" if isinstance(crs, int) else crs)

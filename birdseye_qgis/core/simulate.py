@@ -46,7 +46,7 @@ import numpy as np
 from .camera import CameraModel, write_kalibr_yaml
 from .dem import synthetic_terrain
 from .errors import Cancelled, InputError
-from .geodesy import LocalFrame, _ensure_proj_data, meridian_convergence_deg, utm_epsg
+from .geodesy import LocalFrame, ensure_proj_data, meridian_convergence_deg, utm_epsg
 from .poses import FrameGeometry, FramePoses
 from .projection import footprints
 from .rotations import quat_to_rotmat, rotmat_to_euler_zyx, rotmat_to_quat, so3_exp
@@ -207,7 +207,7 @@ def deployed_camera(width: int = 1920, height: int = 1200) -> CameraModel:
 
 def geoid_undulation(lat: float, lon: float) -> float:
     """EGM96 geoid height N (m) at a site, from PROJ's grid (Debian's proj-data ships it)."""
-    _ensure_proj_data()
+    ensure_proj_data()
     import pyproj
 
     transformer = pyproj.Transformer.from_crs("EPSG:4979", "EPSG:4326+5773", always_xy=True)
@@ -585,7 +585,7 @@ def _campaign_record(cfg, camera, local, undulation, plan, scene, n_frames, n_po
     import cv2
     import scipy
 
-    _ensure_proj_data()
+    ensure_proj_data()
     import pyproj
 
     params = asdict(cfg)

@@ -32,7 +32,7 @@ def to_latlon(xy, lat0=LAT0, lon0=LON0):
 def geod_distance(lat1, lon1, lat2, lon2):
     from birdseye.birdseye_qgis.core import geodesy
 
-    geodesy._ensure_proj_data()
+    geodesy.ensure_proj_data()
     import pyproj
 
     return pyproj.Geod(ellps="WGS84").inv(lon1, lat1, lon2, lat2)[2]
