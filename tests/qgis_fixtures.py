@@ -19,15 +19,28 @@ def _let_qgis_processing_win() -> None:
     """Make ``import processing`` find QGIS's Processing framework, never our ``processing/`` folder.
 
     ``python -m pytest`` run from the repository puts the repository root (as ``''`` or its path) on
-    ``sys.path``; there our top-level ``processing`` package would shadow QGIS's. Tests import the
-    plugin as ``birdseye`` through build/pluginpath, so the root itself is never needed.
+    ``sys.path``, and so can QGIS's own start-up; there our top-level ``processing``
+    package would shadow QGIS's. Tests import the plugin as ``birdseye`` through build/pluginpath, so
+    the root itself is never needed. Runs at start-up and again once QGIS has started (its Python
+    start-up can put the working folder first on ``sys.path``).
     """
     sys.path[:] = [p for p in sys.path if Path(p or ".").resolve() != REPO_ROOT]
     if str(QGIS_PYTHON_PLUGINS) not in sys.path:
         sys.path.append(str(QGIS_PYTHON_PLUGINS))
+    shadowing = sys.modules.get("processing")
+    if shadowing is not None and Path(getattr(shadowing, "__file__", "") or "/").resolve().is_relative_to(REPO_ROOT):
+        for name in [n for n in sys.modules if n == "processing" or n.startswith("processing.")]:
+            del sys.modules[name]
 
 
 _let_qgis_processing_win()
+
+
+@pytest.fixture(scope="session")
+def qgis_app(qgis_app):
+    """pytest-qgis's application, with ``sys.path`` cleaned before anything imports ``processing``."""
+    _let_qgis_processing_win()
+    return qgis_app
 
 
 @pytest.fixture(scope="session")
