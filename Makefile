@@ -3,7 +3,7 @@
 SHELL := /bin/bash
 .SHELLFLAGS := -eu -o pipefail -c
 .DEFAULT_GOAL := help
-.PHONY: help setup test test-unit test-qgis demo bench package qgis-process chain-model translations clean \
+.PHONY: help setup test test-unit test-integration demo bench package qgis-process chain-model translations clean \
 	distclean
 
 VENV := .venv
@@ -29,13 +29,13 @@ setup:
 	@scripts/setup.sh
 
 test: setup
-	@$(MAKE) --no-print-directory test-unit test-qgis
+	@$(MAKE) --no-print-directory test-unit test-integration
 
 test-unit:
 	$(PYTEST) -p no:qgis -q tests/unit $(ALLOW_EMPTY)
 
 # tests/gui starts its own Xvfb for the real desktop; everything else is headless.
-test-qgis:
+test-integration:
 	QT_QPA_PLATFORM=offscreen $(PYTEST) -q tests/qgis tests/gui tests/e2e $(ALLOW_EMPTY)
 
 # DEMO_ARGS, e.g. "--size small" for a quick check or "--out elsewhere" (see scripts/demo.py --help).

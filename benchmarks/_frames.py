@@ -2,10 +2,10 @@
 import numpy as np
 
 import _path  # noqa: F401
-from birdseye.birdseye_qgis.core.geodesy import LocalFrame
-from birdseye.birdseye_qgis.core.poses import FramePoses
-from birdseye.birdseye_qgis.core.rotations import euler_zyx_to_rotmat, rotmat_to_quat
-from birdseye.birdseye_qgis.core.simulate import deployed_camera
+from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame
+from birdseye.birdseye_qgis.core.geometry.poses import FramePoses
+from birdseye.birdseye_qgis.core.geometry.rotations import euler_zyx_to_rotmat, rotmat_to_quat
+from birdseye.birdseye_qgis.core.sim.campaign import deployed_camera
 
 SITE = (-27.55, 151.95, 400.0)
 

@@ -25,15 +25,15 @@ import time  # noqa: E402
 import numpy as np  # noqa: E402
 
 import _path  # noqa: E402,F401
-from birdseye.birdseye_qgis.core.camera import CameraModel  # noqa: E402
-from birdseye.birdseye_qgis.core.clustering import (cluster_detections, cluster_hulls, dbscan,  # noqa: E402
+from birdseye.birdseye_qgis.core.geometry.camera import CameraModel  # noqa: E402
+from birdseye.birdseye_qgis.core.detect.clustering import (cluster_detections, cluster_hulls, dbscan,  # noqa: E402
                                                      deduplicate, neighbour_graph, summarize_clusters)
-from birdseye.birdseye_qgis.core.geodesy import LocalFrame  # noqa: E402
-from birdseye.birdseye_qgis.core.ground import LevelPlaneGround  # noqa: E402
-from birdseye.birdseye_qgis.core.poses import FrameGeometry, FramePoses  # noqa: E402
-from birdseye.birdseye_qgis.core.projection import project_in_view  # noqa: E402
-from birdseye.birdseye_qgis.core.rotations import euler_zyx_to_rotmat, rotmat_to_quat  # noqa: E402
-from birdseye.birdseye_qgis.core.scoring import (PreCounts, SweepFlight, SweepGrid, in_view,  # noqa: E402
+from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame  # noqa: E402
+from birdseye.birdseye_qgis.core.geometry.ground import LevelPlaneGround  # noqa: E402
+from birdseye.birdseye_qgis.core.geometry.poses import FrameGeometry, FramePoses  # noqa: E402
+from birdseye.birdseye_qgis.core.geometry.projection import project_in_view  # noqa: E402
+from birdseye.birdseye_qgis.core.geometry.rotations import euler_zyx_to_rotmat, rotmat_to_quat  # noqa: E402
+from birdseye.birdseye_qgis.core.scoring.scoring import (PreCounts, SweepFlight, SweepGrid, in_view,  # noqa: E402
                                                   score_flight, sweep)
 
 GOAL_MILLION_S = 10.0

@@ -15,13 +15,14 @@ import time  # noqa: E402
 import numpy as np  # noqa: E402
 
 import _path  # noqa: E402,F401
-from birdseye.birdseye_qgis.core.camera import CameraModel  # noqa: E402
-from birdseye.birdseye_qgis.core.dem import DemGround, intersect_heightfield, synthetic_terrain  # noqa: E402
-from birdseye.birdseye_qgis.core.geodesy import LocalFrame  # noqa: E402
-from birdseye.birdseye_qgis.core.ground import LevelPlaneGround  # noqa: E402
-from birdseye.birdseye_qgis.core.poses import FrameGeometry, FramePoses  # noqa: E402
-from birdseye.birdseye_qgis.core.projection import pixel_to_ground  # noqa: E402
-from birdseye.birdseye_qgis.core.rotations import euler_zyx_to_rotmat, rotmat_to_quat  # noqa: E402
+from birdseye.birdseye_qgis.core.geometry.camera import CameraModel  # noqa: E402
+from birdseye.birdseye_qgis.core.geometry.dem import DemGround, intersect_heightfield
+from birdseye.birdseye_qgis.core.sim.terrain import synthetic_terrain  # noqa: E402
+from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame  # noqa: E402
+from birdseye.birdseye_qgis.core.geometry.ground import LevelPlaneGround  # noqa: E402
+from birdseye.birdseye_qgis.core.geometry.poses import FrameGeometry, FramePoses  # noqa: E402
+from birdseye.birdseye_qgis.core.geometry.projection import pixel_to_ground  # noqa: E402
+from birdseye.birdseye_qgis.core.geometry.rotations import euler_zyx_to_rotmat, rotmat_to_quat  # noqa: E402
 
 N_PIXELS = 1_000_000
 GOAL_S = 2.0

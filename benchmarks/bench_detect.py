@@ -22,15 +22,15 @@ from pathlib import Path
 import _path  # noqa: F401  (puts the plugin on sys.path as ``birdseye``)
 import numpy as np
 
-from birdseye.birdseye_qgis.core.camera import load_calibration
-from birdseye.birdseye_qgis.core.detector import (DetectRequest, HeatmapModel, cut_tiles, detect_frames,
+from birdseye.birdseye_qgis.core.geometry.camera import load_calibration
+from birdseye.birdseye_qgis.core.detect.detector import (DetectRequest, HeatmapModel, cut_tiles, detect_frames,
                                                   model_size, normalise, read_bgr, read_reduction, resample,
                                                   tile_spans)
-from birdseye.birdseye_qgis.core.flight_log import frame_records, import_flight_log
-from birdseye.birdseye_qgis.core.frame_records import poses_from_records
-from birdseye.birdseye_qgis.core.geodesy import LocalFrame
-from birdseye.birdseye_qgis.core.poses import FrameGeometry
-from birdseye.birdseye_qgis.core.simulate import CampaignConfig, simulate_campaign
+from birdseye.birdseye_qgis.core.field.flight_log import frame_records, import_flight_log
+from birdseye.birdseye_qgis.core.field.frame_records import poses_from_records
+from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame
+from birdseye.birdseye_qgis.core.geometry.poses import FrameGeometry
+from birdseye.birdseye_qgis.core.sim.campaign import CampaignConfig, simulate_campaign
 
 MODEL = _path.REPO_ROOT / "models" / "birdseye_demo_heatmap.onnx"
 CAMPAIGN = _path.REPO_ROOT / "build" / "bench_detect" / "campaign"
@@ -66,7 +66,7 @@ def main() -> None:
     parser.add_argument("--model", default=str(MODEL), help="ONNX model (default: the bundled demo model)")
     args = parser.parse_args()
     if not Path(args.model).is_file():
-        raise SystemExit(f"{args.model} is missing: train it with models/train_heatmap.py demo")
+        raise SystemExit(f"{args.model} is missing: train it with training/train_heatmap.py demo")
     poses, paths = campaign_frames()
     reps = int(np.ceil(args.frames / len(poses)))
     order = np.tile(np.arange(len(poses)), reps)[:args.frames]

@@ -19,7 +19,7 @@ from pathlib import Path  # noqa: E402
 import numpy as np  # noqa: E402
 
 import _path  # noqa: E402,F401
-from birdseye.birdseye_qgis.core.labels import Geotags, LabelRequest, project_labels, write_label_set  # noqa: E402
+from birdseye.birdseye_qgis.core.labels.training_set import Geotags, LabelRequest, project_labels, write_label_set  # noqa: E402
 from _frames import random_frames, random_ground_points  # noqa: E402
 
 N_FRAMES, TARGET_LABELS = 3_976, 25_315

@@ -13,10 +13,10 @@ import time  # noqa: E402
 import numpy as np  # noqa: E402
 
 import _path  # noqa: E402,F401
-from birdseye.birdseye_qgis.core.geodesy import LocalFrame  # noqa: E402
-from birdseye.birdseye_qgis.core.ground import LevelPlaneGround  # noqa: E402
-from birdseye.birdseye_qgis.core.poses import FrameGeometry  # noqa: E402
-from birdseye.birdseye_qgis.core.projection import project_all, project_in_view  # noqa: E402
+from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame  # noqa: E402
+from birdseye.birdseye_qgis.core.geometry.ground import LevelPlaneGround  # noqa: E402
+from birdseye.birdseye_qgis.core.geometry.poses import FrameGeometry  # noqa: E402
+from birdseye.birdseye_qgis.core.geometry.projection import project_all, project_in_view  # noqa: E402
 from _frames import random_frames, random_ground_points  # noqa: E402
 
 N_FRAMES, N_POINTS = 12_524, 3_317

@@ -25,7 +25,7 @@ def _import_plugin():
     if not link.is_symlink():
         link.symlink_to(REPO_ROOT, target_is_directory=True)
     sys.path.insert(0, str(PLUGIN_PATH))
-    from birdseye.birdseye_qgis.core import sensor_bound
+    from birdseye.birdseye_qgis.core.design import sensor_bound
     return sensor_bound
 
 

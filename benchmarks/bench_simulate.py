@@ -20,7 +20,7 @@ from pathlib import Path
 import numpy as np
 
 import _path  # noqa: F401
-from birdseye.birdseye_qgis.core.simulate import CampaignConfig, deployed_camera, simulate_campaign
+from birdseye.birdseye_qgis.core.sim.campaign import CampaignConfig, deployed_camera, simulate_campaign
 
 REPEATS = 3
 
@@ -50,12 +50,12 @@ def stages():
     """Best-of timings of one frame's stages, through the same objects the campaign uses."""
     import cv2
 
-    from birdseye.birdseye_qgis.core.geodesy import LocalFrame
-    from birdseye.birdseye_qgis.core.poses import FrameGeometry, FramePoses
-    from birdseye.birdseye_qgis.core.rotations import euler_zyx_to_rotmat, rotmat_to_quat
-    from birdseye.birdseye_qgis.core.sim_field import FieldScene
-    from birdseye.birdseye_qgis.core.sim_render import FrameRenderer, Photometry
-    from birdseye.birdseye_qgis.core.sim_terrain import FlatTerrain
+    from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame
+    from birdseye.birdseye_qgis.core.geometry.poses import FrameGeometry, FramePoses
+    from birdseye.birdseye_qgis.core.geometry.rotations import euler_zyx_to_rotmat, rotmat_to_quat
+    from birdseye.birdseye_qgis.core.sim.field import FieldScene
+    from birdseye.birdseye_qgis.core.sim.render import FrameRenderer, Photometry
+    from birdseye.birdseye_qgis.core.sim.terrain import FlatTerrain
 
     cv2.setNumThreads(1)
     camera = deployed_camera(1920, 1200)

@@ -17,8 +17,8 @@ from qgis.core import (QgsCoordinateReferenceSystem, QgsCoordinateTransform, Qgs
 from qgis.PyQt.QtCore import QVariant
 
 from .core.errors import InputError
-from .core.frame_records import FRAME_FIELD_NAMES
-from .core.geodesy import ProjectedCRS, utm_epsg
+from .core.field.frame_records import FRAME_FIELD_NAMES
+from .core.geometry.geodesy import ProjectedCRS, utm_epsg
 
 STYLE_DIR = Path(__file__).resolve().parents[1] / "resources" / "styles"
 WGS84 = "EPSG:4326"
@@ -248,7 +248,7 @@ def write_frames(algorithm, parameters, context, feedback, result, crs: QgsCoord
                  output: str = "OUTPUT", track_output: str | None = None, start: float = 80.0) -> dict:
     """Write a core ``FlightImport`` (frames + footprints [+ flight line]) to the algorithm's sinks,
     styled on load; returns the outputs dict entries."""
-    from .core.flight_log import FRAME_LAYER_FIELDS, TRACK_FIELDS, frame_records
+    from .core.field.flight_log import FRAME_LAYER_FIELDS, TRACK_FIELDS, frame_records
 
     fields = qgs_fields(FRAME_LAYER_FIELDS)
     sink, dest_id = algorithm.parameterAsSink(parameters, output, context, fields, QgsWkbTypes.PolygonZ, crs)
@@ -273,13 +273,13 @@ def write_frames(algorithm, parameters, context, feedback, result, crs: QgsCoord
 
 # ------------------------------------------------------------------------------------------ rasters
 def read_dem(layer, vertical_datum: str, geoid_undulation_m: float | None = None):
-    """A core :class:`~.core.dem.DemRaster` from band 1 of a raster layer (read with GDAL).
+    """A core :class:`~.core.geometry.dem.DemRaster` from band 1 of a raster layer (read with GDAL).
 
     A geographic DEM (degrees) is refused with the fix: warp it to the site's UTM zone first.
     """
     from osgeo import gdal
 
-    from .core.dem import DemRaster
+    from .core.geometry.dem import DemRaster
 
     name = layer.name() or layer.source()
     crs = layer.crs()

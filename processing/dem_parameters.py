@@ -11,7 +11,7 @@ from qgis.core import (QgsProcessingException, QgsProcessingParameterEnum, QgsPr
                        QgsProcessingParameterRasterLayer)
 
 from ..birdseye_qgis import layers
-from ..birdseye_qgis.core.dem import VERTICAL_DATUMS, DemGround, DemRaster
+from ..birdseye_qgis.core.geometry.dem import VERTICAL_DATUMS, DemGround, DemRaster
 from ..birdseye_qgis.core.errors import InputError
 
 DATUM_LABELS = ("Ellipsoidal (WGS84), like RTK and INS heights",

@@ -20,9 +20,9 @@ from qgis.core import (
     QgsProcessingParameterString,
 )
 
-from ..birdseye_qgis.core.camera import load_calibration
+from ..birdseye_qgis.core.geometry.camera import load_calibration
 from ..birdseye_qgis.core.errors import InputError
-from ..birdseye_qgis.core.sensor_bound import AXES, SIGMA_UNITS, Intrinsics
+from ..birdseye_qgis.core.design.sensor_bound import AXES, SIGMA_UNITS, Intrinsics
 
 # The platform the BirdsEye method was deployed on (camera calibration, INS and altimeter budget).
 DEPLOYED_CAMERA = Intrinsics(fx=4264.4945, fy=4262.8927, cx=958.4594, cy=592.5033, width=1920, height=1200)

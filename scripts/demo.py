@@ -277,7 +277,7 @@ def preflight(steps: list[Step], model: Path | None) -> None:
     if not chosen.is_file():
         problems.append(
             f"the detector model {chosen} is missing, so the held-out flight cannot be detected, clustered or "
-            "evaluated. " + ("It is part of the plugin; rebuild it with `.venv/bin/python models/train_heatmap.py "
+            "evaluated. " + ("It is part of the plugin; rebuild it with `.venv/bin/python training/train_heatmap.py "
                              "demo` or run the demo with --model FILE.onnx." if model is None else ""))
     if problems:
         raise DemoError("the demo cannot run:\n  - " + "\n  - ".join(problems))

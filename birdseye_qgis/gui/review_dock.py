@@ -33,9 +33,9 @@ from qgis.PyQt.QtWidgets import (QAbstractItemView, QApplication, QCheckBox, QCo
 
 from qgis.PyQt import sip
 
-from ..core import review as rv
+from ..core.review import review as rv
 from ..core.errors import InputError
-from ..core.scoring import CONVENTIONS, Flight, OperatingPoint, evaluate_flights
+from ..core.scoring.scoring import CONVENTIONS, Flight, OperatingPoint, evaluate_flights
 from ..review_store import ReviewSession, RowMeta, VerdictStore, default_store_path, read_review_inputs
 from .add_target_tool import AddTargetTool
 

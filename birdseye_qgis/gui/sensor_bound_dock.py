@@ -48,7 +48,7 @@ from ...processing.design_parameters import (
     parse_altitudes,
     store_sigma_label_px,
 )
-from ..core.bound_report import (
+from ..core.design.bound_report import (
     ACCEPT_COLOUR,
     REJECT_COLOUR,
     LmaxFieldPlot,
@@ -56,9 +56,9 @@ from ..core.bound_report import (
     format_sigma,
     stride_for,
 )
-from ..core.camera import load_calibration
+from ..core.geometry.camera import load_calibration
 from ..core.errors import InputError
-from ..core.sensor_bound import AXES, AXIS_CONVENTION, SIGMA_UNITS, Intrinsics, evaluate_bounds, lambda_target
+from ..core.design.sensor_bound import AXES, AXIS_CONVENTION, SIGMA_UNITS, Intrinsics, evaluate_bounds, lambda_target
 
 SENSOR_BOUND_ALG = "birdseye:sensorbound"
 PRESET_DEPLOYED = "Deployed platform (BirdsEye method)"

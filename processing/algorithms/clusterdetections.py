@@ -13,12 +13,12 @@ from qgis.core import (QgsCoordinateReferenceSystem, QgsCoordinateTransform, Qgs
                        QgsProcessingParameterNumber, QgsProject, QgsWkbTypes)
 
 from ...birdseye_qgis import layers
-from ...birdseye_qgis.core.clustering import (DEFAULT_DEDUP_CM, DEFAULT_EPS_M, DEFAULT_MIN_SAMPLES, HULL_BUFFER_M,
+from ...birdseye_qgis.core.detect.clustering import (DEFAULT_DEDUP_CM, DEFAULT_EPS_M, DEFAULT_MIN_SAMPLES, HULL_BUFFER_M,
                                               cluster_detections, cluster_hulls)
 from ...birdseye_qgis.core.errors import InputError
-from ...birdseye_qgis.core.frame_records import poses_from_records
-from ...birdseye_qgis.core.geodesy import LocalFrame, ProjectedCRS
-from ...birdseye_qgis.core.scoring import (DEFAULT_EDGE_BUFFER_PX, DEFAULT_EPS_PRED_M, Detections, Geotags,
+from ...birdseye_qgis.core.field.frame_records import poses_from_records
+from ...birdseye_qgis.core.geometry.geodesy import LocalFrame, ProjectedCRS
+from ...birdseye_qgis.core.scoring.scoring import (DEFAULT_EDGE_BUFFER_PX, DEFAULT_EPS_PRED_M, Detections, Geotags,
                                            in_view, local_frame_for, score_flight)
 from .base import BirdsEyeAlgorithm
 

@@ -8,10 +8,10 @@ from qgis.core import (QgsProcessing, QgsProcessingOutputNumber, QgsProcessingOu
                        QgsProcessingParameterNumber, QgsWkbTypes)
 
 from ...birdseye_qgis import layers
-from ...birdseye_qgis.core.detector import DetectRequest, HeatmapModel, detect_frames
+from ...birdseye_qgis.core.detect.detector import DetectRequest, HeatmapModel, detect_frames
 from ...birdseye_qgis.core.errors import InputError
-from ...birdseye_qgis.core.frame_records import poses_from_records
-from ...birdseye_qgis.core.geodesy import LocalFrame, ProjectedCRS
+from ...birdseye_qgis.core.field.frame_records import poses_from_records
+from ...birdseye_qgis.core.geometry.geodesy import LocalFrame, ProjectedCRS
 from ..dem_parameters import DemParametersMixin
 from .base import PLUGIN_ROOT, BirdsEyeAlgorithm
 

@@ -9,8 +9,8 @@ from qgis.core import (QgsProcessing, QgsProcessingException, QgsProcessingOutpu
                        QgsProcessingParameterFileDestination, QgsProcessingParameterMultipleLayers,
                        QgsProcessingParameterVectorLayer, QgsWkbTypes)
 
-from ...birdseye_qgis.core import preregistration
-from ...birdseye_qgis.core.scoring import (Flight, OperatingPoint, VerdictLog, evaluate_flights,
+from ...birdseye_qgis.core.scoring import preregistration
+from ...birdseye_qgis.core.scoring.scoring import (Flight, OperatingPoint, VerdictLog, evaluate_flights,
                                            evaluation_report_html)
 from .base import BirdsEyeAlgorithm
 from .clusterdetections import (add_clustering_parameters, read_detections, read_geotags, read_pose_groups,

@@ -5,8 +5,8 @@ from qgis.core import (QgsProcessing, QgsProcessingOutputNumber, QgsProcessingPa
                        QgsProcessingParameterFeatureSink, QgsProcessingParameterFile)
 
 from ...birdseye_qgis import layers
-from ...birdseye_qgis.core.camera import load_calibration
-from ...birdseye_qgis.core.dji import import_dji_images
+from ...birdseye_qgis.core.geometry.camera import load_calibration
+from ...birdseye_qgis.core.field.dji import import_dji_images
 from ..dem_parameters import DemParametersMixin
 from .base import BirdsEyeAlgorithm
 

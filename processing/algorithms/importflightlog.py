@@ -6,8 +6,8 @@ from qgis.core import (QgsProcessingParameterCrs, QgsProcessingParameterEnum, Qg
                        QgsProcessing)
 
 from ...birdseye_qgis import layers
-from ...birdseye_qgis.core.camera import load_calibration
-from ...birdseye_qgis.core.flight_log import import_flight_log
+from ...birdseye_qgis.core.geometry.camera import load_calibration
+from ...birdseye_qgis.core.field.flight_log import import_flight_log
 from ..dem_parameters import DemParametersMixin
 from .base import BirdsEyeAlgorithm
 

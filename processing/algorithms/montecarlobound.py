@@ -14,13 +14,13 @@ from qgis.core import (
     QgsProcessingParameterNumber,
 )
 
-from ...birdseye_qgis.core.monte_carlo_bound import (
+from ...birdseye_qgis.core.design.monte_carlo_bound import (
     SKLD_THRESHOLD,
     monte_carlo_check,
     plot_scaling_study,
     scaling_study,
 )
-from ...birdseye_qgis.core.sensor_bound import AXES, evaluate_bound
+from ...birdseye_qgis.core.design.sensor_bound import AXES, evaluate_bound
 from ..design_parameters import DesignParametersMixin
 from .base import BirdsEyeAlgorithm
 

@@ -15,10 +15,10 @@ from qgis.core import (QgsCoordinateReferenceSystem, QgsFeatureRequest, QgsGeome
                        QgsProcessingParameterVectorLayer, QgsWkbTypes)
 
 from ...birdseye_qgis import layers
-from ...birdseye_qgis.core.camera import load_calibration
-from ...birdseye_qgis.core.flight_plan import (ROUTE_FIELDS, WAYPOINT_FIELDS, FlightSettings, plan_flight,
+from ...birdseye_qgis.core.geometry.camera import load_calibration
+from ...birdseye_qgis.core.plan.flight_plan import (ROUTE_FIELDS, WAYPOINT_FIELDS, FlightSettings, plan_flight,
                                                route_records, waypoint_records)
-from ...birdseye_qgis.core.mission_files import (CAPTURE_PHOTO, CAPTURE_TIMED, DJI_DRONES, DJI_PAYLOADS,
+from ...birdseye_qgis.core.plan.mission_files import (CAPTURE_PHOTO, CAPTURE_TIMED, DJI_DRONES, DJI_PAYLOADS,
                                                  FORMAT_NAMES, check_waypoint_limits, mission_file_paths,
                                                  write_dji_kmz, write_kml, write_litchi_csv, write_qgc_plan)
 from .base import BirdsEyeAlgorithm

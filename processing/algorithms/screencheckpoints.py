@@ -10,11 +10,11 @@ from qgis.core import (QgsProcessing, QgsProcessingException, QgsProcessingMulti
                        QgsProcessingParameterFileDestination, QgsProcessingParameterMultipleLayers,
                        QgsProcessingParameterNumber)
 
-from ...birdseye_qgis.core.detector import DetectRequest, HeatmapModel, detect_frames
+from ...birdseye_qgis.core.detect.detector import DetectRequest, HeatmapModel, detect_frames
 from ...birdseye_qgis.core.errors import Cancelled
-from ...birdseye_qgis.core.labels import Geotags as LabelGeotags
-from ...birdseye_qgis.core.labels import project_labels
-from ...birdseye_qgis.core.scoring import (DEFAULT_COLLAPSED_BELOW, DEFAULT_PIXEL_RADIUS_PX, DEFAULT_SPARSE_BELOW,
+from ...birdseye_qgis.core.labels.training_set import Geotags as LabelGeotags
+from ...birdseye_qgis.core.labels.training_set import project_labels
+from ...birdseye_qgis.core.scoring.scoring import (DEFAULT_COLLAPSED_BELOW, DEFAULT_PIXEL_RADIUS_PX, DEFAULT_SPARSE_BELOW,
                                            OperatingPoint, ScreenRun, in_view, local_frame_for,
                                            screen_checkpoints, screen_figure)
 from .base import BirdsEyeAlgorithm

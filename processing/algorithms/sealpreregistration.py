@@ -9,10 +9,10 @@ from qgis.core import (QgsProcessing, QgsProcessingException, QgsProcessingOutpu
                        QgsProcessingParameterMultipleLayers, QgsProcessingParameterNumber,
                        QgsProcessingParameterString)
 
-from ...birdseye_qgis.core import preregistration
-from ...birdseye_qgis.core.detector import file_digest
+from ...birdseye_qgis.core.scoring import preregistration
+from ...birdseye_qgis.core.detect.detector import file_digest
 from ...birdseye_qgis.core.errors import InputError
-from ...birdseye_qgis.core.scoring import OperatingPoint
+from ...birdseye_qgis.core.scoring.scoring import OperatingPoint
 from .base import BirdsEyeAlgorithm
 from .clusterdetections import add_clustering_parameters
 

@@ -10,8 +10,8 @@ from qgis.core import (
     QgsProcessingParameterNumber,
 )
 
-from ...birdseye_qgis.core.bound_report import altitude_summary, write_report
-from ...birdseye_qgis.core.sensor_bound import evaluate_bounds, frame_grid, lmax_field
+from ...birdseye_qgis.core.design.bound_report import altitude_summary, write_report
+from ...birdseye_qgis.core.design.sensor_bound import evaluate_bounds, frame_grid, lmax_field
 from ..design_parameters import DesignParametersMixin
 from .base import BirdsEyeAlgorithm
 

@@ -6,7 +6,7 @@ from qgis.core import (QgsProcessingOutputFile, QgsProcessingOutputNumber, QgsPr
                        QgsProcessingParameterFolderDestination, QgsProcessingParameterNumber,
                        QgsProcessingParameterString)
 
-from ...birdseye_qgis.core.simulate import TERRAIN_KINDS, CampaignConfig, parse_sigmas, simulate_campaign
+from ...birdseye_qgis.core.sim.campaign import TERRAIN_KINDS, CampaignConfig, parse_sigmas, simulate_campaign
 from .base import BirdsEyeAlgorithm
 
 DEFAULTS = CampaignConfig()

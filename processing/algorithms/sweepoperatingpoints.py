@@ -11,9 +11,9 @@ from qgis.core import (QgsProcessing, QgsProcessingException, QgsProcessingOutpu
                        QgsProcessingParameterMultipleLayers, QgsProcessingParameterNumber,
                        QgsProcessingParameterString)
 
-from ...birdseye_qgis.core.clustering import DEFAULT_DEDUP_CM
+from ...birdseye_qgis.core.detect.clustering import DEFAULT_DEDUP_CM
 from ...birdseye_qgis.core.errors import InputError
-from ...birdseye_qgis.core.scoring import (DEFAULT_EDGE_BUFFER_PX, DEFAULT_MAX_GEOTAGS_PER_HIT,
+from ...birdseye_qgis.core.scoring.scoring import (DEFAULT_EDGE_BUFFER_PX, DEFAULT_MAX_GEOTAGS_PER_HIT,
                                            DEFAULT_MAX_MEAN_EXTENT_M, SweepFlight, SweepGrid,
                                            in_view, local_frame_for, sweep, sweep_figure)
 from .base import BirdsEyeAlgorithm

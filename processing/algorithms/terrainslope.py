@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 from qgis.core import QgsProcessingException, QgsProcessingParameterFileDestination, QgsProcessingParameterNumber
 
-from ...birdseye_qgis.core.terrain_slope import (
+from ...birdseye_qgis.core.design.terrain_slope import (
     frame_distance_ratios,
     max_slope_deg,
     plot_slope_error,

@@ -13,9 +13,9 @@ from qgis.core import (QgsFeature, QgsFeatureSink, QgsField, QgsFields,
 from qgis.PyQt.QtCore import QVariant
 
 from ...birdseye_qgis import layers
-from ...birdseye_qgis.core.frame_records import poses_from_records
-from ...birdseye_qgis.core.geodesy import LocalFrame
-from ...birdseye_qgis.core.labels import (Geotags, LabelRequest, LabelWriter, frames_without_ground,
+from ...birdseye_qgis.core.field.frame_records import poses_from_records
+from ...birdseye_qgis.core.geometry.geodesy import LocalFrame
+from ...birdseye_qgis.core.labels.training_set import (Geotags, LabelRequest, LabelWriter, frames_without_ground,
                                           project_labels)
 from ..dem_parameters import DemParametersMixin
 from ..design_parameters import read_sigma_label_px

@@ -33,8 +33,8 @@ def flight_poses(n_frames: int, ins_hz: float = 50.0, fps: float = 5.0, lat0: fl
                  leg_m: float = 60.0, t0: float = 1_700_000_000.0, attitude_noise_deg: float = 2.0,
                  seed: int = 1) -> dict:
     """Pose-log columns (dict of arrays) for ``n_frames`` strobes; vectorised, any size."""
-    from birdseye.birdseye_qgis.core.geodesy import LocalFrame
-    from birdseye.birdseye_qgis.core.rotations import euler_zyx_to_rotmat, rotmat_to_quat
+    from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame
+    from birdseye.birdseye_qgis.core.geometry.rotations import euler_zyx_to_rotmat, rotmat_to_quat
 
     rng = np.random.default_rng(seed)
     per_frame = int(round(ins_hz / fps))

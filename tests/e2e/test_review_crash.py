@@ -40,9 +40,9 @@ SCRIPT = textwrap.dedent(f'''
     sys.path.insert(0, {str(PLUGIN_PATH)!r})
     import numpy as np
 
-    from birdseye.birdseye_qgis.core import review as rv
-    from birdseye.birdseye_qgis.core.geodesy import LocalFrame
-    from birdseye.birdseye_qgis.core.scoring import Detections, Geotags
+    from birdseye.birdseye_qgis.core.review import review as rv
+    from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame
+    from birdseye.birdseye_qgis.core.scoring.scoring import Detections, Geotags
     from birdseye.birdseye_qgis.review_store import ReviewSession, VerdictStore
 
     SITE = LocalFrame(-27.55, 151.95, 400.0)
@@ -172,7 +172,7 @@ def run_and_kill(script_path, store, after_lines=None, hold=0):
 
 def check_log(store, namespace, reported):
     """Integrity, complete rows, the exact replay of the script's first M actions, the cursor."""
-    from birdseye.birdseye_qgis.core import review as rv
+    from birdseye.birdseye_qgis.core.review import review as rv
     from birdseye.birdseye_qgis.review_store import STATE_TABLE, VERDICT_FIELD_NAMES, VERDICT_TABLE
 
     c = sqlite3.connect(store)

@@ -70,7 +70,7 @@ def test_demo_project_opens_with_every_layer_valid(session):
 def test_every_dock_opens_and_works_on_the_demo(session):
     report = session["report"]
     assert report["docks"] == {"ReviewDock": True, "SensorBoundDock": True}
-    from birdseye.birdseye_qgis.core.camera import load_calibration
+    from birdseye.birdseye_qgis.core.geometry.camera import load_calibration
 
     camera = load_calibration(report["bound_calibration"])
     used = report["bound_intrinsics"]

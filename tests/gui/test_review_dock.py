@@ -23,11 +23,11 @@ from qgis.core import (QgsCoordinateReferenceSystem, QgsFeature, QgsField, QgsGe
                        QgsPointXY, QgsProject, QgsVectorFileWriter, QgsVectorLayer)
 from qgis.PyQt.QtCore import QPoint, Qt, QVariant
 
-from birdseye.birdseye_qgis.core.geodesy import LocalFrame, ProjectedCRS
-from birdseye.birdseye_qgis.core.ground import LevelPlaneGround
-from birdseye.birdseye_qgis.core.poses import FrameGeometry
-from birdseye.birdseye_qgis.core.projection import pixel_to_ground, project_in_view
-from birdseye.birdseye_qgis.core.simulate import CampaignConfig, simulate_campaign
+from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame, ProjectedCRS
+from birdseye.birdseye_qgis.core.geometry.ground import LevelPlaneGround
+from birdseye.birdseye_qgis.core.geometry.poses import FrameGeometry
+from birdseye.birdseye_qgis.core.geometry.projection import pixel_to_ground, project_in_view
+from birdseye.birdseye_qgis.core.sim.campaign import CampaignConfig, simulate_campaign
 from birdseye.birdseye_qgis.gui import review_dock as dock_module
 from birdseye.birdseye_qgis.review_store import VERDICT_TABLE, VerdictStore
 

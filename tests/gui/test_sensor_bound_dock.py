@@ -17,9 +17,9 @@ from qgis.PyQt.QtCore import Qt
 from qgis.PyQt.QtGui import QColor
 from qgis.PyQt.QtWidgets import QApplication
 
-from birdseye.birdseye_qgis.core import sensor_bound as sb
-from birdseye.birdseye_qgis.core.bound_report import ACCEPT_COLOUR, REJECT_COLOUR, stride_for
-from birdseye.birdseye_qgis.core.camera import CameraModel, write_kalibr_yaml
+from birdseye.birdseye_qgis.core.design import sensor_bound as sb
+from birdseye.birdseye_qgis.core.design.bound_report import ACCEPT_COLOUR, REJECT_COLOUR, stride_for
+from birdseye.birdseye_qgis.core.geometry.camera import CameraModel, write_kalibr_yaml
 from birdseye.birdseye_qgis.gui import sensor_bound_dock as dock_module
 from birdseye.processing.design_parameters import read_sigma_label_px
 
@@ -210,7 +210,7 @@ def test_sigma_label_is_handed_to_the_project(dock, qtbot, qgis_iface):
 
 
 def test_plot_shows_the_chosen_altitude_field(dock, qtbot):
-    from birdseye.birdseye_qgis.core.bound_report import stride_for as plot_stride
+    from birdseye.birdseye_qgis.core.design.bound_report import stride_for as plot_stride
 
     dock.altitude_combo.setCurrentIndex(1)
     image = dock.figure.axes[0].images[0]

@@ -6,7 +6,7 @@ from pathlib import Path
 
 from qgis.core import QgsApplication, QgsProcessingContext, QgsProcessingFeedback, QgsProcessingModelAlgorithm
 
-from birdseye.birdseye_qgis.core.simulate import CampaignConfig, simulate_campaign
+from birdseye.birdseye_qgis.core.sim.campaign import CampaignConfig, simulate_campaign
 
 MODEL = Path(__file__).resolve().parents[2] / "resources" / "models" / "birdseye_chain.model3"
 

@@ -17,10 +17,10 @@ from qgis.core import (QgsFeature, QgsField, QgsGeometry, QgsPoint, QgsPointXY, 
                        QgsVectorLayer)
 from qgis.PyQt.QtCore import QVariant
 
-from birdseye.birdseye_qgis.core.camera import CameraModel
-from birdseye.birdseye_qgis.core.frame_records import FRAME_FIELDS
-from birdseye.birdseye_qgis.core.geodesy import LocalFrame, ProjectedCRS
-from birdseye.birdseye_qgis.core.rotations import euler_zyx_to_rotmat, rotmat_to_quat
+from birdseye.birdseye_qgis.core.geometry.camera import CameraModel
+from birdseye.birdseye_qgis.core.field.frame_records import FRAME_FIELDS
+from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame, ProjectedCRS
+from birdseye.birdseye_qgis.core.geometry.rotations import euler_zyx_to_rotmat, rotmat_to_quat
 
 SITE = LocalFrame(-27.55, 151.95, 400.0)
 UTM = ProjectedCRS(32756)
@@ -307,7 +307,7 @@ def onnx_model(path, bias=None):
     onnx = pytest.importorskip("onnx")
     from onnx import TensorProto, helper
 
-    from birdseye.birdseye_qgis.core.model_metadata import ModelMetadata, embed_metadata
+    from birdseye.birdseye_qgis.core.detect.model_metadata import ModelMetadata, embed_metadata
 
     x = helper.make_tensor_value_info("image", TensorProto.FLOAT, ["n", 3, "h", "w"])
     y = helper.make_tensor_value_info("heat", TensorProto.FLOAT, ["n", 1, "h", "w"])
@@ -329,9 +329,9 @@ def onnx_model(path, bias=None):
 def test_screencheckpoints_flags_a_collapsed_sparse_model_and_keeps_the_good_one(birdseye_provider, tmp_path):
     cv2 = pytest.importorskip("cv2")
     pytest.importorskip("onnxruntime")
-    from birdseye.birdseye_qgis.core.ground import LevelPlaneGround
-    from birdseye.birdseye_qgis.core.poses import FrameGeometry, FramePoses
-    from birdseye.birdseye_qgis.core.projection import project_pairs
+    from birdseye.birdseye_qgis.core.geometry.ground import LevelPlaneGround
+    from birdseye.birdseye_qgis.core.geometry.poses import FrameGeometry, FramePoses
+    from birdseye.birdseye_qgis.core.geometry.projection import project_pairs
 
     cam = nadir_camera(200, 150)                         # 1 cm/px at 10 m: a 2 m × 1.5 m footprint
     east = np.array([0.0, 0.3, 0.6])

@@ -6,8 +6,8 @@ import json
 import pytest
 from qgis.core import QgsRasterLayer
 
-from birdseye.birdseye_qgis.core.dem import synthetic_terrain
-from birdseye.birdseye_qgis.core.simulate import CampaignConfig, simulate_campaign
+from birdseye.birdseye_qgis.core.sim.terrain import synthetic_terrain
+from birdseye.birdseye_qgis.core.sim.campaign import CampaignConfig, simulate_campaign
 
 from test_writelabels import write_geotiff
 

@@ -12,14 +12,14 @@ import numpy as np
 import pytest
 from qgis.core import QgsFeature, QgsGeometry, QgsPointXY, QgsProcessingException, QgsVectorLayer
 
-from birdseye.birdseye_qgis.core.camera import CameraModel
-from birdseye.birdseye_qgis.core.frame_records import FRAME_FIELDS, euler_degrees
-from birdseye.birdseye_qgis.core.geodesy import LocalFrame, ProjectedCRS
-from birdseye.birdseye_qgis.core.ground import LevelPlaneGround
-from birdseye.birdseye_qgis.core.model_metadata import ModelMetadata, embed_metadata
-from birdseye.birdseye_qgis.core.poses import FrameGeometry, FramePoses
-from birdseye.birdseye_qgis.core.projection import project_pairs
-from birdseye.birdseye_qgis.core.rotations import euler_zyx_to_rotmat, rotmat_to_quat
+from birdseye.birdseye_qgis.core.geometry.camera import CameraModel
+from birdseye.birdseye_qgis.core.field.frame_records import FRAME_FIELDS, euler_degrees
+from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame, ProjectedCRS
+from birdseye.birdseye_qgis.core.geometry.ground import LevelPlaneGround
+from birdseye.birdseye_qgis.core.detect.model_metadata import ModelMetadata, embed_metadata
+from birdseye.birdseye_qgis.core.geometry.poses import FrameGeometry, FramePoses
+from birdseye.birdseye_qgis.core.geometry.projection import project_pairs
+from birdseye.birdseye_qgis.core.geometry.rotations import euler_zyx_to_rotmat, rotmat_to_quat
 
 cv2 = pytest.importorskip("cv2")
 onnx = pytest.importorskip("onnx")
@@ -158,7 +158,7 @@ def test_the_bundled_model_is_the_default(birdseye_provider, scene):
     from birdseye.processing.algorithms.detect import DEFAULT_MODEL
 
     if not DEFAULT_MODEL.is_file():
-        pytest.skip("the bundled model has not been trained yet (models/train_heatmap.py demo)")
+        pytest.skip("the bundled model has not been trained yet (training/train_heatmap.py demo)")
     result = run({"FRAMES": scene["layer"], "OUTPUT": "TEMPORARY_OUTPUT"})
     assert result["MODEL_DIGEST"] == hashlib.sha256(DEFAULT_MODEL.read_bytes()).hexdigest()
     assert result["FRAMES_PROCESSED"] == 3
@@ -173,14 +173,14 @@ def test_the_bundled_model_finds_simulated_burrows_end_to_end(birdseye_provider,
 
     import processing
 
-    from birdseye.birdseye_qgis.core.frame_records import poses_from_records
-    from birdseye.birdseye_qgis.core.labels import Geotags, project_labels
-    from birdseye.birdseye_qgis.core.simulate import CampaignConfig, simulate_campaign
+    from birdseye.birdseye_qgis.core.field.frame_records import poses_from_records
+    from birdseye.birdseye_qgis.core.labels.training_set import Geotags, project_labels
+    from birdseye.birdseye_qgis.core.sim.campaign import CampaignConfig, simulate_campaign
     from birdseye.birdseye_qgis.layers import pyproj_crs, read_frame_layer
     from birdseye.processing.algorithms.detect import DEFAULT_MODEL
 
     if not DEFAULT_MODEL.is_file():
-        pytest.skip("the bundled model has not been trained yet (models/train_heatmap.py demo)")
+        pytest.skip("the bundled model has not been trained yet (training/train_heatmap.py demo)")
     folder = tmp_path / "campaign"
     simulate_campaign(CampaignConfig(seed=404, n_targets=6, field_width_m=4.0, field_length_m=3.0, altitude_m=2.5,
                                      image_width=480, image_height=300, n_missed=0, n_spurious=0), folder)

@@ -13,15 +13,15 @@ from pathlib import Path
 
 import numpy as np
 
-from birdseye.birdseye_qgis.core.camera import load_calibration
-from birdseye.birdseye_qgis.core.geodesy import LocalFrame
-from birdseye.birdseye_qgis.core.poses import FrameGeometry, FramePoses
-from birdseye.birdseye_qgis.core.projection import project_pairs
-from birdseye.birdseye_qgis.core.sensor_bound import pixel_covariance, sigmas_to_variances
-from birdseye.birdseye_qgis.core.simulate import CampaignConfig, simulate_campaign
+from birdseye.birdseye_qgis.core.geometry.camera import load_calibration
+from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame
+from birdseye.birdseye_qgis.core.geometry.poses import FrameGeometry, FramePoses
+from birdseye.birdseye_qgis.core.geometry.projection import project_pairs
+from birdseye.birdseye_qgis.core.design.sensor_bound import pixel_covariance, sigmas_to_variances
+from birdseye.birdseye_qgis.core.sim.campaign import CampaignConfig, simulate_campaign
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "unit"))
-from test_simulate import dark_core_centroid  # noqa: E402  (one measurement of a rendered hole)
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "data"))
+from rendered_holes import dark_core_centroid  # noqa: E402  (one measurement of a rendered hole)
 
 
 def rows(path):
@@ -58,7 +58,7 @@ def truth_projection(folder, labels):
     geometry = FrameGeometry(poses, local)
     g = np.array([[float(v) for v in geotags[int(r["geotag_id"]) - 1][:2]] for r in labels])
     points = local.from_geodetic(g[:, 0], g[:, 1], num("ground_h_m"))
-    from birdseye.birdseye_qgis.core.ground import LevelPlaneGround
+    from birdseye.birdseye_qgis.core.geometry.ground import LevelPlaneGround
 
     proj = project_pairs(geometry, np.arange(len(t)), points, LevelPlaneGround(geometry))
     return proj.uv, geometry, camera

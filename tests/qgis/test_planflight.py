@@ -10,9 +10,9 @@ from qgis.core import (QgsCoordinateReferenceSystem, QgsCoordinateTransform, Qgs
                        QgsProcessingFeedback, QgsProject, QgsVectorLayer, QgsWkbTypes)
 from qgis.PyQt.QtCore import QVariant
 
-from birdseye.birdseye_qgis.core.camera import CameraModel, write_kalibr_yaml
-from birdseye.birdseye_qgis.core.geodesy import LocalFrame, ProjectedCRS
-from birdseye.birdseye_qgis.core.mission_files import (parse_dji_kmz, parse_kml, parse_litchi_csv,
+from birdseye.birdseye_qgis.core.geometry.camera import CameraModel, write_kalibr_yaml
+from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame, ProjectedCRS
+from birdseye.birdseye_qgis.core.plan.mission_files import (parse_dji_kmz, parse_kml, parse_litchi_csv,
                                                        parse_qgc_plan)
 
 LAT0, LON0 = 48.1371, 11.5754  # UTM zone 32N

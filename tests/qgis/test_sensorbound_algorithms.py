@@ -14,10 +14,10 @@ import numpy as np
 import pytest
 from qgis.core import QgsProcessingException, QgsProcessingFeedback
 
-from birdseye.birdseye_qgis.core import monte_carlo_bound as mc
-from birdseye.birdseye_qgis.core import sensor_bound as sb
-from birdseye.birdseye_qgis.core import terrain_slope as ts
-from birdseye.birdseye_qgis.core.camera import CameraModel, write_kalibr_yaml
+from birdseye.birdseye_qgis.core.design import monte_carlo_bound as mc
+from birdseye.birdseye_qgis.core.design import sensor_bound as sb
+from birdseye.birdseye_qgis.core.design import terrain_slope as ts
+from birdseye.birdseye_qgis.core.geometry.camera import CameraModel, write_kalibr_yaml
 
 DEPLOYED = sb.Intrinsics(fx=4264.4945, fy=4262.8927, cx=958.4594, cy=592.5033, width=1920, height=1200)
 DEPLOYED_SIGMAS = [0.010, 0.010, 0.060, 0.04, 0.04, 0.13]

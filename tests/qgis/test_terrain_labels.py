@@ -5,7 +5,7 @@ the importers read it, ``importflightlog`` with the campaign's DEM.
 
 * With the DEM, every label sits within 0.5 px of its rendered hole (measured in the image alone).
 * Without it (the level plane at the altimeter's ground), every label is off by what the terrain-slope
-  study predicts. The study's geometry (``core/terrain_slope.py``): a nadir camera ``h`` above the level
+  study predicts. The study's geometry (``core/design/terrain_slope.py``): a nadir camera ``h`` above the level
   plane, a target at horizontal distance ``d`` from the camera's foot and ``Δ`` above that plane; the
   level model draws it at depth ``h``, the camera sees it at depth ``h − Δ``, so the label falls short
   of the target, towards the nadir, by ``e = f·d/(h − Δ) − f·d/h`` px — for a target uphill of the
@@ -29,13 +29,13 @@ import numpy as np
 import pytest
 from qgis.core import QgsProcessingFeedback, QgsRasterLayer
 
-from birdseye.birdseye_qgis.core.camera import load_calibration
-from birdseye.birdseye_qgis.core.geodesy import LocalFrame
-from birdseye.birdseye_qgis.core.poses import FrameGeometry, FramePoses
-from birdseye.birdseye_qgis.core.terrain_slope import slope_error_px
+from birdseye.birdseye_qgis.core.geometry.camera import load_calibration
+from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame
+from birdseye.birdseye_qgis.core.geometry.poses import FrameGeometry, FramePoses
+from birdseye.birdseye_qgis.core.design.terrain_slope import slope_error_px
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "unit"))
-from test_simulate import dark_core_centroid  # noqa: E402  (one measurement of a rendered hole)
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "data"))
+from rendered_holes import dark_core_centroid  # noqa: E402  (one measurement of a rendered hole)
 
 SLOPE_DEG = 20.0
 CAMPAIGN = {"SEED": 7, "N_TARGETS": 14, "FIELD_WIDTH_M": 8.0, "FIELD_LENGTH_M": 6.0, "IMAGE_WIDTH": 640,

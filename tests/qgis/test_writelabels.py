@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 from qgis.core import QgsExpressionContextUtils, QgsProcessingException, QgsProject
 
-from birdseye.birdseye_qgis.core.simulate import CampaignConfig, simulate_campaign
+from birdseye.birdseye_qgis.core.sim.campaign import CampaignConfig, simulate_campaign
 
 
 def run(alg_id, params):
@@ -122,7 +122,7 @@ def write_geotiff(dem, path):
 def test_a_flat_dem_gives_the_level_plane_labels_and_a_wrong_datum_is_refused(birdseye_provider, tmp_path):
     from qgis.core import QgsRasterLayer
 
-    from birdseye.birdseye_qgis.core.dem import synthetic_terrain
+    from birdseye.birdseye_qgis.core.sim.terrain import synthetic_terrain
 
     # Noise off: the altimeter's level plane and a flat DEM at the true ground must agree exactly
     # (with noise, the DEM path takes its depth from the INS height, the level plane from the altimeter).

@@ -1,0 +1,1 @@
+"""Detection: ONNX heatmap models, their metadata, and clustering detections on the ground."""

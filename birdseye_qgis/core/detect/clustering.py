@@ -1,0 +1,325 @@
+"""Detections on the ground → de-duplicated points → DBSCAN clusters → cluster summaries.
+
+Everything here works in a horizontal metric frame: ``xy`` arrays are (east, north) metres of a
+:class:`~.geodesy.LocalFrame` (the callers convert any layer CRS there), so a 3 cm cell is 3 cm
+wherever the field lies.
+
+The chain (DESIGN §1 step 6, issue "Clusters on the map and honest scores"):
+
+1. **De-duplicate** on a square grid of ``cell_m`` (default 3 cm): every occupied cell becomes one
+   point at the mean position of its detections. A burrow seen by 40 frames at the same spot gives a
+   few cells, not 40 points, which bounds the neighbourhood sizes DBSCAN meets.
+2. **Cluster** the de-duplicated points with DBSCAN (``eps_m``, ``min_samples``; scikit-learn's
+   :class:`~sklearn.cluster.DBSCAN` on a precomputed radius graph): a point is *core* when at least
+   ``min_samples`` de-duplicated points (itself included) lie within ``eps_m``; clusters are the
+   core points connected through ``eps_m`` plus the non-core points within ``eps_m`` of them;
+   the rest is noise (label −1). The radius graph is built once (:func:`neighbour_graph`) and can
+   serve every smaller ``eps`` and every ``min_samples`` of a sweep, with results identical to a
+   fresh run, since distances are computed the same way and compared as ``d ≤ eps``.
+3. **Summarise** each cluster over its *detections* (a cluster's detections are those whose cell
+   point is in the cluster): centroid (mean detection position), number of detections, number of
+   distinct frames, median extent (twice the median distance of its detections from the centroid:
+   a robust diameter, m), maximum score, and a convex hull buffered by a few centimetres.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..errors import InputError
+
+#: Defaults for burrow-sized targets (a few cm) seen from 10–20 m with cm-level projection noise;
+#: the help texts of clusterdetections/evaluatedetections explain them.
+DEFAULT_DEDUP_CM = 3.0
+DEFAULT_EPS_M = 0.10
+DEFAULT_MIN_SAMPLES = 3
+#: Cluster polygons are the convex hull of the detections grown by this much (m), so a cluster of
+#: one or two cells still has an area on the map.
+HULL_BUFFER_M = 0.03
+
+# Relative slack of the k-d tree radius query; exact ``d ≤ eps`` is then applied to our own distances.
+_RADIUS_SLACK = 1e-9
+
+
+# ------------------------------------------------------------------------------ de-duplication
+@dataclass
+class Deduplicated:
+    """Occupied grid cells: ``xy`` (K, 2) mean detection position per cell, ``count`` (K,) detections
+    per cell, ``inverse`` (N,) the cell of every detection. Cells are ordered by grid index, so the
+    result (and the DBSCAN labels after it) do not depend on the order of the detections."""
+
+    xy: np.ndarray
+    count: np.ndarray
+    inverse: np.ndarray
+
+    def __len__(self) -> int:
+        return len(self.xy)
+
+
+def deduplicate(xy, cell_m: float) -> Deduplicated:
+    """Merge detections (N, 2) (m) falling into the same ``cell_m`` square (m) into one point."""
+    xy = _as_xy(xy)
+    if not cell_m > 0:
+        raise InputError(f"the de-duplication cell must be larger than 0 (got {cell_m} m)", field="DEDUP_CM")
+    if len(xy) == 0:
+        return Deduplicated(np.empty((0, 2)), np.empty(0, np.int64), np.empty(0, np.int64))
+    ij = np.floor(xy / cell_m).astype(np.int64)
+    ij -= ij.min(axis=0)
+    key = ij[:, 0] * (int(ij[:, 1].max()) + 1) + ij[:, 1]
+    _, inverse, count = np.unique(key, return_inverse=True, return_counts=True)
+    inverse = inverse.reshape(-1)
+    k = len(count)
+    mean = np.column_stack([np.bincount(inverse, xy[:, 0], k), np.bincount(inverse, xy[:, 1], k)]) / count[:, None]
+    return Deduplicated(mean, count, inverse)
+
+
+# ------------------------------------------------------------------------------ DBSCAN
+@dataclass
+class NeighbourGraph:
+    """Point pairs closer than ``radius_m``: ``i < j`` (int64) and distance ``d`` (m), for ``n`` points.
+
+    Pairs are sorted by (i, d), so the graph at any smaller radius is a mask away.
+    """
+
+    n: int
+    radius_m: float
+    i: np.ndarray
+    j: np.ndarray
+    d: np.ndarray
+
+    def degree(self, eps_m: float) -> np.ndarray:
+        """Number of points within ``eps_m`` of each point, the point itself included."""
+        keep = self.d <= eps_m
+        return 1 + np.bincount(self.i[keep], minlength=self.n) + np.bincount(self.j[keep], minlength=self.n)
+
+    def csr(self, eps_m: float):
+        """Symmetric sparse distance matrix at ``eps_m`` with explicit zero diagonal, each row sorted
+        by distance (the form scikit-learn's precomputed radius neighbours read without re-sorting)."""
+        from scipy import sparse
+
+        if eps_m > self.radius_m * (1 + _RADIUS_SLACK):
+            raise ValueError(f"graph built for {self.radius_m} m cannot answer eps {eps_m} m")
+        keep = self.d <= eps_m
+        i, j, d = self.i[keep], self.j[keep], self.d[keep]
+        self_idx = np.arange(self.n, dtype=np.int64)
+        rows = np.concatenate([self_idx, i, j])
+        cols = np.concatenate([self_idx, j, i])
+        data = np.concatenate([np.zeros(self.n), d, d])
+        order = np.lexsort((data, rows))
+        indptr = np.zeros(self.n + 1, dtype=np.int64)
+        np.cumsum(np.bincount(rows, minlength=self.n), out=indptr[1:])
+        return sparse.csr_matrix((data[order], cols[order], indptr), shape=(self.n, self.n))
+
+
+def neighbour_graph(xy, radius_m: float) -> NeighbourGraph:
+    """All pairs of points (N, 2) within ``radius_m`` (m), via a k-d tree."""
+    from scipy.spatial import cKDTree
+
+    xy = _as_xy(xy)
+    if not radius_m > 0:
+        raise InputError(f"the DBSCAN radius must be larger than 0 (got {radius_m} m)", field="EPS_M")
+    if len(xy) < 2:
+        e = np.empty(0, np.int64)
+        return NeighbourGraph(len(xy), float(radius_m), e, e, np.empty(0))
+    pairs = cKDTree(xy).query_pairs(radius_m * (1 + _RADIUS_SLACK), output_type="ndarray").astype(np.int64)
+    i, j = pairs[:, 0], pairs[:, 1]
+    d = np.hypot(xy[i, 0] - xy[j, 0], xy[i, 1] - xy[j, 1])
+    keep = d <= radius_m
+    i, j, d = i[keep], j[keep], d[keep]
+    order = np.lexsort((d, i))
+    return NeighbourGraph(len(xy), float(radius_m), i[order], j[order], d[order])
+
+
+@dataclass
+class Dbscan:
+    """DBSCAN result over K points: ``labels`` (K,) cluster 0..n_clusters−1 or −1 (noise), ``core`` (K,)."""
+
+    labels: np.ndarray
+    core: np.ndarray
+    n_clusters: int
+
+
+def dbscan(graph: NeighbourGraph, eps_m: float, min_samples: int) -> Dbscan:
+    """scikit-learn's DBSCAN over a precomputed :class:`NeighbourGraph` (built for a radius ≥ eps_m).
+
+    Clusters are numbered in order of their first core point; a border point reachable from two
+    clusters joins the first (scikit-learn's rule).
+    """
+    from sklearn.cluster import DBSCAN
+
+    min_samples = int(min_samples)
+    if min_samples < 1:
+        raise InputError(f"DBSCAN needs at least 1 sample per neighbourhood (got {min_samples})",
+                         field="MIN_SAMPLES")
+    if graph.n == 0:
+        return Dbscan(np.empty(0, np.int64), np.empty(0, bool), 0)
+    fit = DBSCAN(eps=float(eps_m), min_samples=min_samples, metric="precomputed").fit(graph.csr(eps_m))
+    core = np.zeros(graph.n, dtype=bool)
+    core[fit.core_sample_indices_] = True
+    labels = fit.labels_.astype(np.int64)
+    return Dbscan(labels, core, int(labels.max()) + 1 if len(labels) else 0)
+
+
+# ------------------------------------------------------------------------------ summaries
+@dataclass
+class ClusterSummary:
+    """Per-cluster figures (arrays of length C) computed over each cluster's detections."""
+
+    centroid: np.ndarray
+    n_detections: np.ndarray
+    n_frames: np.ndarray
+    median_extent_m: np.ndarray
+    max_score: np.ndarray
+
+    def __len__(self) -> int:
+        return len(self.n_detections)
+
+
+def cluster_centroids_and_extents(xy, cluster, n_clusters: int):
+    """Centroid (C, 2) = mean of each cluster's detections, and median extent (C,) = twice the median
+    distance (m) of its detections from that centroid. ``cluster`` (N,) is −1 for noise."""
+    xy = _as_xy(xy)
+    cluster = np.asarray(cluster, dtype=np.int64)
+    member = cluster >= 0
+    c, p = cluster[member], xy[member]
+    n = np.bincount(c, minlength=n_clusters).astype(float)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        centroid = np.column_stack([np.bincount(c, p[:, 0], n_clusters), np.bincount(c, p[:, 1], n_clusters)]) / n[:, None]
+    dist = np.hypot(*(p - centroid[c]).T)
+    return centroid, 2.0 * _grouped_median(c, dist, n_clusters)
+
+
+def summarize_clusters(xy, cluster, n_clusters: int, frame_id=None, score=None) -> ClusterSummary:
+    """:class:`ClusterSummary` of detections (N, 2) with cluster labels (N,) (−1 = noise)."""
+    cluster = np.asarray(cluster, dtype=np.int64)
+    centroid, extent = cluster_centroids_and_extents(xy, cluster, n_clusters)
+    member = cluster >= 0
+    c = cluster[member]
+    n_det = np.bincount(c, minlength=n_clusters)
+    if frame_id is None:
+        n_frames = np.zeros(n_clusters, dtype=np.int64)
+    else:
+        _, frame_code = np.unique(np.asarray(frame_id)[member], return_inverse=True)
+        frame_code = frame_code.reshape(-1).astype(np.int64)
+        pairs = np.unique(c * (int(frame_code.max(initial=0)) + 1) + frame_code)
+        n_frames = np.bincount(pairs // (int(frame_code.max(initial=0)) + 1), minlength=n_clusters)
+    max_score = np.full(n_clusters, np.nan)
+    if score is not None and len(c):
+        np.fmax.at(max_score, c, np.asarray(score, dtype=float)[member])
+    return ClusterSummary(centroid, n_det, n_frames, extent, max_score)
+
+
+def _grouped_median(group: np.ndarray, value: np.ndarray, n_groups: int) -> np.ndarray:
+    """Median of ``value`` within each group 0..n_groups−1 (NaN for an empty group)."""
+    out = np.full(n_groups, np.nan)
+    if len(group) == 0:
+        return out
+    order = np.lexsort((value, group))
+    g, v = group[order], value[order]
+    counts = np.bincount(g, minlength=n_groups)
+    start = np.concatenate([[0], np.cumsum(counts)[:-1]])
+    ok = counts > 0
+    lo = start[ok] + (counts[ok] - 1) // 2
+    hi = start[ok] + counts[ok] // 2
+    out[ok] = 0.5 * (v[lo] + v[hi])
+    return out
+
+
+def cluster_hulls(xy, cluster, n_clusters: int, buffer_m: float = HULL_BUFFER_M, edges: int = 32) -> np.ndarray:
+    """Polygon rings (C, edges, 2), counter-clockwise and open, one per cluster: the convex hull of its
+    detections grown by ``buffer_m``, circumscribed by a polygon whose edge normals are ``edges``
+    fixed, evenly spaced directions.
+
+    Edge s lies on the line ``n_s · x = h(n_s) + buffer_m``, with ``n_s`` the unit normal at angle
+    2πs/edges and ``h`` the support function of the cluster's detections (their largest projection on
+    ``n_s``); consecutive lines meet at the vertices. Every detection lies at least ``buffer_m``
+    inside every edge. A vertex sticks out of the exactly grown hull by at most
+    ``(buffer_m·2π/edges + L)·tan(π/edges)/2``, L the longest edge of the detections' hull (a few mm
+    for a 10 cm cluster with 32 edges). One vectorised pass over all clusters, where an exact hull
+    per cluster would cost a Qhull call each (minutes for a million detections).
+    """
+    xy = _as_xy(xy)
+    cluster = np.asarray(cluster, dtype=np.int64)
+    if buffer_m <= 0 or edges < 3:
+        raise ValueError("cluster hulls need a positive buffer and at least 3 edges")
+    theta = 2.0 * np.pi * np.arange(edges) / edges
+    normal = np.column_stack([np.cos(theta), np.sin(theta)])
+    member = np.flatnonzero(cluster >= 0)
+    order = member[np.argsort(cluster[member], kind="stable")]
+    sorted_cluster = cluster[order]
+    starts = np.searchsorted(sorted_cluster, np.arange(n_clusters))
+    if n_clusters and np.any(np.diff(np.append(starts, len(order))) == 0):
+        raise ValueError("every cluster needs at least one detection")
+    support = np.empty((n_clusters, edges))
+    chunk = max(1, 4_000_000 // edges)
+    for a in range(0, n_clusters, chunk):  # bounded memory for millions of detections
+        b = min(n_clusters, a + chunk)
+        lo, hi = starts[a], (starts[b] if b < n_clusters else len(order))
+        proj = xy[order[lo:hi]] @ normal.T
+        support[a:b] = np.maximum.reduceat(proj, starts[a:b] - lo, axis=0)
+    offset = support + buffer_m
+    nxt = np.roll(np.arange(edges), -1)
+    sin_step = np.sin(theta[nxt] - theta)
+    x = (offset * np.sin(theta[nxt]) - offset[:, nxt] * np.sin(theta)) / sin_step
+    y = (offset[:, nxt] * np.cos(theta) - offset * np.cos(theta[nxt])) / sin_step
+    return np.stack([x, y], axis=-1)
+
+
+# ------------------------------------------------------------------------------ the whole chain
+@dataclass
+class Clustering:
+    """De-duplicated points, their DBSCAN clusters and the cluster summaries of one detection set."""
+
+    points: Deduplicated
+    dbscan: Dbscan
+    summary: ClusterSummary
+    eps_m: float
+    min_samples: int
+    cell_m: float
+
+    @property
+    def n_clusters(self) -> int:
+        return self.dbscan.n_clusters
+
+    @property
+    def detection_cluster(self) -> np.ndarray:
+        """Cluster label (−1 noise) of every input detection."""
+        return self.dbscan.labels[self.points.inverse]
+
+    @property
+    def core_xy(self) -> np.ndarray:
+        return self.points.xy[self.dbscan.core]
+
+    @property
+    def core_cluster(self) -> np.ndarray:
+        return self.dbscan.labels[self.dbscan.core]
+
+
+def cluster_detections(xy, frame_id=None, score=None, dedup_cm: float = DEFAULT_DEDUP_CM,
+                       eps_m: float = DEFAULT_EPS_M, min_samples: int = DEFAULT_MIN_SAMPLES,
+                       graph: NeighbourGraph | None = None, points: Deduplicated | None = None) -> Clustering:
+    """De-duplicate detections (N, 2) (m) on a ``dedup_cm`` grid, DBSCAN them, summarise the clusters.
+
+    ``points`` and ``graph`` let a sweep pass the de-duplication and radius graph it already has.
+    """
+    xy = _as_xy(xy)
+    cell_m = float(dedup_cm) / 100.0
+    points = points if points is not None else deduplicate(xy, cell_m)
+    graph = graph if graph is not None else neighbour_graph(points.xy, eps_m)
+    result = dbscan(graph, eps_m, min_samples)
+    summary = summarize_clusters(xy, result.labels[points.inverse], result.n_clusters, frame_id, score)
+    return Clustering(points, result, summary, float(eps_m), int(min_samples), cell_m)
+
+
+def _as_xy(xy) -> np.ndarray:
+    xy = np.asarray(xy, dtype=float)
+    if xy.size == 0:
+        return xy.reshape(0, 2)
+    if xy.ndim != 2 or xy.shape[1] < 2:
+        raise ValueError(f"expected horizontal positions (N, 2), got an array of shape {xy.shape}")
+    xy = xy[:, :2]
+    if not np.all(np.isfinite(xy)):
+        raise InputError(f"{int((~np.isfinite(xy)).any(axis=1).sum())} detection(s) have no position "
+                         "(NaN); drop them before clustering")
+    return xy

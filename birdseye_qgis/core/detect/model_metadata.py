@@ -1,0 +1,310 @@
+"""The metadata schema of BirdsEye heatmap models: the one module that reads and writes it.
+
+A model carries its own processing defaults in the ONNX file's ``metadata_props``, every value
+JSON-encoded (a string is ``"\\"Regressor\\""``, a number ``"0.5"``). Writer and reader live here, so
+the keys can never drift apart.
+
+Keys shared with the Deepness QGIS plugin (same names, same meaning, so one file serves both):
+
+==========================  ========================================================================
+``model_type``              ``"Regressor"`` (written; Deepness then shows the heatmap as a raster);
+                            ``"Segmentor"`` is read as well (a one-channel segmentation output)
+``resolution``              the ground sample distance the model works at, cm/px: every frame is
+                            resampled to it before tiling
+``tile_size``               tile edge, px at ``resolution`` (equals the input's height and width
+                            when the ONNX input has fixed spatial dimensions)
+``tiles_overlap``           overlap of neighbouring tiles, **percent** of ``tile_size`` (Deepness's
+                            unit); only each tile's core is kept
+``standardization_mean``    per input channel, subtracted after scaling pixel values to [0, 1]
+``standardization_std``     per input channel, divided after that (all > 0)
+``class_names``             ``{"0": "burrow"}``: one name per output channel (Deepness format)
+==========================  ========================================================================
+
+BirdsEye's own keys:
+
+==========================  ========================================================================
+``birdseye_schema_version`` integer, :data:`SCHEMA_VERSION`
+``output_kind``             ``"probability"`` (values in [0, 1]) or ``"logits"`` (a sigmoid is applied)
+``default_threshold``       probability in (0, 1) a peak must exceed, used when the user sets none
+``input_channel_order``     ``"RGB"`` or ``"BGR"``: channel order of the input tensor (NCHW, uint8/255)
+``training_gsd_cm``         optional: native ground sample distance of the training frames, cm/px
+``peak_blur_sigma_px``      optional, default 1.0: Gaussian blur (px at ``resolution``) before peaks
+``label_sigma_px``          optional: σ of the soft labels trained on, px at ``resolution``
+``description``             optional free text (training data, recipe, version)
+==========================  ========================================================================
+
+A model with missing or contradictory metadata is refused with one message that lists everything
+wrong (:class:`ModelMetadataError`).
+"""
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass, field
+
+from ..errors import InputError
+
+SCHEMA_VERSION = 1
+MODEL_TYPES_READ = ("Regressor", "Segmentor")
+OUTPUT_KINDS = ("probability", "logits")
+CHANNEL_ORDERS = ("RGB", "BGR")
+
+REQUIRED_KEYS = ("model_type", "resolution", "tile_size", "tiles_overlap", "birdseye_schema_version",
+                 "output_kind", "default_threshold")
+OPTIONAL_DEFAULTS = {
+    "standardization_mean": [0.0, 0.0, 0.0],
+    "standardization_std": [1.0, 1.0, 1.0],
+    "class_names": {"0": "target"},
+    "input_channel_order": "RGB",
+    "training_gsd_cm": None,
+    "peak_blur_sigma_px": 1.0,
+    "label_sigma_px": None,
+    "description": "",
+}
+KNOWN_KEYS = REQUIRED_KEYS + tuple(OPTIONAL_DEFAULTS)
+
+
+class ModelMetadataError(InputError):
+    """A model whose metadata cannot be used; ``problems`` lists every reason."""
+
+    def __init__(self, problems: list[str], source: str | None = None):
+        self.problems = list(problems)
+        text = "the model's metadata is not usable by BirdsEye:\n" + "\n".join(f"  - {p}" for p in problems)
+        text += ("\n(see models/README.md, 'Metadata schema', for the keys a BirdsEye heatmap model "
+                 "carries)")
+        super().__init__(text, source=source)
+
+
+@dataclass(frozen=True)
+class ModelMetadata:
+    """The processing settings a heatmap model carries (units in the field names)."""
+
+    resolution_cm: float
+    tile_size: int
+    tiles_overlap_pct: float
+    output_kind: str
+    default_threshold: float
+    standardization_mean: tuple = (0.0, 0.0, 0.0)
+    standardization_std: tuple = (1.0, 1.0, 1.0)
+    class_names: tuple = ("target",)
+    input_channel_order: str = "RGB"
+    training_gsd_cm: float | None = None
+    peak_blur_sigma_px: float = 1.0
+    label_sigma_px: float | None = None
+    description: str = ""
+    model_type: str = "Regressor"
+    schema_version: int = SCHEMA_VERSION
+    extra: dict = field(default_factory=dict)
+
+    @property
+    def overlap_px(self) -> int:
+        """Tile overlap in px at the model's resolution."""
+        return int(round(self.tile_size * self.tiles_overlap_pct / 100.0))
+
+    def to_props(self) -> dict[str, str]:
+        """``metadata_props`` entries: key → JSON-encoded value (unknown extra keys kept)."""
+        values = {
+            "model_type": self.model_type,
+            "resolution": self.resolution_cm,
+            "tile_size": self.tile_size,
+            "tiles_overlap": self.tiles_overlap_pct,
+            "standardization_mean": list(self.standardization_mean),
+            "standardization_std": list(self.standardization_std),
+            "class_names": {str(i): name for i, name in enumerate(self.class_names)},
+            "birdseye_schema_version": self.schema_version,
+            "output_kind": self.output_kind,
+            "default_threshold": self.default_threshold,
+            "input_channel_order": self.input_channel_order,
+            "training_gsd_cm": self.training_gsd_cm,
+            "peak_blur_sigma_px": self.peak_blur_sigma_px,
+            "label_sigma_px": self.label_sigma_px,
+            "description": self.description,
+        }
+        props = {k: json.dumps(v) for k, v in values.items() if v is not None}
+        props.update(self.extra)
+        return props
+
+    @classmethod
+    def from_props(cls, props: dict[str, str], input_shape=None, output_shape=None,
+                   source: str | None = None) -> "ModelMetadata":
+        """Parse and validate; raises :class:`ModelMetadataError` listing every problem."""
+        values, problems = _parse(props, input_shape, output_shape)
+        if problems:
+            raise ModelMetadataError(problems, source)
+        return cls(
+            resolution_cm=float(values["resolution"]), tile_size=int(values["tile_size"]),
+            tiles_overlap_pct=float(values["tiles_overlap"]), output_kind=values["output_kind"],
+            default_threshold=float(values["default_threshold"]),
+            standardization_mean=tuple(float(x) for x in values["standardization_mean"]),
+            standardization_std=tuple(float(x) for x in values["standardization_std"]),
+            class_names=tuple(str(n) for n in _class_list(values["class_names"])),
+            input_channel_order=values["input_channel_order"],
+            training_gsd_cm=None if values["training_gsd_cm"] is None else float(values["training_gsd_cm"]),
+            peak_blur_sigma_px=float(values["peak_blur_sigma_px"]),
+            label_sigma_px=None if values["label_sigma_px"] is None else float(values["label_sigma_px"]),
+            description=str(values["description"]), model_type=str(values["model_type"]).capitalize(),
+            schema_version=int(values["birdseye_schema_version"]),
+            extra={k: v for k, v in props.items() if k not in KNOWN_KEYS})
+
+
+def validate(props: dict[str, str], input_shape=None, output_shape=None) -> list[str]:
+    """Everything wrong with a model's metadata (and its input/output shapes); empty when usable.
+
+    ``input_shape``/``output_shape`` are the ONNX tensor shapes (NCHW; a dimension may be a name or
+    None when dynamic).
+    """
+    return _parse(props, input_shape, output_shape)[1]
+
+
+def read_onnx_metadata(path) -> ModelMetadata:
+    """Metadata of an ONNX file, validated against its input and output shapes."""
+    import onnx
+
+    try:
+        model = onnx.load(str(path), load_external_data=False)
+    except Exception as exc:  # noqa: BLE001 — any parse failure is the user's file
+        raise InputError(f"is not a readable ONNX model ({exc})", source=str(path)) from exc
+    props = {p.key: p.value for p in model.metadata_props}
+    graph_inputs = [i for i in model.graph.input if i.name not in {t.name for t in model.graph.initializer}]
+    return ModelMetadata.from_props(props, _value_info_shape(graph_inputs[0]) if graph_inputs else None,
+                                    _value_info_shape(model.graph.output[0]) if model.graph.output else None,
+                                    source=str(path))
+
+
+def embed_metadata(model, metadata: ModelMetadata) -> None:
+    """Write ``metadata`` into an ``onnx.ModelProto``'s ``metadata_props`` (replacing those keys)."""
+    props = metadata.to_props()
+    keep = [(p.key, p.value) for p in model.metadata_props if p.key not in props and p.key not in KNOWN_KEYS]
+    del model.metadata_props[:]
+    for key, value in keep + sorted(props.items()):
+        entry = model.metadata_props.add()
+        entry.key, entry.value = key, value
+
+
+# ---------------------------------------------------------------------- parsing and checks
+def _value_info_shape(value_info) -> list:
+    dims = value_info.type.tensor_type.shape.dim
+    return [d.dim_value if d.HasField("dim_value") else (d.dim_param or None) for d in dims]
+
+
+def _parse(props: dict[str, str], input_shape, output_shape) -> tuple[dict, list[str]]:
+    problems: list[str] = []
+    values: dict = {}
+    for key, raw in props.items():
+        if key not in KNOWN_KEYS:
+            continue
+        try:
+            values[key] = json.loads(raw)
+        except (TypeError, json.JSONDecodeError):
+            problems.append(f"'{key}' is not JSON-encoded (got {raw!r}; a string value needs quotes, "
+                            f"e.g. {json.dumps(str(raw))})")
+    missing = [k for k in REQUIRED_KEYS if k not in props]
+    if missing:
+        hint = (" — this looks like a model made for another tool; BirdsEye needs its own keys too"
+                if "birdseye_schema_version" in missing else "")
+        problems.append(f"missing key(s): {', '.join(missing)}{hint}")
+    for key, default in OPTIONAL_DEFAULTS.items():
+        values.setdefault(key, default)
+
+    def number(key, kind=float, low=None, high=None, low_open=False, high_open=False):
+        if key not in values:
+            return None
+        v = values[key]
+        if isinstance(v, bool) or not isinstance(v, (int, float)) or (kind is int and v != int(v)):
+            problems.append(f"'{key}' must be {'an integer' if kind is int else 'a number'} (got {v!r})")
+            return None
+        if low is not None and (v <= low if low_open else v < low):
+            problems.append(f"'{key}' must be {'>' if low_open else '≥'} {low} (got {v})")
+            return None
+        if high is not None and (v >= high if high_open else v > high):
+            problems.append(f"'{key}' must be {'<' if high_open else '≤'} {high} (got {v})")
+            return None
+        return v
+
+    if "model_type" in values and str(values["model_type"]).capitalize() not in MODEL_TYPES_READ:
+        problems.append(f"'model_type' is {values['model_type']!r}; a heatmap model is "
+                        f"{' or '.join(repr(t) for t in MODEL_TYPES_READ)} (one output channel of scores)")
+    number("resolution", low=0, low_open=True)
+    tile = number("tile_size", int, low=8)
+    overlap = number("tiles_overlap", low=0, high=100, high_open=True)
+    version = number("birdseye_schema_version", int, low=1)
+    if version is not None and version > SCHEMA_VERSION:
+        problems.append(f"'birdseye_schema_version' is {version}; this plugin reads up to {SCHEMA_VERSION} "
+                        "(update the plugin)")
+    if "output_kind" in values and values["output_kind"] not in OUTPUT_KINDS:
+        problems.append(f"'output_kind' must be one of {', '.join(OUTPUT_KINDS)} (got {values['output_kind']!r})")
+    number("default_threshold", low=0, high=1, low_open=True, high_open=True)
+    if values["input_channel_order"] not in CHANNEL_ORDERS:
+        problems.append(f"'input_channel_order' must be one of {', '.join(CHANNEL_ORDERS)} "
+                        f"(got {values['input_channel_order']!r})")
+    if values["training_gsd_cm"] is not None:
+        number("training_gsd_cm", low=0, low_open=True)
+    number("peak_blur_sigma_px", low=0)
+    if values["label_sigma_px"] is not None:
+        number("label_sigma_px", low=0, low_open=True)
+    if tile is not None and overlap is not None and round(tile * overlap / 100.0) >= tile:
+        problems.append(f"'tiles_overlap' of {overlap}% leaves no tile core at tile_size {tile}")
+
+    mean, std = values["standardization_mean"], values["standardization_std"]
+    for key, vec in (("standardization_mean", mean), ("standardization_std", std)):
+        if not isinstance(vec, list) or not vec or not all(
+                isinstance(x, (int, float)) and not isinstance(x, bool) for x in vec):
+            problems.append(f"'{key}' must be a list of numbers, one per input channel (got {vec!r})")
+    if isinstance(std, list) and any(isinstance(x, (int, float)) and x <= 0 for x in std):
+        problems.append(f"'standardization_std' values must be > 0 (got {std})")
+    if isinstance(mean, list) and isinstance(std, list) and len(mean) != len(std):
+        problems.append(f"'standardization_mean' has {len(mean)} values but 'standardization_std' has {len(std)}")
+
+    classes = _class_list(values["class_names"])
+    if classes is None:
+        problems.append("'class_names' must map consecutive indices from \"0\" to names, "
+                        f"e.g. {{\"0\": \"burrow\"}} (got {values['class_names']!r})")
+
+    problems += _shape_problems(input_shape, output_shape, tile, mean, classes)
+    return values, problems
+
+
+def _shape_problems(input_shape, output_shape, tile, mean, classes) -> list[str]:
+    problems = []
+    if input_shape is not None:
+        if len(input_shape) != 4:
+            problems.append(f"the model input must be NCHW (4 dimensions); it has shape {input_shape}")
+        else:
+            channels, h, w = input_shape[1:]
+            if isinstance(channels, int) and channels != 3:
+                problems.append(f"the model input has {channels} channels; BirdsEye feeds 3 (colour frames)")
+            if isinstance(mean, list) and isinstance(channels, int) and len(mean) != channels:
+                problems.append(f"'standardization_mean' has {len(mean)} values for {channels} input channels")
+            if tile is not None:
+                fixed = [d for d in (h, w) if isinstance(d, int) and d > 0]
+                if any(d != tile for d in fixed):
+                    problems.append(f"'tile_size' is {tile} but the model input is {h}×{w} px")
+    if output_shape is not None:
+        if len(output_shape) not in (3, 4):
+            problems.append(f"the model output must be N×1×H×W or N×H×W; it has shape {output_shape}")
+        elif len(output_shape) == 4 and isinstance(output_shape[1], int):
+            n_out = output_shape[1]
+            if n_out != 1:
+                problems.append(f"the model output has {n_out} channels; a BirdsEye heatmap model has one")
+            elif classes is not None and len(classes) != n_out:
+                problems.append(f"'class_names' names {len(classes)} classes for {n_out} output channel(s)")
+        if input_shape is not None and len(input_shape) == 4 and len(output_shape) in (3, 4):
+            hin, win = input_shape[2:]
+            hout, wout = output_shape[-2:]
+            if all(isinstance(d, int) for d in (hin, win, hout, wout)) and (hin, win) != (hout, wout):
+                problems.append(f"the heatmap ({hout}×{wout}) must have the input's size ({hin}×{win})")
+    return problems
+
+
+def _class_list(class_names):
+    """Class names in index order from Deepness's ``{"0": name, ...}`` (or a list); None if invalid."""
+    if isinstance(class_names, list) and class_names and all(isinstance(n, str) for n in class_names):
+        return list(class_names)
+    if not isinstance(class_names, dict) or not class_names:
+        return None
+    try:
+        items = sorted((int(k), v) for k, v in class_names.items())
+    except (TypeError, ValueError):
+        return None
+    if [k for k, _ in items] != list(range(len(items))) or not all(isinstance(v, str) for _, v in items):
+        return None
+    return [v for _, v in items]

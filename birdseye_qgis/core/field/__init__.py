@@ -1,0 +1,1 @@
+"""Field data: rover geotags, flight logs, DJI image metadata and the frame-layer contract."""

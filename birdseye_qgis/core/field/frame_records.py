@@ -1,0 +1,93 @@
+"""The frame-layer contract: what every frame carries so later steps need no source files.
+
+Both importers (BirdsEye pose log, DJI images) and the simulator write frames with these fields;
+``writelabels`` and ``detect`` read them back with :func:`poses_from_records`. One module owns the
+schema so writer and readers never drift apart.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from ..geometry.camera import CameraModel
+from ..errors import InputError
+from ..geometry.poses import FramePoses
+from ..geometry.rotations import quat_to_rotmat, rotmat_to_euler_zyx
+
+#: (name, type, description) — type is one of "int", "double", "string".
+FRAME_FIELDS = [
+    ("frame_id", "int", "frame number, unique within the flight"),
+    ("image", "string", "absolute path of the image file"),
+    ("time_s", "double", "exposure time (s, the pose log's clock)"),
+    ("lat", "double", "IMU latitude, WGS84 (deg)"),
+    ("lon", "double", "IMU longitude, WGS84 (deg)"),
+    ("height_m", "double", "IMU ellipsoidal height (m)"),
+    ("qw", "double", "attitude quaternion w (body FRD → NED)"),
+    ("qx", "double", "attitude quaternion x"),
+    ("qy", "double", "attitude quaternion y"),
+    ("qz", "double", "attitude quaternion z"),
+    ("roll_deg", "double", "roll (deg, ZYX)"),
+    ("pitch_deg", "double", "pitch (deg, ZYX)"),
+    ("yaw_deg", "double", "yaw from true north (deg, ZYX)"),
+    ("ground_h_m", "double", "ellipsoidal height of the level ground under the frame (m)"),
+    ("depth_m", "double", "camera height above that ground (m)"),
+    ("rtk_status", "int", "3 fixed, 2 float, 1 none"),
+    ("sync_offset_s", "double", "image time minus strobe time (s)"),
+    ("gsd_cm", "double", "ground sample distance at the image centre (cm/px)"),
+    ("camera", "string", "camera model as JSON (intrinsics, distortion, T_cam_imu)"),
+    ("flags", "string", "comma-separated warnings (e.g. rtk_float, non_nadir, yaw_mismatch)"),
+]
+FRAME_FIELD_NAMES = [f[0] for f in FRAME_FIELDS]
+
+
+def euler_degrees(quat) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(roll, pitch, yaw) in degrees of body → NED quaternions (N, 4)."""
+    roll, pitch, yaw = rotmat_to_euler_zyx(quat_to_rotmat(quat))
+    return np.degrees(roll), np.degrees(pitch), np.degrees(yaw) % 360.0
+
+
+def poses_from_records(records, source: str = "frame layer") -> list[tuple[FramePoses, np.ndarray]]:
+    """Frame poses from frame-layer records (mappings with :data:`FRAME_FIELD_NAMES`).
+
+    Frames are grouped by camera model; returns ``[(poses, record_indices), ...]`` where
+    ``record_indices`` say which input records each group holds, in input order.
+    """
+    records = list(records)
+    if not records:
+        raise InputError("has no frames", source=source)
+    missing = [n for n in ("frame_id", "lat", "lon", "height_m", "qw", "qx", "qy", "qz", "ground_h_m",
+                           "camera") if n not in records[0]]
+    if missing:
+        raise InputError(f"is not a BirdsEye frame layer: missing field(s) {', '.join(missing)} "
+                         "(make it with Import flight log or Import DJI images)", source=source)
+    groups: dict[str, list[int]] = {}
+    for i, rec in enumerate(records):
+        cam = rec["camera"]
+        if not cam:
+            raise InputError("is empty; the frame has no camera model", source=source, row=i + 1,
+                             field="camera")
+        groups.setdefault(cam, []).append(i)
+    out = []
+    for cam_json, idx in groups.items():
+        camera = CameraModel.from_json(cam_json, source=f"{source}, row {idx[0] + 1}, field 'camera'")
+        idx = np.asarray(idx)
+        try:
+            cols = {n: np.array([_number(records[i][n]) for i in idx], dtype=float)
+                    for n in ("lat", "lon", "height_m", "qw", "qx", "qy", "qz", "ground_h_m")}
+        except (TypeError, ValueError) as exc:
+            raise InputError(f"has a non-numeric pose value ({exc})", source=source) from exc
+        for n, values in cols.items():
+            if n != "ground_h_m" and not np.all(np.isfinite(values)):
+                row = int(idx[np.flatnonzero(~np.isfinite(values))[0]]) + 1
+                raise InputError("is empty or not a number", source=source, row=row, field=n)
+        quat = np.stack([cols["qw"], cols["qx"], cols["qy"], cols["qz"]], axis=1)
+        poses = FramePoses(np.array([records[i]["frame_id"] for i in idx]), cols["lat"], cols["lon"],
+                           cols["height_m"], quat, cols["ground_h_m"], camera)
+        out.append((poses, idx))
+    return out
+
+
+def _number(value) -> float:
+    if value is None or value == "":
+        return float("nan")
+    return float(value)
+

@@ -1,0 +1,1 @@
+"""Scores: recall and GMCF before and after review, sweeps, checkpoint screening, preregistration."""

@@ -1,0 +1,1 @@
+"""Simulation: a deterministic synthetic campaign (field, flight, rendered frames, terrain)."""

@@ -1,0 +1,180 @@
+"""De-duplication, DBSCAN and cluster summaries against hand-computed fixtures and scikit-learn."""
+import numpy as np
+import pytest
+
+from birdseye.birdseye_qgis.core.detect.clustering import (cluster_detections, cluster_hulls, dbscan, deduplicate,
+                                                     neighbour_graph, summarize_clusters)
+from birdseye.birdseye_qgis.core.errors import InputError
+
+
+def test_deduplicate_merges_detections_of_one_cell_into_their_mean():
+    xy = np.array([[0.001, 0.001], [0.021, 0.011],    # cell (0, 0)
+                   [0.031, 0.002],                      # cell (1, 0)
+                   [-0.001, 0.005],                     # cell (-1, 0): floor, not truncation
+                   [0.011, 0.029]])                     # cell (0, 0)
+    d = deduplicate(xy, 0.03)
+    assert len(d) == 3
+    cell00 = d.inverse[0]
+    assert d.inverse[1] == cell00 and d.inverse[4] == cell00
+    assert len({d.inverse[2], d.inverse[3], cell00}) == 3
+    np.testing.assert_allclose(d.xy[cell00], [(0.001 + 0.021 + 0.011) / 3, (0.001 + 0.011 + 0.029) / 3])
+    np.testing.assert_allclose(d.xy[d.inverse[3]], [-0.001, 0.005])
+    assert d.count[cell00] == 3 and d.count.sum() == 5
+
+
+def test_deduplication_and_labels_do_not_depend_on_detection_order():
+    rng = np.random.default_rng(3)
+    xy = np.concatenate([rng.normal([1, 1], 0.03, (60, 2)), rng.normal([3, 1], 0.03, (60, 2)),
+                         rng.uniform(0, 4, (30, 2))])
+    a = cluster_detections(xy, np.arange(len(xy)), rng.uniform(0, 1, len(xy)))
+    perm = rng.permutation(len(xy))
+    b = cluster_detections(xy[perm], np.arange(len(xy))[perm], None)
+    np.testing.assert_allclose(a.points.xy, b.points.xy, atol=1e-12)
+    np.testing.assert_array_equal(a.dbscan.labels, b.dbscan.labels)
+    np.testing.assert_array_equal(a.detection_cluster[perm], b.detection_cluster)
+
+
+def test_chained_points_form_one_cluster_with_border_ends():
+    """Nine points 8 cm apart on a line, eps 10 cm, min_samples 3: the interior points have three
+    points (themselves and two neighbours) within eps and are core; the two ends have two and are
+    border points; DBSCAN chains all nine into one 64 cm long cluster."""
+    xy = np.column_stack([np.arange(9) * 0.08, np.zeros(9)])
+    c = cluster_detections(xy, np.arange(9), None, dedup_cm=3, eps_m=0.10, min_samples=3)
+    assert c.n_clusters == 1
+    np.testing.assert_array_equal(c.dbscan.labels, 0)
+    np.testing.assert_array_equal(c.dbscan.core, [False] + [True] * 7 + [False])
+    # Centroid at 0.32 m; distances 0.32, 0.24, 0.16, 0.08, 0, 0.08, ... → median 0.16 → extent 0.32 m.
+    np.testing.assert_allclose(c.summary.centroid[0], [0.32, 0.0], atol=1e-12)
+    np.testing.assert_allclose(c.summary.median_extent_m[0], 0.32, atol=1e-12)
+
+
+def test_isolated_and_sparse_points_are_noise():
+    xy = np.array([[0, 0], [0.05, 0], [5, 5], [10, 0]], dtype=float)
+    c = cluster_detections(xy, None, None, eps_m=0.10, min_samples=3)
+    assert c.n_clusters == 0
+    np.testing.assert_array_equal(c.dbscan.labels, -1)
+    np.testing.assert_array_equal(c.detection_cluster, -1)
+    assert not c.dbscan.core.any()
+
+
+def test_min_samples_counts_distinct_cells_not_repeated_detections():
+    """Twenty detections in one 3 cm cell are one de-duplicated point: never a cluster at min_samples 3."""
+    xy = np.full((20, 2), 0.005) + np.linspace(0, 0.02, 20)[:, None]
+    c = cluster_detections(xy, np.arange(20), None, dedup_cm=3, eps_m=0.10, min_samples=3)
+    assert len(c.points) == 1 and c.n_clusters == 0
+    c1 = cluster_detections(xy, np.arange(20), None, dedup_cm=3, eps_m=0.10, min_samples=1)
+    assert c1.n_clusters == 1 and c1.summary.n_detections[0] == 20 and c1.summary.n_frames[0] == 20
+
+
+def test_cluster_summary_by_hand():
+    # Cluster 0: four detections around (1, 2) from frames 7, 7, 8, 9; cluster 1: two detections; one noise.
+    xy = np.array([[1.01, 2.0], [0.99, 2.0], [1.0, 2.02], [1.0, 1.98], [5.0, 5.0], [5.0, 5.1], [9.0, 9.0]])
+    cluster = np.array([0, 0, 0, 0, 1, 1, -1])
+    frames = np.array([7, 7, 8, 9, 1, 1, 3])
+    score = np.array([0.5, 0.9, 0.6, 0.7, 0.3, 0.4, 0.99])
+    s = summarize_clusters(xy, cluster, 2, frames, score)
+    np.testing.assert_allclose(s.centroid, [[1.0, 2.0], [5.0, 5.05]], atol=1e-12)
+    np.testing.assert_array_equal(s.n_detections, [4, 2])
+    np.testing.assert_array_equal(s.n_frames, [3, 1])
+    # distances 0.01, 0.01, 0.02, 0.02 → median 0.015 → extent 0.03; cluster 1: 0.05, 0.05 → 0.1
+    np.testing.assert_allclose(s.median_extent_m, [0.03, 0.10], atol=1e-12)
+    np.testing.assert_allclose(s.max_score, [0.9, 0.4])
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_dbscan_matches_scikit_learn_on_raw_points_for_every_eps_and_min_samples_of_one_graph(seed):
+    """One radius graph at the largest eps answers every smaller eps and every min_samples exactly as
+    scikit-learn's DBSCAN run from scratch on the coordinates (labels, core points, border rule)."""
+    from sklearn.cluster import DBSCAN
+
+    rng = np.random.default_rng(seed)
+    centres = rng.uniform(0, 3, (12, 2))
+    xy = np.concatenate([centres[rng.integers(0, 12, 400)] + rng.normal(0, 0.04, (400, 2)),
+                         rng.uniform(0, 3, (150, 2))])
+    points = deduplicate(xy, 0.03)
+    graph = neighbour_graph(points.xy, 0.16)
+    for eps in (0.05, 0.08, 0.12, 0.16):
+        for m in (1, 2, 3, 5, 8):
+            ours = dbscan(graph, eps, m)
+            ref = DBSCAN(eps=eps, min_samples=m).fit(points.xy)
+            np.testing.assert_array_equal(ours.labels, ref.labels_)
+            np.testing.assert_array_equal(np.flatnonzero(ours.core), np.sort(ref.core_sample_indices_))
+            assert ours.n_clusters == len(set(ref.labels_) - {-1})
+
+
+def test_graph_degree_counts_self_and_neighbours_within_eps():
+    xy = np.array([[0, 0], [0.05, 0], [0.15, 0], [1, 1]], dtype=float)
+    g = neighbour_graph(xy, 0.2)
+    np.testing.assert_array_equal(g.degree(0.2), [3, 3, 3, 1])
+    np.testing.assert_array_equal(g.degree(0.1), [2, 3, 2, 1])
+    with pytest.raises(ValueError):
+        g.csr(0.3)
+
+
+def test_single_point_hull_is_the_circumscribed_polygon_of_the_buffer():
+    r, edges = 0.03, 16
+    ring = cluster_hulls(np.array([[2.0, -1.0]]), np.array([0]), 1, r, edges)[0]
+    np.testing.assert_allclose(np.hypot(*(ring - [2.0, -1.0]).T), r / np.cos(np.pi / edges), rtol=1e-12)
+    assert polygon_area(ring) == pytest.approx(edges * r * r * np.tan(np.pi / edges), rel=1e-12)
+
+
+def test_segment_hull_area_is_buffer_polygon_plus_length_times_width():
+    """Minkowski sum of a segment (along x) with the circumscribed 16-gon (width 2r across x)."""
+    r, length = 0.03, 0.4
+    xy = np.column_stack([np.linspace(0, length, 7), np.zeros(7)])
+    ring = cluster_hulls(xy, np.zeros(7, int), 1, r, 16)[0]
+    assert polygon_area(ring) == pytest.approx(16 * r * r * np.tan(np.pi / 16) + 2 * r * length, rel=1e-12)
+
+
+def test_hulls_contain_every_detection_with_the_buffer_and_stay_close_to_the_exact_grown_hull():
+    from scipy.spatial import ConvexHull
+
+    rng = np.random.default_rng(11)
+    xy = np.concatenate([rng.normal([0, 0], 0.05, (50, 2)), rng.normal([1, 0], 0.02, (5, 2)),
+                         [[3.0, 3.0]], [[4.0, 4.0], [4.3, 4.1]], rng.uniform(5, 6, (20, 2))])
+    cluster = np.array([0] * 50 + [1] * 5 + [2] + [3, 3] + [-1] * 20)
+    r, edges = 0.03, 32
+    rings = cluster_hulls(xy, cluster, 4, r, edges)
+    assert rings.shape == (4, edges, 2)
+    for k in range(4):
+        ring, pts = rings[k], xy[cluster == k]
+        assert polygon_area(ring) > 0, "rings are counter-clockwise"
+        edge = np.roll(ring, -1, axis=0) - ring
+        normal = np.column_stack([edge[:, 1], -edge[:, 0]]) / np.hypot(*edge.T)[:, None]  # outward for CCW
+        inside = np.einsum("ej,pej->pe", normal, ring[None] - pts[:, None])
+        assert inside.min() >= r - 1e-12, "every detection lies at least the buffer inside every edge"
+        hull = pts[ConvexHull(pts).vertices] if len(pts) > 2 else pts
+        longest = np.hypot(*(np.roll(hull, -1, axis=0) - hull).T).max() if len(hull) > 1 else 0.0
+        overshoot = (r * 2 * np.pi / edges + longest) * np.tan(np.pi / edges) / 2
+        for vertex in ring:
+            assert distance_to_convex(vertex, hull) - r <= overshoot + 1e-12
+
+
+def test_bad_parameters_are_input_errors_naming_the_parameter():
+    with pytest.raises(InputError, match="DEDUP_CM"):
+        deduplicate(np.zeros((2, 2)), 0.0)
+    with pytest.raises(InputError, match="EPS_M"):
+        neighbour_graph(np.zeros((2, 2)), 0.0)
+    with pytest.raises(InputError, match="MIN_SAMPLES"):
+        dbscan(neighbour_graph(np.zeros((2, 2)), 0.1), 0.1, 0)
+    with pytest.raises(InputError, match="no position"):
+        deduplicate(np.array([[0.0, np.nan]]), 0.03)
+
+
+def test_empty_detections_give_no_clusters():
+    c = cluster_detections(np.empty((0, 2)), np.empty(0), np.empty(0))
+    assert c.n_clusters == 0 and len(c.points) == 0 and len(c.summary) == 0
+    assert cluster_hulls(np.empty((0, 2)), np.empty(0, int), 0).shape == (0, 32, 2)
+
+
+def distance_to_convex(x, vertices):
+    """Distance from a point outside a convex polygon (or segment, or point) to it."""
+    a, b = vertices, np.roll(vertices, -1, axis=0)
+    ab = b - a
+    t = np.clip(np.einsum("ij,ij->i", x - a, ab) / np.maximum(np.einsum("ij,ij->i", ab, ab), 1e-300), 0, 1)
+    return float(np.min(np.hypot(*(a + t[:, None] * ab - x).T)))
+
+
+def polygon_area(ring):
+    x, y = ring[:, 0], ring[:, 1]
+    return 0.5 * float(np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y))

@@ -1,0 +1,165 @@
+"""Projected labels: rasters, the sparse PNG encoder, the written files and their summary."""
+import csv
+import io
+import json
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from birdseye.birdseye_qgis.core.geometry.camera import CameraModel
+from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame
+from birdseye.birdseye_qgis.core.labels.training_set import (Geotags, LabelRequest, project_labels, soft_label_raster,
+                                                 tile_origins, write_label_set)
+from birdseye.birdseye_qgis.core.geometry.poses import FramePoses
+from birdseye.birdseye_qgis.core.geometry.rotations import euler_zyx_to_rotmat, rotmat_to_quat
+from birdseye.birdseye_qgis.core.labels.sparse_png import encode_gray_png
+
+NADIR = np.array([[0.0, 1.0, 0.0], [-1.0, 0.0, 0.0], [0.0, 0.0, 1.0]])
+
+
+def test_soft_label_hump_values_and_cut_at_three_sigma():
+    r = soft_label_raster(200, 100, np.array([[50.0, 40.0]]), sigma_px=5.0)
+    assert r[40, 50] == 255
+    assert r[40, 55] == round(255 * np.exp(-0.5))          # one σ to the right
+    assert r[40, 65] == round(255 * np.exp(-4.5))          # exactly 3σ: still drawn
+    assert r[40, 66] == 0 and r[40, 34] == 0               # beyond 3σ
+    assert r.sum() == r[25:56, 35:66].sum()
+
+
+def test_overlapping_humps_combine_by_max_and_clip_at_edges():
+    a, b = np.array([[30.2, 20.7]]), np.array([[38.9, 24.1]])
+    both = soft_label_raster(64, 48, np.vstack([a, b]), 4.0)
+    np.testing.assert_array_equal(both, np.maximum(soft_label_raster(64, 48, a, 4.0),
+                                                   soft_label_raster(64, 48, b, 4.0)))
+    corner = soft_label_raster(64, 48, np.array([[-2.0, 47.4]]), 4.0)
+    assert corner[47, 0] > 0 and corner.shape == (48, 64)
+    assert soft_label_raster(64, 48, np.array([[-40.0, 10.0]]), 4.0).sum() == 0
+
+
+def _decode(png: bytes) -> np.ndarray:
+    from PIL import Image
+
+    return np.asarray(Image.open(io.BytesIO(png)))
+
+
+@settings(max_examples=60, deadline=None)
+@given(h=st.integers(1, 90), w=st.integers(1, 130), n=st.integers(0, 5), seed=st.integers(0, 2 ** 16))
+def test_sparse_png_decodes_to_the_same_raster(h, w, n, seed):
+    rng = np.random.default_rng(seed)
+    raster = soft_label_raster(w, h, np.column_stack([rng.uniform(0, w, n), rng.uniform(0, h, n)]), 3.0)
+    if seed % 5 == 0:
+        raster = rng.integers(0, 256, (h, w), dtype=np.uint8)  # dense rows as well
+    np.testing.assert_array_equal(_decode(encode_gray_png(raster)), raster)
+
+
+def test_sparse_png_is_read_by_opencv_too():
+    cv2 = pytest.importorskip("cv2")
+    raster = soft_label_raster(1920, 1200, np.array([[10.0, 10.0], [1900.0, 1190.0], [960.0, 600.0]]), 10.0)
+    png = encode_gray_png(raster)
+    back = cv2.imdecode(np.frombuffer(png, np.uint8), cv2.IMREAD_UNCHANGED)
+    np.testing.assert_array_equal(back, raster)
+    assert len(png) < 60_000
+
+
+def test_tile_origins_cover_the_image_with_the_last_tile_flush():
+    assert tile_origins(1200, 224) == [0, 224, 448, 672, 896, 976]
+    assert tile_origins(448, 224) == [0, 224]
+    assert tile_origins(100, 224) == [0]
+
+
+def small_campaign(edge_geotag=False):
+    t = np.eye(4)
+    t[:3, :3] = NADIR
+    cam = CameraModel(640, 400, 1400.0, 1400.0, 319.5, 199.5, (-0.05, 0.02, 0.0, 0.0, 0.0), t)
+    local = LocalFrame(-27.55, 151.95, 400.0)
+    enu = np.array([[0.0, 0.0, 10.0], [2.0, 0.0, 10.0], [30.0, 30.0, 10.0]])
+    lat, lon, h = local.to_geodetic(enu)
+    q = rotmat_to_quat(euler_zyx_to_rotmat(np.zeros(3), np.zeros(3), np.zeros(3)))
+    poses = FramePoses([101, 102, 103], lat, lon, h, q, np.full(3, 400.0), cam)
+    # geotags: one seen by frames 101 and 102, one only by 101, one never; antenna heights vary.
+    g = np.array([[0.3, 0.2, 1.5], [-1.0, -0.5, 0.0], [100.0, 100.0, 0.0]])
+    if edge_geotag:
+        g = np.vstack([g, [-2.22, 0.0, 0.0]])  # ~8 px inside frame 101's left edge
+    g_lat, g_lon, g_h = local.to_geodetic(g + [0, 0, 400.0])
+    geotags = Geotags(np.arange(1, len(g) + 1), ["burrow", "gap", "burrow"] + ["burrow"] * (len(g) - 3),
+                      g_lat, g_lon, g_h)
+    return poses, geotags, local
+
+
+def test_project_labels_finds_every_frame_that_sees_each_geotag():
+    poses, geotags, local = small_campaign()
+    labels = project_labels(poses, geotags, local=local)
+    assert [fl.geotag_index.tolist() for fl in labels] == [[0, 1], [0], []]
+    # Nadir, heading north: 0.3 m east, 0.2 m north of frame 101 at 10 m → right of and above centre.
+    u, v = labels[0].uv[0]
+    assert u > 319.5 + 35 and v < 199.5 - 20
+
+
+def test_edge_buffer_reports_edge_labels_and_writes_no_positive(tmp_path):
+    poses, geotags, local = small_campaign(edge_geotag=True)
+    labels = project_labels(poses, geotags, edge_buffer_px=20, local=local)
+    assert labels[0].edge.tolist() == [False, False, True]
+    images = [f"/frames/{i}.jpg" for i in poses.frame_id]
+    result = write_label_set(poses, images, geotags, labels, tmp_path,
+                             LabelRequest(sigma_px=3.0, edge_buffer_px=20, coco=True))
+    rows = list(csv.DictReader(open(tmp_path / "labels.csv")))
+    assert [(r["frame_id"], r["geotag_id"], r["label"]) for r in rows] == [
+        ("101", "1", "burrow"), ("101", "2", "gap"), ("102", "1", "burrow")]
+    assert result.summary["n_edge"] == 1 and result.summary["n_labels"] == 3
+    assert result.summary["geotags_never_in_view"] == [3]
+    assert result.summary["geotags_only_at_edge"] == [4]
+    assert result.frames_per_geotag.tolist() == [2, 1, 0, 0]
+    lines = (tmp_path / "labels.txt").read_text().splitlines()
+    assert lines[0].split(" ")[:2] == ["0", "/frames/101.jpg"] and len(lines) == 2
+    u, v, cls = lines[0].split(" ")[2].split(",")
+    assert int(cls) == result.summary["classes"].index("burrow")
+    assert float(u) == pytest.approx(float(rows[0]["u"]), abs=0.01)
+    raster = _decode((tmp_path / "rasters" / "101.png").read_bytes())
+    assert raster.shape == (400, 640)
+    u0, v0 = float(rows[0]["u"]), float(rows[0]["v"])
+    r2 = (round(u0) - u0) ** 2 + (round(v0) - v0) ** 2
+    assert raster[round(v0), round(u0)] == round(255 * np.exp(-r2 / 18.0))
+    assert not (tmp_path / "rasters" / "103.png").exists() or _decode(
+        (tmp_path / "rasters" / "103.png").read_bytes()).sum() == 0
+    coco = json.loads((tmp_path / "coco_keypoints.json").read_text())
+    assert len(coco["images"]) == 3 and len(coco["annotations"]) == 3
+    assert coco["annotations"][0]["keypoints"][2] == 2
+    assert json.loads((tmp_path / "summary.json").read_text())["n_frames_with_labels"] == 2
+
+
+def test_tiles_keep_every_positive_and_a_seeded_share_of_negatives(tmp_path):
+    cv2 = pytest.importorskip("cv2")
+    poses, geotags, local = small_campaign()
+    images = []
+    for fid in poses.frame_id:
+        path = tmp_path / f"{fid}.png"
+        cv2.imwrite(str(path), np.full((400, 640, 3), 90, np.uint8))
+        images.append(str(path))
+    labels = project_labels(poses, geotags, local=local)
+    req = LabelRequest(sigma_px=3.0, write_rasters=False, tile_size=128, negative_ratio=1.0, seed=5)
+    r1 = write_label_set(poses, images, geotags, labels, tmp_path / "a", req)
+    write_label_set(poses, images, geotags, labels, tmp_path / "b", req)
+    tiles = r1.summary["tiles"]
+    xs, ys = tile_origins(640, 128), tile_origins(400, 128)
+    n_tiles = len(xs) * len(ys)
+    expected_pos, expected_neg = 0, 0
+    for fl in labels:
+        pos = sum(any(x0 - 0.5 <= u < x0 + 127.5 and y0 - 0.5 <= v < y0 + 127.5 for u, v in fl.uv)
+                  for x0 in xs for y0 in ys)
+        expected_pos += pos
+        expected_neg += min(n_tiles - pos, max(1, pos))  # ratio 1: one negative per positive, at least one
+    assert tiles["positive"] == expected_pos >= 3
+    assert tiles["negative"] == expected_neg
+    names = sorted(p.name for p in (tmp_path / "a" / "tiles" / "images").iterdir())
+    assert names == sorted(p.name for p in (tmp_path / "b" / "tiles" / "images").iterdir())
+    assert names == sorted(p.name for p in (tmp_path / "a" / "tiles" / "labels").iterdir())
+    assert cv2.imread(str(tmp_path / "a" / "tiles" / "images" / names[0])).shape == (128, 128, 3)
+
+
+def test_frames_without_a_ground_height_get_no_labels():
+    poses, geotags, local = small_campaign()
+    poses.ground_height[0] = np.nan  # frame 101 had no usable altimeter reading
+    labels = project_labels(poses, geotags, local=local)
+    assert [fl.geotag_index.tolist() for fl in labels] == [[], [0], []]

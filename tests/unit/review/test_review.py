@@ -1,0 +1,324 @@
+"""Review core: consensus units, ordering, propagation, verdict actions and undo, digests, chips.
+
+The scene: level nadir frames 10 m above flat ground near Dalby (undistorted 480 × 300 px camera,
+fx = fy = 500 px, so 2 cm per pixel); targets are points on the ground in metres east/north of the
+site, detections are their projections into the frames that see them (so u, v and the ground position
+agree exactly), and scores follow from a hand-written table.
+"""
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+
+from birdseye.birdseye_qgis.core.review import review as rv
+from birdseye.birdseye_qgis.core.geometry.camera import CameraModel
+from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame
+from birdseye.birdseye_qgis.core.geometry.ground import LevelPlaneGround
+from birdseye.birdseye_qgis.core.geometry.poses import FrameGeometry, FramePoses
+from birdseye.birdseye_qgis.core.geometry.projection import project_all
+from birdseye.birdseye_qgis.core.geometry.rotations import euler_zyx_to_rotmat, rotmat_to_quat
+from birdseye.birdseye_qgis.core.scoring.scoring import CONVENTIONS, Detections, Geotags, VerdictLog
+
+SITE = LocalFrame(-27.55, 151.95, 400.0)
+FRAMES_EN = [(-1.0, 0.0), (0.0, 0.0), (1.0, 0.0), (2.0, 0.0)]   # m east/north of the site
+
+
+def camera():
+    t = np.eye(4)
+    t[:3, :3] = [[0, 1, 0], [-1, 0, 0], [0, 0, 1]]
+    return CameraModel(480, 300, 500.0, 500.0, 239.5, 149.5, (0, 0, 0, 0, 0), t)
+
+
+def poses(frames_en=FRAMES_EN):
+    en = np.asarray(frames_en, dtype=float)
+    lat, lon, h = SITE.to_geodetic(np.column_stack([en, np.full(len(en), 10.0)]))
+    q = np.tile(rotmat_to_quat(euler_zyx_to_rotmat(0.0, 0.0, 0.0)), (len(en), 1))
+    return FramePoses(np.arange(len(en)) + 100, lat, lon, h, q, np.full(len(en), SITE.h0), camera())
+
+
+def ground_points(en):
+    en = np.atleast_2d(np.asarray(en, dtype=float))
+    lat, lon, h = SITE.to_geodetic(np.column_stack([en, np.zeros(len(en))]))
+    return lat, lon, h
+
+
+def detections_of(spots, name, score=0.8, jitter=0.0, seed=0):
+    """Each spot (m east, north) detected in every frame that sees it, at its exact projection."""
+    p = poses()
+    geometry = FrameGeometry(p, SITE)
+    lat, lon, h = ground_points(spots)
+    local = SITE.from_geodetic(lat, lon, h)
+    proj = project_all(geometry, local, LevelPlaneGround(geometry))
+    proj = proj.select(proj.in_view)
+    rng = np.random.default_rng(seed)
+    pts = local[proj.point_idx] + np.column_stack([rng.normal(0, jitter, (len(proj.point_idx), 2)),
+                                                   np.zeros(len(proj.point_idx))])
+    dlat, dlon, dh = SITE.to_geodetic(pts)
+    det = Detections(dlat, dlon, dh, p.frame_id[proj.frame_idx], np.full(len(pts), score), name=name)
+    return rv.ReviewLayer(det, proj.uv[:, 0], proj.uv[:, 1])
+
+
+def geotags_at(en, ids=None):
+    lat, lon, h = ground_points(en)
+    return Geotags(np.asarray(ids if ids is not None else range(1, len(lat) + 1), dtype=object), lat, lon,
+                   np.full(len(lat), np.nan))
+
+
+def blob(cx, cy, n=3, step=0.03):
+    """A small square of detection positions (n × n, step m) around (cx, cy)."""
+    return [(cx + i * step, cy + j * step) for i in range(-(n // 2), n - n // 2) for j in range(-(n // 2), n - n // 2)]
+
+
+S1, S2, S3 = (-0.5, 0.2), (0.6, -0.3), (1.5, 0.4)
+
+
+@pytest.fixture
+def two_layers():
+    a = detections_of(blob(*S1) + blob(*S2), "model A")
+    b = detections_of(blob(*S2) + blob(*S3), "model B", score=0.6)
+    return [a, b]
+
+
+def build(layers, geotags=None, **params):
+    g = geotags if geotags is not None else geotags_at([S2])
+    return rv.build_units(layers, SITE, g, [poses()], rv.ReviewParameters(**params))
+
+
+# ---------------------------------------------------------------------------------------------- units
+def test_units_are_consensus_clusters_that_record_which_layers_fired(two_layers):
+    units = build(two_layers)
+    assert len(units) == 3
+    nearest = {spot: int(np.argmin(np.hypot(*(units.xy - SITE.from_geodetic(*ground_points(spot))[0, :2]).T)))
+               for spot in (S1, S2, S3)}
+    assert units.layers_fired[nearest[S1]] == ["model A"]
+    assert units.layers_fired[nearest[S2]] == ["model A", "model B"]
+    assert units.layers_fired[nearest[S3]] == ["model B"]
+    # Every detection of a spot is in its unit; the unit's frames are the frames that saw the spot.
+    for spot in (S1, S2, S3):
+        k = nearest[spot]
+        assert units.n_detections[k] == int((units.detection_unit == k).sum()) > 0
+        assert units.n_frames[k] == len(set(units.detection_frame[units.detection_unit == k].tolist()))
+
+
+def test_unmatched_units_come_first_and_matching_uses_eps_pred(two_layers):
+    units = build(two_layers)
+    matched = [units.keys[i] for i in units.order if units.matched[i]]
+    assert len(matched) == 1 and units.order[-1] == units.index[matched[0]]
+    assert units.matched_geotags[units.index[matched[0]]] == [1]
+    # A geotag 0.25 m from S2 misses at eps_pred 0.20 m and matches at 0.30 m.
+    far = geotags_at([(S2[0] + 0.25 + 0.03, S2[1])])
+    assert not build(two_layers, far).matched.any()
+    assert build(two_layers, far, eps_pred_m=0.30).matched.sum() == 1
+
+
+def test_unit_keys_are_stable_and_positions_sit_on_core_cells(two_layers):
+    units = build(two_layers)
+    a, b = two_layers
+    perm = np.random.default_rng(1).permutation(len(a.detections))
+    shuffled = rv.ReviewLayer(Detections(a.detections.lat[perm], a.detections.lon[perm], a.detections.height[perm],
+                                         a.detections.frame_id[perm], a.detections.score[perm], name="model A"),
+                              a.u[perm], a.v[perm])
+    assert sorted(build([b, shuffled]).keys) == sorted(units.keys)
+    core = units.clustering.points.xy[units.clustering.dbscan.core]
+    for k, key in enumerate(units.keys):
+        assert np.min(np.hypot(*(core - units.xy[k]).T)) == 0.0
+        assert key == rv.position_key("u", units.lat[k], units.lon[k]) and key.startswith("u-27.")
+
+
+def test_a_chained_unit_is_placed_on_its_detections_not_between_them():
+    # Two dense blobs 0.6 m apart joined by a bridge of single cells every 8 cm: one DBSCAN cluster
+    # whose mean lies in the bridge's gap region, away from the heavy blobs.
+    bridge = [(x, 0.0) for x in np.arange(-0.22, 0.23, 0.08)]
+    spots = blob(-0.3, 0.0, 5, 0.02) + blob(0.3, 0.0, 5, 0.02) + bridge
+    layer = detections_of(spots, "model A")
+    units = build([layer], geotags_at([(5.0, 5.0)]), min_samples=1)
+    assert len(units) == 1
+    mean = units.clustering.summary.centroid[0]
+    assert np.min(np.hypot(*(units.clustering.points.xy - units.xy[0]).T)) == 0.0
+    assert np.hypot(*(units.xy[0] - mean)) < 0.08
+
+
+def test_propagation_groups_chain_units_within_20_cm():
+    xy = np.array([[0.0, 0.0], [0.15, 0.0], [0.30, 0.0], [0.61, 0.0], [5.0, 5.0]])
+    g = rv.propagation_groups(xy)
+    assert g[0] == g[1] == g[2] and len({g[0], g[3], g[4]}) == 3
+    wider = rv.propagation_groups(xy, 0.32)
+    assert wider[3] == wider[0] != wider[4]
+
+
+# ---------------------------------------------------------------------------------------------- ledger
+def stored(ledger, planned, action, undoes=None):
+    """Append planned rows as the store would (fid and action id in order)."""
+    fid = len(ledger.rows) + 1
+    action_id = max([r["action_id"] for r in ledger.rows], default=0) + 1
+    rows = [{"fid": fid + k, "unit_key": p.unit_key, "verdict": p.verdict, "provenance": p.provenance,
+             "action_id": action_id, "action": action, "undoes": undoes, "lat": p.lat, "lon": p.lon,
+             "layers_fired": json.dumps(list(p.layers_fired)), "time": "", "reviewer": "t"}
+            for k, p in enumerate(planned)]
+    ledger.extend(rows)
+    return rows
+
+
+A, B, C = (rv.UnitRef(k, -27.55, 151.95 + i * 1e-6, ("m",)) for i, k in enumerate(("uA", "uB", "uC")))
+
+
+def test_propagation_writes_one_vote_per_source_and_conflicts_resolve_under_three_conventions():
+    ledger = rv.Ledger()
+    stored(ledger, ledger.plan_verdict(A, "confirmed_real", [B, C], propagate=True), "verdict")
+    stored(ledger, ledger.plan_verdict(B, "hard_negative", [A, C], propagate=True), "verdict")
+    prov_a, prov_b = rv.propagation_provenance("uA"), rv.propagation_provenance("uB")
+    assert prov_a == "propagated:dbscan_0.20m/uA"
+    assert ledger.votes("uC") == {prov_a: "confirmed_real", prov_b: "hard_negative"}
+    log = ledger.verdict_log()
+    resolved = {c: log.resolve("uC", c) for c in CONVENTIONS}
+    assert resolved == {"positive_wins": "confirmed_real", "majority_wins": "uncertain",
+                        "hard_negative_wins": "hard_negative"}
+    # B: its own hard_negative and A's propagated confirmed_real — the same spread.
+    status = rv.unit_status(log, ledger, "uB")
+    assert status.direct == "hard_negative" and status.conflict and not status.propagated_only
+    assert rv.unit_status(log, ledger, "uC").propagated_only
+
+
+def test_propagated_votes_follow_their_source_even_with_propagation_off():
+    ledger = rv.Ledger()
+    stored(ledger, ledger.plan_verdict(A, "confirmed_real", [B], propagate=True), "verdict")
+    rows = ledger.plan_verdict(A, "hard_negative", [B, C], propagate=False)
+    assert [(r.unit_key, r.verdict, r.provenance) for r in rows] == [
+        ("uA", "hard_negative", "direct"), ("uB", "hard_negative", rv.propagation_provenance("uA"))]
+    stored(ledger, rows, "verdict")
+    assert ledger.plan_verdict(A, "hard_negative", [B, C]) == []   # nothing would change
+    assert ledger.propagated_from("uA") == ["uB"]
+
+
+def test_undo_restores_every_slot_and_the_stack_is_rebuilt_from_the_log():
+    ledger = rv.Ledger()
+    stored(ledger, ledger.plan_verdict(A, "uncertain"), "verdict")
+    stored(ledger, ledger.plan_verdict(A, "confirmed_real", [B, C], propagate=True), "verdict")
+    stored(ledger, ledger.plan_add(-27.5501, 151.9502), "add")
+    key = rv.added_key(-27.5501, 151.9502)
+    assert [t.key for t in ledger.added_targets()] == [key]
+    for expected_open in ([1, 2], [1]):
+        action, rows = ledger.plan_undo()
+        stored(ledger, rows, "undo", undoes=action)
+        assert rv.Ledger(ledger.rows).open_actions() == ledger.open_actions() == expected_open
+    # The add is withdrawn, A is back to uncertain, the propagated votes withdrawn.
+    assert ledger.added_targets() == [] and ledger.direct(key) == "unreviewed"
+    assert ledger.direct("uA") == "uncertain" and ledger.votes("uB") == {} and ledger.votes("uC") == {}
+    log = VerdictLog.from_records(ledger.rows)
+    assert log.added_targets() == [] and log.resolve("uB", "positive_wins") == "unreviewed"
+    action, rows = ledger.plan_undo()
+    stored(ledger, rows, "undo", undoes=action)
+    assert ledger.plan_undo() == (None, []) and ledger.direct("uA") == "unreviewed"
+    assert len(ledger.rows) == 1 + 3 + 1 + 1 + 3 + 1   # three actions, three undos; nothing deleted
+
+
+def test_resume_prefers_the_cursor_then_the_unit_after_the_last_reviewed():
+    order = ["u1", "u2", "u3", "u4"]
+    ledger = rv.Ledger()
+    assert rv.resume_key(order, ledger, None) == "u1"
+    stored(ledger, ledger.plan_verdict(rv.UnitRef("u2", 0, 0), "confirmed_real"), "verdict")
+    assert rv.resume_key(order, ledger, None) == "u3"
+    assert rv.resume_key(order, ledger, "u1") == "u1"
+    assert rv.resume_key(order, ledger, "gone") == "u3"
+    assert rv.resume_key([], ledger, "u1") is None
+
+
+# ---------------------------------------------------------------------------------------------- digests
+def test_content_digest_ignores_order_and_number_type_but_sees_any_change():
+    rows = [[1, 10.5, "m.onnx", 3.25, 4.5, 400.0], [2, 11.0, "m.onnx", 3.5, 4.5, None]]
+    fields = ["frame_id", "u", "model", "x", "y", "z"]
+    d = rv.content_digest("detections", "EPSG:32756", fields, rows)
+    assert len(d) == 64
+    assert rv.content_digest("detections", "EPSG:32756", fields, rows[::-1]) == d
+    assert rv.content_digest("detections", "EPSG:32756", fields, [[1.0] + rows[0][1:], rows[1]]) == d
+    moved = [rows[0][:3] + [3.25 + 1e-9] + rows[0][4:], rows[1]]
+    assert rv.content_digest("detections", "EPSG:32756", fields, moved) != d
+    assert rv.content_digest("detections", "EPSG:32755", fields, rows) != d
+    assert rv.content_digest("detections", "EPSG:32756", fields, rows[:1]) != d
+
+
+def digest_row(unit, digests, params=None, provenance="direct", verdict="confirmed_real"):
+    return {"unit_key": unit, "verdict": verdict, "provenance": provenance, "input_digests": json.dumps(digests),
+            "postprocessing": json.dumps(params or {"eps_m": 0.1}), "matching_parameters": json.dumps({})}
+
+
+def test_check_inputs_reports_changed_layers_parameters_and_orphans():
+    now = {"detections:A": "d1", "frames:F": "f1", "geotags:G": "g1"}
+    rows = [digest_row("u1", now), digest_row("u2", {**now, "detections:A": "d0"}),
+            digest_row("u3", {**now, "detections:A": "d0"}, {"eps_m": 0.15}),
+            digest_row("x9", {"detections:Other": "o"})]             # another review in the same GeoPackage
+    check = rv.check_inputs(rows, now, {"eps_m": 0.1}, ["u1", "u2"])
+    assert check.n_rows == 3 and not check.ok
+    assert check.changed == {"detections:A": 2} and check.missing == {} and check.new == []
+    assert check.parameters == {"eps_m": ([0.15], 0.1)}
+    assert check.orphaned == ["u3"]
+    messages = " ".join(check.messages())
+    assert "'A' changed since 2 of 3" in messages and "eps_m" in messages and "u3" in messages
+    same = rv.check_inputs(rows[:1], now, {"eps_m": 0.1}, ["u1"])
+    assert same.ok and same.messages() == []
+    extra = rv.check_inputs(rows[:1], {**now, "detections:B": "b"}, {"eps_m": 0.1}, ["u1"])
+    assert extra.ok and extra.new == ["detections:B"]
+
+
+# ---------------------------------------------------------------------------------------------- chips
+@pytest.mark.parametrize("u, v, size, expected", [
+    (100.0, 80.0, 64, (68, 48, 132, 112)),
+    (3.0, 2.0, 64, (0, 0, 64, 64)),
+    (479.0, 299.0, 64, (416, 236, 480, 300)),
+    (10.0, 10.0, 400, (0, 0, 400, 300)),
+])
+def test_crop_window_stays_inside_the_image(u, v, size, expected):
+    window = rv.crop_window(u, v, size, 480, 300)
+    assert window == expected
+    x0, y0, x1, y1 = window
+    assert 0 <= x0 < x1 <= 480 and 0 <= y0 < y1 <= 300
+
+
+def test_chips_show_the_unit_where_it_was_detected_and_geotags_where_they_project(two_layers, tmp_path):
+    import cv2
+
+    g = geotags_at([S2, (S2[0] + 0.1, S2[1] + 0.05), (9.0, 9.0)])
+    units = build(two_layers, g)
+    frames = rv.FrameIndex([poses()], [[str(tmp_path / f"{i}.png") for i in range(len(FRAMES_EN))]], SITE)
+    g_local = SITE.from_geodetic(g.lat, g.lon, np.full(len(g), SITE.h0))
+    k = int(np.flatnonzero(units.matched)[0])
+    plans, n_frames = rv.plan_unit_chips(units, k, frames, g_local, [str(i) for i in g.ids], window_px=64,
+                                         max_chips=2)
+    assert n_frames == units.n_frames[k] > 2 and len(plans) == 2
+    for plan in plans:
+        x0, y0, x1, y1 = plan.window
+        assert (x1 - x0, y1 - y0) == (64, 64)
+        assert {m[2] for m in plan.detections} == {0, 1}           # both layers fired in this frame
+        # Detections are exact projections of the blob: the first geotag (at the blob's centre
+        # cell) projects onto the centre detection; the one 9 m away is not drawn.
+        labels = [c[2] for c in plan.geotags]
+        assert labels == ["1", "2"]
+        centre = min(plan.detections, key=lambda m: np.hypot(m[0] - plan.geotags[0][0], m[1] - plan.geotags[0][1]))
+        assert np.hypot(centre[0] - plan.geotags[0][0], centre[1] - plan.geotags[0][1]) < 1e-6
+        # 0.1 m east, 0.05 m north at 2 cm/px: 5 px right, 2.5 px up
+        assert plan.geotags[1][0] - plan.geotags[0][0] == pytest.approx(5.0, abs=0.05)
+        assert plan.geotags[1][1] - plan.geotags[0][1] == pytest.approx(-2.5, abs=0.05)
+    # Rendering: a grey frame, the circle in the first layer's colour around the detection.
+    image = np.full((300, 480, 3), 128, np.uint8)
+    cv2.imwrite(plans[0].image, image)
+    chip = rv.load_chips(plans[:1], 128, rv.ImageCache())[0]
+    assert chip.shape == (128, 128, 3)
+    colours = {tuple(c) for c in chip.reshape(-1, 3).tolist()}
+    assert rv.GEOTAG_COLOUR in colours and (128, 128, 128) in colours
+    assert any(np.allclose(c, rv.LAYER_COLOURS[0], atol=40) for c in colours)
+    missing = rv.render_chip(None, plans[1], 96)
+    assert missing.shape == (96, 96, 3)
+
+
+def test_an_added_target_gets_chips_from_the_frames_that_see_it(tmp_path):
+    frames = rv.FrameIndex([poses()], [["" for _ in FRAMES_EN]], SITE)
+    lat, lon, _ = ground_points([(0.9, 0.1)])
+    plans, n = rv.plan_point_chips("a", float(lat[0]), float(lon[0]), frames, window_px=64, max_chips=3)
+    assert n == 4 and len(plans) == 3
+    assert [p.frame_id for p in plans] == [102, 101, 103]   # most central first (0.1, 0.9, 1.1 m away)
+    u, v, layer = plans[0].detections[0]
+    x0, y0, _, _ = plans[0].window
+    # 0.1 m west and 0.1 m north of that frame's centre, at 2 cm/px
+    assert layer == -1 and (u + x0, v + y0) == pytest.approx((239.5 - 5.0, 149.5 - 5.0), abs=0.01)

@@ -1,0 +1,407 @@
+"""Scores against hand-computed fixtures: in view, recovered, hit, recall/GMCF, pooling, POST, sweeps.
+
+The fixture field (metres east/north of a site) is scored by one nadir frame 10 m above level ground
+with an undistorted 1920 × 1200 px camera, fx = fy = 1000 px, principal point at the image centre:
+its footprint spans ±9.6 m east and ±6 m north (half-size (W/2)/fx · 10 m), so which geotags are in
+view follows from the numbers alone.
+"""
+import numpy as np
+import pytest
+
+from birdseye.birdseye_qgis.core.geometry.camera import CameraModel
+from birdseye.birdseye_qgis.core.detect.clustering import cluster_detections
+from birdseye.birdseye_qgis.core.errors import InputError
+from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame
+from birdseye.birdseye_qgis.core.geometry.poses import FramePoses
+from birdseye.birdseye_qgis.core.geometry.rotations import euler_zyx_to_rotmat, rotmat_to_quat
+from birdseye.birdseye_qgis.core.scoring.scoring import (CONVENTIONS, Detections, Flight, Geotags, OperatingPoint,
+                                                  PreCounts, ReviewedFlight, ScreenRun, SweepFlight, SweepGrid,
+                                                  Verdict, VerdictLog, combine, distinct_position_fraction,
+                                                  evaluate_flights, in_view, match_to_clusters, pareto_front,
+                                                  pixel_matches, pool, post_scores, score_flight,
+                                                  screen_checkpoints, sweep)
+
+SITE = LocalFrame(-27.55, 151.95, 400.0)
+NADIR = np.array([[0.0, 1.0, 0.0], [-1.0, 0.0, 0.0], [0.0, 0.0, 1.0]])
+
+
+def camera():
+    t = np.eye(4)
+    t[:3, :3] = NADIR
+    return CameraModel(1920, 1200, 1000.0, 1000.0, 959.5, 599.5, (0, 0, 0, 0, 0), t)
+
+
+def poses_over(east_north, agl=10.0, first_id=0):
+    """Level nadir frames (yaw 0: image up = north) over the given site offsets (m)."""
+    en = np.atleast_2d(np.asarray(east_north, dtype=float))
+    lat, lon, h = SITE.to_geodetic(np.column_stack([en, np.full(len(en), agl)]))
+    q = rotmat_to_quat(euler_zyx_to_rotmat(np.zeros(len(en)), np.zeros(len(en)), np.zeros(len(en))))
+    return FramePoses(np.arange(first_id, first_id + len(en)), lat, lon, h, q, np.full(len(en), SITE.h0),
+                      camera())
+
+
+def grid9(cx, cy, step=0.04):
+    g = np.array([(cx + i * step, cy + j * step) for i in (-1, 0, 1) for j in (-1, 0, 1)])
+    return g
+
+
+# -------------------------------------------------------------------- the flight-1 fixture, in metres
+CHAIN = np.column_stack([-8.0 + 0.08 * np.arange(9), np.zeros(9)])   # core: the 7 interior points
+B, C = grid9(-3.0, 0.0), grid9(-2.65, 0.0)                           # 0.27 m apart: two clusters
+D, E = grid9(9.75, 3.0), grid9(5.0, -3.0)
+NOISE = np.array([[0.0, 4.0], [1.0, 4.0]])
+FLIGHT1_DETECTIONS = np.concatenate([CHAIN, B, C, D, E, NOISE])
+FLIGHT1_GEOTAGS = {                      # id: (east, north), in view?, recovered?
+    "g1": ((-7.30, 0.0), True, True),      # 0.14 m from the chain's last core point
+    "g_border": ((-7.21, 0.0), True, False),  # 0.15 m from a border point, 0.23 m from a core point
+    "g2": ((-2.825, 0.0), True, True),     # 0.135 m from both B and C: both are hits
+    "g3": ((9.70, 3.0), False, False),     # beside D but outside the footprint (east > 9.6 m)
+    "g4": ((0.05, 4.0), True, False),      # beside a noise point only
+    "g5": ((6.0, 5.0), True, False),       # far from everything
+    "g6": ((12.0, 0.0), False, False),     # outside the footprint
+}
+# flight 2: one frame 100 m east; F is hit by h1, G is unmatched, h2 is missed
+F, G = grid9(100.0, 1.0), grid9(98.0, -2.0)
+FLIGHT2_DETECTIONS = np.concatenate([F, G])
+FLIGHT2_GEOTAGS = {"h1": ((100.1, 1.0), True, True), "h2": ((103.0, -2.0), True, False)}
+OP = OperatingPoint(threshold=None, dedup_cm=3, eps_m=0.10, min_samples=3, eps_pred_m=0.20)
+
+
+def geodetic(en):
+    en = np.atleast_2d(np.asarray(en, dtype=float))
+    return SITE.to_geodetic(np.column_stack([en, np.zeros(len(en))]))
+
+
+def detections(en, name):
+    lat, lon, h = geodetic(en)
+    n = len(lat)
+    return Detections(lat, lon, h, np.arange(n) % 4, np.linspace(0.5, 0.9, n), name=name)
+
+
+def all_geotags():
+    tags = {**FLIGHT1_GEOTAGS, **FLIGHT2_GEOTAGS}
+    lat, lon, _ = geodetic([v[0] for v in tags.values()])
+    return Geotags(list(tags), lat, lon, np.full(len(lat), np.nan))
+
+
+def flights():
+    return [Flight(detections(FLIGHT1_DETECTIONS, "flight 1"), [poses_over([0.0, 0.0])], "flight 1"),
+            Flight(detections(FLIGHT2_DETECTIONS, "flight 2"), [poses_over([100.0, 0.0], first_id=50)], "flight 2")]
+
+
+# -------------------------------------------------------------------- in view
+def test_in_view_follows_the_closed_form_footprint_and_the_edge_buffer():
+    en = np.array([[9.5, 0.0], [9.7, 0.0], [-9.5, 5.9], [0.0, 6.1], [0.0, -5.95], [3.0, 2.0]])
+    pts = SITE.from_geodetic(*geodetic(en))
+    groups = [poses_over([0.0, 0.0])]
+    np.testing.assert_array_equal(in_view(groups, SITE, pts).mask, [True, False, True, False, True, True])
+    # 9.5 m east is u = 959.5 + 950 = 1909.5 px: 10 px from the right edge; 5.95 m south is 5 px in.
+    # (-9.5, 5.9) is at u = 9.5, v = 9.5 px: 10 px in from the top-left corner.
+    np.testing.assert_array_equal(in_view(groups, SITE, pts, edge_buffer_px=8).mask,
+                                  [True, False, True, False, False, True])
+    np.testing.assert_array_equal(in_view(groups, SITE, pts, edge_buffer_px=12).mask,
+                                  [False, False, False, False, False, True])
+
+
+def test_frames_without_ground_height_are_not_processed():
+    p = poses_over([[0.0, 0.0], [30.0, 0.0]])
+    p.ground_height[1] = np.nan
+    pts = SITE.from_geodetic(*geodetic([[30.0, 0.0], [0.0, 0.0]]))
+    v = in_view([p], SITE, pts)
+    np.testing.assert_array_equal(v.mask, [False, True])
+    assert (v.n_frames, v.n_frames_without_ground) == (1, 1)
+
+
+# -------------------------------------------------------------------- recovered, hit, PRE
+def flight1_score():
+    clustering = cluster_detections(FLIGHT1_DETECTIONS, None, None, OP.dedup_cm, OP.eps_m, OP.min_samples)
+    xy = np.array([v[0] for v in FLIGHT1_GEOTAGS.values()])
+    visible = np.array([v[1] for v in FLIGHT1_GEOTAGS.values()])
+    return clustering, score_flight(clustering, xy, visible, OP.eps_pred_m)
+
+
+def cluster_of(clustering, points):
+    """The one cluster label of a fixture group's detections."""
+    labels = clustering.dbscan.labels[clustering.points.inverse]
+    idx = [int(np.flatnonzero(np.all(np.isclose(FLIGHT1_DETECTIONS, p), axis=1))[0]) for p in points]
+    found = set(labels[idx].tolist())
+    assert len(found) == 1
+    return found.pop()
+
+
+def test_recovered_and_hit_follow_the_definitions_by_hand():
+    clustering, s = flight1_score()
+    assert clustering.n_clusters == 5
+    np.testing.assert_array_equal(s.recovered, [v[2] for v in FLIGHT1_GEOTAGS.values()])
+    hits = {cluster_of(clustering, grp) for grp in (CHAIN, B, C)}
+    assert set(np.flatnonzero(s.cluster_hit).tolist()) == hits
+    # g2 is matched to both B and C; D's neighbour g3 is not in view, so D is not a hit.
+    ids = list(FLIGHT1_GEOTAGS)
+    assert [ids[i] for i in s.cluster_geotags[cluster_of(clustering, B)]] == ["g2"]
+    assert [ids[i] for i in s.cluster_geotags[cluster_of(clustering, C)]] == ["g2"]
+    assert len(s.cluster_geotags[cluster_of(clustering, D)]) == 0
+    k = s.counts
+    assert (k.n_in_view, k.n_recovered, k.n_clusters, k.n_hit_clusters, k.n_geotag_matches) == (5, 2, 5, 3, 3)
+    assert k.recall_pre == pytest.approx(2 / 5) and k.gmcf_pre == pytest.approx(3 / 5)
+    assert k.mean_geotags_per_hit_cluster == pytest.approx(1.0)
+
+
+def test_recovery_needs_a_core_point_not_any_cluster_point():
+    clustering, _ = flight1_score()
+    g_border = np.array([[-7.21, 0.0]])
+    assert len(match_to_clusters(clustering.core_xy, clustering.core_cluster, g_border, 0.20).point) == 0
+    # the same geotag is within 0.2 m of the chain's border point
+    assert np.hypot(*(CHAIN[-1] - g_border[0])) < 0.20
+    assert len(match_to_clusters(clustering.core_xy, clustering.core_cluster, g_border, 0.24).point) == 1
+
+
+def test_pooling_is_a_micro_average_and_differs_from_the_macro_average():
+    ev = evaluate_flights(flights(), all_geotags(), OP)
+    f1, f2 = (f.score.counts for f in ev.flights)
+    assert (f1.n_in_view, f1.n_recovered, f1.n_clusters, f1.n_hit_clusters) == (5, 2, 5, 3)
+    assert (f2.n_in_view, f2.n_recovered, f2.n_clusters, f2.n_hit_clusters) == (2, 1, 2, 1)
+    assert pool([f1, f2]) == ev.pooled
+    assert ev.pooled.recall_pre == pytest.approx(3 / 7)
+    assert ev.pooled.gmcf_pre == pytest.approx(4 / 7)
+    macro_recall = (2 / 5 + 1 / 2) / 2
+    macro_gmcf = (3 / 5 + 1 / 2) / 2
+    assert abs(ev.pooled.recall_pre - macro_recall) > 0.02 and abs(ev.pooled.gmcf_pre - macro_gmcf) > 0.02
+    d = ev.to_dict()
+    for key in ("n_in_view", "n_recovered", "recall_pre", "n_clusters", "n_hit_clusters", "gmcf_pre"):
+        assert key in d
+    assert d["n_in_view"] == 7 and d["n_hit_clusters"] == 4 and "post" not in d
+
+
+def test_threshold_of_the_operating_point_drops_low_scores_before_clustering():
+    fl = flights()
+    # flight 1 scores rise linearly; a threshold above the chain's scores removes the chain's cluster
+    chain_scores = fl[0].detections.score[:len(CHAIN)]
+    op = OperatingPoint(threshold=float(chain_scores.max()) + 1e-9)
+    ev = evaluate_flights(fl[:1], all_geotags(), op)
+    assert ev.flights[0].n_detections == len(FLIGHT1_DETECTIONS) - len(CHAIN)
+    assert ev.flights[0].score.counts.n_recovered == 1  # g1 lost with the chain
+
+
+# -------------------------------------------------------------------- verdicts and POST
+def rows_for_fixture():
+    lat, lon, _ = geodetic([D.mean(0), E.mean(0), B.mean(0), G.mean(0), [0.5, 4.0], [7.0, -5.0], [6.0, -5.0],
+                            [12.0, 5.0]])
+    at = dict(zip(["D", "E", "B", "G", "noise", "t1", "t2", "t3"], zip(lat.tolist(), lon.tolist())))
+
+    def row(unit, verdict, provenance="direct", time="2024-05-01T10:00:00Z", where=None):
+        la, lo = at[where or unit] if (where or unit) in at else (None, None)
+        return {"unit_key": unit, "verdict": verdict, "provenance": provenance, "time": time,
+                "reviewer": "ana", "lat": la, "lon": lo}
+
+    return [
+        row("u1", "confirmed_real", where="D"),
+        row("u1", "hard_negative", "propagated:dbscan_0.20m", "2024-05-01T10:05:00Z", where="D"),
+        row("u2", "confirmed_real", where="E"),
+        row("u2", "confirmed_real", "propagated:a", where="E"),
+        row("u2", "hard_negative", "propagated:b", where="E"),
+        row("u3", "hard_negative", where="B"),                       # on a hit cluster: changes nothing
+        row("u4", "hard_negative", time="2024-05-01T09:00:00Z", where="G"),
+        row("u4", "confirmed_real", time="2024-05-01T11:00:00Z", where="G"),   # latest direct wins
+        row("u5", "confirmed_real", where="noise"),                  # near noise only: attached nowhere
+        row("t1", "added", where="t1"),                              # in view of flight 1
+        row("t2", "added", time="2024-05-01T10:00:00Z", where="t2"),
+        row("t2", "unreviewed", time="2024-05-01T10:01:00Z", where="t2"),      # withdrawn
+        row("t3", "added", where="t3"),                              # in view of no flight
+    ]
+
+
+def test_post_scores_differ_by_convention_as_computed_by_hand():
+    log = VerdictLog.from_records(rows_for_fixture())
+    ev = evaluate_flights(flights(), all_geotags(), OP, log=log)
+    # Flight 1 unmatched clusters: D (u1: confirmed vs hard negative), E (u2: 2 confirmed, 1 hard neg.);
+    # flight 2: G (u4: confirmed). Added in view: t1 in flight 1.
+    expected_c = {"positive_wins": 3, "majority_wins": 2, "hard_negative_wins": 1}
+    for conv in CONVENTIONS:
+        p = ev.post[conv].pooled
+        assert (p.c, p.a) == (expected_c[conv], 1), conv
+        assert p.gmcf_post == pytest.approx((4 + p.c) / 7)
+        assert p.recall_post_bound == pytest.approx((3 + p.c) / (7 + p.c + 1))
+        assert [f.a for f in ev.post[conv].flights] == [1, 0]
+    d = ev.to_dict()
+    assert d["post"]["majority_wins"]["recall_post"] == "≥ 0.500"
+    assert d["post"]["positive_wins"]["gmcf_post"] == pytest.approx(1.0)
+    assert d["flights"][1]["post"]["hard_negative_wins"]["c"] == 1
+
+
+def test_units_resolve_first_then_clusters_combine_their_units():
+    log = VerdictLog([Verdict("u1", "confirmed_real"), Verdict("u1", "confirmed_real", "propagated:r"),
+                      Verdict("u1", "hard_negative", "propagated:s"), Verdict("u2", "uncertain")])
+    assert log.resolve("u1", "majority_wins") == "confirmed_real"
+    counts = PreCounts(n_in_view=4, n_recovered=2, n_clusters=3, n_hit_clusters=1)
+    flight = ReviewedFlight(counts, [True, False, False], [("u2",), ("u1", "u2"), ("u1",)], n_added=2)
+    post = post_scores(log, [flight])
+    # cluster 1: u1 → confirmed, u2 → uncertain: a tie under majority (uncertain); confirmed under
+    # positive-wins; u1 has a hard-negative vote, so hard-negative-wins says hard negative.
+    assert post["majority_wins"].pooled.c == 1
+    assert post["positive_wins"].pooled.c == 2
+    assert post["hard_negative_wins"].pooled.c == 0
+    p = post["positive_wins"].pooled
+    assert p.recall_post_bound == pytest.approx((2 + 2) / (4 + 2 + 2))
+
+
+def test_combine_conventions_and_withdrawn_votes():
+    assert combine([], "positive_wins") == "unreviewed"
+    assert combine(["unreviewed"], "majority_wins") == "unreviewed"
+    assert combine(["hard_negative", "uncertain"], "positive_wins") == "hard_negative"
+    assert combine(["confirmed_real", "uncertain"], "hard_negative_wins") == "confirmed_real"
+    assert combine(["confirmed_real", "hard_negative", "hard_negative"], "majority_wins") == "hard_negative"
+    assert combine(["confirmed_real", "hard_negative"], "majority_wins") == "uncertain"
+    log = VerdictLog([Verdict("u", "confirmed_real", time="2024-01-01T10:00:00"),
+                      Verdict("u", "unreviewed", time="2024-01-01T10:00:00+00:00", sequence=1)])
+    assert log.votes("u") == [] and log.resolve("u", "positive_wins") == "unreviewed"
+    # the same time: the later row of the log wins; an earlier time loses whatever its position
+    log = VerdictLog([Verdict("u", "hard_negative", time="2024-01-01T12:00:00Z", sequence=5),
+                      Verdict("u", "confirmed_real", time="2024-01-01T11:00:00Z", sequence=9)])
+    assert log.votes("u") == ["hard_negative"]
+
+
+def test_bad_verdict_rows_are_refused_with_row_and_field():
+    with pytest.raises(InputError, match="row 2, field 'verdict'"):
+        VerdictLog.from_records([{"unit_key": "a", "verdict": "confirmed_real"},
+                                 {"unit_key": "b", "verdict": "maybe"}], source="review.gpkg")
+    with pytest.raises(InputError, match="field 'provenance'"):
+        VerdictLog.from_records([{"unit_key": "a", "verdict": "uncertain", "provenance": "auto"}])
+    with pytest.raises(InputError, match="field 'lat'"):
+        VerdictLog.from_records([{"unit_key": "t", "verdict": "added"}])
+    with pytest.raises(InputError, match="field 'time'"):
+        VerdictLog.from_records([{"unit_key": "a", "verdict": "uncertain", "time": "yesterday"}])
+    with pytest.raises(InputError, match="not a BirdsEye verdict log"):
+        VerdictLog.from_records([{"key": "a"}])
+
+
+def test_unplaced_units_are_reported_not_silently_dropped():
+    log = VerdictLog([Verdict("u9", "confirmed_real")])
+    ev = evaluate_flights(flights()[:1], all_geotags(), OP, log=log)
+    assert any("u9" in n for n in ev.review_notes)
+    assert all(ev.post[c].pooled.c == 0 for c in CONVENTIONS)
+
+
+# -------------------------------------------------------------------- sweeps
+def random_flight(seed, n_targets=25, spread=0.03):
+    rng = np.random.default_rng(seed)
+    targets = rng.uniform(0, 30, (n_targets, 2))
+    seen = rng.random(n_targets) < 0.8
+    det = [targets[i] + rng.normal(0, spread, (rng.integers(3, 15), 2)) for i in np.flatnonzero(seen)]
+    clutter_spots = rng.uniform(0, 30, (8, 2))
+    det += [c + rng.normal(0, spread, (rng.integers(2, 8), 2)) for c in clutter_spots]
+    det.append(rng.uniform(0, 30, (40, 2)))
+    xy = np.concatenate(det)
+    score = rng.uniform(0.2, 1.0, len(xy))
+    return SweepFlight(xy, score, targets[rng.random(n_targets) < 0.9], f"flight {seed}")
+
+
+def test_sweep_equals_one_fresh_run_per_configuration_pooled_over_flights():
+    fl = [random_flight(1), random_flight(2)]
+    grid = SweepGrid([0.3, 0.6, 1.0], [0.06, 0.12], [2, 4], [0.1, 0.25])   # 1.0 keeps no detection
+    result = sweep(fl, grid)
+    for ti, t in enumerate(grid.thresholds):
+        for ei, eps in enumerate(grid.eps_m):
+            for mi, m in enumerate(grid.min_samples):
+                for pi, pred in enumerate(grid.eps_pred_m):
+                    total = PreCounts()
+                    for f in fl:
+                        keep = f.score >= t
+                        c = cluster_detections(f.xy[keep], None, None, grid.dedup_cm, eps, int(m))
+                        total = total + score_flight(c, f.geotag_xy, np.ones(len(f.geotag_xy), bool), pred).counts
+                    for key in ("n_in_view", "n_recovered", "n_clusters", "n_hit_clusters", "n_geotag_matches"):
+                        assert result.counts[key][ti, ei, mi, pi] == getattr(total, key), key
+                    assert result.counts["sum_median_extent_m"][ti, ei, mi, pi] == pytest.approx(
+                        total.sum_median_extent_m, abs=1e-12)
+                    assert result.recall_pre[ti, ei, mi, pi] == pytest.approx(total.recall_pre)
+    rows = result.rows()
+    assert len(rows) == grid.size and {"threshold", "eps_m", "min_samples", "eps_pred_m", "credible",
+                                        "pareto", "recall_pre", "gmcf_pre"} <= set(rows[0])
+
+
+def test_credibility_filter_rejects_chained_and_greedy_configurations():
+    flight = random_flight(4)
+    grid = SweepGrid([0.2], [0.05, 8.0], [2], [0.2, 3.0])
+    r = sweep([flight], grid, max_geotags_per_hit=1.5, max_mean_extent_m=1.0)
+    # eps 8 m chains the field into a few huge clusters; eps_pred 3 m lets each hit swallow many geotags
+    assert r.credible[0, 0, 0, 0]
+    assert not r.credible[0, 1, 0, :].any()
+    assert r.mean_median_extent_m[0, 1, 0, 0] > 1.0
+    assert r.mean_geotags_per_hit_cluster[0, 0, 0, 1] > 1.5 and not r.credible[0, 0, 0, 1]
+    assert not (r.pareto & ~r.credible).any()
+
+
+def test_pareto_front_by_hand():
+    recall = np.array([0.9, 0.8, 0.8, 0.5, 0.95, 0.9, 0.7])
+    gmcf = np.array([0.5, 0.7, 0.6, 0.9, 0.4, 0.5, 0.95])
+    eligible = np.array([True, True, True, True, True, True, False])
+    # (0.9, 0.5) twice (ties stay), (0.8, 0.7), (0.5, 0.9), (0.95, 0.4); (0.8, 0.6) is dominated;
+    # (0.7, 0.95) would dominate (0.5, 0.9) but is not eligible.
+    np.testing.assert_array_equal(pareto_front(recall, gmcf, eligible),
+                                  [True, True, False, True, True, True, False])
+
+
+# -------------------------------------------------------------------- screening
+def test_pixel_matching_is_one_to_one_nearest_first_within_the_radius():
+    det_f = np.array([1, 1, 1, 2, 2])
+    det_uv = np.array([[100, 100], [104, 100], [300, 300], [100, 100], [500, 500]], float)
+    lab_f = np.array([1, 1, 2, 3])
+    lab_uv = np.array([[103, 100], [200, 200], [100, 108], [100, 100]], float)
+    # frame 1: the label at 103 takes the detection at 104 (1 px) not 100 (3 px); frame 2: 8 px ≤ 10;
+    # frame 3's label has no detection in its own frame.
+    assert pixel_matches(det_f, det_uv, lab_f, lab_uv, 10.0) == 2
+    assert pixel_matches(det_f, det_uv, lab_f, lab_uv, 5.0) == 1
+
+
+def screen_run(name, flight, n_frames, uv, frame_id, xy, geotag_xy, labels):
+    lf, luv = labels
+    return ScreenRun(name, flight, n_frames, np.asarray(frame_id), np.asarray(uv, float), np.asarray(xy, float),
+                     np.asarray(lf), np.asarray(luv, float), np.asarray(geotag_xy, float))
+
+
+def test_screening_health_guards_review_load_and_frontier():
+    rng = np.random.default_rng(5)
+    targets = np.array([[1.0, 1.0], [3.0, 1.0], [5.0, 1.0]])
+    frames = np.repeat(np.arange(10), 3)
+    good_xy = targets[np.tile([0, 1, 2], 10)] + rng.normal(0, 0.03, (30, 2))
+    good_uv = rng.uniform(0, 1000, (30, 2))
+    labels = (frames, good_uv + 2.0)
+    # "collapsed": the same two pixels in every frame, however the ground points spread
+    collapsed_uv = np.tile([[10.0, 10.0], [20.0, 20.0]], (15, 1))
+    # "sparse": a third of the detections (1 per frame) on the second flight
+    extra = rng.uniform(0, 30, (20, 2))
+    runs = [
+        screen_run("good", "A", 10, good_uv, frames, good_xy, targets, labels),
+        screen_run("good", "B", 10, good_uv, frames, good_xy, targets, labels),
+        screen_run("noisy", "A", 10, np.concatenate([good_uv, rng.uniform(0, 1000, (20, 2))]),
+                   np.concatenate([frames, np.arange(20) % 10]),
+                   np.concatenate([good_xy, extra]), targets, labels),
+        screen_run("noisy", "B", 10, good_uv, frames, good_xy, targets, labels),
+        screen_run("collapsed", "A", 10, collapsed_uv, frames, good_xy, targets, labels),
+        screen_run("collapsed", "B", 10, collapsed_uv, frames, good_xy, targets, labels),
+        screen_run("sparse", "A", 10, good_uv, frames, good_xy, targets, labels),
+        screen_run("sparse", "B", 10, good_uv[::3], frames[::3], good_xy[::3], targets, labels),
+    ]
+    out = {s.checkpoint: s for s in screen_checkpoints(runs, OperatingPoint(min_samples=2), radius_px=5)}
+    assert list(out) == ["good", "noisy", "collapsed", "sparse"]
+    assert out["collapsed"].collapsed and not out["collapsed"].too_sparse
+    assert out["collapsed"].distinct_position_fraction == pytest.approx(2 / 60)
+    assert out["sparse"].too_sparse and out["sparse"].worst_flight == "B"
+    assert out["sparse"].worst_detections_per_frame == pytest.approx(1.0)
+    assert out["good"].healthy and out["noisy"].healthy
+    g = out["good"]
+    assert (g.counts.n_in_view, g.counts.n_recovered) == (6, 6)
+    assert (g.pixel_tp, g.pixel_fp, g.pixel_fn) == (60, 0, 0) and g.pixel_f1 == pytest.approx(1.0)
+    assert out["noisy"].pixel_fp == 20 and out["noisy"].pixel_f1 == pytest.approx(120 / 140)
+    assert out["good"].unmatched_clusters == 0 and out["good"].relative_review_load == 0.0
+    assert out["good"].frontier and not out["collapsed"].frontier
+    assert distinct_position_fraction(np.empty((0, 2))) is None
+
+
+def test_operating_point_validation_names_the_parameter():
+    with pytest.raises(InputError, match="EPS_M"):
+        OperatingPoint(eps_m=0)
+    with pytest.raises(InputError, match="MIN_SAMPLES"):
+        OperatingPoint(min_samples=2.5)
+    with pytest.raises(InputError, match="THRESHOLD"):
+        OperatingPoint(threshold=1.5)
+    assert OperatingPoint.from_dict(OperatingPoint(0.4).to_dict()) == OperatingPoint(0.4)
