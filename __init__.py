@@ -4,5 +4,6 @@
 def classFactory(iface):  # noqa: N802 (QGIS API name)
     """QGIS entry point; imports lazily so a missing optional package never stops QGIS starting."""
     from .birdseye_qgis.gui.plugin import BirdsEyePlugin
+    from .processing.provider import BirdsEyeProvider
 
-    return BirdsEyePlugin(iface)
+    return BirdsEyePlugin(iface, BirdsEyeProvider)

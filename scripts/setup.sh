@@ -5,7 +5,9 @@
 #   2. .venv, made from Debian's /usr/bin/python3 with --system-site-packages (QGIS's bindings, GDAL
 #      and pyproj come from Debian), and the pinned requirements, re-installed only when
 #      requirements*.txt or constraints.txt change (their hash is kept in .venv/.requirements.sha256).
-#   3. the link build/pluginpath/birdseye -> this tree, for QGIS_PLUGINPATH.
+#   3. .venv-qt6, a plain venv with PyQt6 only (requirements-qt6.txt), in which `make lint` checks that
+#      every Qt name the plugin spells exists in PyQt6 (QGIS 4) — this machine has no QGIS 4;
+#   4. the link build/pluginpath/birdseye -> this tree, for QGIS_PLUGINPATH.
 # Quiet when everything is already there. Called by `make setup`, `make test` and `make demo`.
 set -euo pipefail
 
@@ -21,6 +23,8 @@ debian_packages=(
 system_python=/usr/bin/python3
 venv="${BIRDSEYE_VENV_DIR:-$repo/.venv}"
 stamp="$venv/.requirements.sha256"
+qt6_venv="${BIRDSEYE_QT6_VENV_DIR:-$repo/.venv-qt6}"
+qt6_stamp="$qt6_venv/.requirements.sha256"
 requirement_files=(requirements.txt requirements-dev.txt requirements-train.txt constraints.txt)
 
 say() { echo "setup: $*"; }
@@ -76,6 +80,17 @@ install_requirements() {
     echo "$wanted" >"$stamp"
 }
 
+install_qt6_checker() {  # PyQt6 from PyPI, apart from QGIS's PyQt5 so neither sees the other
+    local wanted
+    wanted="$(sha256sum requirements-qt6.txt | cut -d' ' -f1)"
+    [[ -f "$qt6_stamp" && "$(cat "$qt6_stamp")" == "$wanted" ]] && return 0
+    say "creating $qt6_venv with PyQt6 (requirements-qt6.txt) for the Qt 6 check"
+    rm -rf "$qt6_venv"
+    "$system_python" -m venv "$qt6_venv"
+    "$qt6_venv/bin/python" -m pip install --quiet --disable-pip-version-check -r requirements-qt6.txt
+    echo "$wanted" >"$qt6_stamp"
+}
+
 link_plugin() {  # QGIS_PLUGINPATH=build/pluginpath finds this tree as the plugin "birdseye"
     mkdir -p build/pluginpath
     [[ -L build/pluginpath/birdseye ]] || ln -sfn "$repo" build/pluginpath/birdseye
@@ -84,4 +99,5 @@ link_plugin() {  # QGIS_PLUGINPATH=build/pluginpath finds this tree as the plugi
 install_debian_packages
 make_venv
 install_requirements
+install_qt6_checker
 link_plugin

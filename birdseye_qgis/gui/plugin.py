@@ -16,7 +16,6 @@ from qgis.PyQt.QtCore import QCoreApplication, QLocale, Qt, QTranslator
 from qgis.PyQt.QtGui import QIcon
 from qgis.PyQt.QtWidgets import QAction, QMenu, QToolBar
 
-from ...processing.provider import BirdsEyeProvider
 
 # The name QGIS imported the plugin under ("birdseye" when installed from the zip), so dock modules
 # are found whatever the plugin folder is called.
@@ -85,9 +84,12 @@ def dock_module_available(entry: DockEntry) -> bool:
 class BirdsEyePlugin:
     """Registers the Processing provider and, in the desktop, the BirdsEye menu, toolbar and docks."""
 
-    def __init__(self, iface):
+    def __init__(self, iface, provider_class):
+        """``provider_class`` builds the Processing provider; ``classFactory`` passes it in, so this
+        library never imports ``processing/`` (see docs/design.md, "Architecture")."""
         self.iface = iface
-        self.provider: BirdsEyeProvider | None = None
+        self.provider_class = provider_class
+        self.provider = None
         self.menu: QMenu | None = None
         self.toolbar: QToolBar | None = None
         self.toolbox_action: QAction | None = None
@@ -101,7 +103,7 @@ class BirdsEyePlugin:
         """Register the ``birdseye`` provider once (desktop and ``qgis_process`` both call this)."""
         if self.provider is not None:
             return
-        self.provider = BirdsEyeProvider()
+        self.provider = self.provider_class()
         if not QgsApplication.processingRegistry().addProvider(self.provider):
             log(tr("The BirdsEye Processing provider could not be registered."), Qgis.Critical)
             self.provider = None

@@ -36,7 +36,7 @@ from qgis.PyQt import sip
 from ..core.review import review as rv
 from ..core.errors import InputError
 from ..core.scoring.scoring import CONVENTIONS, Flight, OperatingPoint, evaluate_flights
-from ..review_store import ReviewSession, RowMeta, VerdictStore, default_store_path, read_review_inputs
+from ..qgis_io.review_store import ReviewSession, RowMeta, VerdictStore, default_store_path, read_review_inputs
 from .add_target_tool import AddTargetTool
 
 LOG_TAG = "BirdsEye"

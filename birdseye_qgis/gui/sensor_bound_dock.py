@@ -38,16 +38,8 @@ from qgis.PyQt.QtWidgets import (
     QWidget,
 )
 
-from ...processing.design_parameters import (
-    CALIBRATION_FILTER,
-    DEPLOYED_ALTITUDES_M,
-    DEPLOYED_CAMERA,
-    DEPLOYED_SIGMAS,
-    DEPLOYED_TOLERANCE_PX,
-    format_number_list,
-    parse_altitudes,
-    store_sigma_label_px,
-)
+from ..core.design.number_lists import format_number_list, parse_altitudes
+from ..qgis_io.project_settings import store_sigma_label_px
 from ..core.design.bound_report import (
     ACCEPT_COLOUR,
     REJECT_COLOUR,
@@ -56,13 +48,15 @@ from ..core.design.bound_report import (
     format_sigma,
     stride_for,
 )
-from ..core.geometry.camera import load_calibration
+from ..core.design.platforms import DEPLOYED, PLATFORMS
+from ..core.geometry.camera import CALIBRATION_FILE_FILTER, load_calibration
 from ..core.errors import InputError
 from ..core.design.sensor_bound import AXES, AXIS_CONVENTION, SIGMA_UNITS, Intrinsics, evaluate_bounds, lambda_target
 
 SENSOR_BOUND_ALG = "birdseye:sensorbound"
-PRESET_DEPLOYED = "Deployed platform (BirdsEye method)"
+PRESET_DEPLOYED = DEPLOYED.name
 PRESET_CUSTOM = "Custom"
+PRESETS = tuple(p.name for p in PLATFORMS) + (PRESET_CUSTOM,)
 LIVE_DELAY_MS = 250
 PREVIEW_MAX_POINTS = 150_000
 AXIS_TIPS = {
@@ -173,15 +167,14 @@ class SensorBoundDock(QgsDockWidget):
         form = QFormLayout(group)
         form.setFieldGrowthPolicy(QFormLayout.AllNonFixedFieldsGrow)
         self.preset_combo = QComboBox()
-        self.preset_combo.addItems([tr(PRESET_DEPLOYED), tr(PRESET_CUSTOM)])
+        self.preset_combo.addItems([tr(name) for name in PRESETS])
         self.preset_combo.setSizeAdjustPolicy(QComboBox.AdjustToMinimumContentsLengthWithIcon)
         self.preset_combo.setMinimumContentsLength(12)
         self.preset_combo.setToolTip(tr("A platform sets the camera and the pose-noise budget together."))
-        self.preset_combo.activated.connect(lambda index: self.apply_preset(
-            (PRESET_DEPLOYED, PRESET_CUSTOM)[index]))
+        self.preset_combo.activated.connect(lambda index: self.apply_preset(PRESETS[index]))
         form.addRow(tr("Platform"), self.preset_combo)
         self.calibration_widget = QgsFileWidget()
-        self.calibration_widget.setFilter(CALIBRATION_FILTER)
+        self.calibration_widget.setFilter(CALIBRATION_FILE_FILTER)
         self.calibration_widget.setDialogTitle(tr("Camera calibration (Kalibr or OpenCV YAML)"))
         self.calibration_widget.setToolTip(tr("Load fx, fy, cx, cy and the image size from a Kalibr camchain "
                                               "or OpenCV YAML file."))
@@ -362,10 +355,11 @@ class SensorBoundDock(QgsDockWidget):
         return math.sqrt(lambda_target(self.tolerance_px()))
 
     def apply_preset(self, name: str) -> None:
-        """Set the inputs to a platform (the deployed one also sets the method's r and altitudes)."""
-        if name == PRESET_DEPLOYED:
-            self._set_values(DEPLOYED_CAMERA, DEPLOYED_SIGMAS, DEPLOYED_TOLERANCE_PX, DEPLOYED_ALTITUDES_M)
-            self._calibration = None
+        """Set the inputs to a platform preset: camera, pose sigmas, tolerance r and altitudes."""
+        for preset in PLATFORMS:
+            if preset.name == name:
+                self._set_values(preset.camera, preset.sigmas, preset.tolerance_px, preset.altitudes_m)
+                self._calibration = None
         self._sync_preset()
         self.schedule()
 
@@ -410,9 +404,9 @@ class SensorBoundDock(QgsDockWidget):
 
     def _sync_preset(self) -> None:
         """Show the platform the inputs match (camera and sigmas), else Custom."""
-        deployed = self._matches(DEPLOYED_CAMERA) and all(
-            abs(a - b) < 1e-9 for a, b in zip(self.sigmas(), DEPLOYED_SIGMAS))
-        self.preset_combo.setCurrentIndex(0 if deployed else 1)
+        matching = [k for k, preset in enumerate(PLATFORMS) if self._matches(preset.camera) and all(
+            abs(a - b) < 1e-9 for a, b in zip(self.sigmas(), preset.sigmas))]
+        self.preset_combo.setCurrentIndex(matching[0] if matching else PRESETS.index(PRESET_CUSTOM))
         if self._calibration is not None and not self._matches(self._calibration[1]):
             self._calibration = None
         if self._calibration is None and self.calibration_widget.filePath():
@@ -525,7 +519,7 @@ class SensorBoundDock(QgsDockWidget):
 
     # ================================================================== hand-over
     def store_sigma_label(self) -> float:
-        """Store σ_label = r/3 px in the current project for ``writelabels`` (see design_parameters)."""
+        """Store σ_label = r/3 px in the current project for ``writelabels`` (see qgis_io.project_settings)."""
         sigma = self.sigma_label_px()
         store_sigma_label_px(QgsProject.instance(), sigma)
         if self.iface is not None:
@@ -549,6 +543,6 @@ class SensorBoundDock(QgsDockWidget):
         return parameters
 
     def open_processing_dialog(self) -> None:
-        import processing  # QGIS's Processing framework (the plugin's own package is only imported relatively)
+        import processing  # QGIS's Processing framework: this plugin's own package is only imported relatively
 
         processing.execAlgorithmDialog(SENSOR_BOUND_ALG, self.processing_parameters())

@@ -1,9 +1,4 @@
-"""birdseye:clusterdetections — detections → de-duplicated points and DBSCAN cluster polygons.
-
-Also home of the small QGIS glue the detection-scoring algorithms share (reading detection,
-geotag, frame and verdict layers into core inputs; writing clusters), kept here because every
-module of ``processing/algorithms`` must be exactly one algorithm.
-"""
+"""birdseye:clusterdetections — detections → de-duplicated points and DBSCAN cluster polygons."""
 from __future__ import annotations
 
 import numpy as np
@@ -12,7 +7,7 @@ from qgis.core import (QgsCoordinateReferenceSystem, QgsCoordinateTransform, Qgs
                        QgsProcessingParameterFeatureSink, QgsProcessingParameterFeatureSource,
                        QgsProcessingParameterNumber, QgsProject, QgsWkbTypes)
 
-from ...birdseye_qgis import layers
+from ...birdseye_qgis.qgis_io import layers
 from ...birdseye_qgis.core.detect.clustering import (DEFAULT_DEDUP_CM, DEFAULT_EPS_M, DEFAULT_MIN_SAMPLES, HULL_BUFFER_M,
                                               cluster_detections, cluster_hulls)
 from ...birdseye_qgis.core.errors import InputError
@@ -20,124 +15,12 @@ from ...birdseye_qgis.core.field.frame_records import poses_from_records
 from ...birdseye_qgis.core.geometry.geodesy import LocalFrame, ProjectedCRS
 from ...birdseye_qgis.core.scoring.scoring import (DEFAULT_EDGE_BUFFER_PX, DEFAULT_EPS_PRED_M, Detections, Geotags,
                                            in_view, local_frame_for, score_flight)
+from ...birdseye_qgis.qgis_io.detections import (CLUSTER_FIELDS, POINT_FIELDS, read_detections, read_geotags,
+                                                   read_pose_groups, to_layer_xy)
+from ..parameters.clustering import ClusteringParametersMixin
 from .base import BirdsEyeAlgorithm
 
-CLUSTER_FIELDS = [
-    ("cluster_id", "int", "cluster number, 0.. (DBSCAN order)"),
-    ("centroid_x", "double", "mean position of the cluster's detections, x in the layer CRS"),
-    ("centroid_y", "double", "mean position of the cluster's detections, y in the layer CRS"),
-    ("n_detections", "int", "detections in the cluster"),
-    ("n_frames", "int", "distinct frames that detected it"),
-    ("median_extent_m", "double", "twice the median distance of its detections from the centroid (m)"),
-    ("max_score", "double", "highest detection score"),
-    ("matched_geotag_ids", "string", "in-view geotags within EPS_PRED_M of a core point, comma-separated"),
-    ("hit", "int", "1 if at least one in-view geotag matches, else 0"),
-]
-POINT_FIELDS = [
-    ("point_id", "int", "de-duplicated point number (3 cm cell)"),
-    ("cluster_id", "int", "cluster number, −1 = noise"),
-    ("core", "int", "1 for a DBSCAN core point"),
-    ("n_detections", "int", "detections merged into this point"),
-    ("score", "double", "highest score of those detections"),
-]
-DETECTION_FIELDS_REQUIRED = ("frame_id", "score")
-DETECTION_FIELDS_OPTIONAL = ("model", "model_digest", "threshold")
-
-
-# ------------------------------------------------------------------------------------ shared parameters
-def add_clustering_parameters(alg: BirdsEyeAlgorithm, with_prediction: bool = True) -> None:
-    """DEDUP_CM, EPS_M, MIN_SAMPLES (and EPS_PRED_M, EDGE_BUFFER_PX) with the method's defaults."""
-    alg.addParameter(QgsProcessingParameterNumber(
-        "DEDUP_CM", alg.tr("De-duplication grid cell (cm)"), QgsProcessingParameterNumber.Double,
-        DEFAULT_DEDUP_CM, minValue=0.1, maxValue=100.0))
-    alg.addParameter(QgsProcessingParameterNumber(
-        "EPS_M", alg.tr("DBSCAN radius EPS (m)"), QgsProcessingParameterNumber.Double, DEFAULT_EPS_M,
-        minValue=0.001, maxValue=50.0))
-    alg.addParameter(QgsProcessingParameterNumber(
-        "MIN_SAMPLES", alg.tr("DBSCAN minimum points per neighbourhood (itself included)"),
-        QgsProcessingParameterNumber.Integer, DEFAULT_MIN_SAMPLES, minValue=1, maxValue=1000))
-    if with_prediction:
-        add_matching_parameters(alg)
-
-
-def add_matching_parameters(alg: BirdsEyeAlgorithm) -> None:
-    alg.addParameter(QgsProcessingParameterNumber(
-        "EPS_PRED_M", alg.tr("Match radius geotag ↔ cluster core points EPS_PRED (m)"),
-        QgsProcessingParameterNumber.Double, DEFAULT_EPS_PRED_M, minValue=0.001, maxValue=50.0))
-    alg.addParameter(QgsProcessingParameterNumber(
-        "EDGE_BUFFER_PX", alg.tr("Edge buffer of the in-view test (px)"), QgsProcessingParameterNumber.Double,
-        DEFAULT_EDGE_BUFFER_PX, minValue=0.0, maxValue=1000.0))
-
-
-# ------------------------------------------------------------------------------------ readers
-def read_detections(source, context, name: str | None = None) -> tuple[Detections, int]:
-    """A BirdsEye detection layer (detect's output) as core :class:`Detections`, and the number of
-    features left out for want of a position or a score."""
-    name = name or source.sourceName()
-    names = source.fields().names()
-    missing = [f for f in DETECTION_FIELDS_REQUIRED if f not in names]
-    if missing:
-        raise InputError(f"is not a BirdsEye detection layer: no field(s) {', '.join(missing)} "
-                         "(make it with Detect targets)", source=name)
-    wanted = list(DETECTION_FIELDS_REQUIRED) + [f for f in DETECTION_FIELDS_OPTIONAL if f in names]
-    cols = layers.read_point_layer(source, context.transformContext(), wanted, name)
-    values = cols["attributes"]
-    try:
-        score = np.array([np.nan if v is None else float(v) for v in values["score"]], dtype=float)
-    except (TypeError, ValueError) as exc:
-        raise InputError(f"holds a score that is not a number ({exc})", source=name, field="score") from exc
-    frame_id = np.array([-1 if v is None else v for v in values["frame_id"]], dtype=object)
-    ok = np.isfinite(cols["lat"]) & np.isfinite(score)
-    models = sorted({str(v) for v in values.get("model", []) if v})
-    digests = sorted({str(v) for v in values.get("model_digest", []) if v})
-    if len(digests) > 1:
-        raise InputError(f"mixes detections of {len(digests)} models (model_digest); score one model per "
-                         "layer", source=name, field="model_digest")
-    thresholds = [float(v) for v in values.get("threshold", []) if v is not None]
-    det = Detections(cols["lat"][ok], cols["lon"][ok], cols["z"][ok], frame_id[ok], score[ok], name=name,
-                     model=", ".join(models), model_digest=digests[0] if digests else "",
-                     threshold=max(thresholds) if thresholds else None)
-    return det, int((~ok).sum())
-
-
-def read_geotags(source, context) -> Geotags:
-    """Any point layer as geotags: ids from an ``id`` field when present, else the feature ids."""
-    name = source.sourceName()
-    has_id = "id" in source.fields().names()
-    cols = layers.read_point_layer(source, context.transformContext(), ["id"] if has_id else [], name)
-    if has_id:
-        ids = [row if v is None else v for v, row in zip(cols["attributes"]["id"], cols["row"].tolist())]
-    else:
-        request = QgsFeatureRequest().setNoAttributes().setFlags(QgsFeatureRequest.NoGeometry)
-        ids = [f.id() for f in source.getFeatures(request)]
-    ok = np.isfinite(cols["lat"])
-    return Geotags(np.asarray(ids, dtype=object)[ok], cols["lat"][ok], cols["lon"][ok], cols["z"][ok])
-
-
-def read_pose_groups(source, name: str | None = None):
-    """The frames of a frame layer as FramePoses groups (one per camera), and the records."""
-    name = name or source.sourceName()
-    records = layers.read_frame_layer(source, name)
-    groups = poses_from_records(records, name)
-    return [poses for poses, _ in groups], records, groups
-
-
-def to_layer_xy(local: LocalFrame, xy: np.ndarray, crs: QgsCoordinateReferenceSystem):
-    """Local ENU (N, 2) metres → x, y in ``crs`` (via WGS84)."""
-    xy = np.asarray(xy, dtype=float).reshape(-1, 2)
-    if len(xy) == 0:
-        return np.empty(0), np.empty(0)
-    lat, lon, _ = local.to_geodetic(np.column_stack([xy, np.full(len(xy), 0.0)]))
-    return ProjectedCRS(layers.pyproj_crs(crs)).from_geodetic(lat, lon)
-
-
-def wgs84_of(source, context):
-    """Transform from a source's CRS to WGS84 (for reading verdict positions from geometry)."""
-    return QgsCoordinateTransform(source.sourceCrs(), QgsCoordinateReferenceSystem(layers.WGS84),
-                                  context.transformContext() if context else QgsProject.instance().transformContext())
-
-
-class ClusterDetections(BirdsEyeAlgorithm):
+class ClusterDetections(ClusteringParametersMixin, BirdsEyeAlgorithm):
     ALG_ID = "clusterdetections"
     DISPLAY_NAME = "Cluster detections"
     GROUP = "detect"
@@ -145,14 +28,14 @@ class ClusterDetections(BirdsEyeAlgorithm):
     def initAlgorithm(self, config=None):  # noqa: N802
         self.addParameter(QgsProcessingParameterFeatureSource(
             "DETECTIONS", self.tr("Detections (from Detect targets)"), [QgsProcessing.TypeVectorPoint]))
-        add_clustering_parameters(self, with_prediction=False)
+        self.add_clustering_parameters(with_prediction=False)
         self.addParameter(QgsProcessingParameterFeatureSource(
             "GEOTAGS", self.tr("Geotags (optional: fills matched_geotag_ids and hit)"),
             [QgsProcessing.TypeVectorPoint], optional=True))
         self.addParameter(QgsProcessingParameterFeatureSource(
             "FRAMES", self.tr("Frames of the flight (optional: only in-view geotags can match)"),
             [QgsProcessing.TypeVector], optional=True))
-        add_matching_parameters(self)
+        self.add_matching_parameters()
         self.addParameter(QgsProcessingParameterFeatureSink(
             "OUTPUT", self.tr("Clusters"), QgsProcessing.TypeVectorPolygon))
         self.addParameter(QgsProcessingParameterFeatureSink(

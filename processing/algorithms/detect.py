@@ -7,27 +7,16 @@ from qgis.core import (QgsProcessing, QgsProcessingOutputNumber, QgsProcessingOu
                        QgsProcessingParameterFile, QgsProcessingParameterFolderDestination,
                        QgsProcessingParameterNumber, QgsWkbTypes)
 
-from ...birdseye_qgis import layers
+from ...birdseye_qgis.qgis_io import layers
+from ...birdseye_qgis.qgis_io.detections import DETECTION_FIELDS
 from ...birdseye_qgis.core.detect.detector import DetectRequest, HeatmapModel, detect_frames
 from ...birdseye_qgis.core.errors import InputError
 from ...birdseye_qgis.core.field.frame_records import poses_from_records
 from ...birdseye_qgis.core.geometry.geodesy import LocalFrame, ProjectedCRS
-from ..dem_parameters import DemParametersMixin
+from ..parameters.dem import DemParametersMixin
 from .base import PLUGIN_ROOT, BirdsEyeAlgorithm
 
 DEFAULT_MODEL = PLUGIN_ROOT / "models" / "birdseye_demo_heatmap.onnx"
-
-#: (name, type, description) of the detection layer.
-DETECTION_FIELDS = [
-    ("frame_id", "int", "frame the detection was made in"),
-    ("u", "double", "column of the peak in the original (distorted) image, px, pixel-centre convention"),
-    ("v", "double", "row of the peak, px"),
-    ("score", "double", "peak value of the smoothed probability heatmap (0..1)"),
-    ("model", "string", "model file name"),
-    ("model_digest", "string", "SHA-256 of the model file"),
-    ("threshold", "double", "probability threshold of the run"),
-]
-
 
 class Detect(DemParametersMixin, BirdsEyeAlgorithm):
     ALG_ID = "detect"

@@ -13,49 +13,8 @@ from ...birdseye_qgis.core.scoring import preregistration
 from ...birdseye_qgis.core.scoring.scoring import (Flight, OperatingPoint, VerdictLog, evaluate_flights,
                                            evaluation_report_html)
 from .base import BirdsEyeAlgorithm
-from .clusterdetections import (add_clustering_parameters, read_detections, read_geotags, read_pose_groups,
-                                wgs84_of)
-
-
-def read_flights(alg, parameters, context, feedback, detections_name="DETECTIONS", frames_name="FRAMES"):
-    """Detection layers paired in order with frame layers (one flight each) as core Flights."""
-    det_layers = alg.parameterAsLayerList(parameters, detections_name, context)
-    frame_layers = alg.parameterAsLayerList(parameters, frames_name, context)
-    if not det_layers:
-        raise QgsProcessingException(f"{detections_name}: give at least one detection layer.")
-    if len(frame_layers) != len(det_layers):
-        raise QgsProcessingException(
-            f"{frames_name}: give one frame layer per detection layer, in the same order (got "
-            f"{len(det_layers)} detection layer(s) and {len(frame_layers)} frame layer(s)).")
-    flights = []
-    for det_layer, frame_layer in zip(det_layers, frame_layers):
-        det, dropped = alg.run_core(read_detections, det_layer, context, det_layer.name())
-        if dropped:
-            feedback.pushWarning(f"{det_layer.name()}: {dropped} detection(s) without a position or score left out")
-        groups = alg.run_core(read_pose_groups, frame_layer, frame_layer.name())[0]
-        flights.append(Flight(det, groups, det_layer.name()))
-    return flights
-
-
-def read_verdicts(layer, context) -> VerdictLog:
-    """The review dock's verdict table (append order = feature id order) as a :class:`VerdictLog`.
-
-    Positions come from ``lat``/``lon`` fields, else from a point geometry (transformed to WGS84).
-    """
-    names = layer.fields().names()
-    use_geometry = ("lat" not in names or "lon" not in names) and layer.isSpatial() and \
-        QgsWkbTypes.geometryType(layer.wkbType()) == QgsWkbTypes.PointGeometry
-    transform = wgs84_of(layer, context) if use_geometry else None
-    records = []
-    for feature in sorted(layer.getFeatures(), key=lambda f: f.id()):
-        rec = {n: (None if v is None or (hasattr(v, "isNull") and v.isNull()) else v)
-               for n, v in zip(names, feature.attributes())}
-        rec["sequence"] = feature.id()
-        if transform is not None and feature.hasGeometry():
-            p = transform.transform(feature.geometry().asPoint())
-            rec["lat"], rec["lon"] = p.y(), p.x()
-        records.append(rec)
-    return VerdictLog.from_records(records, source=layer.name())
+from ...birdseye_qgis.qgis_io.detections import read_geotags, read_verdicts
+from ..parameters.clustering import ClusteringParametersMixin
 
 
 def operating_point_from_rule(path, flights, feedback) -> tuple[OperatingPoint, dict]:
@@ -81,7 +40,7 @@ def operating_point_from_rule(path, flights, feedback) -> tuple[OperatingPoint, 
                 "model_digest": arm["model_digest"]}
 
 
-class EvaluateDetections(BirdsEyeAlgorithm):
+class EvaluateDetections(ClusteringParametersMixin, BirdsEyeAlgorithm):
     ALG_ID = "evaluatedetections"
     DISPLAY_NAME = "Evaluate detections (recall, GMCF)"
     GROUP = "detect"
@@ -93,7 +52,7 @@ class EvaluateDetections(BirdsEyeAlgorithm):
             "GEOTAGS", self.tr("Geotags"), [QgsProcessing.TypeVectorPoint]))
         self.addParameter(QgsProcessingParameterMultipleLayers(
             "FRAMES", self.tr("Frame layers (one per flight, same order)"), QgsProcessing.TypeVector))
-        add_clustering_parameters(self)
+        self.add_clustering_parameters()
         self.addParameter(QgsProcessingParameterVectorLayer(
             "REVIEW", self.tr("Review verdicts (optional: adds the POST scores)"), [QgsProcessing.TypeVector],
             optional=True))
@@ -110,7 +69,7 @@ class EvaluateDetections(BirdsEyeAlgorithm):
             self.addOutput(QgsProcessingOutputNumber(name, self.tr(text)))
 
     def processAlgorithm(self, parameters, context, feedback):  # noqa: N802
-        flights = read_flights(self, parameters, context, feedback)
+        flights = self.read_flights(parameters, context, feedback)
         geotag_source = self.parameterAsSource(parameters, "GEOTAGS", context)
         if geotag_source is None:
             raise QgsProcessingException(self.tr("GEOTAGS: the geotag layer cannot be read."))

@@ -4,14 +4,11 @@ from __future__ import annotations
 from qgis.core import (QgsProcessing, QgsProcessingOutputNumber, QgsProcessingParameterCrs,
                        QgsProcessingParameterFeatureSink, QgsProcessingParameterFile)
 
-from ...birdseye_qgis import layers
+from ...birdseye_qgis.qgis_io import layers
 from ...birdseye_qgis.core.geometry.camera import load_calibration
 from ...birdseye_qgis.core.field.dji import import_dji_images
-from ..dem_parameters import DemParametersMixin
+from ..parameters.dem import DemParametersMixin
 from .base import BirdsEyeAlgorithm
-
-
-DJI_TAKEOFF_TOLERANCE_M = 100.0
 
 
 class ImportDjiImages(DemParametersMixin, BirdsEyeAlgorithm):
@@ -41,11 +38,8 @@ class ImportDjiImages(DemParametersMixin, BirdsEyeAlgorithm):
         dem = self.read_dem(parameters, context)
         self.report_dem(feedback, dem)
         progress, is_canceled = self.progress_callbacks(feedback, 0.0, 80.0)
-        # DJI AbsoluteAltitude is above mean sea level; the frames' "ground" is the take-off point,
-        # which hilly terrain under the frames may differ from by tens of metres.
         result = self.run_core(import_dji_images, folder, calibration, chosen, progress=progress,
-                               is_canceled=is_canceled,
-                               ground=self.dem_ground(dem, "msl", DJI_TAKEOFF_TOLERANCE_M))
+                               is_canceled=is_canceled, dem=dem)
         layers.report_to_feedback(feedback, result.report)
         for error in result.report.unplaced[5:]:
             feedback.pushInfo(f"Not placed: {error}")

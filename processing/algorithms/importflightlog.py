@@ -5,10 +5,10 @@ from qgis.core import (QgsProcessingParameterCrs, QgsProcessingParameterEnum, Qg
                        QgsProcessingParameterFile, QgsProcessingParameterNumber, QgsProcessingOutputNumber,
                        QgsProcessing)
 
-from ...birdseye_qgis import layers
+from ...birdseye_qgis.qgis_io import layers
 from ...birdseye_qgis.core.geometry.camera import load_calibration
 from ...birdseye_qgis.core.field.flight_log import import_flight_log
-from ..dem_parameters import DemParametersMixin
+from ..parameters.dem import DemParametersMixin
 from .base import BirdsEyeAlgorithm
 
 

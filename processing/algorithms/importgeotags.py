@@ -6,7 +6,7 @@ from qgis.core import (QgsProcessing, QgsProcessingException, QgsProcessingOutpu
                        QgsProcessingParameterFeatureSource, QgsProcessingParameterFile,
                        QgsProcessingParameterNumber, QgsProcessingParameterString, QgsWkbTypes)
 
-from ...birdseye_qgis import layers
+from ...birdseye_qgis.qgis_io import layers
 from ...birdseye_qgis.core.field.geotags import (FORMATS, GEOTAG_FIELDS, ColumnMapping, geotags_from_columns,
                                              prepare_geotags, read_geotags)
 from .base import BirdsEyeAlgorithm

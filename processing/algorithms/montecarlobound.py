@@ -21,7 +21,7 @@ from ...birdseye_qgis.core.design.monte_carlo_bound import (
     scaling_study,
 )
 from ...birdseye_qgis.core.design.sensor_bound import AXES, evaluate_bound
-from ..design_parameters import DesignParametersMixin
+from ..parameters.design import DesignParametersMixin
 from .base import BirdsEyeAlgorithm
 
 

@@ -14,7 +14,7 @@ from qgis.core import (QgsCoordinateReferenceSystem, QgsFeatureRequest, QgsGeome
                        QgsProcessingParameterNumber, QgsProcessingParameterPoint,
                        QgsProcessingParameterVectorLayer, QgsWkbTypes)
 
-from ...birdseye_qgis import layers
+from ...birdseye_qgis.qgis_io import layers
 from ...birdseye_qgis.core.geometry.camera import load_calibration
 from ...birdseye_qgis.core.plan.flight_plan import (ROUTE_FIELDS, WAYPOINT_FIELDS, FlightSettings, plan_flight,
                                                route_records, waypoint_records)

@@ -18,8 +18,9 @@ from ...birdseye_qgis.core.scoring.scoring import (DEFAULT_COLLAPSED_BELOW, DEFA
                                            OperatingPoint, ScreenRun, in_view, local_frame_for,
                                            screen_checkpoints, screen_figure)
 from .base import BirdsEyeAlgorithm
-from .clusterdetections import add_clustering_parameters, read_geotags, read_pose_groups
-from .sweepoperatingpoints import write_output, write_rows_csv
+from ...birdseye_qgis.qgis_io.detections import read_geotags, read_pose_groups
+from ...birdseye_qgis.qgis_io.outputs import write_output, write_rows_csv
+from ..parameters.clustering import ClusteringParametersMixin
 
 
 def pixel_labels(poses, local, geotags, edge_buffer_px):
@@ -36,7 +37,7 @@ def pixel_labels(poses, local, geotags, edge_buffer_px):
     return np.concatenate(frame_ids), np.concatenate(uvs)
 
 
-class ScreenCheckpoints(BirdsEyeAlgorithm):
+class ScreenCheckpoints(ClusteringParametersMixin, BirdsEyeAlgorithm):
     ALG_ID = "screencheckpoints"
     DISPLAY_NAME = "Screen checkpoints"
     GROUP = "detect"
@@ -51,7 +52,7 @@ class ScreenCheckpoints(BirdsEyeAlgorithm):
         self.addParameter(QgsProcessingParameterNumber(
             "THRESHOLD", self.tr("Detection threshold (empty: each checkpoint's default)"),
             QgsProcessingParameterNumber.Double, None, optional=True, minValue=0.001, maxValue=0.999))
-        add_clustering_parameters(self)
+        self.add_clustering_parameters()
         self.addParameter(QgsProcessingParameterNumber(
             "PIXEL_RADIUS_PX", self.tr("Pixel F1: match radius (px)"), QgsProcessingParameterNumber.Double,
             DEFAULT_PIXEL_RADIUS_PX, minValue=0.5))

@@ -14,7 +14,7 @@ from ...birdseye_qgis.core.detect.detector import file_digest
 from ...birdseye_qgis.core.errors import InputError
 from ...birdseye_qgis.core.scoring.scoring import OperatingPoint
 from .base import BirdsEyeAlgorithm
-from .clusterdetections import add_clustering_parameters
+from ..parameters.clustering import ClusteringParametersMixin
 
 
 def read_descriptive(path) -> list:
@@ -33,7 +33,7 @@ def read_descriptive(path) -> list:
     raise InputError("holds neither a JSON list nor an object", source=str(path), field="DESCRIPTIVE")
 
 
-class SealPreregistration(BirdsEyeAlgorithm):
+class SealPreregistration(ClusteringParametersMixin, BirdsEyeAlgorithm):
     ALG_ID = "sealpreregistration"
     DISPLAY_NAME = "Seal a preregistered selection rule"
     GROUP = "detect"
@@ -44,7 +44,7 @@ class SealPreregistration(BirdsEyeAlgorithm):
         self.addParameter(QgsProcessingParameterNumber(
             "THRESHOLD", self.tr("Detection threshold of the arms"), QgsProcessingParameterNumber.Double, 0.5,
             minValue=0.001, maxValue=0.999))
-        add_clustering_parameters(self)
+        self.add_clustering_parameters()
         self.addParameter(QgsProcessingParameterFile(
             "DESCRIPTIVE", self.tr("Descriptive configurations (optional: a sweep or screen JSON, recorded only)"),
             optional=True, fileFilter="JSON (*.json)"))

@@ -12,7 +12,7 @@ from qgis.core import (
 
 from ...birdseye_qgis.core.design.bound_report import altitude_summary, write_report
 from ...birdseye_qgis.core.design.sensor_bound import evaluate_bounds, frame_grid, lmax_field
-from ..design_parameters import DesignParametersMixin
+from ..parameters.design import DesignParametersMixin
 from .base import BirdsEyeAlgorithm
 
 
@@ -58,6 +58,8 @@ class SensorBoundAlgorithm(DesignParametersMixin, BirdsEyeAlgorithm):
         result = self.run_core(evaluate_bounds, camera, altitudes, sigmas, tolerance, stride,
                                progress=progress, is_canceled=is_canceled)
         result["inputs"]["calibration"] = calibration or None
+        preset = self.platform_from_parameters(parameters, context)
+        result["inputs"]["platform"] = None if preset is None else preset.key
         for entry in result["altitudes"]:
             feedback.pushInfo(altitude_summary(entry))
         Path(json_path).parent.mkdir(parents=True, exist_ok=True)
@@ -67,7 +69,8 @@ class SensorBoundAlgorithm(DesignParametersMixin, BirdsEyeAlgorithm):
 
         if report_path:
             self.check_canceled(feedback)
-            source = Path(calibration).name if calibration else "typed intrinsics"
+            source = (Path(calibration).name if calibration else preset.name if preset is not None
+                      else "typed intrinsics")
             outputs[self.OUTPUT_REPORT] = self.run_core(write_report, report_path, result,
                                                         title="BirdsEye sensor bound", source=source)
             feedback.setProgress(90 if raster_path else 100)

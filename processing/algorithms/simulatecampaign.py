@@ -1,12 +1,14 @@
 """birdseye:simulatecampaign — a deterministic synthetic campaign in the BirdsEye file formats."""
 from __future__ import annotations
 
-from qgis.core import (QgsProcessingOutputFile, QgsProcessingOutputNumber, QgsProcessingOutputRasterLayer,
+from qgis.core import (QgsProcessingOutputFile, QgsProcessingOutputFolder, QgsProcessingOutputNumber,
+                       QgsProcessingOutputRasterLayer,
                        QgsProcessingParameterBoolean, QgsProcessingParameterDefinition, QgsProcessingParameterEnum,
                        QgsProcessingParameterFolderDestination, QgsProcessingParameterNumber,
                        QgsProcessingParameterString)
 
-from ...birdseye_qgis.core.sim.campaign import TERRAIN_KINDS, CampaignConfig, parse_sigmas, simulate_campaign
+from ...birdseye_qgis.core.sim.campaign import (DEFAULT_SIDE_OVERLAP, PLATFORMS, TERRAIN_KINDS, CampaignConfig,
+                                                parse_sigmas, simulate_campaign)
 from .base import BirdsEyeAlgorithm
 
 DEFAULTS = CampaignConfig()
@@ -28,13 +30,16 @@ NUMBERS = [
     ("INS_RATE_HZ", "INS message rate (Hz)", DOUBLE, DEFAULTS.ins_rate_hz, 1.0, 1000.0, True),
     ("IMAGE_WIDTH", "Image width (px)", INT, DEFAULTS.image_width, 32, 8192, True),
     ("IMAGE_HEIGHT", "Image height (px)", INT, DEFAULTS.image_height, 32, 8192, True),
-    ("SIDE_OVERLAP", "Side overlap of neighbouring lines (fraction)", DOUBLE, DEFAULTS.side_overlap, 0.0, 0.9, True),
+    ("FORWARD_OVERLAP", "Forward overlap of a DJI drone's photos (fraction)", DOUBLE, DEFAULTS.forward_overlap,
+     0.0, 0.95, True),
     ("RADALT_SIGMA_M", "Radar altimeter noise σ (m)", DOUBLE, DEFAULTS.radalt_sigma_m, 0.0, 10.0, True),
     ("RTK_SIGMA_M", "Rover RTK noise σ of the geotags (m)", DOUBLE, DEFAULTS.rtk_sigma_m, 0.0, 10.0, True),
     ("N_MISSED", "Targets not surveyed", INT, DEFAULTS.n_missed, 0, 5000, True),
     ("N_SPURIOUS", "Spurious geotags (no target)", INT, DEFAULTS.n_spurious, 0, 5000, True),
     ("RTK_FLOAT_EPISODES", "RTK-float episodes in the pose log", INT, DEFAULTS.rtk_float_episodes, 0, 100, True),
 ]
+PLATFORM_LABELS = ("RTK INS payload (pose log, radar altimeter)",
+                   "DJI drone (the pose in each JPEG's own metadata, with its errors)")
 # The terrain, after the TERRAIN choice (same layout as NUMBERS).
 TERRAIN_LABELS = ("Flat (level ground)", "Plane (a uniform slope)", "Hills (the slope plus smooth random hills)")
 TERRAIN_NUMBERS = [
@@ -67,12 +72,21 @@ class SimulateCampaign(BirdsEyeAlgorithm):
                 self.addParameter(QgsProcessingParameterBoolean(
                     "RENDER", self.tr("Render frames (off: poses and geotags only)"), True))
                 self.addParameter(QgsProcessingParameterEnum(
+                    "PLATFORM", self.tr("Platform"), options=[self.tr(t) for t in PLATFORM_LABELS],
+                    defaultValue=PLATFORMS.index(DEFAULTS.platform)))
+                self.addParameter(QgsProcessingParameterEnum(
                     "TERRAIN", self.tr("Terrain"), options=[self.tr(t) for t in TERRAIN_LABELS],
                     defaultValue=TERRAIN_KINDS.index(DEFAULTS.terrain)))
             for name, label, kind, default, lo, hi, is_advanced in TERRAIN_NUMBERS:
                 if is_advanced == advanced:
                     self._add(QgsProcessingParameterNumber(
                         name, self.tr(label), kind, default, minValue=lo, maxValue=hi), advanced)
+        self._add(QgsProcessingParameterNumber(
+            "SIDE_OVERLAP", self.tr("Side overlap of neighbouring lines (fraction; empty: {ins:g} for the payload, "
+                                    "{dji:g} for a DJI drone)").format(**DEFAULT_SIDE_OVERLAP),
+            DOUBLE, None, optional=True, minValue=0.0, maxValue=0.9), True)
+        self._add(QgsProcessingParameterBoolean(
+            "DJI_DEWARPED", self.tr("DJI drone undistorts its JPEGs (DewarpFlag 1)"), DEFAULTS.dji_dewarped), True)
         geoid = QgsProcessingParameterNumber(
             "GEOID_UNDULATION_M", self.tr("Geoid undulation N for altMSL (m; empty: EGM96 at the site)"),
             DOUBLE, None, optional=True, minValue=-120.0, maxValue=120.0)
@@ -83,6 +97,7 @@ class SimulateCampaign(BirdsEyeAlgorithm):
             self.addOutput(QgsProcessingOutputFile(name, self.tr(text)))
         self.addOutput(QgsProcessingOutputRasterLayer(
             "DEM", self.tr("Terrain model (truth/dem.tif, ellipsoidal heights; none for flat terrain)")))
+        self.addOutput(QgsProcessingOutputFolder("FRAMES_FOLDER", self.tr("Frames folder")))
         self.addOutput(QgsProcessingOutputNumber("FRAME_COUNT", self.tr("Frames")))
 
     def _add(self, param, advanced: bool) -> None:
@@ -95,6 +110,8 @@ class SimulateCampaign(BirdsEyeAlgorithm):
                   for name, _, kind, *_ in NUMBERS + TERRAIN_NUMBERS}
         terrain = TERRAIN_KINDS[self.parameterAsEnum(parameters, "TERRAIN", context)]
         geoid = parameters.get("GEOID_UNDULATION_M")
+        side = parameters.get("SIDE_OVERLAP")
+        platform = PLATFORMS[self.parameterAsEnum(parameters, "PLATFORM", context)]
         config = CampaignConfig(
             seed=values["SEED"], n_targets=values["N_TARGETS"], field_width_m=values["FIELD_WIDTH_M"],
             field_length_m=values["FIELD_LENGTH_M"], site_lat=values["SITE_LAT"], site_lon=values["SITE_LON"],
@@ -106,7 +123,10 @@ class SimulateCampaign(BirdsEyeAlgorithm):
             n_missed=values["N_MISSED"], n_spurious=values["N_SPURIOUS"],
             render=self.parameterAsBool(parameters, "RENDER", context),
             noise_off=self.parameterAsBool(parameters, "NOISE_OFF", context),
-            side_overlap=values["SIDE_OVERLAP"], rtk_float_episodes=values["RTK_FLOAT_EPISODES"],
+            side_overlap=None if side in (None, "") else self.parameterAsDouble(parameters, "SIDE_OVERLAP", context),
+            rtk_float_episodes=values["RTK_FLOAT_EPISODES"], platform=platform,
+            forward_overlap=values["FORWARD_OVERLAP"],
+            dji_dewarped=self.parameterAsBool(parameters, "DJI_DEWARPED", context),
             geoid_undulation_m=None if geoid in (None, "")
             else self.parameterAsDouble(parameters, "GEOID_UNDULATION_M", context),
             terrain=terrain, slope_deg=values["SLOPE_DEG"], slope_aspect_deg=values["SLOPE_ASPECT_DEG"],
@@ -123,11 +143,16 @@ class SimulateCampaign(BirdsEyeAlgorithm):
             feedback.pushInfo(f"Terrain: {terrain}, {config.slope_deg:g}° slope facing {config.slope_aspect_deg:g}°"
                               + (f", hills of {config.relief_m:g} m every {config.hill_wavelength_m:g} m"
                                  if terrain == "hills" else "") + "; the drone follows it.")
+        if platform == "dji":
+            feedback.pushInfo(f"A DJI drone: photos on the lines with {config.forward_overlap:.0%} forward and "
+                              f"{config.effective_side_overlap:.0%} side overlap; the pose in each JPEG's metadata "
+                              "carries heading, tilt and height errors (truth/dji_metadata_errors.csv).")
         progress, is_canceled = self.progress_callbacks(feedback, 2.0, 100.0)
         result = self.run_core(simulate_campaign, config, folder, progress=progress, is_canceled=is_canceled)
-        feedback.pushInfo(f"Wrote {result.n_frames} frames, {result.n_poses} pose rows and "
-                          f"{result.n_geotags} geotags to {result.folder}.")
+        log = "" if platform == "dji" else f"{result.n_poses} pose rows, "
+        feedback.pushInfo(f"Wrote {result.n_frames} frames, {log}{result.n_geotags} geotags to {result.folder}.")
         return {"OUTPUT_FOLDER": str(result.folder), "GEOTAGS": str(result.files["geotags"]),
-                "POSES": str(result.files["poses"]), "IMAGES": str(result.files.get("images", "")),
-                "CALIBRATION": str(result.files["calibration"]), "DEM": str(result.files.get("dem", "")),
+                "POSES": str(result.files.get("poses", "")), "IMAGES": str(result.files.get("images", "")),
+                "CALIBRATION": str(result.files.get("calibration", "")), "DEM": str(result.files.get("dem", "")),
+                "FRAMES_FOLDER": str(result.files.get("frames", "")),
                 "FRAME_COUNT": result.n_frames}

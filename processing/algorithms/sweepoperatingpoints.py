@@ -17,8 +17,9 @@ from ...birdseye_qgis.core.scoring.scoring import (DEFAULT_EDGE_BUFFER_PX, DEFAU
                                            DEFAULT_MAX_MEAN_EXTENT_M, SweepFlight, SweepGrid,
                                            in_view, local_frame_for, sweep, sweep_figure)
 from .base import BirdsEyeAlgorithm
-from .clusterdetections import read_geotags
-from .evaluatedetections import read_flights
+from ...birdseye_qgis.qgis_io.detections import read_geotags
+from ...birdseye_qgis.qgis_io.outputs import write_output, write_rows_csv
+from ..parameters.clustering import ClusteringParametersMixin
 
 LISTS = (("THRESHOLDS", "Detection thresholds (comma-separated probabilities)", "0.3,0.4,0.5,0.6,0.7"),
          ("EPS_M", "DBSCAN radii EPS (m, comma-separated)", "0.05,0.10,0.15,0.20"),
@@ -42,23 +43,7 @@ def parse_list(text: str, name: str) -> list[float]:
     return values
 
 
-def write_rows_csv(path, rows: list[dict]) -> None:
-    """One CSV line per row dict (None written as an empty cell)."""
-    with open(path, "w", newline="", encoding="utf-8") as f:
-        writer = csv.DictWriter(f, fieldnames=list(rows[0]) if rows else [])
-        writer.writeheader()
-        writer.writerows({k: ("" if v is None else v) for k, v in r.items()} for r in rows)
-
-
-def write_output(path, name: str, write) -> None:
-    """Run ``write(path)``, turning a file-system error into a message naming the output."""
-    try:
-        write(path)
-    except OSError as exc:
-        raise QgsProcessingException(f"{name}: cannot write {path} ({exc})") from exc
-
-
-class SweepOperatingPoints(BirdsEyeAlgorithm):
+class SweepOperatingPoints(ClusteringParametersMixin, BirdsEyeAlgorithm):
     ALG_ID = "sweepoperatingpoints"
     DISPLAY_NAME = "Sweep operating points"
     GROUP = "detect"
@@ -101,7 +86,7 @@ class SweepOperatingPoints(BirdsEyeAlgorithm):
                  for name, _, _ in LISTS}
         grid = self.run_core(SweepGrid, lists["THRESHOLDS"], lists["EPS_M"], lists["MIN_SAMPLES"],
                              lists["EPS_PRED_M"], self.parameterAsDouble(parameters, "DEDUP_CM", context))
-        flights = read_flights(self, parameters, context, feedback)
+        flights = self.read_flights(parameters, context, feedback)
         for f in flights:
             t = f.detections.threshold
             if t is not None and t > grid.thresholds.min() + 1e-12:

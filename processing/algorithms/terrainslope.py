@@ -14,7 +14,7 @@ from ...birdseye_qgis.core.design.terrain_slope import (
     plot_slope_error,
     slope_error_grid,
 )
-from ..design_parameters import DesignParametersMixin
+from ..parameters.design import DesignParametersMixin
 from .base import BirdsEyeAlgorithm
 
 # Grid of the study: slopes every half degree, ρ = d/h in 100 steps to 15 % beyond the frame corner.

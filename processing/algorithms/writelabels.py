@@ -12,13 +12,13 @@ from qgis.core import (QgsFeature, QgsFeatureSink, QgsField, QgsFields,
                        QgsProcessingParameterNumber, QgsProject)
 from qgis.PyQt.QtCore import QVariant
 
-from ...birdseye_qgis import layers
+from ...birdseye_qgis.qgis_io import layers
 from ...birdseye_qgis.core.field.frame_records import poses_from_records
 from ...birdseye_qgis.core.geometry.geodesy import LocalFrame
 from ...birdseye_qgis.core.labels.training_set import (Geotags, LabelRequest, LabelWriter, frames_without_ground,
                                           project_labels)
-from ..dem_parameters import DemParametersMixin
-from ..design_parameters import read_sigma_label_px
+from ..parameters.dem import DemParametersMixin
+from ...birdseye_qgis.qgis_io.project_settings import read_sigma_label_px
 from .base import BirdsEyeAlgorithm
 
 

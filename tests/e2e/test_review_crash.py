@@ -43,7 +43,7 @@ SCRIPT = textwrap.dedent(f'''
     from birdseye.birdseye_qgis.core.review import review as rv
     from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame
     from birdseye.birdseye_qgis.core.scoring.scoring import Detections, Geotags
-    from birdseye.birdseye_qgis.review_store import ReviewSession, VerdictStore
+    from birdseye.birdseye_qgis.qgis_io.review_store import ReviewSession, VerdictStore
 
     SITE = LocalFrame(-27.55, 151.95, 400.0)
     VERDICTS = ("confirmed_real", "hard_negative", "uncertain")
@@ -173,7 +173,7 @@ def run_and_kill(script_path, store, after_lines=None, hold=0):
 def check_log(store, namespace, reported):
     """Integrity, complete rows, the exact replay of the script's first M actions, the cursor."""
     from birdseye.birdseye_qgis.core.review import review as rv
-    from birdseye.birdseye_qgis.review_store import STATE_TABLE, VERDICT_FIELD_NAMES, VERDICT_TABLE
+    from birdseye.birdseye_qgis.qgis_io.review_store import STATE_TABLE, VERDICT_FIELD_NAMES, VERDICT_TABLE
 
     c = sqlite3.connect(store)
     try:
@@ -215,7 +215,7 @@ def check_log(store, namespace, reported):
 
 @pytest.mark.parametrize("journal", ["delete", "wal"])
 def test_killing_a_review_loses_no_committed_verdict(script, tmp_path, journal):
-    from birdseye.birdseye_qgis.review_store import VerdictStore
+    from birdseye.birdseye_qgis.qgis_io.review_store import VerdictStore
 
     script_path, namespace = script
     store = tmp_path / "review.gpkg"

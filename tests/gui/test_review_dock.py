@@ -29,7 +29,7 @@ from birdseye.birdseye_qgis.core.geometry.poses import FrameGeometry
 from birdseye.birdseye_qgis.core.geometry.projection import pixel_to_ground, project_in_view
 from birdseye.birdseye_qgis.core.sim.campaign import CampaignConfig, simulate_campaign
 from birdseye.birdseye_qgis.gui import review_dock as dock_module
-from birdseye.birdseye_qgis.review_store import VERDICT_TABLE, VerdictStore
+from birdseye.birdseye_qgis.qgis_io.review_store import VERDICT_TABLE, VerdictStore
 
 REPO_ROOT = Path(__file__).resolve().parents[2]
 SCREENSHOT = REPO_ROOT / "build" / "screenshots" / "review_dock.png"
@@ -99,7 +99,7 @@ def write_detection_layer(path, name, rows):
 @pytest.fixture(scope="module")
 def campaign(birdseye_provider, tmp_path_factory):
     """A simulated flight with geotags, frames and two detection layers, in GeoPackages."""
-    from birdseye.processing.algorithms.clusterdetections import read_pose_groups
+    from birdseye.birdseye_qgis.qgis_io.detections import read_pose_groups
 
     folder = tmp_path_factory.mktemp("review_campaign")
     cfg = CampaignConfig(seed=5, n_targets=6, field_width_m=8.0, field_length_m=6.0, image_width=480,

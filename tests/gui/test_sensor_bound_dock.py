@@ -21,7 +21,7 @@ from birdseye.birdseye_qgis.core.design import sensor_bound as sb
 from birdseye.birdseye_qgis.core.design.bound_report import ACCEPT_COLOUR, REJECT_COLOUR, stride_for
 from birdseye.birdseye_qgis.core.geometry.camera import CameraModel, write_kalibr_yaml
 from birdseye.birdseye_qgis.gui import sensor_bound_dock as dock_module
-from birdseye.processing.design_parameters import read_sigma_label_px
+from birdseye.birdseye_qgis.qgis_io.project_settings import read_sigma_label_px
 
 REPO_ROOT = Path(__file__).resolve().parents[2]
 SCREENSHOT = REPO_ROOT / "build" / "screenshots" / "sensor_bound_dock.png"
@@ -241,3 +241,17 @@ def test_screenshot(qgis_iface, qtbot):
     finally:
         QApplication.setFont(font)
     assert SCREENSHOT.stat().st_size > 20_000
+
+
+def test_the_dji_metadata_preset_is_offered_and_rejected_at_10_m(dock, qtbot):
+    from birdseye.birdseye_qgis.core.design.platforms import DJI_METADATA
+
+    index = dock.preset_combo.findText(DJI_METADATA.name)
+    assert index >= 0
+    before = dock.result
+    dock.preset_combo.setCurrentIndex(index)
+    dock.preset_combo.activated.emit(index)
+    assert dock.camera() == DJI_METADATA.camera and dock.sigmas() == pytest.approx(list(DJI_METADATA.sigmas))
+    assert dock.preset_combo.currentText() == DJI_METADATA.name   # recognised after the spins rounded it
+    wait_for_update(qtbot, dock, before)
+    assert dock.result["altitudes"][0]["verdict_exact"] == "reject"

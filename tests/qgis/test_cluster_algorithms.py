@@ -155,7 +155,7 @@ def test_clusterdetections_writes_hulls_points_and_hit_flags(birdseye_provider):
 def test_cluster_and_detection_styles_load_on_the_outputs(birdseye_provider):
     from qgis.core import QgsExpression, QgsExpressionContext, QgsExpressionContextUtils
 
-    from birdseye.birdseye_qgis.layers import STYLE_DIR
+    from birdseye.birdseye_qgis.qgis_io.layers import STYLE_DIR
 
     result = run("clusterdetections", {"DETECTIONS": detection_layer(DETECTIONS), "OUTPUT": "TEMPORARY_OUTPUT",
                                        "OUTPUT_POINTS": "TEMPORARY_OUTPUT"})

@@ -84,9 +84,12 @@ def test_detect_back_projects_onto_the_dem(campaign, tmp_path):
 
 def test_dji_footprints_on_a_dem_at_the_take_off_height_match_the_level_ones(birdseye_provider, tmp_path):
     """Real DJI frames (Brighton Beach): a flat MSL DEM at the take-off height gives the level footprints;
-    one 10 m lower (the field below the take-off point) gives footprints larger by (40 + 10) / 40."""
+    one 13 m lower (the field below the knoll the drone took off from) gives footprints larger by
+    (40 + 13) / 40; a DEM 40 m off every terrain around is refused as another vertical reference."""
+    import numpy as np
     import processing
     from pathlib import Path
+    from qgis.core import QgsProcessingException
 
     brighton = Path(__file__).resolve().parents[1] / "data" / "brighton_beach"
     run = lambda **extra: {f["frame_id"]: f for f in processing.run(  # noqa: E731
@@ -95,10 +98,18 @@ def test_dji_footprints_on_a_dem_at_the_take_off_height_match_the_level_ones(bir
     level = run()
     first = next(iter(level.values()))
     takeoff = first["ground_h_m"]
-    for drop in (0.0, 10.0):
-        dem = synthetic_terrain(first["lat"], first["lon"], kind="plane", base_height_m=takeoff - drop,
+
+    def dem_layer(field_height, knoll_height, name):
+        dem = synthetic_terrain(first["lat"], first["lon"], kind="plane", base_height_m=field_height,
                                 size_m=400.0, cell_m=2.0, vertical_datum="msl")
-        layer = QgsRasterLayer(write_geotiff(dem, tmp_path / f"dem{drop:g}.tif"), "dem")
+        x, y = dem.cell_centres()  # the take-off knoll, 150 m east of the first frame
+        dem.heights[np.ix_(np.abs(y - y.mean()) < 5.0, np.abs(x - x.mean() - 150.0) < 5.0)] = knoll_height
+        return QgsRasterLayer(write_geotiff(dem, tmp_path / f"{name}.tif"), name)
+
+    with pytest.raises(QgsProcessingException, match=r"take-off height \(\d+\.\d+ m, the median over 6 frames"):
+        run(DEM=dem_layer(takeoff + 40.0, takeoff + 40.0, "off"), DEM_VERTICAL_DATUM=1)
+    for drop in (0.0, 13.0):
+        layer = dem_layer(takeoff - drop, takeoff, f"dem{drop:g}")
         draped = run(DEM=layer, DEM_VERTICAL_DATUM=1)
         assert draped.keys() == level.keys()
         for fid, f in draped.items():

@@ -68,7 +68,7 @@ def scene(tmp_path_factory):
     yy, xx = np.mgrid[0:180, 0:240]
     roll, pitch, yaw = euler_degrees(q)
     layer = QgsVectorLayer(f"Polygon?crs={UTM}", "frames", "memory")
-    from birdseye.birdseye_qgis.layers import qgs_fields
+    from birdseye.birdseye_qgis.qgis_io.layers import qgs_fields
 
     layer.dataProvider().addAttributes(qgs_fields(FRAME_FIELDS).toList())
     layer.updateFields()
@@ -176,7 +176,7 @@ def test_the_bundled_model_finds_simulated_burrows_end_to_end(birdseye_provider,
     from birdseye.birdseye_qgis.core.field.frame_records import poses_from_records
     from birdseye.birdseye_qgis.core.labels.training_set import Geotags, project_labels
     from birdseye.birdseye_qgis.core.sim.campaign import CampaignConfig, simulate_campaign
-    from birdseye.birdseye_qgis.layers import pyproj_crs, read_frame_layer
+    from birdseye.birdseye_qgis.qgis_io.layers import pyproj_crs, read_frame_layer
     from birdseye.processing.algorithms.detect import DEFAULT_MODEL
 
     if not DEFAULT_MODEL.is_file():

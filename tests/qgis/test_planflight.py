@@ -230,7 +230,7 @@ def test_single_geotag_is_a_one_waypoint_mission(birdseye_provider, tmp_path):
 
 
 def test_styles_load_on_the_output_layers(birdseye_provider):
-    from birdseye.birdseye_qgis.layers import STYLE_DIR
+    from birdseye.birdseye_qgis.qgis_io.layers import STYLE_DIR
 
     result, context, _ = run({"GEOTAGS": geotag_layer(np.array([[0, 0], [30, 0], [30, 30]], dtype=float)),
                               "OUTPUT_WAYPOINTS": "memory:", "OUTPUT_ROUTE": "memory:"})

@@ -79,19 +79,21 @@ def test_algorithm_ids_are_unique_across_modules():
 # ------------------------------------------------------------------------------------ plugin object
 @pytest.fixture
 def plugin_module(birdseye_provider, monkeypatch):
-    """The plugin module, its provider given a test id so it never collides with the session's.
+    """The plugin module, with ``ProviderUnderTest``: the provider class under a test id, so it never
+    collides with the session's.
 
     The session provider already owns the id ``birdseye`` (the registry refuses a second one), so
     the plugin registers and removes a provider of the same class under ``birdseye_plugin_test``.
     """
     from birdseye.birdseye_qgis.gui import plugin
-    from birdseye.processing.provider import BirdsEyeProvider
+    from birdseye.processing import provider
 
-    class ProviderUnderTest(BirdsEyeProvider):
+    class ProviderUnderTest(provider.BirdsEyeProvider):
         def id(self):
             return "birdseye_plugin_test"
 
-    monkeypatch.setattr(plugin, "BirdsEyeProvider", ProviderUnderTest)
+    monkeypatch.setattr(plugin, "ProviderUnderTest", ProviderUnderTest, raising=False)
+    monkeypatch.setattr(provider, "BirdsEyeProvider", ProviderUnderTest)  # what classFactory hands over
     return plugin
 
 
@@ -165,7 +167,7 @@ def test_broken_dock_is_reported_not_raised(qgis_iface, plugin_module, monkeypat
     monkeypatch.setattr(plugin_module, "DOCKS", [
         plugin_module.DockEntry("birdseye_qgis.gui.plugin", "NoSuchDockClass", "Broken dock")])
     qgis_iface.messageBar().clear_messages()
-    plugin = plugin_module.BirdsEyePlugin(qgis_iface)
+    plugin = plugin_module.BirdsEyePlugin(qgis_iface, plugin_module.ProviderUnderTest)
     plugin.initGui()
     try:
         action = plugin.menu.actions()[-1]
@@ -185,7 +187,7 @@ def test_algorithms_action_without_processing_plugin_explains(qgis_iface, plugin
 
     monkeypatch.setattr(utils, "plugins", {})
     qgis_iface.messageBar().clear_messages()
-    plugin = plugin_module.BirdsEyePlugin(qgis_iface)
+    plugin = plugin_module.BirdsEyePlugin(qgis_iface, plugin_module.ProviderUnderTest)
     plugin.initGui()
     try:
         plugin.toolbox_action.trigger()
@@ -200,13 +202,14 @@ def test_algorithms_action_without_processing_plugin_explains(qgis_iface, plugin
 def test_registered_docks_open_and_close(qgis_iface, birdseye_provider, entry_index):
     """Every dock in the plugin's registry whose module exists opens with the iface and unloads."""
     from birdseye.birdseye_qgis.gui import plugin as plugin_module
+    from birdseye.processing.provider import BirdsEyeProvider
 
     available = [e for e in plugin_module.DOCKS if plugin_module.dock_module_available(e)]
     if entry_index >= len(available):
         pytest.skip(f"the plugin registers {len(available)} dock(s) with a module so far")
     entry = available[entry_index]
     qgis_iface.messageBar().clear_messages()
-    plugin = plugin_module.BirdsEyePlugin(qgis_iface)
+    plugin = plugin_module.BirdsEyePlugin(qgis_iface, BirdsEyeProvider)
     plugin.initGui()
     try:
         plugin.dock_actions[entry].trigger()

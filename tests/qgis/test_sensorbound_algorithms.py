@@ -276,3 +276,24 @@ def test_terrainslope_marks_targets_level_with_the_camera_as_null(birdseye_provi
 def test_terrainslope_bad_input_names_the_parameter(birdseye_provider, tmp_path, bad, name):
     with pytest.raises(QgsProcessingException, match=name):
         run("terrainslope", dict(bad, OUTPUT_JSON=str(tmp_path / "t.json")))
+
+
+def test_the_dji_metadata_preset_sets_camera_and_sigmas_and_fails_at_10_m(birdseye_provider, tmp_path):
+    """PLATFORM picks a preset: its camera and sigmas replace the typed ones (which are left at odd
+    values here to show it), and the DJI metadata budget is rejected at 10 m, the heading dominating."""
+    from birdseye.birdseye_qgis.core.design.platforms import DJI_METADATA, PLATFORMS
+
+    feedback = RecordingFeedback()
+    index = 1 + PLATFORMS.index(DJI_METADATA)
+    out = run("sensorbound", {"PLATFORM": index, "FX": 100.0, "SIGMAS": "9,9,9,9,9,9", "ALTITUDES": "10",
+                              "STRIDE_PX": 8, "OUTPUT_JSON": str(tmp_path / "dji.json"), "OUTPUT_REPORT": None},
+              feedback)
+    result = read_json(out["OUTPUT_JSON"])
+    assert result["inputs"]["platform"] == "dji_metadata"
+    assert result["inputs"]["sigmas"] == pytest.approx(list(DJI_METADATA.sigmas))
+    assert result["inputs"]["intrinsics"]["fx"] == pytest.approx(DJI_METADATA.camera.fx)
+    direct = sb.evaluate_bound(DJI_METADATA.camera, 10.0, DJI_METADATA.sigmas, 30.0, 8).to_json_dict()
+    (entry,) = result["altitudes"]
+    assert entry["kappa_exact"] == pytest.approx(direct["kappa_exact"]) and entry["verdict_exact"] == "reject"
+    assert int(np.argmax(entry["budget_share"])) == 5          # yaw
+    assert any("DJI RTK drone" in line and "DJI specifications" in line for line in feedback.infos)

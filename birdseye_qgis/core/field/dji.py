@@ -13,7 +13,10 @@ the take-off height: ``ground_h = AbsoluteAltitude − RelativeAltitude``. DJI's
 MSL-like (EGM96, or barometric) on older models rather than ellipsoidal; because camera height and
 ground height come from the same source the depth (= ``RelativeAltitude``) is right, but the absolute
 heights may differ from ellipsoidal ones by the geoid undulation (tens of metres). Terrain that rises
-or falls from the take-off point scales footprints accordingly (a DEM ground model fixes that).
+or falls from the take-off point scales footprints accordingly (a DEM ground model fixes that). A DEM
+is checked once for the whole flight: the take-off height must be one the terrain around the frames
+has (:func:`.dem.check_vertical_datum` with ``ground_reference="takeoff"``), so honest relief between
+the take-off point and the field passes while a datum mix-up larger than the relief does not.
 
 Intrinsics, best first: a calibration file; ``DewarpData`` (:func:`.camera.camera_from_dji_dewarp`);
 ``CalibratedFocalLength`` + ``CalibratedOpticalCenterX/Y`` (pixels); EXIF ``FocalLength`` (mm) with
@@ -21,6 +24,15 @@ Intrinsics, best first: a calibration file; ``DewarpData`` (:func:`.camera.camer
 as relative to the 36 mm long side of the 35 mm frame (fx = f35 · max(W, H) / 36 px). The last is a
 nominal value, a few per cent off (frames flagged ``approx_intrinsics``). A resized copy of an image
 (fewer pixels than EXIF ``ExifImageWidth``) has its pixel intrinsics scaled to its size.
+
+One camera, one model. The frames of one camera — same model, serial number (XMP
+``CameraSerialNumber``, else EXIF ``BodySerialNumber``) and ``DewarpData`` — share one
+:class:`~.camera.CameraModel`, named after the camera rather than a file, so everything that works per
+camera (footprints, the DEM check, labels) sees the flight as one.
+
+``DewarpFlag`` 1 says the drone has already removed the lens distortion from the JPEG (the focal
+length and principal point stay those of ``DewarpData``): such frames get a camera with zero
+distortion, or the distortion would be removed twice, and the flag ``dewarped``.
 """
 from __future__ import annotations
 
@@ -32,12 +44,13 @@ from pathlib import Path
 
 import numpy as np
 
-from ..geometry.camera import CameraModel, CalibrationError, camera_from_dji_dewarp
 from ..errors import Cancelled, InputError
-from .flight_log import (RTK_FIXED, RTK_FLOAT, RTK_NONE, FlightImport, Frames, ImportReport,
-                         compute_footprints)
+from ..geometry.camera import CalibrationError, CameraModel, camera_from_dji_dewarp
+from ..geometry.dem import DemGround, DemRaster, check_vertical_datum
 from ..geometry.geodesy import ProjectedCRS
+from ..geometry.poses import FramePoses
 from ..geometry.rotations import euler_zyx_to_rotmat, rotmat_to_quat
+from .flight_log import RTK_FIXED, RTK_FLOAT, RTK_NONE, FlightImport, Frames, ImportReport, compute_footprints
 
 #: Gimbal frame (x optical axis, y image right, z image down) → OpenCV camera frame.
 T_CAM_GIMBAL = np.array([[0.0, 1.0, 0.0, 0.0],
@@ -52,6 +65,8 @@ YAW_MISMATCH_DEG = 5.0
 NADIR_PITCH_LIMIT_DEG = -80.0
 #: Long side (mm) of the 35 mm film frame the EXIF 35 mm-equivalent focal length refers to.
 FILM_LONG_SIDE_MM = 36.0
+#: What DJI's ``AbsoluteAltitude`` is measured from (the heights a DEM is compared with).
+DJI_HEIGHT_DATUM = "msl"
 
 _JPEG_SUFFIXES = (".jpg", ".jpeg")
 _XMP_HEADER = b"http://ns.adobe.com/xap/1.0/\x00"
@@ -79,6 +94,7 @@ class DjiMetadata:
     focal_35mm: float | None = None
     focal_plane_px_per_mm: float | None = None
     orientation: int = 1
+    serial: str = ""
 
     def tag(self, *names) -> float | None:
         """First of the XMP tags ``names`` present, as a number (None if absent or not a number)."""
@@ -95,6 +111,16 @@ class DjiMetadata:
     @property
     def has_dji_tags(self) -> bool:
         return bool(self.xmp)
+
+    @property
+    def dewarped(self) -> bool:
+        """``DewarpFlag`` 1: the drone already removed the lens distortion from the pixels."""
+        return self.tag("DewarpFlag") == 1.0
+
+    @property
+    def camera_name(self) -> str:
+        """Model and serial number: the same for every frame of one camera."""
+        return " ".join(part for part in (self.make, self.model, self.serial) if part) or "DJI camera"
 
 
 def _jpeg_segments(path: Path):
@@ -143,6 +169,7 @@ def read_dji_metadata(path) -> DjiMetadata:
     meta.make = _text(exif.get(0x010F))
     meta.model = _text(exif.get(0x0110))
     meta.orientation = int(exif.get(0x0112, 1) or 1)
+    meta.serial = xmp.get("CameraSerialNumber") or _text(ifd.get(0xA431))
     meta.exif_width = _int(ifd.get(0xA002))
     meta.exif_height = _int(ifd.get(0xA003))
     meta.focal_mm = _float(ifd.get(0x920A))
@@ -216,7 +243,15 @@ def _scaled(camera: CameraModel, sx: float, sy: float, width: int, height: int) 
 
 
 def dji_camera(meta: DjiMetadata, calibration: CameraModel | None = None) -> tuple[CameraModel, list]:
-    """Camera model of a DJI image (mounted by :data:`T_CAM_GIMBAL`) and flags about its origin."""
+    """Camera model of a DJI image (mounted by :data:`T_CAM_GIMBAL`) and flags about its origin; an
+    image the drone already undistorted (``DewarpFlag`` 1) gets zero distortion."""
+    cam, flags = _lens_camera(meta, calibration)
+    if meta.dewarped:
+        return replace(cam, dist=(0.0,) * 5, source=f"{cam.source} (dewarped)"), flags + ["dewarped"]
+    return cam, flags
+
+
+def _lens_camera(meta: DjiMetadata, calibration: CameraModel | None) -> tuple[CameraModel, list]:
     w, h = meta.width, meta.height
     full_w, full_h = meta.exif_width or w, meta.exif_height or h
     sx, sy = w / full_w, h / full_h
@@ -233,7 +268,7 @@ def dji_camera(meta: DjiMetadata, calibration: CameraModel | None = None) -> tup
     dewarp = meta.xmp.get("DewarpData")
     if dewarp:
         try:
-            cam = camera_from_dji_dewarp(dewarp, full_w, full_h, source=Path(meta.path).name,
+            cam = camera_from_dji_dewarp(dewarp, full_w, full_h, source=f"DewarpData {meta.camera_name}",
                                          T_cam_imu=T_CAM_GIMBAL)
         except CalibrationError as exc:
             raise InputError(f"DewarpData cannot be used ({exc})", source=meta.path,
@@ -350,10 +385,12 @@ def list_jpegs(folder) -> list[Path]:
 
 
 def import_dji_images(folder, calibration: CameraModel | None = None, crs: ProjectedCRS | None = None,
-                      progress=None, is_canceled=None, ground=None) -> FlightImport:
+                      progress=None, is_canceled=None, dem: DemRaster | None = None) -> FlightImport:
     """Frames with footprints from a folder of DJI JPEGs; images that cannot be placed are reported.
 
     ``frame_id`` is the image's index in the name-sorted folder listing (stable across re-imports).
+    With a ``dem`` the footprints drape on the terrain; its vertical reference is checked once against
+    the whole flight's take-off height (heights in :data:`DJI_HEIGHT_DATUM`).
     """
     paths = list_jpegs(folder)
     if not paths:
@@ -382,7 +419,7 @@ def import_dji_images(folder, calibration: CameraModel | None = None, crs: Proje
     report.unplaced = unplaced
     if unplaced:
         report.errors.append(f"{len(unplaced)} of {len(paths)} image(s) cannot be placed: "
-                            + "; ".join(str(e) for e in unplaced[:5]))
+                             + "; ".join(str(e) for e in unplaced[:5]))
     if not rows:
         raise InputError(f"none of its {len(paths)} JPEG image(s) can be placed; the first: {unplaced[0]}",
                          source=str(folder))
@@ -397,6 +434,8 @@ def import_dji_images(folder, calibration: CameraModel | None = None, crs: Proje
         extra={name: np.array([p.rtk_std[k] for p in poses])
                for k, name in enumerate(("rtk_std_lon_m", "rtk_std_lat_m", "rtk_std_hgt_m"))})
     for flag, text in (("yaw_mismatch", f"gimbal and flight yaw differ by more than {YAW_MISMATCH_DEG:g}°"),
+                       ("dewarped", "the drone already removed the lens distortion (DewarpFlag 1); no distortion "
+                                    "is applied to them"),
                        ("non_nadir", f"gimbal pitch above {NADIR_PITCH_LIMIT_DEG:g}° (not looking down)"),
                        ("yaw_from_flight", "no gimbal yaw; the flight yaw was used"),
                        ("approx_intrinsics", "intrinsics from the nominal focal length; give a CALIBRATION "
@@ -407,8 +446,18 @@ def import_dji_images(folder, calibration: CameraModel | None = None, crs: Proje
             report.notes.append(f"{n} frame(s) flagged {flag}: {text}")
     crs = crs or ProjectedCRS.for_site(frames.lat, frames.lon)
     sub = None if progress is None else (lambda f: progress(0.5 + 0.5 * f))
-    fp = compute_footprints(frames, crs, progress=sub, is_canceled=is_canceled, ground=ground)
+    fp = compute_footprints(frames, crs, progress=sub, is_canceled=is_canceled, ground=_dem_ground(frames, dem))
     n = sum("footprint_unbounded" in f for f in frames.flags)
     if n:
         report.notes.append(f"{n} frame(s) look above the horizon and have no footprint (flag footprint_unbounded)")
     return FlightImport(frames, fp, [], report)
+
+
+def _dem_ground(frames: Frames, dem: DemRaster | None):
+    """The DEM ground-model factory for the footprints, its datum checked once over every frame."""
+    if dem is None:
+        return None
+    flight = FramePoses(frames.frame_id, frames.lat, frames.lon, frames.height, frames.quat, frames.ground_h,
+                        frames.cameras[0])
+    offset = check_vertical_datum(dem, DJI_HEIGHT_DATUM, flight, ground_reference="takeoff")
+    return lambda geometry: DemGround.from_dem(geometry, dem, DJI_HEIGHT_DATUM, vertical_offset_m=offset)

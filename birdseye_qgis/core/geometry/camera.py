@@ -21,6 +21,9 @@ import numpy as np
 
 from ..errors import InputError
 
+#: File-dialog filter for the calibration files :func:`load_calibration` reads.
+CALIBRATION_FILE_FILTER = "Camera calibration (*.yaml *.yml);;All files (*)"
+
 
 class CalibrationError(InputError):
     """A calibration file or string that cannot be used; the message names file and field."""

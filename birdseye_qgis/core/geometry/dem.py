@@ -65,8 +65,11 @@ from .poses import FrameGeometry, FramePoses
 
 VERTICAL_DATUMS = ("ellipsoidal", "msl", "unknown")
 POSE_DATUMS = ("ellipsoidal", "msl")
+GROUND_REFERENCES = ("altimeter", "takeoff")
 # Geoid undulations (EGM2008) lie within about −107 m … +86 m: a larger offset is not a datum mix-up.
 _MAX_GEOID_UNDULATION_M = 110.0
+#: How far (m) from the frames a drone's take-off point may lie when its height is checked against a DEM.
+TAKEOFF_REACH_M = 500.0
 
 
 # --------------------------------------------------------------------------- the DEM as read
@@ -166,20 +169,32 @@ def _bilinear_nodes(z: np.ndarray, row, col) -> np.ndarray:
 
 # --------------------------------------------------------------------------- vertical datum
 def check_vertical_datum(dem: DemRaster, pose_heights_datum: str = "ellipsoidal",
-                         poses: FramePoses | None = None, tolerance_m: float = 5.0) -> float:
+                         poses: FramePoses | None = None, tolerance_m: float = 5.0,
+                         ground_reference: str = "altimeter") -> float:
     """Offset (m) to add to ``dem.heights`` to express them in the poses' vertical reference.
 
     ``pose_heights_datum`` is the reference of the flight's heights (``ellipsoidal`` for RTK/INS logs,
     which :class:`~.poses.FramePoses` assumes; ``msl`` for heights above mean sea level). Raises
     :class:`~.errors.InputError` when the references differ and no geoid undulation converts between
-    them, when the DEM's reference is ``unknown`` and cannot be checked, and — given ``poses`` with
-    altimeter ground heights — when the DEM's terrain under the frames differs from the altimeter's
-    ground by more than ``tolerance_m`` (median over the frames): the signature of a DEM in another
-    vertical reference, or of a DEM that does not cover the flight.
+    them, and when the DEM's reference is ``unknown`` and cannot be checked. Given ``poses`` with ground
+    heights, the DEM is also checked against them, once over the whole flight (pass every frame):
+
+    * ``ground_reference="altimeter"``: each frame's ground height was measured under it (radar
+      altimeter), so the DEM's terrain there must agree: the median over the frames of DEM − ground
+      within ``tolerance_m``;
+    * ``ground_reference="takeoff"``: the ground height is that of the take-off point (a DJI drone's
+      ``AbsoluteAltitude − RelativeAltitude``), and the terrain under the frames honestly lies above or
+      below it by the site's relief. The flight's take-off height (median over the frames) must be a
+      height the DEM's terrain has within :data:`TAKEOFF_REACH_M` of the frames, give or take
+      ``tolerance_m``. A datum mix-up smaller than the relief there cannot be told from relief.
+
+    A DEM that fails is in another vertical reference, or does not cover the flight.
     """
     if pose_heights_datum not in POSE_DATUMS:
         raise InputError(f"the flight's vertical reference {pose_heights_datum!r} is not one of "
                          f"{', '.join(POSE_DATUMS)}")
+    if ground_reference not in GROUND_REFERENCES:
+        raise ValueError(f"ground_reference must be one of {GROUND_REFERENCES}, got {ground_reference!r}")
     undulation = dem.geoid_undulation_m
     has_undulation = undulation is not None and math.isfinite(float(undulation))
     ground = None if poses is None else np.asarray(poses.ground_height, dtype=float)
@@ -190,7 +205,7 @@ def check_vertical_datum(dem: DemRaster, pose_heights_datum: str = "ellipsoidal"
     elif dem.vertical_datum == "unknown":
         if not can_verify:
             raise InputError(
-                "the DEM's vertical reference is not declared and the flight has no altimeter ground heights "
+                "the DEM's vertical reference is not declared and the flight has no ground heights "
                 f"to check it against; state whether its heights are ellipsoidal (WGS84) or above mean sea "
                 f"level (with the geoid undulation at the site), like the flight's {pose_heights_datum} heights",
                 source=dem.source)
@@ -205,7 +220,10 @@ def check_vertical_datum(dem: DemRaster, pose_heights_datum: str = "ellipsoidal"
         offset = float(undulation) if dem.vertical_datum == "msl" else -float(undulation)
 
     if can_verify:
-        _check_against_altimeter(dem, poses, offset, pose_heights_datum, tolerance_m)
+        if ground_reference == "altimeter":
+            _check_against_altimeter(dem, poses, offset, pose_heights_datum, tolerance_m)
+        else:
+            _check_against_takeoff(dem, poses, offset, pose_heights_datum, tolerance_m)
     return offset
 
 
@@ -214,29 +232,61 @@ def _datum_words(datum: str) -> str:
             "unknown": "in an undeclared reference"}[datum]
 
 
+def _datum_hint(offset_m: float) -> str:
+    if abs(offset_m) <= _MAX_GEOID_UNDULATION_M:
+        return (f" A near-constant offset of {offset_m:+.1f} m is what mixing mean-sea-level and ellipsoidal "
+                "heights gives (the geoid undulation); check the DEM's vertical reference and the undulation given.")
+    return " An offset this large is not a geoid undulation: check the DEM's units, CRS and no-data value."
+
+
+def _no_frame_over_the_dem(dem, n_frames):
+    x, y = dem.cell_centres()
+    return InputError(
+        f"none of the {n_frames} frames with a ground height lies over the DEM "
+        f"(DEM extent x {x.min():.1f}…{x.max():.1f}, y {min(y):.1f}…{max(y):.1f} in {_crs_name(dem.crs)}): "
+        "check the DEM's CRS and that it covers the flight", source=dem.source)
+
+
 def _check_against_altimeter(dem, poses, offset, pose_heights_datum, tolerance_m):
     ground = np.asarray(poses.ground_height, dtype=float)
     terrain = dem.sample_geodetic(poses.lat, poses.lon) + offset
     both = np.isfinite(ground) & np.isfinite(terrain)
     if not np.any(both):
-        x, y = dem.cell_centres()
-        raise InputError(
-            f"none of the {int(np.isfinite(ground).sum())} frames with an altimeter height lies over the DEM "
-            f"(DEM extent x {x.min():.1f}…{x.max():.1f}, y {min(y):.1f}…{max(y):.1f} in {_crs_name(dem.crs)}): "
-            "check the DEM's CRS and that it covers the flight", source=dem.source)
+        raise _no_frame_over_the_dem(dem, int(np.isfinite(ground).sum()))
     diff = terrain[both] - ground[both]
     median = float(np.median(diff))
     if abs(median) <= tolerance_m:
         return
-    hint = (f" A near-constant offset of {median:+.1f} m is what mixing mean-sea-level and ellipsoidal heights "
-            "gives (the geoid undulation); check the DEM's vertical reference and the undulation given."
-            if abs(median) <= _MAX_GEOID_UNDULATION_M else
-            " An offset this large is not a geoid undulation: check the DEM's units, CRS and no-data value.")
     raise InputError(
         f"under {int(both.sum())} frames the DEM's terrain is {median:+.2f} m off the ground the altimeter "
         f"measured (DEM − altimeter, median; range {diff.min():+.2f} … {diff.max():+.2f} m), more than the "
         f"{tolerance_m:g} m tolerance: the DEM ({dem.vertical_datum}) is probably in another vertical "
-        f"reference than the flight ({pose_heights_datum}).{hint}", source=dem.source)
+        f"reference than the flight ({pose_heights_datum}).{_datum_hint(median)}", source=dem.source)
+
+
+def _check_against_takeoff(dem, poses, offset, pose_heights_datum, tolerance_m):
+    ground = np.asarray(poses.ground_height, dtype=float)
+    known = np.isfinite(ground)
+    x, y = ProjectedCRS(dem.crs).from_geodetic(np.asarray(poses.lat)[known], np.asarray(poses.lon)[known])
+    if not np.any(np.isfinite(dem.sample(x, y))):
+        raise _no_frame_over_the_dem(dem, int(known.sum()))
+    cx, cy = dem.cell_centres()
+    cols = (cx >= np.min(x) - TAKEOFF_REACH_M) & (cx <= np.max(x) + TAKEOFF_REACH_M)
+    rows = (cy >= np.min(y) - TAKEOFF_REACH_M) & (cy <= np.max(y) + TAKEOFF_REACH_M)
+    around = dem.heights[np.ix_(rows, cols)] + offset
+    lowest, highest = float(np.nanmin(around)), float(np.nanmax(around))
+    takeoff = float(np.median(ground[known]))
+    miss = takeoff - highest if takeoff > highest else takeoff - lowest if takeoff < lowest else 0.0
+    if abs(miss) <= tolerance_m:
+        return
+    raise InputError(
+        f"the flight's take-off height ({takeoff:.2f} m, the median over {int(known.sum())} frames of absolute "
+        f"− relative altitude) lies {abs(miss):.2f} m {'above the highest' if miss > 0 else 'below the lowest'} "
+        f"terrain the DEM holds within {TAKEOFF_REACH_M:g} m of the frames ({lowest:.2f} … {highest:.2f} m in "
+        f"the flight's reference), more than the {tolerance_m:g} m tolerance: the DEM ({dem.vertical_datum}) is "
+        f"probably in another vertical reference than the flight ({pose_heights_datum}), or the flight's absolute "
+        f"heights are off (GNSS heights without an RTK fix often are, by 10 m or more).{_datum_hint(miss)}",
+        source=dem.source)
 
 
 def _crs_name(crs) -> str:
@@ -641,10 +691,15 @@ class DemGround(GroundModel):
 
     @classmethod
     def from_dem(cls, geometry: FrameGeometry, dem: DemRaster, pose_heights_datum: str = "ellipsoidal",
-                 tolerance_m: float = 5.0, step_m: float | None = None) -> "DemGround":
+                 tolerance_m: float = 5.0, step_m: float | None = None,
+                 vertical_offset_m: float | None = None) -> "DemGround":
         """Check the DEM's vertical reference against the poses, resample it into the geometry's local
-        frame over the area the frames can see, and build the ground model."""
-        offset = check_vertical_datum(dem, pose_heights_datum, geometry.poses, tolerance_m)
+        frame over the area the frames can see, and build the ground model.
+
+        ``vertical_offset_m``: the offset :func:`check_vertical_datum` already gave for the whole flight
+        (the check is then not repeated on this geometry's frames alone)."""
+        offset = (check_vertical_datum(dem, pose_heights_datum, geometry.poses, tolerance_m)
+                  if vertical_offset_m is None else float(vertical_offset_m))
         full = _dem_extent_local(dem, geometry.local, ProjectedCRS(dem.crs), offset)
         seen = _visible_extent(geometry, float(np.nanmin(dem.heights)) + offset - geometry.local.h0)
         step = float(step_m or dem.cell_size_m)

@@ -15,6 +15,16 @@ What it simulates (every random draw from the SEED; same seed → identical file
 * the frames (:mod:`.sim_render`): every pixel's ray through the *true* pose and the lens onto the
   field's terrain, with a real camera's photometry, written as timestamped JPEGs.
 
+Two platforms (``platform``):
+
+* ``ins`` — the BirdsEye payload: an RTK INS pose log, a radar altimeter and the nadir camera,
+  triggered at ``fps`` (the files below);
+* ``dji`` — a consumer drone (:mod:`.dji_images`): no pose log; a mapping mission's photos on the
+  survey lines, spaced for ``forward_overlap``, from a gimbal-stabilised camera, each a DJI JPEG
+  whose EXIF and XMP ``drone-dji:`` tags hold its pose as the drone believes it — with the heading,
+  tilt and height errors real drones have — while the pixels are rendered through the true pose.
+  The drone takes off at the site centre (``ground_height_m``); its camera centre is the position.
+
 Written to the output folder::
 
     geotags.csv          rover CSV, no header: lat, lon, altWGS84, altMSL, gpsStatus, label
@@ -25,6 +35,14 @@ Written to the output folder::
     calibration.yaml     Kalibr camchain-imucam (+ T_rad_imu, the altimeter lever arm)
     truth/targets.csv, truth/distractors.csv, truth/frames_true.csv, truth/campaign.json
     truth/dem.tif        the terrain (GeoTIFF; not written for level ground)
+
+and with ``platform="dji"`` instead of the pose log, image list and calibration::
+
+    frames/DJI_0001.JPG …            DJI JPEGs: EXIF GPS, XMP drone-dji: pose, DewarpData
+    truth/dji_metadata_errors.csv    per frame: the metadata's heading, tilt, height and position errors
+
+(``frames_true.csv`` then holds the true *gimbal* poses: quaternion gimbal → NED, x along the optical
+axis, y image right, z image down.)
 
 Heights are ellipsoidal (WGS84); ``altMSL = altWGS84 − N`` with N the geoid undulation stated in
 ``campaign.json`` (EGM96 at the site unless given). Times are seconds on the log's clock (a Unix-like
@@ -43,17 +61,17 @@ from typing import Callable, Optional
 
 import numpy as np
 
-from ..geometry.camera import CameraModel, write_kalibr_yaml
-from .terrain import synthetic_terrain
 from ..errors import Cancelled, InputError
+from ..geometry.camera import CameraModel, write_kalibr_yaml
 from ..geometry.geodesy import LocalFrame, ensure_proj_data, meridian_convergence_deg, utm_epsg
 from ..geometry.poses import FrameGeometry, FramePoses
 from ..geometry.projection import footprints
 from ..geometry.rotations import quat_to_rotmat, rotmat_to_euler_zyx, rotmat_to_quat, so3_exp
+from .dji_images import DjiMetadataErrors, dji_camera_model, dji_frame_metadata, lens_for, write_frame
 from .field import FEATURE_NAMES, P_CONTRAST, P_OUTER, P_R, FieldScene
 from .flight import RUN_OUT_M, SimulatedFlight, correlated_noise, plan_survey
 from .render import FrameRenderer, Photometry, motion_blur_px
-from .terrain import DemTerrain, FlatTerrain, Terrain, write_dem_geotiff
+from .terrain import DemTerrain, FlatTerrain, Terrain, synthetic_terrain, write_dem_geotiff
 
 # The deployed payload camera (1920 × 1200) and its mounting; other image sizes scale the intrinsics.
 DEPLOYED_SIZE = (1920, 1200)
@@ -80,12 +98,18 @@ GEOTAG_FLOAT_FRACTION = 0.05
 GEOTAG_FLOAT_SIGMA_M = 0.06
 DISTRACTOR_CLEARANCE_M = 0.5         # spurious geotags are at least this far from every target
 TERRAIN_KINDS = ("flat", "plane", "hills")
+PLATFORMS = ("ins", "dji")
+#: Side overlap of neighbouring lines when none is given: the payload's, and a mapping mission's.
+DEFAULT_SIDE_OVERLAP = {"ins": 0.3, "dji": 0.7}
 DEM_CELL_M = 0.25                    # the written DEM's cell size, doubled while it would exceed …
 DEM_MAX_CELLS = 2_000_000            # … this many cells
 MAX_TILT_DEG = 15.0                  # the aircraft's largest tilt, which the terrain's extent allows for
+DJI_ERRORS = DjiMetadataErrors()     # what a DJI drone's metadata gets wrong (see dji_images)
 
 POSE_HEADER = ["time_s", "lat_deg", "lon_deg", "height_m", "qw", "qx", "qy", "qz", "rtk_status",
                "radalt_m", "radalt_snr", "strobe"]
+DJI_ERRORS_HEADER = ["frame_index", "image", "heading_error_deg", "tilt_error_deg", "height_error_m",
+                     "horizontal_error_m"]
 FRAMES_TRUE_HEADER = ["frame_index", "image", "pose_row", "time_s", "image_time_s", "lat_deg", "lon_deg",
                       "height_m", "qw", "qx", "qy", "qz", "roll_deg", "pitch_deg", "yaw_deg", "radalt_m",
                       "ground_h_m", "line", "speed_ms", "exposure_gain"]
@@ -98,13 +122,19 @@ SIGMA_NAMES = ("x (m)", "y (m)", "z (m)", "roll (deg)", "pitch (deg)", "yaw (deg
 class CampaignConfig:
     """Parameters of a simulated campaign (units in the names; sigmas: x, y, z in m, roll, pitch,
     yaw in degrees). ``noise_off`` turns every measurement error off (Σ0, altimeter, RTK of the
-    geotags, RTK-float episodes, low-SNR bursts); the images keep their photometric realism.
+    geotags, RTK-float episodes, low-SNR bursts, a DJI drone's metadata errors); the images keep their
+    photometric realism.
 
     Terrain: ``terrain`` is ``flat`` (level ground at ``ground_height_m``), ``plane`` (rising at
     ``slope_deg`` away from ``slope_aspect_deg``, the direction the slope faces = downhill, degrees
     clockwise from true north; ``ground_height_m`` at the site) or ``hills`` (that plane plus smooth
     random hills of ``relief_m`` peak to peak, one hill and valley every ``hill_wavelength_m``). The
-    aircraft keeps ``altitude_m`` above the terrain beneath it."""
+    aircraft keeps ``altitude_m`` above the terrain beneath it.
+
+    Platform: ``platform`` is ``ins`` (pose log, altimeter, frames at ``fps``) or ``dji`` (DJI JPEGs
+    with their own metadata, a photo every ``(1 − forward_overlap)`` footprint lengths on the lines;
+    ``dji_dewarped``: the drone undistorts the JPEGs, ``DewarpFlag`` 1). ``side_overlap`` None: the
+    platform's default (:data:`DEFAULT_SIDE_OVERLAP`)."""
 
     seed: int = 1
     n_targets: int = 40
@@ -126,7 +156,7 @@ class CampaignConfig:
     n_spurious: int = 2
     render: bool = True
     noise_off: bool = False
-    side_overlap: float = 0.3
+    side_overlap: Optional[float] = None
     rtk_float_episodes: int = 1
     geoid_undulation_m: Optional[float] = None
     label: str = "burrow"
@@ -135,6 +165,9 @@ class CampaignConfig:
     slope_aspect_deg: float = 0.0
     relief_m: float = 0.0
     hill_wavelength_m: float = 40.0
+    platform: str = "ins"
+    forward_overlap: float = 0.8
+    dji_dewarped: bool = False
 
     def validated(self) -> "CampaignConfig":
         """This configuration, checked; raises :class:`InputError` naming the parameter."""
@@ -162,7 +195,10 @@ class CampaignConfig:
         need(self.rtk_sigma_m >= 0, "RTK_SIGMA_M", "must not be negative")
         need(0 <= self.n_missed <= self.n_targets, "N_MISSED", "must lie between 0 and N_TARGETS")
         need(self.n_spurious >= 0, "N_SPURIOUS", "must not be negative")
-        need(0.0 <= self.side_overlap <= 0.9, "SIDE_OVERLAP", "must lie in 0…0.9")
+        need(self.side_overlap is None or 0.0 <= self.side_overlap <= 0.9, "SIDE_OVERLAP", "must lie in 0…0.9")
+        need(self.platform in PLATFORMS, "PLATFORM",
+             f"must be one of {', '.join(PLATFORMS)}, got {self.platform!r}")
+        need(0.0 <= self.forward_overlap <= 0.95, "FORWARD_OVERLAP", "must lie in 0…0.95")
         need(self.rtk_float_episodes >= 0, "RTK_FLOAT_EPISODES", "must not be negative")
         need(self.terrain in TERRAIN_KINDS, "TERRAIN",
              f"must be one of {', '.join(TERRAIN_KINDS)}, got {self.terrain!r}")
@@ -176,6 +212,17 @@ class CampaignConfig:
     @property
     def effective_sigmas(self) -> np.ndarray:
         return np.zeros(6) if self.noise_off else np.asarray(self.sigmas, float)
+
+    @property
+    def effective_side_overlap(self) -> float:
+        return DEFAULT_SIDE_OVERLAP[self.platform] if self.side_overlap is None else float(self.side_overlap)
+
+    def frame_rate(self, plan) -> float:
+        """Frames per second: ``fps`` on the payload; on a DJI mission a photo every
+        (1 − forward_overlap) footprint lengths at the line speed."""
+        if self.platform == "ins":
+            return self.fps
+        return self.speed_ms / max((1.0 - self.forward_overlap) * plan.footprint_along_m, 1e-3)
 
 
 def parse_sigmas(text: str) -> tuple:
@@ -235,27 +282,36 @@ def simulate_campaign(config: CampaignConfig, output_folder, progress: Callable[
     (out / "truth").mkdir(parents=True, exist_ok=True)
     _remove_previous_frames(out)
     # Children 0–7 are those spawn(8) gave before terrain existed (level-ground campaigns are unchanged);
-    # child 8 draws the hills.
-    seeds = np.random.SeedSequence(int(cfg.seed)).spawn(9)
+    # child 8 draws the hills, child 9 the DJI metadata's errors.
+    seeds = np.random.SeedSequence(int(cfg.seed)).spawn(10)
     rng_flight, rng_pose, rng_radalt, rng_geotag, rng_photo, rng_time = (
         np.random.default_rng(s) for s in (seeds[1], seeds[2], seeds[3], seeds[4], seeds[5], seeds[6]))
     undulation = (geoid_undulation(cfg.site_lat, cfg.site_lon) if cfg.geoid_undulation_m is None
                   else float(cfg.geoid_undulation_m))
 
-    camera = deployed_camera(cfg.image_width, cfg.image_height)
+    dji = cfg.platform == "dji"
+    camera = (dji_camera_model(cfg.image_width, cfg.image_height, cfg.dji_dewarped) if dji
+              else deployed_camera(cfg.image_width, cfg.image_height))
     local = LocalFrame(cfg.site_lat, cfg.site_lon, cfg.ground_height_m)
-    plan = plan_survey(camera, cfg.altitude_m, cfg.field_width_m, cfg.field_length_m, cfg.side_overlap)
+    plan = plan_survey(camera, cfg.altitude_m, cfg.field_width_m, cfg.field_length_m, cfg.effective_side_overlap)
+    fps = cfg.frame_rate(plan)
     terrain, dem = _terrain(cfg, local, camera, plan, int(seeds[8].generate_state(1)[0]))
     rise = None if dem is None else (lambda east, north: terrain.height_at(east, north) - cfg.ground_height_m)
     flight = SimulatedFlight(plan, cfg.altitude_m, cfg.speed_ms, rng_flight, terrain_rise=rise)
 
-    times_ns, strobe = _log_times(cfg, flight.duration_s)
+    times_ns, strobe = _log_times(cfg, flight.duration_s, fps)
     truth = flight.states(times_ns, local, cfg.ground_height_m)
     frame_rows = np.flatnonzero(strobe)
+    if dji:  # a mapping mission takes its photos on the survey lines, not in the turns
+        frame_rows = frame_rows[truth.line[frame_rows] >= 0]
     n_frames = len(frame_rows)
     t_frames = times_ns[frame_rows] * 1e-9
+    metadata = (dji_frame_metadata(np.random.default_rng(seeds[9]), t_frames, truth.local[frame_rows],
+                                   quat_to_rotmat(truth.quat[frame_rows]), truth.height[frame_rows],
+                                   cfg.ground_height_m, undulation, local, _dji_errors(cfg))
+                if dji else None)
     frame_poses = FramePoses(np.arange(n_frames), truth.lat[frame_rows], truth.lon[frame_rows],
-                             truth.height[frame_rows], truth.quat[frame_rows],
+                             truth.height[frame_rows], metadata.quat_true if dji else truth.quat[frame_rows],
                              terrain.height_at(truth.local[frame_rows, 0], truth.local[frame_rows, 1]), camera)
     geometry = FrameGeometry(frame_poses, local)
 
@@ -277,18 +333,26 @@ def simulate_campaign(config: CampaignConfig, output_folder, progress: Callable[
     feature_h = terrain.height_at(scene.features.xy[:, 0], scene.features.xy[:, 1])
     feature_xyz = local.from_geodetic(feature_lat, feature_lon, feature_h)
 
-    logged = _logged_poses(cfg, truth, local, rng_pose)
-    radalt_true, radalt, snr = _altimeter(cfg, camera, truth, terrain, rng_radalt)
     geotags, geotag_row = _geotags(cfg, scene, feature_lat, feature_lon, feature_h, undulation, local, terrain,
                                    rng_geotag)
-    image_ns = _image_times(cfg, strobe_ns=times_ns[frame_rows], rng=rng_time)
-    image_names = [f"frames/{_ns_text(START_TIME_NS + t)}.jpg" for t in image_ns]
-
     files = {}
     files["geotags"] = _write_csv(out / "geotags.csv", None, geotags)
-    files["poses"] = _write_csv(out / "poses.csv", POSE_HEADER, _pose_rows(times_ns, logged, radalt, snr, strobe))
-    files["calibration"] = out / "calibration.yaml"
-    write_kalibr_yaml(camera, files["calibration"])
+    if dji:
+        radalt_true = None
+        image_ns = times_ns[frame_rows]
+        image_names = [f"frames/DJI_{i + 1:04d}.JPG" for i in range(n_frames)]
+        for stale in ("poses.csv", "calibration.yaml"):  # an earlier payload run's, not this drone's
+            (out / stale).unlink(missing_ok=True)
+        files["dji_errors"] = _write_csv(out / "truth" / "dji_metadata_errors.csv", DJI_ERRORS_HEADER,
+                                         _dji_error_rows(image_names, metadata))
+    else:
+        logged = _logged_poses(cfg, truth, local, rng_pose)
+        radalt_true, radalt, snr = _altimeter(cfg, camera, truth, terrain, rng_radalt)
+        image_ns = _image_times(cfg, strobe_ns=times_ns[frame_rows], rng=rng_time)
+        image_names = [f"frames/{_ns_text(START_TIME_NS + t)}.jpg" for t in image_ns]
+        files["poses"] = _write_csv(out / "poses.csv", POSE_HEADER, _pose_rows(times_ns, logged, radalt, snr, strobe))
+        files["calibration"] = out / "calibration.yaml"
+        write_kalibr_yaml(camera, files["calibration"])
     if dem is not None:
         files["dem"] = Path(write_dem_geotiff(dem, out / "truth" / "dem.tif"))
     else:
@@ -303,22 +367,28 @@ def simulate_campaign(config: CampaignConfig, output_folder, progress: Callable[
 
     # Per-frame camera state: exposure follows the clouds (auto exposure, partly), white balance and
     # focus drift slowly.
-    photometry = (_photometry(cfg, scene, geometry, truth.velocity[frame_rows], t_frames, rng_photo)
+    photometry = (_photometry(fps, scene, geometry, truth.velocity[frame_rows], t_frames, rng_photo)
                   if cfg.render else [])
     files["frames_true"] = _write_csv(
         out / "truth" / "frames_true.csv", FRAMES_TRUE_HEADER,
-        _frame_truth_rows(frame_rows, times_ns, image_ns, image_names, truth, radalt_true, frame_poses, photometry))
+        _frame_truth_rows(frame_rows, times_ns, image_ns, image_names, truth, radalt_true, frame_poses, photometry,
+                          with_pose_log=not dji))
     files["campaign"] = out / "truth" / "campaign.json"
-    files["campaign"].write_text(json.dumps(_campaign_record(
-        cfg, camera, local, undulation, plan, scene, n_frames, len(times_ns), len(geotags), flight, dem),
-        indent=2), encoding="utf-8")
+    record = _campaign_record(cfg, camera, local, undulation, plan, scene, n_frames, len(times_ns), len(geotags),
+                              flight, dem, fps)
+    if dji:
+        record["dji"] = _dji_record(cfg, camera, metadata, fps, plan, undulation)
+    files["campaign"].write_text(json.dumps(record, indent=2), encoding="utf-8")
 
     if cfg.render:
-        files["images"] = _write_csv(out / "images.csv", ["time_s", "file"],
-                                     [[_ns_text(START_TIME_NS + t), name] for t, name in zip(image_ns, image_names)])
+        files["frames"] = out / "frames"
+        if not dji:
+            image_rows = [[_ns_text(START_TIME_NS + t), name] for t, name in zip(image_ns, image_names)]
+            files["images"] = _write_csv(out / "images.csv", ["time_s", "file"], image_rows)
+        write = _dji_writer(lens_for(camera, cfg.dji_dewarped), metadata, image_ns) if dji else None
         renderer = FrameRenderer(camera, scene, terrain, int(seeds[7].generate_state(1)[0]), feature_xyz)
         _render_frames(renderer, geometry, t_frames, photometry, seeds[7].spawn(n_frames),
-                       [out / name for name in image_names], progress, is_canceled)
+                       [out / name for name in image_names], progress, is_canceled, write)
     elif progress is not None:
         progress(1.0)
     return CampaignResult(out, n_frames, len(times_ns), len(geotags), files)
@@ -372,20 +442,21 @@ def _terrain(cfg: CampaignConfig, local: LocalFrame, camera: CameraModel, plan, 
     return DemTerrain(local, dem, extent), dem
 
 
-def _log_times(cfg: CampaignConfig, duration_s: float):
+def _log_times(cfg: CampaignConfig, duration_s: float, fps: float):
     """Times (int64 ns from the start) of the pose log's rows and its strobe mask: every INS message
-    at INS_RATE_HZ, plus a row of its own for each exposure at FPS that falls between messages."""
+    at INS_RATE_HZ, plus a row of its own for each exposure at ``fps`` that falls between messages."""
     ins_ns = np.round(np.arange(int(duration_s * cfg.ins_rate_hz) + 1) * (1e9 / cfg.ins_rate_hz)).astype(np.int64)
-    strobe_ns = np.round(np.arange(int(duration_s * cfg.fps) + 1) * (1e9 / cfg.fps)).astype(np.int64)
+    strobe_ns = np.round(np.arange(int(duration_s * fps) + 1) * (1e9 / fps)).astype(np.int64)
     times_ns = np.union1d(ins_ns, strobe_ns)
     times_ns = times_ns[times_ns <= int(duration_s * 1e9)]
     return times_ns, np.isin(times_ns, strobe_ns)
 
 
 def _render_frames(renderer: FrameRenderer, geometry: FrameGeometry, t_frames, photometry, frame_seeds, paths,
-                   progress, is_canceled) -> None:
+                   progress, is_canceled, write=None) -> None:
     """Render and write every frame (each with its own random stream), reporting progress per frame
-    and stopping between frames when cancelled."""
+    and stopping between frames when cancelled. ``write(i, path, image)`` writes a frame with its
+    metadata; None: a plain JPEG."""
     import cv2
 
     if paths:
@@ -394,7 +465,9 @@ def _render_frames(renderer: FrameRenderer, geometry: FrameGeometry, t_frames, p
         if is_canceled is not None and is_canceled():
             raise Cancelled()
         image = renderer.render(geometry, i, t_frames[i], photometry[i], np.random.default_rng(frame_seeds[i]))
-        if not cv2.imwrite(str(path), image, [cv2.IMWRITE_JPEG_QUALITY, JPEG_QUALITY]):
+        if write is not None:
+            write(i, path, image)
+        elif not cv2.imwrite(str(path), image, [cv2.IMWRITE_JPEG_QUALITY, JPEG_QUALITY]):
             raise InputError("cannot write the frame (disk full or no permission?)", source=path)
         if progress is not None:
             progress((i + 1) / len(paths))
@@ -452,7 +525,8 @@ def _geotags(cfg: CampaignConfig, scene: FieldScene, lat, lon, h, undulation, lo
     surveyed = [i for i in range(n) if i not in missed]
     # The surveyor walks the field in 3 m strips, alternating direction.
     strip = np.floor((xy[surveyed, 1] + cfg.field_length_m / 2) / 3.0).astype(int)
-    order = sorted(range(len(surveyed)), key=lambda k: (strip[k], xy[surveyed[k], 0] * (1 if strip[k] % 2 == 0 else -1)))
+    order = sorted(range(len(surveyed)),
+                   key=lambda k: (strip[k], xy[surveyed[k], 0] * (1 if strip[k] % 2 == 0 else -1)))
     entries = [("target", surveyed[k]) for k in order]
     spurious = _spurious_points(cfg, xy, rng)
     for point in spurious:
@@ -499,12 +573,12 @@ def _image_times(cfg: CampaignConfig, strobe_ns, rng):
     return strobe_ns + np.round(delay * 1e9).astype(np.int64)
 
 
-def _photometry(cfg: CampaignConfig, scene: FieldScene, geometry: FrameGeometry, velocity, t_frames, rng):
+def _photometry(fps: float, scene: FieldScene, geometry: FrameGeometry, velocity, t_frames, rng):
     n = len(t_frames)
     if n == 0:
         return []
     st = scene.style
-    dt = 1.0 / cfg.fps
+    dt = 1.0 / fps
     drift = correlated_noise(rng, n, dt, 8.0, 1.0, 5)
     nadir = geometry.ground_point
     cloud = scene.cloud_factor(nadir[:, 0], nadir[:, 1], t_frames)
@@ -521,7 +595,7 @@ def _photometry(cfg: CampaignConfig, scene: FieldScene, geometry: FrameGeometry,
 
 
 # ---------------------------------------------------------------------- writing
-FRAME_NAME = re.compile(r"^\d+\.\d{9}\.jpg$")
+FRAME_NAME = re.compile(r"^(\d+\.\d{9}\.jpg|DJI_\d{4}\.JPG)$")
 
 
 def _remove_previous_frames(out: Path) -> None:
@@ -567,21 +641,56 @@ def _target_rows(scene: FieldScene, lat, lon, h, geotag_row):
                f"{f.params[i, P_OUTER]:.4f}", f"{f.xy[i, 0]:.4f}", f"{f.xy[i, 1]:.4f}"]
 
 
-def _frame_truth_rows(frame_rows, times_ns, image_ns, image_names, truth, radalt_true, poses, photometry):
+def _frame_truth_rows(frame_rows, times_ns, image_ns, image_names, truth, radalt_true, poses, photometry,
+                      with_pose_log=True):
     roll, pitch, yaw = rotmat_to_euler_zyx(quat_to_rotmat(poses.quat))
     for i, row in enumerate(frame_rows):
         q = poses.quat[i]
-        yield [i, image_names[i], row + 1, _ns_text(START_TIME_NS + times_ns[row]),
+        yield [i, image_names[i], row + 1 if with_pose_log else "", _ns_text(START_TIME_NS + times_ns[row]),
                _ns_text(START_TIME_NS + image_ns[i]), f"{poses.lat[i]:.11f}", f"{poses.lon[i]:.11f}",
                f"{poses.height[i]:.5f}", f"{q[0]:.10f}", f"{q[1]:.10f}", f"{q[2]:.10f}", f"{q[3]:.10f}",
                f"{math.degrees(roll[i]):.5f}", f"{math.degrees(pitch[i]):.5f}",
-               f"{math.degrees(yaw[i]) % 360.0:.5f}", f"{radalt_true[row]:.5f}",
+               f"{math.degrees(yaw[i]) % 360.0:.5f}", "" if radalt_true is None else f"{radalt_true[row]:.5f}",
                f"{poses.ground_height[i]:.4f}", int(truth.line[row]),
                f"{np.linalg.norm(truth.velocity[row]):.3f}", f"{photometry[i].gain:.4f}" if photometry else ""]
 
 
+def _dji_errors(cfg: CampaignConfig) -> DjiMetadataErrors:
+    return DjiMetadataErrors.none() if cfg.noise_off else DJI_ERRORS
+
+
+def _dji_writer(tags_camera, metadata, image_ns):
+    """``write(i, path, image)`` for :func:`_render_frames`: frame i as a DJI JPEG with its metadata."""
+    def write(i, path, image):
+        write_frame(path, image, tags_camera, metadata, i, (START_TIME_NS + int(image_ns[i])) * 1e-9, JPEG_QUALITY)
+    return write
+
+
+def _dji_error_rows(image_names, metadata):
+    for i, name in enumerate(image_names):
+        yield [i, name, f"{metadata.heading_error_deg[i]:.5f}", f"{metadata.tilt_error_deg[i]:.5f}",
+               f"{metadata.height_error_m[i]:.4f}", f"{metadata.horizontal_error_m[i]:.4f}"]
+
+
+def _dji_record(cfg, camera, metadata, fps, plan, undulation) -> dict:
+    tags = lens_for(camera, cfg.dji_dewarped)
+    return {"camera": {"make": tags.make, "model": tags.model, "serial": tags.serial,
+                       "dewarp_flag": int(cfg.dji_dewarped), "lens": tags.lens.to_dict()},
+            "photo_interval_s": round(1.0 / fps, 4),
+            "photo_spacing_m": round(cfg.speed_ms / fps, 4),
+            "forward_overlap": cfg.forward_overlap, "side_overlap": cfg.effective_side_overlap,
+            "takeoff": {"east_m": 0.0, "north_m": 0.0, "height_m": cfg.ground_height_m,
+                        "height_msl_m": round(cfg.ground_height_m - undulation, 4)},
+            "heights": "AbsoluteAltitude and EXIF GPSAltitude above mean sea level (ellipsoidal − N); "
+                       "RelativeAltitude above the take-off point",
+            "error_model": _dji_errors(cfg).to_dict(), "drawn": metadata.biases,
+            "errors_file": "truth/dji_metadata_errors.csv",
+            "truth_orientation": "frames_true.csv quaternions: gimbal (x optical axis, y image right, z image "
+                                 "down) → NED; the metadata's = exp([e]^)·true, e the drone's attitude error"}
+
+
 def _campaign_record(cfg, camera, local, undulation, plan, scene, n_frames, n_poses, n_geotags, flight,
-                     dem) -> dict:
+                     dem, fps) -> dict:
     import cv2
     import scipy
 
@@ -590,6 +699,7 @@ def _campaign_record(cfg, camera, local, undulation, plan, scene, n_frames, n_po
 
     params = asdict(cfg)
     params["sigmas"] = list(cfg.sigmas)
+    params["side_overlap"] = cfg.effective_side_overlap
     kinds = scene.features.kind
     return {
         "generator": "birdseye:simulatecampaign",
@@ -609,11 +719,14 @@ def _campaign_record(cfg, camera, local, undulation, plan, scene, n_frames, n_po
                           "δpitch, δyaw]^) (body axes, rad); independent per log row",
             "radalt": "range (m) from the altimeter (T_rad_imu) along the body z axis to the ground",
             "strobe": "1 on rows at the camera's exposure (mid-exposure); frames_true.csv holds their true poses",
-            "image_time": "strobe time + delay (mean %.1f ms, std %.1f ms)" % (IMAGE_DELAY_S[0] * 1e3, IMAGE_DELAY_S[1] * 1e3),
+            "image_time": "strobe time + delay (mean %.1f ms, std %.1f ms)" % (IMAGE_DELAY_S[0] * 1e3,
+                                                                                IMAGE_DELAY_S[1] * 1e3),
             "rtk_status": "3 fixed, 2 float (RTK-float episodes add correlated position error)",
             "gpsStatus": "4 RTK fixed, 5 float (geotags)",
         },
         "camera": camera.to_dict(),
+        "platform": cfg.platform,
+        "frame_rate_fps": round(fps, 6),
         "exposure_s": EXPOSURE_S,
         "jpeg_quality": JPEG_QUALITY,
         "flight": {"lines": np.round(plan.lines, 4).tolist(), "line_spacing_m": round(plan.spacing_m, 4),
@@ -651,7 +764,7 @@ def _terrain_record(cfg: CampaignConfig, dem) -> dict:
 
 
 def _plugin_version() -> str:
-    meta = Path(__file__).resolve().parents[2] / "metadata.txt"
+    meta = Path(__file__).resolve().parents[3] / "metadata.txt"
     try:
         for line in meta.read_text(encoding="utf-8").splitlines():
             if line.startswith("version="):

@@ -11,12 +11,17 @@ import pytest
 from PIL import Image
 from PIL.TiffImagePlugin import IFDRational
 
-from birdseye.birdseye_qgis.core.geometry.camera import CameraModel, camera_from_dji_dewarp
-from birdseye.birdseye_qgis.core.field.dji import (T_CAM_GIMBAL, dji_camera, dji_pose, import_dji_images,
-                                             read_dji_metadata)
 from birdseye.birdseye_qgis.core.errors import InputError
+from birdseye.birdseye_qgis.core.field.dji import (
+    T_CAM_GIMBAL,
+    dji_camera,
+    dji_pose,
+    import_dji_images,
+    read_dji_metadata,
+)
 from birdseye.birdseye_qgis.core.field.flight_log import frame_records
 from birdseye.birdseye_qgis.core.field.frame_records import poses_from_records
+from birdseye.birdseye_qgis.core.geometry.camera import CameraModel, camera_from_dji_dewarp
 from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame
 from birdseye.birdseye_qgis.core.geometry.poses import FrameGeometry, FramePoses
 from birdseye.birdseye_qgis.core.geometry.rotations import euler_zyx_to_rotmat, rotmat_to_quat
@@ -247,3 +252,105 @@ def test_brighton_beach_footprints_under_gps_with_size_and_heading(brighton):
     assert all("yaw_mismatch" not in f and "non_nadir" not in f for f in frames.flags)
     assert fp.crs.crs == "EPSG:32615"
     assert frames.time_s[0] == datetime(2016, 6, 23, 16, 31, 59, tzinfo=timezone.utc).timestamp()
+
+
+# ------------------------------------------------------------------------------------ one camera, dewarped
+# A DewarpData for the FC300S's full 4000 × 2250 frame (the Brighton frames carry none; made up, of the
+# size DJI's are).
+FC300S_DEWARP = "2016-06-01;2285.5,2284.9,-11.25,7.5,-0.118,0.104,0.0006,-0.0004,-0.021"
+
+
+def with_xmp(source: Path, target: Path, tags: dict) -> Path:
+    """A copy of a real frame with one more XMP packet holding ``tags`` (read together with its own)."""
+    data = source.read_bytes()
+    payload = xmp_packet(tags)
+    Path(target).write_bytes(data[:2] + b"\xff\xe1" + (len(payload) + 2).to_bytes(2, "big") + payload + data[2:])
+    return Path(target)
+
+
+def brighton_copies(folder: Path, tags_of) -> Path:
+    """The six Brighton frames copied into ``folder``, each with the tags ``tags_of(index)``."""
+    folder.mkdir()
+    for i, source in enumerate(sorted(FIXTURES.glob("*.JPG"))):
+        with_xmp(source, folder / source.name, tags_of(i))
+    return folder
+
+
+def test_frames_of_one_camera_share_one_camera_model(tmp_path):
+    folder = brighton_copies(tmp_path / "one", lambda i: {"DewarpData": FC300S_DEWARP, "CameraSerialNumber": "SN-A"})
+    result = import_dji_images(folder)
+    cams = result.frames.cameras
+    assert len(cams) == 6 and all(c is cams[0] for c in cams)
+    assert cams[0].source == "dji:DewarpData DJI FC300S SN-A"   # the camera, not a file
+    full = camera_from_dji_dewarp(FC300S_DEWARP, 4000, 2250)
+    assert cams[0].fx == pytest.approx(full.fx / 10) and cams[0].dist == full.dist
+    # A second camera of the same model (another serial number) is another camera model.
+    folder = brighton_copies(tmp_path / "two", lambda i: {"DewarpData": FC300S_DEWARP,
+                                                         "CameraSerialNumber": "SN-A" if i < 4 else "SN-B"})
+    cams = import_dji_images(folder).frames.cameras
+    assert len({id(c) for c in cams}) == 2 and cams[3] is cams[0] and cams[4] is cams[5] is not cams[0]
+    assert cams[5].source.endswith("SN-B") and cams[5].to_dict() | {"source": ""} == cams[0].to_dict() | {"source": ""}
+    # Without a serial number in XMP, EXIF BodySerialNumber names the camera.
+    meta = read_dji_metadata(with_xmp(FIXTURES / "DJI_0018.JPG", tmp_path / "x.jpg", {"DewarpData": FC300S_DEWARP}))
+    assert meta.serial == "" and dji_camera(meta)[0].source == "dji:DewarpData DJI FC300S"
+    exif = Image.Exif()
+    exif[0x8769] = {0xA431: "BODY-7"}
+    Image.new("RGB", (40, 30)).save(tmp_path / "z.jpg", exif=exif.tobytes())
+    assert read_dji_metadata(tmp_path / "z.jpg").serial == "BODY-7"
+
+
+def test_dewarp_flag_one_means_no_distortion_is_applied_again(tmp_path):
+    raw_tags = {"DewarpData": FC300S_DEWARP, "CameraSerialNumber": "SN-A", "DewarpFlag": "0"}
+    raw = dji_camera(read_dji_metadata(with_xmp(FIXTURES / "DJI_0018.JPG", tmp_path / "raw.jpg", raw_tags)))
+    done = dji_camera(read_dji_metadata(with_xmp(FIXTURES / "DJI_0018.JPG", tmp_path / "dewarped.jpg",
+                                                 dict(raw_tags, DewarpFlag="1"))))
+    assert raw[1] == ["resized"] and done[1] == ["resized", "dewarped"]
+    assert raw[0].dist == camera_from_dji_dewarp(FC300S_DEWARP, 4000, 2250).dist and done[0].dist == (0.0,) * 5
+    intrinsics = ("fx", "fy", "cx", "cy")
+    assert [getattr(done[0], k) for k in intrinsics] == [getattr(raw[0], k) for k in intrinsics]
+    # The dewarped image is a pinhole image: u = fx·x/z + cx; the raw one bends off-centre points.
+    p = np.array([[0.6, -0.3, 1.0]])
+    pinhole = [done[0].fx * 0.6 + done[0].cx, done[0].fy * -0.3 + done[0].cy]
+    np.testing.assert_allclose(done[0].project(p)[0], pinhole, atol=1e-9)
+    assert np.hypot(*(raw[0].project(p)[0] - pinhole)) > 1.0
+    # A calibration file describes the raw lens: a dewarped frame drops its distortion too.
+    calibration = CameraModel(400, 225, 230.0, 230.0, 199.5, 112.0, (-0.1, 0.05, 0.0, 0.0, 0.0), source="kalibr:c")
+    meta = read_dji_metadata(tmp_path / "dewarped.jpg")
+    assert dji_camera(meta, calibration)[0].dist == (0.0,) * 5
+    # Frames of one camera, some dewarped: two camera models, and the report says which.
+    folder = brighton_copies(tmp_path / "mixed", lambda i: dict(raw_tags, DewarpFlag=str(i % 2)))
+    result = import_dji_images(folder)
+    assert len({id(c) for c in result.frames.cameras}) == 2
+    assert [("dewarped" in f) for f in result.frames.flags] == [False, True] * 3
+    assert result.report.counts["dewarped"] == 3 and any("DewarpFlag 1" in n for n in result.report.notes)
+
+
+def test_a_dem_is_checked_once_against_the_flights_take_off_height(tmp_path):
+    """Brighton frames (take-off 158.51 m MSL, 39.8–40.1 m up) over a field 13 m below the take-off
+    point, a knoll at the take-off height 150 m away: honest relief, accepted, footprints 53/40 larger.
+    A DEM 40 m off every terrain around is refused, once, naming the take-off height."""
+    from birdseye.birdseye_qgis.core.sim.terrain import synthetic_terrain
+
+    level = import_dji_images(FIXTURES)
+    lat, lon = float(np.mean(level.frames.lat)), float(np.mean(level.frames.lon))
+
+    def field(height, knoll):
+        dem = synthetic_terrain(lat, lon, "plane", base_height_m=height, size_m=600.0, cell_m=2.0,
+                                vertical_datum="msl")
+        x, y = dem.cell_centres()
+        dem.heights[np.ix_(np.abs(y - y.mean()) < 5.0, np.abs(x - x.mean() - 150.0) < 5.0)] = knoll
+        return dem
+
+    draped = import_dji_images(FIXTURES, dem=field(158.51 - 13.0, 158.51))
+    for f in range(6):
+        ratio = math.sqrt(polygon_area(draped.footprints.rings[f]) / polygon_area(level.footprints.rings[f]))
+        assert ratio == pytest.approx((level.footprints.depth_m[f] + 13.0) / level.footprints.depth_m[f], rel=0.01)
+    with pytest.raises(InputError) as err:
+        import_dji_images(FIXTURES, dem=field(158.51 + 40.0, 158.51 + 40.0))
+    assert "take-off height (158.51 m, the median over 6 frames" in str(err.value)
+    assert "40.00 m below the lowest" in str(err.value)
+
+
+def polygon_area(ring) -> float:
+    x, y = ring[:, 0], ring[:, 1]
+    return 0.5 * abs(float(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1))))

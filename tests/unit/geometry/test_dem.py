@@ -7,7 +7,8 @@ import pytest
 from birdseye.birdseye_qgis.core.geometry import geodesy
 from birdseye.birdseye_qgis.core.design import terrain_slope as ts
 from birdseye.birdseye_qgis.core.geometry.camera import CameraModel
-from birdseye.birdseye_qgis.core.geometry.dem import (DemGround, DemRaster, Heightfield, check_vertical_datum,
+from birdseye.birdseye_qgis.core.geometry.dem import (TAKEOFF_REACH_M, DemGround, DemRaster, Heightfield,
+                                             check_vertical_datum,
                                              exceeds_flat_envelope, flat_envelope_warning,
                                              frame_terrain_slope, heightfield_from_dem,
                                              intersect_heightfield)
@@ -413,6 +414,74 @@ def test_a_dem_in_another_vertical_reference_is_caught_against_the_altimeter():
     geom = make_geometry(make_camera(), 0.0, 0.0, 15.0, ground_h=400.0)
     with pytest.raises(InputError, match="another vertical reference"):
         DemGround.from_dem(geom, flat_dem("ellipsoidal", 362.0))
+
+
+def field_below_a_knoll(knoll_east_m, field=387.0, knoll=400.0, size_m=200.0, cell_m=2.0, **kw):
+    """A level field with a 10 m × 10 m knoll ``knoll − field`` metres higher, ``knoll_east_m`` east of
+    the site: a drone that takes off from the knoll flies over the field below it."""
+    dem = synthetic_terrain(SITE[0], SITE[1], "plane", base_height_m=field, size_m=size_m, cell_m=cell_m, **kw)
+    x, y = dem.cell_centres()
+    xc, yc = geodesy.ProjectedCRS(dem.crs).from_geodetic(SITE[0], SITE[1])
+    on_knoll = (np.abs(y - yc)[:, None] <= 5.0) & (np.abs(x - xc - knoll_east_m)[None, :] <= 5.0)
+    dem.heights = np.where(on_knoll, knoll, dem.heights)
+    return dem
+
+
+def test_take_off_height_passes_with_honest_relief_and_fails_with_a_datum_mix_up():
+    # Frames over a field 13 m below the knoll the drone took off from: their ground is the take-off
+    # height (400 m). The altimeter rule refuses that relief; the take-off rule accepts it.
+    dem = field_below_a_knoll(80.0)
+    with pytest.raises(InputError, match="another vertical reference"):
+        check_vertical_datum(dem, "ellipsoidal", poses_over(400.0))
+    assert check_vertical_datum(dem, "ellipsoidal", poses_over(400.0), ground_reference="takeoff") == 0.0
+    # The same terrain in MSL heights declared ellipsoidal (N = 38 m): the take-off height lies 38 m above
+    # the highest terrain anywhere near the flight.
+    wrong = field_below_a_knoll(80.0, field=349.0, knoll=362.0, vertical_datum="ellipsoidal")
+    with pytest.raises(InputError) as err:
+        check_vertical_datum(wrong, "ellipsoidal", poses_over(400.0), ground_reference="takeoff")
+    msg = str(err.value)
+    assert "take-off height (400.00 m" in msg and "38.00 m above the highest" in msg
+    assert "(349.00 … 362.00 m" in msg and "5 m tolerance" in msg and "geoid undulation" in msg
+    # Declared correctly, with its undulation, it passes and gives the offset.
+    msl = field_below_a_knoll(80.0, field=349.0, knoll=362.0, vertical_datum="msl", geoid_undulation_m=38.0)
+    assert check_vertical_datum(msl, "ellipsoidal", poses_over(400.0), ground_reference="takeoff") == 38.0
+    # Below the lowest terrain: a take-off 20 m under the field.
+    with pytest.raises(InputError, match="20.00 m below the lowest"):
+        check_vertical_datum(dem, "ellipsoidal", poses_over(367.0), ground_reference="takeoff")
+    with pytest.raises(InputError, match="none of the 3 frames"):
+        check_vertical_datum(dem, "ellipsoidal", poses_over(400.0, lat=-27.0), ground_reference="takeoff")
+    with pytest.raises(ValueError, match="ground_reference"):
+        check_vertical_datum(dem, "ellipsoidal", poses_over(400.0), ground_reference="radar")
+
+
+def test_take_off_check_judges_the_flights_median_within_its_reach():
+    dem = field_below_a_knoll(80.0)
+    # One frame with a wild height does not sink the flight; the flight's median decides.
+    assert check_vertical_datum(dem, "ellipsoidal", poses_over([400.0, 400.2, 470.0]),
+                                ground_reference="takeoff") == 0.0
+    with pytest.raises(InputError, match=r"take-off height \(470\.00 m, the median over 3 frames"):
+        check_vertical_datum(dem, "ellipsoidal", poses_over([470.0, 470.0, 400.0]), ground_reference="takeoff")
+    # The take-off point counts within TAKEOFF_REACH_M of the frames (the easternmost frame is at 20 m),
+    # not beyond.
+    near = field_below_a_knoll(20.0 + TAKEOFF_REACH_M - 20.0, size_m=1400.0, cell_m=5.0)
+    far = field_below_a_knoll(20.0 + TAKEOFF_REACH_M + 20.0, size_m=1400.0, cell_m=5.0)
+    assert check_vertical_datum(near, "ellipsoidal", poses_over(400.0), ground_reference="takeoff") == 0.0
+    with pytest.raises(InputError, match="13.00 m above the highest"):
+        check_vertical_datum(far, "ellipsoidal", poses_over(400.0), ground_reference="takeoff")
+
+
+def test_a_flight_level_offset_is_not_checked_again_per_geometry():
+    """``vertical_offset_m`` (from one check over the whole flight) is applied as given; without it the
+    geometry's own frames are checked (and this one, 13 m above the field, is refused)."""
+    dem = field_below_a_knoll(80.0)
+    geom = make_geometry(make_camera(), 0.0, 0.0, 15.0, ground_h=400.0)
+    with pytest.raises(InputError, match="another vertical reference"):
+        DemGround.from_dem(geom, dem)
+    for offset in (0.0, 2.5):
+        ground = DemGround.from_dem(geom, dem, vertical_offset_m=offset)
+        # The field's height in the local frame (up from h0 = 400 m at the site), raised by the offset.
+        assert ground.heightfield.height_at(np.array([0.0]), np.array([0.0]))[0] == pytest.approx(
+            387.0 + offset - 400.0, abs=1e-3)
 
 
 # --------------------------------------------------------------------------- slope

@@ -152,6 +152,10 @@ def test_files_follow_the_contracts(small):
     assert [r["image"] for r in truth] == [r["file"] for r in images]
     targets = read_csv(folder / "truth" / "targets.csv")
     assert len(targets) == cfg.n_targets
+    import json
+    metadata = (Path(__file__).resolve().parents[3] / "metadata.txt").read_text(encoding="utf-8")
+    version = re.search(r"^version=(.+)$", metadata, flags=re.M).group(1).strip()
+    assert json.loads((folder / "truth" / "campaign.json").read_text())["versions"]["birdseye"] == version
     assert fractions and fractions[-1] == pytest.approx(1.0) and np.all(np.diff(fractions) > 0)
 
 

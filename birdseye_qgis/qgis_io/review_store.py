@@ -35,10 +35,10 @@ from datetime import datetime, timezone
 from pathlib import Path
 from typing import Sequence
 
-from .core.errors import InputError
-from .core.review.review import (ACTION_ADD, ACTION_UNDO, ACTION_VERDICT, ADDED_PREFIX, Ledger, PlannedRow,
+from ..core.errors import InputError
+from ..core.review.review import (ACTION_ADD, ACTION_UNDO, ACTION_VERDICT, ADDED_PREFIX, Ledger, PlannedRow,
                           ReviewParameters, ReviewUnits, UnitRef, input_id)
-from .core.scoring.scoring import VerdictLog
+from ..core.scoring.scoring import VerdictLog
 
 VERDICT_TABLE = "birdseye_verdicts"
 STATE_TABLE = "birdseye_review_state"
@@ -357,8 +357,8 @@ def layer_digest(layer, role: str) -> str:
     """SHA-256 of what a review depends on in a layer (see ``core.review.content_digest``):
     detections — geometry and frame_id, u, v, score, model, model_digest, threshold; frames — the
     frame-layer fields (poses, camera, image path); geotags — geometry and id, label."""
-    from .core.field.frame_records import FRAME_FIELD_NAMES
-    from .core.review.review import content_digest
+    from ..core.field.frame_records import FRAME_FIELD_NAMES
+    from ..core.review.review import content_digest
 
     wanted = {"detections": ["frame_id", "u", "v", "score", "model", "model_digest", "threshold"],
               "frames": FRAME_FIELD_NAMES, "geotags": ["id", "label"]}[role]
@@ -397,9 +397,9 @@ def read_review_inputs(detection_layers, frame_layer, geotag_layer) -> ReviewInp
     import numpy as np
     from qgis.core import QgsProcessingContext, QgsProject
 
-    from ..processing.algorithms.clusterdetections import read_detections, read_geotags, read_pose_groups
+    from .detections import read_detections, read_geotags, read_pose_groups
     from . import layers as layer_io
-    from .core.review.review import ReviewLayer, review_local_frame
+    from ..core.review.review import ReviewLayer, review_local_frame
 
     if not detection_layers:
         raise InputError("choose at least one detection layer to review")

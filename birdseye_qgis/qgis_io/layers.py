@@ -16,11 +16,11 @@ from qgis.core import (QgsCoordinateReferenceSystem, QgsCoordinateTransform, Qgs
                        QgsWkbTypes)
 from qgis.PyQt.QtCore import QVariant
 
-from .core.errors import InputError
-from .core.field.frame_records import FRAME_FIELD_NAMES
-from .core.geometry.geodesy import ProjectedCRS, utm_epsg
+from ..core.errors import InputError
+from ..core.field.frame_records import FRAME_FIELD_NAMES
+from ..core.geometry.geodesy import ProjectedCRS, utm_epsg
 
-STYLE_DIR = Path(__file__).resolve().parents[1] / "resources" / "styles"
+STYLE_DIR = Path(__file__).resolve().parents[2] / "resources" / "styles"
 WGS84 = "EPSG:4326"
 
 _QVARIANT = {"int": QVariant.Int, "double": QVariant.Double, "string": QVariant.String}
@@ -248,7 +248,7 @@ def write_frames(algorithm, parameters, context, feedback, result, crs: QgsCoord
                  output: str = "OUTPUT", track_output: str | None = None, start: float = 80.0) -> dict:
     """Write a core ``FlightImport`` (frames + footprints [+ flight line]) to the algorithm's sinks,
     styled on load; returns the outputs dict entries."""
-    from .core.field.flight_log import FRAME_LAYER_FIELDS, TRACK_FIELDS, frame_records
+    from ..core.field.flight_log import FRAME_LAYER_FIELDS, TRACK_FIELDS, frame_records
 
     fields = qgs_fields(FRAME_LAYER_FIELDS)
     sink, dest_id = algorithm.parameterAsSink(parameters, output, context, fields, QgsWkbTypes.PolygonZ, crs)
@@ -279,7 +279,7 @@ def read_dem(layer, vertical_datum: str, geoid_undulation_m: float | None = None
     """
     from osgeo import gdal
 
-    from .core.geometry.dem import DemRaster
+    from ..core.geometry.dem import DemRaster
 
     name = layer.name() or layer.source()
     crs = layer.crs()

@@ -10,9 +10,9 @@ import numpy as np
 from qgis.core import (QgsProcessingException, QgsProcessingParameterEnum, QgsProcessingParameterNumber,
                        QgsProcessingParameterRasterLayer)
 
-from ..birdseye_qgis import layers
-from ..birdseye_qgis.core.geometry.dem import VERTICAL_DATUMS, DemGround, DemRaster
-from ..birdseye_qgis.core.errors import InputError
+from ...birdseye_qgis.qgis_io import layers
+from ...birdseye_qgis.core.geometry.dem import VERTICAL_DATUMS, DemGround, DemRaster
+from ...birdseye_qgis.core.errors import InputError
 
 DATUM_LABELS = ("Ellipsoidal (WGS84), like RTK and INS heights",
                 "Mean sea level (give the geoid undulation N)",

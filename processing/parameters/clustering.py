@@ -1,0 +1,58 @@
+"""Clustering and matching parameters (DEDUP_CM, EPS_M, MIN_SAMPLES, EPS_PRED_M, EDGE_BUFFER_PX) and the
+flights (detection layer + frame layer pairs) the scoring algorithms read."""
+from __future__ import annotations
+
+from qgis.core import QgsProcessingException, QgsProcessingParameterNumber
+
+from ...birdseye_qgis.core.detect.clustering import DEFAULT_DEDUP_CM, DEFAULT_EPS_M, DEFAULT_MIN_SAMPLES
+from ...birdseye_qgis.core.scoring.scoring import DEFAULT_EDGE_BUFFER_PX, DEFAULT_EPS_PRED_M, Flight
+from ...birdseye_qgis.qgis_io.detections import read_detections, read_pose_groups
+
+
+class ClusteringParametersMixin:
+    """Mixed into a ``BirdsEyeAlgorithm``: the method's clustering parameters with their defaults."""
+
+    def add_clustering_parameters(self, with_prediction: bool = True) -> None:
+        """DEDUP_CM, EPS_M, MIN_SAMPLES (and EPS_PRED_M, EDGE_BUFFER_PX) with the method's defaults."""
+        self.addParameter(QgsProcessingParameterNumber(
+            "DEDUP_CM", self.tr("De-duplication grid cell (cm)"), QgsProcessingParameterNumber.Double,
+            DEFAULT_DEDUP_CM, minValue=0.1, maxValue=100.0))
+        self.addParameter(QgsProcessingParameterNumber(
+            "EPS_M", self.tr("DBSCAN radius EPS (m)"), QgsProcessingParameterNumber.Double, DEFAULT_EPS_M,
+            minValue=0.001, maxValue=50.0))
+        self.addParameter(QgsProcessingParameterNumber(
+            "MIN_SAMPLES", self.tr("DBSCAN minimum points per neighbourhood (itself included)"),
+            QgsProcessingParameterNumber.Integer, DEFAULT_MIN_SAMPLES, minValue=1, maxValue=1000))
+        if with_prediction:
+            self.add_matching_parameters()
+
+    def add_matching_parameters(self) -> None:
+        """EPS_PRED_M and EDGE_BUFFER_PX: when a geotag counts as seen and as matched by a cluster."""
+        self.addParameter(QgsProcessingParameterNumber(
+            "EPS_PRED_M", self.tr("Match radius geotag ↔ cluster core points EPS_PRED (m)"),
+            QgsProcessingParameterNumber.Double, DEFAULT_EPS_PRED_M, minValue=0.001, maxValue=50.0))
+        self.addParameter(QgsProcessingParameterNumber(
+            "EDGE_BUFFER_PX", self.tr("Edge buffer of the in-view test (px)"), QgsProcessingParameterNumber.Double,
+            DEFAULT_EDGE_BUFFER_PX, minValue=0.0, maxValue=1000.0))
+
+    def read_flights(self, parameters, context, feedback, detections_name="DETECTIONS", frames_name="FRAMES"):
+        """Detection layers paired in order with frame layers (one flight each) as core Flights."""
+        det_layers = self.parameterAsLayerList(parameters, detections_name, context)
+        frame_layers = self.parameterAsLayerList(parameters, frames_name, context)
+        if not det_layers:
+            raise QgsProcessingException(self.tr("{name}: give at least one detection layer.").format(
+                name=detections_name))
+        if len(frame_layers) != len(det_layers):
+            raise QgsProcessingException(self.tr(
+                "{name}: give one frame layer per detection layer, in the same order (got {detections} "
+                "detection layer(s) and {frames} frame layer(s)).").format(
+                name=frames_name, detections=len(det_layers), frames=len(frame_layers)))
+        flights = []
+        for det_layer, frame_layer in zip(det_layers, frame_layers):
+            det, dropped = self.run_core(read_detections, det_layer, context, det_layer.name())
+            if dropped:
+                feedback.pushWarning(self.tr("{layer}: {n} detection(s) without a position or score left out").format(
+                    layer=det_layer.name(), n=dropped))
+            groups = self.run_core(read_pose_groups, frame_layer, frame_layer.name())[0]
+            flights.append(Flight(det, groups, det_layer.name()))
+        return flights
