@@ -33,8 +33,9 @@ from birdseye.birdseye_qgis.core.geometry.ground import LevelPlaneGround  # noqa
 from birdseye.birdseye_qgis.core.geometry.poses import FrameGeometry, FramePoses  # noqa: E402
 from birdseye.birdseye_qgis.core.geometry.projection import project_in_view  # noqa: E402
 from birdseye.birdseye_qgis.core.geometry.rotations import euler_zyx_to_rotmat, rotmat_to_quat  # noqa: E402
-from birdseye.birdseye_qgis.core.scoring.scoring import (PreCounts, SweepFlight, SweepGrid, in_view,  # noqa: E402
-                                                  score_flight, sweep)
+from birdseye.birdseye_qgis.core.scoring.matching import in_view
+from birdseye.birdseye_qgis.core.scoring.pre_review import PreCounts, score_flight
+from birdseye.birdseye_qgis.core.scoring.sweep import SweepFlight, SweepGrid, sweep
 
 GOAL_MILLION_S = 10.0
 GOAL_SWEEP_S = 300.0

@@ -26,7 +26,8 @@ from birdseye.birdseye_qgis.core.geometry.camera import load_calibration
 from birdseye.birdseye_qgis.core.detect.detector import (DetectRequest, HeatmapModel, cut_tiles, detect_frames,
                                                   model_size, normalise, read_bgr, read_reduction, resample,
                                                   tile_spans)
-from birdseye.birdseye_qgis.core.field.flight_log import frame_records, import_flight_log
+from birdseye.birdseye_qgis.core.field.flight_log import import_flight_log
+from birdseye.birdseye_qgis.core.field.frames import frame_records
 from birdseye.birdseye_qgis.core.field.frame_records import poses_from_records
 from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame
 from birdseye.birdseye_qgis.core.geometry.poses import FrameGeometry

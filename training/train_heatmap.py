@@ -437,7 +437,8 @@ def load_campaign(folder: Path) -> Campaign:
     import csv
 
     from birdseye.birdseye_qgis.core.geometry.camera import load_calibration
-    from birdseye.birdseye_qgis.core.field.flight_log import frame_records, import_flight_log
+    from birdseye.birdseye_qgis.core.field.flight_log import import_flight_log
+    from birdseye.birdseye_qgis.core.field.frames import frame_records
     from birdseye.birdseye_qgis.core.field.frame_records import poses_from_records
     from birdseye.birdseye_qgis.core.field.geotags import read_geotags
     from birdseye.birdseye_qgis.core.labels.training_set import Geotags
@@ -472,13 +473,14 @@ def evaluate(model_path, campaigns, thresholds) -> dict:
     """Detection figures per threshold, pooled over campaigns (sums of counts, one division).
 
     * ``recall_pre``/``gmcf_pre``: the official scores (clusters of detections vs geotags,
-      :func:`core.scoring.evaluate_flights` with its default operating point);
+      :func:`core.scoring.evaluation.evaluate_flights` with its default operating point);
     * ``truth_recall``: in-view simulated targets (surveyed or not) with a detection within
       MATCH_RADIUS_M in some frame; ``view_recall``: (frame, in-view target) pairs detected in that
       very frame; ``truth_precision``: detections within MATCH_RADIUS_M of a true target.
     The model runs once at the lowest threshold; higher ones keep detections with score ≥ t.
     """
-    from birdseye.birdseye_qgis.core.scoring import scoring
+    from birdseye.birdseye_qgis.core.scoring.evaluation import Detections, Flight, Geotags, evaluate_flights
+    from birdseye.birdseye_qgis.core.scoring.operating_point import OperatingPoint
     from birdseye.birdseye_qgis.core.detect.detector import DetectRequest, HeatmapModel, detect_frames
     from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame
     from birdseye.birdseye_qgis.core.labels.training_set import project_labels
@@ -508,11 +510,11 @@ def evaluate(model_path, campaigns, thresholds) -> dict:
         for t in thresholds:
             tot = totals[t]
             keep = det["score"] >= t
-            ev = scoring.evaluate_flights(
-                [scoring.Flight(scoring.Detections(det["lat"][keep], det["lon"][keep], det["height"][keep], fid[keep],
+            ev = evaluate_flights(
+                [Flight(Detections(det["lat"][keep], det["lon"][keep], det["height"][keep], fid[keep],
                                                    det["score"][keep]), [c.poses], c.name)],
-                scoring.Geotags(c.geotags.ids, c.geotags.lat, c.geotags.lon, c.geotags.height),
-                scoring.OperatingPoint(threshold=t), local=local)
+                Geotags(c.geotags.ids, c.geotags.lat, c.geotags.lon, c.geotags.height),
+                OperatingPoint(threshold=t), local=local)
             for key in ("n_in_view", "n_recovered", "n_clusters", "n_hit_clusters"):
                 tot[key] += getattr(ev.pooled, key)
             recovered = np.zeros(len(c.truth), bool)

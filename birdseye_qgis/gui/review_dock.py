@@ -33,9 +33,15 @@ from qgis.PyQt.QtWidgets import (QAbstractItemView, QApplication, QCheckBox, QCo
 
 from qgis.PyQt import sip
 
-from ..core.review import review as rv
+from ..core.detect.clustering import DEFAULT_DEDUP_CM
+from ..core.review.actions import REVIEW_VERDICTS, UnitStatus, resume_key, unit_status
+from ..core.review.chips import DEFAULT_WINDOW_PX, FrameIndex, GEOTAG_COLOUR, ImageCache, LAYER_COLOURS, load_chips, plan_point_chips, plan_unit_chips
+from ..core.review.digests import InputCheck, check_inputs
+from ..core.review.units import ADDED_PREFIX, PROPAGATION_EPS_M, PROPAGATION_RULE, ReviewParameters, ReviewUnits, build_units
 from ..core.errors import InputError
-from ..core.scoring.scoring import CONVENTIONS, Flight, OperatingPoint, evaluate_flights
+from ..core.scoring.evaluation import Flight, evaluate_flights
+from ..core.scoring.operating_point import OperatingPoint
+from ..core.scoring.verdicts import CONVENTIONS
 from ..qgis_io.review_store import ReviewSession, RowMeta, VerdictStore, default_store_path, read_review_inputs
 from .add_target_tool import AddTargetTool
 
@@ -92,7 +98,7 @@ class _ChipJob(QRunnable):
     def run(self):
         try:
             plans, n_frames = self.plan_fn(self.key)
-            images = rv.load_chips(plans, self.out_px, self.cache)
+            images = load_chips(plans, self.out_px, self.cache)
             payload = (plans, images, n_frames, None)
         except Exception as exc:  # noqa: BLE001 — report in the dock, never kill the worker thread
             payload = ([], [], 0, str(exc))
@@ -278,16 +284,16 @@ class ReviewDock(QgsDockWidget):
         self.canvas = iface.mapCanvas() if iface is not None else None
         self.session: ReviewSession | None = None
         self.inputs = None
-        self.units: rv.ReviewUnits | None = None
-        self.frames: rv.FrameIndex | None = None
+        self.units: ReviewUnits | None = None
+        self.frames: FrameIndex | None = None
         self.geotag_local = None
         self.geotag_labels: list[str] = []
-        self.params = rv.ReviewParameters()
+        self.params = ReviewParameters()
         self.entries: list[str] = []
         self._entry_pos: dict = {}
         self.visible: list[str] = []
         self.current_key: str | None = None
-        self.input_check: rv.InputCheck | None = None
+        self.input_check: InputCheck | None = None
         self.scores: dict = {}
         self.scores_error: str | None = None
         self.chip_latencies_ms: list[float] = []
@@ -301,7 +307,7 @@ class ReviewDock(QgsDockWidget):
         self._nav_started: float | None = None
         self._shown_chips_for: str | None = None
         self._flights = []
-        self._image_cache = rv.ImageCache(24)
+        self._image_cache = ImageCache(24)
         self._pool = QThreadPool(self)
         self._pool.setMaxThreadCount(2)
         self._signals = _Signals()
@@ -386,7 +392,7 @@ class ReviewDock(QgsDockWidget):
         params = QgsCollapsibleGroupBox(tr("Clustering and matching"))
         params.setCollapsed(True)
         pform = QFormLayout(params)
-        self.dedup_spin = self._double(0.1, 100.0, rv.DEFAULT_DEDUP_CM, 1, " cm",
+        self.dedup_spin = self._double(0.1, 100.0, DEFAULT_DEDUP_CM, 1, " cm",
                                        "De-duplication grid cell, as in Cluster detections.")
         self.eps_spin = self._double(0.001, 50.0, self.params.eps_m, 3, " m", "DBSCAN radius EPS of the units.")
         self.min_samples_spin = QgsSpinBox()
@@ -401,8 +407,8 @@ class ReviewDock(QgsDockWidget):
         self.window_spin = QgsSpinBox()
         self.window_spin.setRange(32, 1024)
         self.window_spin.setSingleStep(16)
-        self.window_spin.setValue(rv.DEFAULT_WINDOW_PX)
-        self.window_spin.setClearValue(rv.DEFAULT_WINDOW_PX)
+        self.window_spin.setValue(DEFAULT_WINDOW_PX)
+        self.window_spin.setClearValue(DEFAULT_WINDOW_PX)
         self.window_spin.setSuffix(" px")
         self.window_spin.setToolTip(tr("Size of the image window cut around a detection."))
         self.window_spin.valueChanged.connect(self._on_window_changed)
@@ -528,12 +534,12 @@ class ReviewDock(QgsDockWidget):
         grid.addWidget(self.undo_button, 3, 0)
         grid.addWidget(self.add_button, 3, 1)
         v.addLayout(grid)
-        self.propagate_check = QCheckBox(tr("Propagate to units within {:.2f} m").format(rv.PROPAGATION_EPS_M))
+        self.propagate_check = QCheckBox(tr("Propagate to units within {:.2f} m").format(PROPAGATION_EPS_M))
         self.propagate_check.setToolTip(tr("Off by default. When on, a verdict also votes (provenance "
                                            "propagated:{rule}) on the units chained to this one by gaps of at "
                                            "most {eps:.2f} m; conflicting votes are resolved under the three "
-                                           "conventions, all shown.").format(rule=rv.PROPAGATION_RULE,
-                                                                             eps=rv.PROPAGATION_EPS_M))
+                                           "conventions, all shown.").format(rule=PROPAGATION_RULE,
+                                                                             eps=PROPAGATION_EPS_M))
         self.advance_check = QCheckBox(tr("Next unit after a verdict"))
         self.advance_check.setChecked(True)
         for c in (self.propagate_check, self.advance_check):
@@ -613,8 +619,8 @@ class ReviewDock(QgsDockWidget):
         project = QgsProject.instance()
         return [project.mapLayer(i) for i in self.detections_combo.checkedItemsData() if project.mapLayer(i)]
 
-    def _read_params(self) -> rv.ReviewParameters:
-        return rv.ReviewParameters(self.dedup_spin.value(), self.eps_spin.value(), self.min_samples_spin.value(),
+    def _read_params(self) -> ReviewParameters:
+        return ReviewParameters(self.dedup_spin.value(), self.eps_spin.value(), self.min_samples_spin.value(),
                                    self.eps_pred_spin.value(), self.edge_spin.value())
 
     # ------------------------------------------------------------------ start / resume
@@ -637,7 +643,7 @@ class ReviewDock(QgsDockWidget):
         try:
             params = self._read_params()
             inputs = read_review_inputs(detection_layers, frame_layer, geotag_layer)
-            units = rv.build_units(inputs.layers, inputs.local, inputs.geotags, inputs.pose_groups, params)
+            units = build_units(inputs.layers, inputs.local, inputs.geotags, inputs.pose_groups, params)
             store = VerdictStore(store_path)
         except (InputError, OSError, ValueError) as exc:   # a message naming the layer, field or file
             self._show_banner([str(exc)], error=True)
@@ -650,14 +656,14 @@ class ReviewDock(QgsDockWidget):
         reviewer = self.reviewer_edit.text().strip() or _os_user()
         QgsSettings().setValue(SETTINGS_REVIEWER, reviewer)
         self.session = ReviewSession(store, units, reviewer, inputs.digests, params)
-        self.frames = rv.FrameIndex(inputs.pose_groups, inputs.images, inputs.local)
+        self.frames = FrameIndex(inputs.pose_groups, inputs.images, inputs.local)
         g = inputs.geotags
         self.geotag_local = inputs.local.from_geodetic(g.lat, g.lon, np.where(np.isfinite(g.height), g.height,
                                                                              inputs.local.h0)) if len(g) else None
         self.geotag_labels = [str(i) for i in g.ids]
         self._flights = [Flight(layer.detections, inputs.pose_groups, layer.name) for layer in inputs.layers]
         self._generation += 1
-        self.input_check = rv.check_inputs(self.session.ledger.rows, inputs.digests,
+        self.input_check = check_inputs(self.session.ledger.rows, inputs.digests,
                                            {**params.postprocessing(), **params.matching()}, units.keys)
         if self.input_check.ok:
             self.banner.hide()
@@ -679,7 +685,7 @@ class ReviewDock(QgsDockWidget):
         self._save_to_project(detection_layers, frame_layer, geotag_layer, store_path)
         self._show_survey(geotag_layer)
         self._add_verdict_layer()
-        key = rv.resume_key(self.visible or self.entries, self.session.ledger, cursor.get("unit_key"))
+        key = resume_key(self.visible or self.entries, self.session.ledger, cursor.get("unit_key"))
         self.status_label.setText(tr("{n} units from {k} layer(s); verdict log {path}").format(
             n=len(units), k=len(inputs.layers), path=store_path))
         if key is not None:
@@ -784,7 +790,7 @@ class ReviewDock(QgsDockWidget):
         self._update_progress()
 
     def _passes(self, key, layer, mode) -> bool:
-        added = key.startswith(rv.ADDED_PREFIX)
+        added = key.startswith(ADDED_PREFIX)
         if layer and (added or layer not in self.units.layers_fired[self.units.index[key]]):
             return False
         if mode == "all":
@@ -806,13 +812,13 @@ class ReviewDock(QgsDockWidget):
         else:
             self._save_cursor()
 
-    def status(self, key) -> rv.UnitStatus:
+    def status(self, key) -> UnitStatus:
         if key not in self._status_cache:
-            self._status_cache[key] = rv.unit_status(self.session.log(), self.session.ledger, key)
+            self._status_cache[key] = unit_status(self.session.log(), self.session.ledger, key)
         return self._status_cache[key]
 
     def display_verdict(self, key) -> str:
-        if key.startswith(rv.ADDED_PREFIX):
+        if key.startswith(ADDED_PREFIX):
             return "added"
         s = self.status(key)
         if s.direct != "unreviewed":
@@ -822,7 +828,7 @@ class ReviewDock(QgsDockWidget):
     def cell_text(self, key, col) -> str:
         if col == 0:
             return str(self._entry_pos[key] + 1)
-        if key.startswith(rv.ADDED_PREFIX):
+        if key.startswith(ADDED_PREFIX):
             return ["", tr("Added target"), "", "", ""][col]
         i = self.units.index[key]
         s = self.status(key)
@@ -842,7 +848,7 @@ class ReviewDock(QgsDockWidget):
         return _fmt(float(self.units.max_score[i]), 2)
 
     def row_tooltip(self, key) -> str:
-        if key.startswith(rv.ADDED_PREFIX):
+        if key.startswith(ADDED_PREFIX):
             return key
         return f"{key}\n{tr('fired by')}: {', '.join(self.units.layers_fired[self.units.index[key]])}"
 
@@ -871,7 +877,7 @@ class ReviewDock(QgsDockWidget):
             return
         if command not in ("add", "cancel_add"):   # chip latency counts from the key, commit included
             self._nav_started = time.perf_counter()
-        if command in rv.REVIEW_VERDICTS:
+        if command in REVIEW_VERDICTS:
             self.set_verdict(command)
         elif command == "next":
             self.go_to(self._neighbour(self.current_key, +1))
@@ -911,7 +917,7 @@ class ReviewDock(QgsDockWidget):
         key = self.current_key
         if key is None:
             return
-        if key.startswith(rv.ADDED_PREFIX) and verdict != "unreviewed":
+        if key.startswith(ADDED_PREFIX) and verdict != "unreviewed":
             self.status_label.setText(tr("An added target can only be withdrawn (0 or Backspace) or undone."))
             return
         target = self._neighbour(key, +1) if self.advance_check.isChecked() else None
@@ -952,7 +958,7 @@ class ReviewDock(QgsDockWidget):
     def _after_append(self, rows):
         self._status_cache.clear()
         added = [t.key for t in self.session.ledger.added_targets()]
-        if [k for k in self.entries if k.startswith(rv.ADDED_PREFIX)] != added:
+        if [k for k in self.entries if k.startswith(ADDED_PREFIX)] != added:
             self._rebuild_entries()
         else:
             self._apply_filter()
@@ -1029,7 +1035,7 @@ class ReviewDock(QgsDockWidget):
         self._show_unit_text(key)
         self._centre_map(key)
         for verdict, button in self.verdict_buttons.items():
-            button.setChecked(not key.startswith(rv.ADDED_PREFIX) and self.status(key).direct == verdict
+            button.setChecked(not key.startswith(ADDED_PREFIX) and self.status(key).direct == verdict
                               and verdict != "unreviewed")
         if key in self._chips:
             self._display_chips(key)
@@ -1040,7 +1046,7 @@ class ReviewDock(QgsDockWidget):
         self._prefetch(key)
 
     def _show_unit_text(self, key):
-        if key.startswith(rv.ADDED_PREFIX):
+        if key.startswith(ADDED_PREFIX):
             ref = self.session.ref(key)
             self.unit_label.setText(tr("<b>Added target</b> {key}<br>{lat:.7f}°, {lon:.7f}° · recorded as a target "
                                        "the detector missed (the <i>a</i> term). 0 withdraws it.").format(
@@ -1095,10 +1101,10 @@ class ReviewDock(QgsDockWidget):
         """A chip-planning call for a worker thread, with everything it reads captured now."""
         units, frames, window = self.units, self.frames, self.window_spin.value()
         geotags, labels = self.geotag_local, self.geotag_labels
-        if key.startswith(rv.ADDED_PREFIX):
+        if key.startswith(ADDED_PREFIX):
             ref = self.session.ref(key)
-            return lambda k: rv.plan_point_chips(k, ref.lat, ref.lon, frames, geotags, labels, window)
-        return lambda k: rv.plan_unit_chips(units, units.index[k], frames, geotags, labels, window)
+            return lambda k: plan_point_chips(k, ref.lat, ref.lon, frames, geotags, labels, window)
+        return lambda k: plan_unit_chips(units, units.index[k], frames, geotags, labels, window)
 
     def _request_chips(self, key, priority=0):
         if key in self._chips or key in self._pending:
@@ -1142,9 +1148,9 @@ class ReviewDock(QgsDockWidget):
                 items.append((pixmap, caption, plan.image))
             self.chips.set_chips(items)
         names = self.units.layer_names
-        legend = " ".join(f"<span style='color:rgb{rv.LAYER_COLOURS[k % len(rv.LAYER_COLOURS)]}'>◯</span> {n}"
+        legend = " ".join(f"<span style='color:rgb{LAYER_COLOURS[k % len(LAYER_COLOURS)]}'>◯</span> {n}"
                           for k, n in enumerate(names))
-        self.chip_legend.setText(f"{legend} &nbsp; <span style='color:rgb{rv.GEOTAG_COLOUR}'>✕</span> "
+        self.chip_legend.setText(f"{legend} &nbsp; <span style='color:rgb{GEOTAG_COLOUR}'>✕</span> "
                                  f"{tr('geotag')} &nbsp; " + tr("{shown} of {n} frames").format(
                                      shown=len(plans), n=n_frames))
         self._shown_chips_for = key

@@ -9,7 +9,8 @@ from qgis.core import (QgsCoordinateReferenceSystem, QgsCoordinateTransform, Qgs
 from ..core.errors import InputError
 from ..core.field.frame_records import poses_from_records
 from ..core.geometry.geodesy import LocalFrame, ProjectedCRS
-from ..core.scoring.scoring import Detections, Geotags, VerdictLog
+from ..core.scoring.evaluation import Detections, Geotags
+from ..core.scoring.verdicts import VerdictLog
 from . import layers
 
 #: (name, type, description) of the detection layer.

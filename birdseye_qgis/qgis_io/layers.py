@@ -248,7 +248,8 @@ def write_frames(algorithm, parameters, context, feedback, result, crs: QgsCoord
                  output: str = "OUTPUT", track_output: str | None = None, start: float = 80.0) -> dict:
     """Write a core ``FlightImport`` (frames + footprints [+ flight line]) to the algorithm's sinks,
     styled on load; returns the outputs dict entries."""
-    from ..core.field.flight_log import FRAME_LAYER_FIELDS, TRACK_FIELDS, frame_records
+    from ..core.field.flight_track import TRACK_FIELDS
+    from ..core.field.frames import FRAME_LAYER_FIELDS, frame_records
 
     fields = qgs_fields(FRAME_LAYER_FIELDS)
     sink, dest_id = algorithm.parameterAsSink(parameters, output, context, fields, QgsWkbTypes.PolygonZ, crs)

@@ -36,9 +36,10 @@ from pathlib import Path
 from typing import Sequence
 
 from ..core.errors import InputError
-from ..core.review.review import (ACTION_ADD, ACTION_UNDO, ACTION_VERDICT, ADDED_PREFIX, Ledger, PlannedRow,
-                          ReviewParameters, ReviewUnits, UnitRef, input_id)
-from ..core.scoring.scoring import VerdictLog
+from ..core.review.actions import ACTION_ADD, ACTION_UNDO, ACTION_VERDICT, Ledger, PlannedRow
+from ..core.review.digests import input_id
+from ..core.review.units import ADDED_PREFIX, ReviewParameters, ReviewUnits, UnitRef
+from ..core.scoring.verdicts import VerdictLog
 
 VERDICT_TABLE = "birdseye_verdicts"
 STATE_TABLE = "birdseye_review_state"
@@ -358,7 +359,7 @@ def layer_digest(layer, role: str) -> str:
     detections — geometry and frame_id, u, v, score, model, model_digest, threshold; frames — the
     frame-layer fields (poses, camera, image path); geotags — geometry and id, label."""
     from ..core.field.frame_records import FRAME_FIELD_NAMES
-    from ..core.review.review import content_digest
+    from ..core.review.digests import content_digest
 
     wanted = {"detections": ["frame_id", "u", "v", "score", "model", "model_digest", "threshold"],
               "frames": FRAME_FIELD_NAMES, "geotags": ["id", "label"]}[role]
@@ -399,7 +400,8 @@ def read_review_inputs(detection_layers, frame_layer, geotag_layer) -> ReviewInp
 
     from .detections import read_detections, read_geotags, read_pose_groups
     from . import layers as layer_io
-    from ..core.review.review import ReviewLayer, review_local_frame
+    from ..core.review.chips import review_local_frame
+    from ..core.review.units import ReviewLayer
 
     if not detection_layers:
         raise InputError("choose at least one detection layer to review")

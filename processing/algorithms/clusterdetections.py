@@ -2,19 +2,18 @@
 from __future__ import annotations
 
 import numpy as np
-from qgis.core import (QgsCoordinateReferenceSystem, QgsCoordinateTransform, QgsFeatureRequest, QgsGeometry,
+from qgis.core import (QgsGeometry,
                        QgsPointXY, QgsProcessing, QgsProcessingException, QgsProcessingOutputNumber,
                        QgsProcessingParameterFeatureSink, QgsProcessingParameterFeatureSource,
-                       QgsProcessingParameterNumber, QgsProject, QgsWkbTypes)
+                       QgsWkbTypes)
 
 from ...birdseye_qgis.qgis_io import layers
-from ...birdseye_qgis.core.detect.clustering import (DEFAULT_DEDUP_CM, DEFAULT_EPS_M, DEFAULT_MIN_SAMPLES, HULL_BUFFER_M,
+from ...birdseye_qgis.core.detect.clustering import (HULL_BUFFER_M,
                                               cluster_detections, cluster_hulls)
-from ...birdseye_qgis.core.errors import InputError
-from ...birdseye_qgis.core.field.frame_records import poses_from_records
-from ...birdseye_qgis.core.geometry.geodesy import LocalFrame, ProjectedCRS
-from ...birdseye_qgis.core.scoring.scoring import (DEFAULT_EDGE_BUFFER_PX, DEFAULT_EPS_PRED_M, Detections, Geotags,
-                                           in_view, local_frame_for, score_flight)
+from ...birdseye_qgis.core.geometry.geodesy import LocalFrame
+from ...birdseye_qgis.core.scoring.evaluation import Detections, local_frame_for
+from ...birdseye_qgis.core.scoring.matching import in_view
+from ...birdseye_qgis.core.scoring.pre_review import score_flight
 from ...birdseye_qgis.qgis_io.detections import (CLUSTER_FIELDS, POINT_FIELDS, read_detections, read_geotags,
                                                    read_pose_groups, to_layer_xy)
 from ..parameters.clustering import ClusteringParametersMixin

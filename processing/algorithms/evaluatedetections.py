@@ -7,11 +7,12 @@ from pathlib import Path
 from qgis.core import (QgsProcessing, QgsProcessingException, QgsProcessingOutputNumber,
                        QgsProcessingParameterFeatureSource, QgsProcessingParameterFile,
                        QgsProcessingParameterFileDestination, QgsProcessingParameterMultipleLayers,
-                       QgsProcessingParameterVectorLayer, QgsWkbTypes)
+                       QgsProcessingParameterVectorLayer)
 
 from ...birdseye_qgis.core.scoring import preregistration
-from ...birdseye_qgis.core.scoring.scoring import (Flight, OperatingPoint, VerdictLog, evaluate_flights,
-                                           evaluation_report_html)
+from ...birdseye_qgis.core.scoring.evaluation import evaluate_flights
+from ...birdseye_qgis.core.scoring.operating_point import OperatingPoint
+from ...birdseye_qgis.core.scoring.reports import evaluation_report_html
 from .base import BirdsEyeAlgorithm
 from ...birdseye_qgis.qgis_io.detections import read_geotags, read_verdicts
 from ..parameters.clustering import ClusteringParametersMixin

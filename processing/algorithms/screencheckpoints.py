@@ -14,9 +14,11 @@ from ...birdseye_qgis.core.detect.detector import DetectRequest, HeatmapModel, d
 from ...birdseye_qgis.core.errors import Cancelled
 from ...birdseye_qgis.core.labels.training_set import Geotags as LabelGeotags
 from ...birdseye_qgis.core.labels.training_set import project_labels
-from ...birdseye_qgis.core.scoring.scoring import (DEFAULT_COLLAPSED_BELOW, DEFAULT_PIXEL_RADIUS_PX, DEFAULT_SPARSE_BELOW,
-                                           OperatingPoint, ScreenRun, in_view, local_frame_for,
-                                           screen_checkpoints, screen_figure)
+from ...birdseye_qgis.core.scoring.evaluation import local_frame_for
+from ...birdseye_qgis.core.scoring.matching import in_view
+from ...birdseye_qgis.core.scoring.operating_point import OperatingPoint
+from ...birdseye_qgis.core.scoring.reports import screen_figure
+from ...birdseye_qgis.core.scoring.screening import DEFAULT_COLLAPSED_BELOW, DEFAULT_PIXEL_RADIUS_PX, DEFAULT_SPARSE_BELOW, ScreenRun, screen_checkpoints
 from .base import BirdsEyeAlgorithm
 from ...birdseye_qgis.qgis_io.detections import read_geotags, read_pose_groups
 from ...birdseye_qgis.qgis_io.outputs import write_output, write_rows_csv

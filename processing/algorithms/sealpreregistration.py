@@ -12,7 +12,7 @@ from qgis.core import (QgsProcessing, QgsProcessingException, QgsProcessingOutpu
 from ...birdseye_qgis.core.scoring import preregistration
 from ...birdseye_qgis.core.detect.detector import file_digest
 from ...birdseye_qgis.core.errors import InputError
-from ...birdseye_qgis.core.scoring.scoring import OperatingPoint
+from ...birdseye_qgis.core.scoring.operating_point import OperatingPoint
 from .base import BirdsEyeAlgorithm
 from ..parameters.clustering import ClusteringParametersMixin
 

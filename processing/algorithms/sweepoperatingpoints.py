@@ -1,7 +1,6 @@
 """birdseye:sweepoperatingpoints — pooled recall and GMCF over a grid of operating points."""
 from __future__ import annotations
 
-import csv
 import json
 from pathlib import Path
 
@@ -13,9 +12,11 @@ from qgis.core import (QgsProcessing, QgsProcessingException, QgsProcessingOutpu
 
 from ...birdseye_qgis.core.detect.clustering import DEFAULT_DEDUP_CM
 from ...birdseye_qgis.core.errors import InputError
-from ...birdseye_qgis.core.scoring.scoring import (DEFAULT_EDGE_BUFFER_PX, DEFAULT_MAX_GEOTAGS_PER_HIT,
-                                           DEFAULT_MAX_MEAN_EXTENT_M, SweepFlight, SweepGrid,
-                                           in_view, local_frame_for, sweep, sweep_figure)
+from ...birdseye_qgis.core.scoring.evaluation import local_frame_for
+from ...birdseye_qgis.core.scoring.matching import in_view
+from ...birdseye_qgis.core.scoring.operating_point import DEFAULT_EDGE_BUFFER_PX
+from ...birdseye_qgis.core.scoring.reports import sweep_figure
+from ...birdseye_qgis.core.scoring.sweep import DEFAULT_MAX_GEOTAGS_PER_HIT, DEFAULT_MAX_MEAN_EXTENT_M, SweepFlight, SweepGrid, sweep
 from .base import BirdsEyeAlgorithm
 from ...birdseye_qgis.qgis_io.detections import read_geotags
 from ...birdseye_qgis.qgis_io.outputs import write_output, write_rows_csv

@@ -5,7 +5,8 @@ from __future__ import annotations
 from qgis.core import QgsProcessingException, QgsProcessingParameterNumber
 
 from ...birdseye_qgis.core.detect.clustering import DEFAULT_DEDUP_CM, DEFAULT_EPS_M, DEFAULT_MIN_SAMPLES
-from ...birdseye_qgis.core.scoring.scoring import DEFAULT_EDGE_BUFFER_PX, DEFAULT_EPS_PRED_M, Flight
+from ...birdseye_qgis.core.scoring.evaluation import Flight
+from ...birdseye_qgis.core.scoring.operating_point import DEFAULT_EDGE_BUFFER_PX, DEFAULT_EPS_PRED_M
 from ...birdseye_qgis.qgis_io.detections import read_detections, read_pose_groups
 
 

@@ -21,7 +21,7 @@ from ...birdseye_qgis.core.geometry.camera import load_calibration
 from ...birdseye_qgis.core.errors import InputError
 from ...birdseye_qgis.core.design.platforms import DEPLOYED, PLATFORMS
 from ...birdseye_qgis.core.design.number_lists import SIGMAS_HINT, format_number_list, parse_altitudes, parse_sigmas
-from ...birdseye_qgis.core.design.sensor_bound import AXES, SIGMA_UNITS, Intrinsics
+from ...birdseye_qgis.core.design.sensor_bound import Intrinsics
 from ...birdseye_qgis.core.geometry.camera import CALIBRATION_FILE_FILTER
 
 # The platform the BirdsEye method was deployed on (camera calibration, INS and altimeter budget).

@@ -40,7 +40,8 @@ SCRIPT = textwrap.dedent(f'''
     sys.path.insert(0, {str(PLUGIN_PATH)!r})
     import numpy as np
 
-    from birdseye.birdseye_qgis.core.review import review as rv
+    from birdseye.birdseye_qgis.core.review.actions import Ledger
+    from birdseye.birdseye_qgis.core.review.units import ReviewLayer, build_units
     from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame
     from birdseye.birdseye_qgis.core.scoring.scoring import Detections, Geotags
     from birdseye.birdseye_qgis.qgis_io.review_store import ReviewSession, VerdictStore
@@ -58,7 +59,7 @@ SCRIPT = textwrap.dedent(f'''
         lat, lon, h = SITE.to_geodetic(np.column_stack([xy, np.zeros(len(xy))]))
         det = Detections(lat, lon, h, np.arange(len(xy)) % 5, np.full(len(xy), 0.8), name="model")
         empty = Geotags(np.array([], dtype=object), [], [], [])
-        return rv.build_units([rv.ReviewLayer(det, np.zeros(len(xy)), np.zeros(len(xy)))], SITE, empty, [])
+        return build_units([ReviewLayer(det, np.zeros(len(xy)), np.zeros(len(xy)))], SITE, empty, [])
 
 
     def action(k, ledger, units):
@@ -172,7 +173,7 @@ def run_and_kill(script_path, store, after_lines=None, hold=0):
 
 def check_log(store, namespace, reported):
     """Integrity, complete rows, the exact replay of the script's first M actions, the cursor."""
-    from birdseye.birdseye_qgis.core.review import review as rv
+    from birdseye.birdseye_qgis.core.review.actions import Ledger
     from birdseye.birdseye_qgis.qgis_io.review_store import STATE_TABLE, VERDICT_FIELD_NAMES, VERDICT_TABLE
 
     c = sqlite3.connect(store)
@@ -197,7 +198,7 @@ def check_log(store, namespace, reported):
     assert not reported or reported[-1] <= m <= reported[-1] + 1
     # The log is the script replayed: every action whole, in order.
     units = namespace["build_units"]()
-    ledger = rv.Ledger()
+    ledger = Ledger()
     for k in range(1, m + 1):
         step = namespace["action"](k, ledger, units)
         expected, undoes = namespace["planned"](step, ledger, units)

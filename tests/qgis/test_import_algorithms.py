@@ -15,7 +15,8 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "data"))
 from synthetic_flight import HEADER, make_flight  # noqa: E402
 
 from birdseye.birdseye_qgis.qgis_io import layers  # noqa: E402
-from birdseye.birdseye_qgis.core.field.flight_log import FRAME_LAYER_FIELDS, TRACK_FIELDS  # noqa: E402
+from birdseye.birdseye_qgis.core.field.flight_track import TRACK_FIELDS
+from birdseye.birdseye_qgis.core.field.frames import FRAME_LAYER_FIELDS
 from birdseye.birdseye_qgis.core.field.frame_records import poses_from_records  # noqa: E402
 from birdseye.birdseye_qgis.core.field.geotags import GEOTAG_FIELD_NAMES  # noqa: E402
 

@@ -59,7 +59,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import Cancelled, InputError
-from .geodesy import LocalFrame, ProjectedCRS, meridian_convergence_deg
+from .geodesy import LocalFrame, ProjectedCRS
 from .ground import GroundModel
 from .poses import FrameGeometry, FramePoses
 

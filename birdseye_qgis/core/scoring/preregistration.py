@@ -34,7 +34,7 @@ from datetime import datetime, timezone
 from pathlib import Path
 
 from ..errors import InputError
-from .scoring import OperatingPoint
+from .operating_point import OperatingPoint
 
 SCHEMA = "birdseye-preregistration/1"
 _SEALED_KEYS = ("schema", "rule", "model_digests", "sealed_at")

@@ -15,9 +15,12 @@ from synthetic_flight import HEADER, make_flight, write_images  # noqa: E402
 
 from birdseye.birdseye_qgis.core.geometry.camera import load_calibration  # noqa: E402
 from birdseye.birdseye_qgis.core.errors import InputError  # noqa: E402
-from birdseye.birdseye_qgis.core.field.flight_log import (FRAME_LAYER_FIELDS, flight_track, frame_records,  # noqa: E402
-                                                    ground_heights, import_flight_log, import_pose_log,
-                                                    list_images, read_pose_log, sync_strobes)
+from birdseye.birdseye_qgis.core.field.flight_log import import_flight_log
+from birdseye.birdseye_qgis.core.field.flight_log import import_pose_log
+from birdseye.birdseye_qgis.core.field.flight_track import flight_track
+from birdseye.birdseye_qgis.core.field.frames import FRAME_LAYER_FIELDS, frame_records, ground_heights
+from birdseye.birdseye_qgis.core.field.images import list_images, sync_strobes
+from birdseye.birdseye_qgis.core.field.pose_log import read_pose_log
 from birdseye.birdseye_qgis.core.field.frame_records import (FRAME_FIELD_NAMES, euler_degrees,  # noqa: E402
                                                        poses_from_records)
 from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame, ProjectedCRS  # noqa: E402

@@ -12,14 +12,18 @@ import json
 import numpy as np
 import pytest
 
-from birdseye.birdseye_qgis.core.review import review as rv
+from birdseye.birdseye_qgis.core.review.actions import Ledger, propagation_provenance, resume_key, unit_status
+from birdseye.birdseye_qgis.core.review.chips import FrameIndex, GEOTAG_COLOUR, ImageCache, LAYER_COLOURS, crop_window, load_chips, plan_point_chips, plan_unit_chips, render_chip
+from birdseye.birdseye_qgis.core.review.digests import check_inputs, content_digest
+from birdseye.birdseye_qgis.core.review.units import ReviewLayer, ReviewParameters, UnitRef, added_key, build_units, position_key, propagation_groups
 from birdseye.birdseye_qgis.core.geometry.camera import CameraModel
 from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame
 from birdseye.birdseye_qgis.core.geometry.ground import LevelPlaneGround
 from birdseye.birdseye_qgis.core.geometry.poses import FrameGeometry, FramePoses
 from birdseye.birdseye_qgis.core.geometry.projection import project_all
 from birdseye.birdseye_qgis.core.geometry.rotations import euler_zyx_to_rotmat, rotmat_to_quat
-from birdseye.birdseye_qgis.core.scoring.scoring import CONVENTIONS, Detections, Geotags, VerdictLog
+from birdseye.birdseye_qgis.core.scoring.evaluation import Detections, Geotags
+from birdseye.birdseye_qgis.core.scoring.verdicts import CONVENTIONS, VerdictLog
 
 SITE = LocalFrame(-27.55, 151.95, 400.0)
 FRAMES_EN = [(-1.0, 0.0), (0.0, 0.0), (1.0, 0.0), (2.0, 0.0)]   # m east/north of the site
@@ -57,7 +61,7 @@ def detections_of(spots, name, score=0.8, jitter=0.0, seed=0):
                                                    np.zeros(len(proj.point_idx))])
     dlat, dlon, dh = SITE.to_geodetic(pts)
     det = Detections(dlat, dlon, dh, p.frame_id[proj.frame_idx], np.full(len(pts), score), name=name)
-    return rv.ReviewLayer(det, proj.uv[:, 0], proj.uv[:, 1])
+    return ReviewLayer(det, proj.uv[:, 0], proj.uv[:, 1])
 
 
 def geotags_at(en, ids=None):
@@ -83,7 +87,7 @@ def two_layers():
 
 def build(layers, geotags=None, **params):
     g = geotags if geotags is not None else geotags_at([S2])
-    return rv.build_units(layers, SITE, g, [poses()], rv.ReviewParameters(**params))
+    return build_units(layers, SITE, g, [poses()], ReviewParameters(**params))
 
 
 # ---------------------------------------------------------------------------------------------- units
@@ -117,14 +121,14 @@ def test_unit_keys_are_stable_and_positions_sit_on_core_cells(two_layers):
     units = build(two_layers)
     a, b = two_layers
     perm = np.random.default_rng(1).permutation(len(a.detections))
-    shuffled = rv.ReviewLayer(Detections(a.detections.lat[perm], a.detections.lon[perm], a.detections.height[perm],
+    shuffled = ReviewLayer(Detections(a.detections.lat[perm], a.detections.lon[perm], a.detections.height[perm],
                                          a.detections.frame_id[perm], a.detections.score[perm], name="model A"),
                               a.u[perm], a.v[perm])
     assert sorted(build([b, shuffled]).keys) == sorted(units.keys)
     core = units.clustering.points.xy[units.clustering.dbscan.core]
     for k, key in enumerate(units.keys):
         assert np.min(np.hypot(*(core - units.xy[k]).T)) == 0.0
-        assert key == rv.position_key("u", units.lat[k], units.lon[k]) and key.startswith("u-27.")
+        assert key == position_key("u", units.lat[k], units.lon[k]) and key.startswith("u-27.")
 
 
 def test_a_chained_unit_is_placed_on_its_detections_not_between_them():
@@ -142,9 +146,9 @@ def test_a_chained_unit_is_placed_on_its_detections_not_between_them():
 
 def test_propagation_groups_chain_units_within_20_cm():
     xy = np.array([[0.0, 0.0], [0.15, 0.0], [0.30, 0.0], [0.61, 0.0], [5.0, 5.0]])
-    g = rv.propagation_groups(xy)
+    g = propagation_groups(xy)
     assert g[0] == g[1] == g[2] and len({g[0], g[3], g[4]}) == 3
-    wider = rv.propagation_groups(xy, 0.32)
+    wider = propagation_groups(xy, 0.32)
     assert wider[3] == wider[0] != wider[4]
 
 
@@ -161,14 +165,14 @@ def stored(ledger, planned, action, undoes=None):
     return rows
 
 
-A, B, C = (rv.UnitRef(k, -27.55, 151.95 + i * 1e-6, ("m",)) for i, k in enumerate(("uA", "uB", "uC")))
+A, B, C = (UnitRef(k, -27.55, 151.95 + i * 1e-6, ("m",)) for i, k in enumerate(("uA", "uB", "uC")))
 
 
 def test_propagation_writes_one_vote_per_source_and_conflicts_resolve_under_three_conventions():
-    ledger = rv.Ledger()
+    ledger = Ledger()
     stored(ledger, ledger.plan_verdict(A, "confirmed_real", [B, C], propagate=True), "verdict")
     stored(ledger, ledger.plan_verdict(B, "hard_negative", [A, C], propagate=True), "verdict")
-    prov_a, prov_b = rv.propagation_provenance("uA"), rv.propagation_provenance("uB")
+    prov_a, prov_b = propagation_provenance("uA"), propagation_provenance("uB")
     assert prov_a == "propagated:dbscan_0.20m/uA"
     assert ledger.votes("uC") == {prov_a: "confirmed_real", prov_b: "hard_negative"}
     log = ledger.verdict_log()
@@ -176,33 +180,33 @@ def test_propagation_writes_one_vote_per_source_and_conflicts_resolve_under_thre
     assert resolved == {"positive_wins": "confirmed_real", "majority_wins": "uncertain",
                         "hard_negative_wins": "hard_negative"}
     # B: its own hard_negative and A's propagated confirmed_real — the same spread.
-    status = rv.unit_status(log, ledger, "uB")
+    status = unit_status(log, ledger, "uB")
     assert status.direct == "hard_negative" and status.conflict and not status.propagated_only
-    assert rv.unit_status(log, ledger, "uC").propagated_only
+    assert unit_status(log, ledger, "uC").propagated_only
 
 
 def test_propagated_votes_follow_their_source_even_with_propagation_off():
-    ledger = rv.Ledger()
+    ledger = Ledger()
     stored(ledger, ledger.plan_verdict(A, "confirmed_real", [B], propagate=True), "verdict")
     rows = ledger.plan_verdict(A, "hard_negative", [B, C], propagate=False)
     assert [(r.unit_key, r.verdict, r.provenance) for r in rows] == [
-        ("uA", "hard_negative", "direct"), ("uB", "hard_negative", rv.propagation_provenance("uA"))]
+        ("uA", "hard_negative", "direct"), ("uB", "hard_negative", propagation_provenance("uA"))]
     stored(ledger, rows, "verdict")
     assert ledger.plan_verdict(A, "hard_negative", [B, C]) == []   # nothing would change
     assert ledger.propagated_from("uA") == ["uB"]
 
 
 def test_undo_restores_every_slot_and_the_stack_is_rebuilt_from_the_log():
-    ledger = rv.Ledger()
+    ledger = Ledger()
     stored(ledger, ledger.plan_verdict(A, "uncertain"), "verdict")
     stored(ledger, ledger.plan_verdict(A, "confirmed_real", [B, C], propagate=True), "verdict")
     stored(ledger, ledger.plan_add(-27.5501, 151.9502), "add")
-    key = rv.added_key(-27.5501, 151.9502)
+    key = added_key(-27.5501, 151.9502)
     assert [t.key for t in ledger.added_targets()] == [key]
     for expected_open in ([1, 2], [1]):
         action, rows = ledger.plan_undo()
         stored(ledger, rows, "undo", undoes=action)
-        assert rv.Ledger(ledger.rows).open_actions() == ledger.open_actions() == expected_open
+        assert Ledger(ledger.rows).open_actions() == ledger.open_actions() == expected_open
     # The add is withdrawn, A is back to uncertain, the propagated votes withdrawn.
     assert ledger.added_targets() == [] and ledger.direct(key) == "unreviewed"
     assert ledger.direct("uA") == "uncertain" and ledger.votes("uB") == {} and ledger.votes("uC") == {}
@@ -216,27 +220,27 @@ def test_undo_restores_every_slot_and_the_stack_is_rebuilt_from_the_log():
 
 def test_resume_prefers_the_cursor_then_the_unit_after_the_last_reviewed():
     order = ["u1", "u2", "u3", "u4"]
-    ledger = rv.Ledger()
-    assert rv.resume_key(order, ledger, None) == "u1"
-    stored(ledger, ledger.plan_verdict(rv.UnitRef("u2", 0, 0), "confirmed_real"), "verdict")
-    assert rv.resume_key(order, ledger, None) == "u3"
-    assert rv.resume_key(order, ledger, "u1") == "u1"
-    assert rv.resume_key(order, ledger, "gone") == "u3"
-    assert rv.resume_key([], ledger, "u1") is None
+    ledger = Ledger()
+    assert resume_key(order, ledger, None) == "u1"
+    stored(ledger, ledger.plan_verdict(UnitRef("u2", 0, 0), "confirmed_real"), "verdict")
+    assert resume_key(order, ledger, None) == "u3"
+    assert resume_key(order, ledger, "u1") == "u1"
+    assert resume_key(order, ledger, "gone") == "u3"
+    assert resume_key([], ledger, "u1") is None
 
 
 # ---------------------------------------------------------------------------------------------- digests
 def test_content_digest_ignores_order_and_number_type_but_sees_any_change():
     rows = [[1, 10.5, "m.onnx", 3.25, 4.5, 400.0], [2, 11.0, "m.onnx", 3.5, 4.5, None]]
     fields = ["frame_id", "u", "model", "x", "y", "z"]
-    d = rv.content_digest("detections", "EPSG:32756", fields, rows)
+    d = content_digest("detections", "EPSG:32756", fields, rows)
     assert len(d) == 64
-    assert rv.content_digest("detections", "EPSG:32756", fields, rows[::-1]) == d
-    assert rv.content_digest("detections", "EPSG:32756", fields, [[1.0] + rows[0][1:], rows[1]]) == d
+    assert content_digest("detections", "EPSG:32756", fields, rows[::-1]) == d
+    assert content_digest("detections", "EPSG:32756", fields, [[1.0] + rows[0][1:], rows[1]]) == d
     moved = [rows[0][:3] + [3.25 + 1e-9] + rows[0][4:], rows[1]]
-    assert rv.content_digest("detections", "EPSG:32756", fields, moved) != d
-    assert rv.content_digest("detections", "EPSG:32755", fields, rows) != d
-    assert rv.content_digest("detections", "EPSG:32756", fields, rows[:1]) != d
+    assert content_digest("detections", "EPSG:32756", fields, moved) != d
+    assert content_digest("detections", "EPSG:32755", fields, rows) != d
+    assert content_digest("detections", "EPSG:32756", fields, rows[:1]) != d
 
 
 def digest_row(unit, digests, params=None, provenance="direct", verdict="confirmed_real"):
@@ -249,16 +253,16 @@ def test_check_inputs_reports_changed_layers_parameters_and_orphans():
     rows = [digest_row("u1", now), digest_row("u2", {**now, "detections:A": "d0"}),
             digest_row("u3", {**now, "detections:A": "d0"}, {"eps_m": 0.15}),
             digest_row("x9", {"detections:Other": "o"})]             # another review in the same GeoPackage
-    check = rv.check_inputs(rows, now, {"eps_m": 0.1}, ["u1", "u2"])
+    check = check_inputs(rows, now, {"eps_m": 0.1}, ["u1", "u2"])
     assert check.n_rows == 3 and not check.ok
     assert check.changed == {"detections:A": 2} and check.missing == {} and check.new == []
     assert check.parameters == {"eps_m": ([0.15], 0.1)}
     assert check.orphaned == ["u3"]
     messages = " ".join(check.messages())
     assert "'A' changed since 2 of 3" in messages and "eps_m" in messages and "u3" in messages
-    same = rv.check_inputs(rows[:1], now, {"eps_m": 0.1}, ["u1"])
+    same = check_inputs(rows[:1], now, {"eps_m": 0.1}, ["u1"])
     assert same.ok and same.messages() == []
-    extra = rv.check_inputs(rows[:1], {**now, "detections:B": "b"}, {"eps_m": 0.1}, ["u1"])
+    extra = check_inputs(rows[:1], {**now, "detections:B": "b"}, {"eps_m": 0.1}, ["u1"])
     assert extra.ok and extra.new == ["detections:B"]
 
 
@@ -270,7 +274,7 @@ def test_check_inputs_reports_changed_layers_parameters_and_orphans():
     (10.0, 10.0, 400, (0, 0, 400, 300)),
 ])
 def test_crop_window_stays_inside_the_image(u, v, size, expected):
-    window = rv.crop_window(u, v, size, 480, 300)
+    window = crop_window(u, v, size, 480, 300)
     assert window == expected
     x0, y0, x1, y1 = window
     assert 0 <= x0 < x1 <= 480 and 0 <= y0 < y1 <= 300
@@ -281,10 +285,10 @@ def test_chips_show_the_unit_where_it_was_detected_and_geotags_where_they_projec
 
     g = geotags_at([S2, (S2[0] + 0.1, S2[1] + 0.05), (9.0, 9.0)])
     units = build(two_layers, g)
-    frames = rv.FrameIndex([poses()], [[str(tmp_path / f"{i}.png") for i in range(len(FRAMES_EN))]], SITE)
+    frames = FrameIndex([poses()], [[str(tmp_path / f"{i}.png") for i in range(len(FRAMES_EN))]], SITE)
     g_local = SITE.from_geodetic(g.lat, g.lon, np.full(len(g), SITE.h0))
     k = int(np.flatnonzero(units.matched)[0])
-    plans, n_frames = rv.plan_unit_chips(units, k, frames, g_local, [str(i) for i in g.ids], window_px=64,
+    plans, n_frames = plan_unit_chips(units, k, frames, g_local, [str(i) for i in g.ids], window_px=64,
                                          max_chips=2)
     assert n_frames == units.n_frames[k] > 2 and len(plans) == 2
     for plan in plans:
@@ -303,19 +307,19 @@ def test_chips_show_the_unit_where_it_was_detected_and_geotags_where_they_projec
     # Rendering: a grey frame, the circle in the first layer's colour around the detection.
     image = np.full((300, 480, 3), 128, np.uint8)
     cv2.imwrite(plans[0].image, image)
-    chip = rv.load_chips(plans[:1], 128, rv.ImageCache())[0]
+    chip = load_chips(plans[:1], 128, ImageCache())[0]
     assert chip.shape == (128, 128, 3)
     colours = {tuple(c) for c in chip.reshape(-1, 3).tolist()}
-    assert rv.GEOTAG_COLOUR in colours and (128, 128, 128) in colours
-    assert any(np.allclose(c, rv.LAYER_COLOURS[0], atol=40) for c in colours)
-    missing = rv.render_chip(None, plans[1], 96)
+    assert GEOTAG_COLOUR in colours and (128, 128, 128) in colours
+    assert any(np.allclose(c, LAYER_COLOURS[0], atol=40) for c in colours)
+    missing = render_chip(None, plans[1], 96)
     assert missing.shape == (96, 96, 3)
 
 
 def test_an_added_target_gets_chips_from_the_frames_that_see_it(tmp_path):
-    frames = rv.FrameIndex([poses()], [["" for _ in FRAMES_EN]], SITE)
+    frames = FrameIndex([poses()], [["" for _ in FRAMES_EN]], SITE)
     lat, lon, _ = ground_points([(0.9, 0.1)])
-    plans, n = rv.plan_point_chips("a", float(lat[0]), float(lon[0]), frames, window_px=64, max_chips=3)
+    plans, n = plan_point_chips("a", float(lat[0]), float(lon[0]), frames, window_px=64, max_chips=3)
     assert n == 4 and len(plans) == 3
     assert [p.frame_id for p in plans] == [102, 101, 103]   # most central first (0.1, 0.9, 1.1 m away)
     u, v, layer = plans[0].detections[0]

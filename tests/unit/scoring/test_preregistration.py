@@ -5,7 +5,7 @@ import json
 import pytest
 
 from birdseye.birdseye_qgis.core.scoring import preregistration as prereg
-from birdseye.birdseye_qgis.core.scoring.scoring import OperatingPoint
+from birdseye.birdseye_qgis.core.scoring.operating_point import OperatingPoint
 
 DIGEST_A = hashlib.sha256(b"checkpoint A").hexdigest()
 DIGEST_B = hashlib.sha256(b"checkpoint B").hexdigest()

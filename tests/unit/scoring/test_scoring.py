@@ -14,12 +14,14 @@ from birdseye.birdseye_qgis.core.errors import InputError
 from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame
 from birdseye.birdseye_qgis.core.geometry.poses import FramePoses
 from birdseye.birdseye_qgis.core.geometry.rotations import euler_zyx_to_rotmat, rotmat_to_quat
-from birdseye.birdseye_qgis.core.scoring.scoring import (CONVENTIONS, Detections, Flight, Geotags, OperatingPoint,
-                                                  PreCounts, ReviewedFlight, ScreenRun, SweepFlight, SweepGrid,
-                                                  Verdict, VerdictLog, combine, distinct_position_fraction,
-                                                  evaluate_flights, in_view, match_to_clusters, pareto_front,
-                                                  pixel_matches, pool, post_scores, score_flight,
-                                                  screen_checkpoints, sweep)
+from birdseye.birdseye_qgis.core.scoring.evaluation import Detections, Flight, Geotags, evaluate_flights
+from birdseye.birdseye_qgis.core.scoring.matching import in_view, match_to_clusters
+from birdseye.birdseye_qgis.core.scoring.operating_point import OperatingPoint
+from birdseye.birdseye_qgis.core.scoring.post_review import ReviewedFlight, post_scores
+from birdseye.birdseye_qgis.core.scoring.pre_review import PreCounts, pool, score_flight
+from birdseye.birdseye_qgis.core.scoring.screening import ScreenRun, distinct_position_fraction, pixel_matches, screen_checkpoints
+from birdseye.birdseye_qgis.core.scoring.sweep import SweepFlight, SweepGrid, pareto_front, sweep
+from birdseye.birdseye_qgis.core.scoring.verdicts import CONVENTIONS, Verdict, VerdictLog, combine
 
 SITE = LocalFrame(-27.55, 151.95, 400.0)
 NADIR = np.array([[0.0, 1.0, 0.0], [-1.0, 0.0, 0.0], [0.0, 0.0, 1.0]])

@@ -1,0 +1,180 @@
+"""Evaluate detections of one or more flights against geotags, from geodetic inputs."""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Sequence
+import numpy as np
+from ..detect.clustering import (Clustering,
+                         cluster_detections)
+from ..errors import Cancelled, InputError
+from ..geometry.geodesy import LocalFrame
+from ..geometry.poses import FramePoses
+from .matching import InView, in_view
+from .operating_point import OperatingPoint
+from .post_review import ReviewedFlight, post_scores
+from .pre_review import FlightScore, PreCounts, pool, score_flight
+from .verdicts import VerdictLog, units_of_clusters
+
+
+@dataclass
+class Detections:
+    """One detection layer: WGS84 positions (ellipsoidal heights, NaN allowed), frame ids, scores."""
+
+    lat: np.ndarray
+    lon: np.ndarray
+    height: np.ndarray
+    frame_id: np.ndarray
+    score: np.ndarray
+    name: str = "detections"
+    model: str = ""
+    model_digest: str = ""
+    threshold: float | None = None
+
+    def __post_init__(self):
+        for n in ("lat", "lon", "height", "score"):
+            setattr(self, n, np.asarray(getattr(self, n), dtype=float).reshape(-1))
+        self.frame_id = np.asarray(self.frame_id).reshape(-1)
+
+    def __len__(self) -> int:
+        return len(self.lat)
+
+    def local_xy(self, local: LocalFrame) -> np.ndarray:
+        h = np.where(np.isfinite(self.height), self.height, local.h0)
+        return local.from_geodetic(self.lat, self.lon, h)[:, :2] if len(self) else np.empty((0, 2))
+
+
+@dataclass
+class Flight:
+    """One flight to score: its detections and its processed frames (pose groups, one per camera)."""
+
+    detections: Detections
+    pose_groups: Sequence[FramePoses]
+    name: str = ""
+
+
+@dataclass
+class Geotags:
+    """Surveyed targets: ids and WGS84 positions (heights may be NaN: the ground model places them)."""
+
+    ids: np.ndarray
+    lat: np.ndarray
+    lon: np.ndarray
+    height: np.ndarray
+
+    def __post_init__(self):
+        self.ids = np.asarray(self.ids).reshape(-1)
+        for n in ("lat", "lon", "height"):
+            setattr(self, n, np.asarray(getattr(self, n), dtype=float).reshape(-1))
+
+    def __len__(self) -> int:
+        return len(self.lat)
+
+    def subset(self, index) -> "Geotags":
+        return Geotags(self.ids[index], self.lat[index], self.lon[index], self.height[index])
+
+
+@dataclass
+class FlightEvaluation:
+    name: str
+    clustering: Clustering
+    score: FlightScore
+    in_view: InView
+    n_detections: int
+    n_added_in_view: int = 0
+    cluster_units: list = field(default_factory=list)
+
+
+@dataclass
+class Evaluation:
+    """PRE (and POST when reviewed) scores of one or several flights, and the local frame used."""
+
+    op: OperatingPoint
+    local: LocalFrame
+    flights: list
+    pooled: PreCounts
+    post: dict | None = None
+    review_notes: list = field(default_factory=list)
+
+    def to_dict(self) -> dict:
+        """The JSON of evaluatedetections: pooled keys at the top, per-flight rows, the POST block."""
+        out = dict(self.pooled.to_dict())
+        out["parameters"] = self.op.to_dict()
+        out["pooling"] = "micro-average over flights (sums of counts, one division)"
+        out["flights"] = []
+        for i, f in enumerate(self.flights):
+            row = {"name": f.name, "n_detections": int(f.n_detections), "n_frames": int(f.in_view.n_frames),
+                   "n_frames_without_ground": int(f.in_view.n_frames_without_ground)}
+            row.update(f.score.counts.to_dict())
+            if self.post is not None:
+                row["post"] = {conv: p.flights[i].to_dict() for conv, p in self.post.items()}
+            out["flights"].append(row)
+        if self.post is not None:
+            out["post"] = {conv: p.pooled.to_dict() for conv, p in self.post.items()}
+            out["review_notes"] = list(self.review_notes)
+        return out
+
+
+def local_frame_for(pose_groups: Sequence[FramePoses], geotags: Geotags | None = None) -> LocalFrame:
+    """A local frame at the middle of every frame (and geotag) position, at the median ground height."""
+    pose_groups = list(pose_groups)
+    lat = np.concatenate([p.lat for p in pose_groups] +
+                         ([geotags.lat] if geotags is not None and len(geotags) else []))
+    lon = np.concatenate([p.lon for p in pose_groups] +
+                         ([geotags.lon] if geotags is not None and len(geotags) else []))
+    h = np.concatenate([p.ground_height for p in pose_groups] or [np.empty(0)])
+    if len(lat) == 0:
+        raise InputError("there are no frames to score against")
+    return LocalFrame.around(lat, lon, h[np.isfinite(h)] if np.isfinite(h).any() else None)
+
+
+def evaluate_flights(flights: Sequence[Flight], geotags: Geotags, op: OperatingPoint = OperatingPoint(),
+                     log: VerdictLog | None = None, local: LocalFrame | None = None,
+                     progress=None, is_canceled=None) -> Evaluation:
+    """Cluster and score every flight, pool them, and compute POST scores when a verdict log is given.
+
+    Detections below ``op.threshold`` (when set) are left out before clustering.
+    """
+    if not flights:
+        raise InputError("give at least one detection layer")
+    local = local or local_frame_for([p for f in flights for p in f.pose_groups], geotags)
+    geotag_local = local.from_geodetic(geotags.lat, geotags.lon,
+                                       np.where(np.isfinite(geotags.height), geotags.height, local.h0)) \
+        if len(geotags) else np.empty((0, 3))
+    unit_keys, unit_xy, added_local, notes = [], np.empty((0, 2)), np.empty((0, 3)), []
+    if log is not None:
+        unit_keys, ulat, ulon, unplaced = log.unit_positions()
+        if len(unit_keys):
+            unit_xy = local.from_geodetic(ulat, ulon, np.full(len(ulat), local.h0))[:, :2]
+        if unplaced:
+            notes.append(f"{len(unplaced)} reviewed unit(s) have no position (lat, lon) and could not be "
+                         f"attached to clusters, e.g. {', '.join(unplaced[:3])}")
+        added = log.added_targets()
+        if added:
+            added_local = local.from_geodetic([r.lat for r in added], [r.lon for r in added],
+                                              np.full(len(added), local.h0))
+    results = []
+    n = len(flights)
+    for i, flight in enumerate(flights):
+        if is_canceled is not None and is_canceled():
+            raise Cancelled()
+        det = flight.detections
+        keep = np.ones(len(det), dtype=bool) if op.threshold is None else det.score >= op.threshold
+        xy = det.local_xy(local)[keep]
+        clustering = cluster_detections(xy, det.frame_id[keep], det.score[keep], op.dedup_cm, op.eps_m,
+                                        op.min_samples)
+        view = in_view(flight.pose_groups, local, geotag_local, op.edge_buffer_px)
+        score = score_flight(clustering, geotag_local[:, :2], view.mask, op.eps_pred_m)
+        ev = FlightEvaluation(flight.name or det.name, clustering, score, view, int(keep.sum()))
+        if log is not None:
+            ev.cluster_units = units_of_clusters(clustering, unit_xy, unit_keys, op.eps_pred_m)
+            if len(added_local):
+                ev.n_added_in_view = int(in_view(flight.pose_groups, local, added_local, op.edge_buffer_px).mask.sum())
+        results.append(ev)
+        if progress is not None:
+            progress((i + 1) / n)
+    pooled = pool(r.score.counts for r in results)
+    post = None
+    if log is not None:
+        post = post_scores(log, [ReviewedFlight(r.score.counts, r.score.cluster_hit, r.cluster_units,
+                                                r.n_added_in_view) for r in results])
+    return Evaluation(op, local, results, pooled, post, notes)

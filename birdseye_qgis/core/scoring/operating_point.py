@@ -1,0 +1,50 @@
+"""The operating point a detector is scored at: threshold and clustering parameters."""
+from __future__ import annotations
+
+from dataclasses import dataclass, fields
+from typing import Mapping
+from ..detect.clustering import (DEFAULT_DEDUP_CM, DEFAULT_EPS_M, DEFAULT_MIN_SAMPLES)
+from ..errors import InputError
+
+DEFAULT_EPS_PRED_M = 0.20
+DEFAULT_EDGE_BUFFER_PX = 0.0
+
+
+@dataclass(frozen=True)
+class OperatingPoint:
+    """A full operating point: detection threshold and the clustering/scoring parameters."""
+
+    threshold: float | None = None
+    dedup_cm: float = DEFAULT_DEDUP_CM
+    eps_m: float = DEFAULT_EPS_M
+    min_samples: int = DEFAULT_MIN_SAMPLES
+    eps_pred_m: float = DEFAULT_EPS_PRED_M
+    edge_buffer_px: float = DEFAULT_EDGE_BUFFER_PX
+
+    def __post_init__(self):
+        for name in ("dedup_cm", "eps_m", "eps_pred_m"):
+            if not getattr(self, name) > 0:
+                raise InputError(f"must be larger than 0 (got {getattr(self, name)})", field=name.upper())
+        if int(self.min_samples) != self.min_samples or self.min_samples < 1:
+            raise InputError(f"must be a whole number ≥ 1 (got {self.min_samples})", field="MIN_SAMPLES")
+        if self.threshold is not None and not 0.0 <= self.threshold <= 1.0:
+            raise InputError(f"must be a probability in [0, 1] (got {self.threshold})", field="THRESHOLD")
+        if self.edge_buffer_px < 0:
+            raise InputError(f"must be ≥ 0 px (got {self.edge_buffer_px})", field="EDGE_BUFFER_PX")
+
+    def to_dict(self) -> dict:
+        return {"threshold": None if self.threshold is None else float(self.threshold),
+                "dedup_cm": float(self.dedup_cm), "eps_m": float(self.eps_m),
+                "min_samples": int(self.min_samples), "eps_pred_m": float(self.eps_pred_m),
+                "edge_buffer_px": float(self.edge_buffer_px)}
+
+    @classmethod
+    def from_dict(cls, d: Mapping, source: str = "operating point") -> "OperatingPoint":
+        unknown = set(d) - {f.name for f in fields(cls)}
+        if unknown:
+            raise InputError(f"has unknown key(s) {', '.join(sorted(unknown))}", source=source)
+        try:
+            return cls(**{k: (None if v is None else (int(v) if k == "min_samples" else float(v)))
+                          for k, v in d.items()})
+        except (TypeError, ValueError) as exc:
+            raise InputError(f"has a value that is not a number ({exc})", source=source) from exc

@@ -1,0 +1,155 @@
+"""HTML reports and figures of evaluations, sweeps and screenings."""
+from __future__ import annotations
+
+import math
+from typing import Iterable, Sequence
+import numpy as np
+from .evaluation import Evaluation
+from .screening import CheckpointScreen
+from .sweep import SweepResult
+
+
+def figure_data_uri(fig) -> str:
+    """A matplotlib figure as a base64 PNG data URI (for self-contained HTML reports)."""
+    import base64
+    import io
+
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png", dpi=110, bbox_inches="tight")
+    return "data:image/png;base64," + base64.b64encode(buf.getvalue()).decode("ascii")
+
+
+def new_figure(width_in: float, height_in: float):
+    """A matplotlib Figure drawn by Agg without pyplot: safe in QGIS's worker threads, whatever
+    backend the desktop uses."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=(width_in, height_in))
+    FigureCanvasAgg(fig)
+    return fig
+
+
+def html_table(header: Sequence[str], rows: Iterable[Sequence]) -> str:
+    import html
+
+    def cell(v):
+        if v is None:
+            return "–"
+        if isinstance(v, float):
+            return f"{v:.3f}"
+        return html.escape(str(v))
+
+    head = "".join(f"<th>{html.escape(h)}</th>" for h in header)
+    body = "".join("<tr>" + "".join(f"<td>{cell(v)}</td>" for v in row) + "</tr>" for row in rows)
+    return f"<table><tr>{head}</tr>{body}</table>"
+
+
+def html_page(title: str, body: str) -> str:
+    import html
+
+    style = ("body{font-family:sans-serif;max-width:60em;margin:1em auto;color:#222}"
+             "table{border-collapse:collapse;margin:.5em 0}td,th{border:1px solid #bbb;padding:.2em .5em;"
+             "text-align:right}th{background:#eee}td:first-child{text-align:left}"
+             ".note{color:#555;font-size:90%}img{max-width:100%}")
+    return (f"<!DOCTYPE html><html><head><meta charset='utf-8'><title>{html.escape(title)}</title>"
+            f"<style>{style}</style></head><body><h1>{html.escape(title)}</h1>{body}</body></html>")
+
+
+def evaluation_report_html(evaluation: Evaluation) -> str:
+    """The map-free HTML report of evaluatedetections: definitions, tables and plots."""
+    import html
+
+    d = evaluation.to_dict()
+    rows = [[f["name"], f["n_frames"], f["n_detections"], f["n_in_view"], f["n_recovered"], f["recall_pre"],
+             f["n_clusters"], f["n_hit_clusters"], f["gmcf_pre"]] for f in d["flights"]]
+    rows.append(["pooled (micro-average)", sum(f["n_frames"] for f in d["flights"]),
+                 sum(f["n_detections"] for f in d["flights"]), d["n_in_view"], d["n_recovered"],
+                 d["recall_pre"], d["n_clusters"], d["n_hit_clusters"], d["gmcf_pre"]])
+    body = ["<h2>Before review</h2>",
+            html_table(["flight", "frames", "detections", "geotags in view", "recovered", "recall_pre",
+                        "clusters", "hit clusters", "gmcf_pre"], rows),
+            "<p class='note'>recall_pre = recovered / in view. gmcf_pre = hit clusters / clusters: the "
+            "geotag-matched cluster fraction, a lower bound on precision, not precision (surveys are never "
+            "exhaustive). Flights pool by micro-averaging: counts are summed, then divided once.</p>"]
+    op = evaluation.op.to_dict()
+    body.append("<p class='note'>" + ", ".join(f"{k} = {v}" for k, v in op.items() if v is not None) + "</p>")
+    if evaluation.post is not None:
+        post_rows = [[conv, p["c"], p["a"], p["gmcf_post"], p["recall_post"]] for conv, p in d["post"].items()]
+        body += ["<h2>After review</h2>",
+                 html_table(["convention", "c (confirmed, not hit)", "a (added)", "gmcf_post", "recall_post"],
+                            post_rows),
+                 "<p class='note'>gmcf_post = (hit clusters + c) / clusters; recall_post ≥ (recovered + c) / "
+                 "(in view + c + a). Real targets nobody surveyed, found or added are in no term, so the "
+                 "recall figure is an upper bound on the recall over all real targets. The spread between "
+                 "the conventions is part of the result.</p>"]
+        for note in d["review_notes"]:
+            body.append(f"<p class='note'>{html.escape(note)}</p>")
+
+    fig = new_figure(10, 3.6)
+    axes = fig.subplots(1, 2)
+    names = [r[0] for r in rows]
+    x = np.arange(len(rows))
+    for off, key, label in ((-0.2, 5, "recall_pre"), (0.2, 8, "gmcf_pre")):
+        axes[0].bar(x + off, [np.nan if r[key] is None else r[key] for r in rows], 0.4, label=label)
+    axes[0].set_xticks(x, names, rotation=20, ha="right", fontsize=8)
+    axes[0].set_ylim(0, 1.05)
+    axes[0].legend(fontsize=8)
+    axes[0].set_title("Scores per flight and pooled", fontsize=10)
+    sizes_hit = np.concatenate([f.clustering.summary.n_detections[f.score.cluster_hit] for f in evaluation.flights])
+    sizes_miss = np.concatenate([f.clustering.summary.n_detections[~f.score.cluster_hit] for f in evaluation.flights])
+    top = max(2, int(max(sizes_hit.max(initial=1), sizes_miss.max(initial=1))))
+    bins = np.unique(np.geomspace(1, top + 1, 20).astype(int))
+    axes[1].hist([sizes_hit, sizes_miss], bins=bins, label=["hit clusters", "unmatched clusters"], stacked=True)
+    axes[1].set_xscale("log")
+    axes[1].set_xlabel("detections per cluster")
+    axes[1].set_ylabel("clusters")
+    axes[1].legend(fontsize=8)
+    axes[1].set_title("Cluster sizes", fontsize=10)
+    body.append(f"<img alt='scores and cluster sizes' src='{figure_data_uri(fig)}'>")
+    return html_page("BirdsEye — detection scores", "".join(body))
+
+
+def frontier_figure(points, title: str):
+    """Scatter of (gmcf_pre, recall_pre) with the Pareto front drawn through its points.
+
+    ``points``: iterable of (gmcf, recall, kind, label) with kind "front", "eligible" or "excluded".
+    """
+    fig = new_figure(6.4, 4.8)
+    ax = fig.subplots()
+    styles = {"excluded": dict(c="#bbbbbb", marker="x", s=14, label="not credible / unhealthy"),
+              "eligible": dict(c="#1f77b4", marker="o", s=14, label="credible / healthy"),
+              "front": dict(c="#d62728", marker="o", s=30, label="Pareto front")}
+    pts = [(g, r, k, lab) for g, r, k, lab in points if g is not None and r is not None
+           and math.isfinite(g) and math.isfinite(r)]
+    for kind, style in styles.items():
+        sel = [(g, r) for g, r, k, _ in pts if k == kind]
+        if sel:
+            ax.scatter(*zip(*sel), **style)
+    front = sorted((g, r) for g, r, k, _ in pts if k == "front")
+    if len(front) > 1:
+        ax.plot(*zip(*front), c="#d62728", lw=1)
+    for g, r, k, lab in pts:
+        if lab and k != "excluded":
+            ax.annotate(lab, (g, r), fontsize=7, xytext=(3, 3), textcoords="offset points")
+    ax.set_xlabel("gmcf_pre (a lower bound on precision)")
+    ax.set_ylabel("recall_pre")
+    ax.set_xlim(-0.02, 1.02)
+    ax.set_ylim(-0.02, 1.02)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8, loc="lower left")
+    ax.set_title(title, fontsize=10)
+    return fig
+
+
+def sweep_figure(result: SweepResult):
+    credible, front = result.credible.ravel(), result.pareto.ravel()
+    kinds = np.where(front, "front", np.where(credible, "eligible", "excluded"))
+    return frontier_figure(zip(result.gmcf_pre.ravel().tolist(), result.recall_pre.ravel().tolist(), kinds,
+                               [""] * len(kinds)), f"Operating points ({result.grid.size} configurations)")
+
+
+def screen_figure(screens: Sequence[CheckpointScreen]):
+    return frontier_figure(((s.counts.gmcf_pre, s.counts.recall_pre,
+                             "front" if s.frontier else ("eligible" if s.healthy else "excluded"), s.checkpoint)
+                            for s in screens), "Checkpoints at one threshold")
