@@ -21,6 +21,22 @@ class AddTargetTool(QgsMapToolEmitPoint):
         super().__init__(canvas)
         self.setCursor(QCursor(Qt.CrossCursor))
         self._marker: QgsVertexMarker | None = None
+        self._previous_tool = None
+
+    def take_over(self) -> None:
+        """Become the canvas's map tool, remembering the one the user had."""
+        if self.canvas().mapTool() is not self:
+            self._previous_tool = self.canvas().mapTool()
+            self.canvas().setMapTool(self)
+
+    def hand_back(self) -> None:
+        """Give the canvas back the map tool the user had before (or none)."""
+        if self.canvas().mapTool() is self:
+            if self._previous_tool is not None:
+                self.canvas().setMapTool(self._previous_tool)
+            else:
+                self.canvas().unsetMapTool(self)
+        self._previous_tool = None
 
     def canvasMoveEvent(self, event):  # noqa: N802 (QGIS API)
         """A cross follows the pointer, so the user sees where the target will go."""

@@ -44,7 +44,7 @@ class DockEntry(NamedTuple):
 
 # Later features append their dock here; an entry whose module does not exist yet is simply not shown.
 DOCKS: list[DockEntry] = [
-    DockEntry("birdseye_qgis.gui.review_dock", "ReviewDock", "Review clusters"),
+    DockEntry("birdseye_qgis.gui.review.dock", "ReviewDock", "Review clusters"),
     DockEntry("birdseye_qgis.gui.sensor_bound_dock", "SensorBoundDock", "Sensor-bound calculator"),
 ]
 

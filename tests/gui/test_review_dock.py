@@ -28,7 +28,8 @@ from birdseye.birdseye_qgis.core.geometry.ground import LevelPlaneGround
 from birdseye.birdseye_qgis.core.geometry.poses import FrameGeometry
 from birdseye.birdseye_qgis.core.geometry.projection import pixel_to_ground, project_in_view
 from birdseye.birdseye_qgis.core.sim.campaign import CampaignConfig, simulate_campaign
-from birdseye.birdseye_qgis.gui import review_dock as dock_module
+from birdseye.birdseye_qgis.gui.review import dock as dock_module
+from birdseye.birdseye_qgis.gui.review import widgets as widgets_module
 from birdseye.birdseye_qgis.qgis_io.review_store import VERDICT_TABLE, VerdictStore
 
 REPO_ROOT = Path(__file__).resolve().parents[2]
@@ -248,7 +249,7 @@ def test_a_whole_review_by_keyboard(campaign, clean_project, make_dock, qtbot, q
         # A reviewer looks at the chips before deciding; moving on must show the next chips at once.
         nxt = dock._neighbour(key, +1)
         if nxt is not None:
-            qtbot.waitUntil(lambda: nxt in dock._chips, timeout=10000)
+            qtbot.waitUntil(lambda: nxt in dock.chip_loader.chips, timeout=10000)
         qtbot.keyClick(dock.panel, KEYS[verdict])
         decided[key] = verdict
         if nxt is None:
@@ -336,15 +337,15 @@ def test_chips_show_the_frames_that_detected_the_unit(campaign, clean_project, m
     start(dock, layers)
     wait_chips(qtbot, dock)
     key = dock.current_key
-    plans, images, n_frames, error = dock._chips[key]
+    plans, images, n_frames, error = dock.chip_loader.chips[key]
     i = dock.units.index[key]
     assert error is None and n_frames == dock.units.n_frames[i] and len(plans) == min(4, n_frames)
-    assert len(dock.chips.pixmaps) == len(plans) and dock.chips.pixmaps[0].width() == dock_module.CHIP_DISPLAY_PX
+    assert len(dock.chips.pixmaps) == len(plans) and dock.chips.pixmaps[0].width() == widgets_module.CHIP_DISPLAY_PX
     frames_seen = {int(f) for f in dock.units.detection_frame[dock.units.detection_unit == i]}
     assert {int(p.frame_id) for p in plans} <= frames_seen
     # Cold (no prefetch): the figure to compare the prefetched latency with.
-    dock._chips.clear()
-    dock._image_cache = type(dock._image_cache)(24)
+    dock.chip_loader.chips.clear()
+    dock.chip_loader.image_cache = type(dock.chip_loader.image_cache)(24)
     t0 = time.perf_counter()
     dock.go_to(dock._neighbour(key, +1))
     wait_chips(qtbot, dock)
@@ -362,7 +363,7 @@ def test_filters_by_layer_and_verdict_and_the_map_follows(campaign, clean_projec
     i = units.index[dock.current_key]
     x, y = ProjectedCRS(UTM).from_geodetic(units.lat[i:i + 1], units.lon[i:i + 1])
     assert (canvas.center().x(), canvas.center().y()) == pytest.approx((x[0], y[0]), abs=1e-3)
-    assert canvas.scale() == pytest.approx(dock_module.DEFAULT_SCALE, rel=1e-3)
+    assert canvas.scale() == pytest.approx(widgets_module.DEFAULT_SCALE, rel=1e-3)
     dock.layer_filter.setCurrentIndex(dock.layer_filter.findData("model_b"))
     assert dock.visible == [k for k in dock.entries if "model_b" in units.layers_fired[units.index[k]]]
     assert dock.current_key in dock.visible

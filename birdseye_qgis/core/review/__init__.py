@@ -1,7 +1,7 @@
 """Review units, verdict actions, input digests and image chips for the adjudication dock (issue 9).
 
 Everything the review dock decides lives here, free of QGIS and Qt; ``review_store`` persists it and
-``gui/review_dock`` shows it. Scores are never computed here: the dock calls
+``gui/review`` shows it. Scores are never computed here: the dock calls
 :func:`.scoring.evaluate_flights`, exactly as ``birdseye:evaluatedetections`` does.
 
 Review units

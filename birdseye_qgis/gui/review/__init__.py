@@ -1,0 +1,1 @@
+"""The review dock (``dock.ReviewDock``) and its parts: table model, widgets, background jobs, map context."""
