@@ -51,7 +51,7 @@ SCRIPT = textwrap.dedent(f'''
     DIGESTS = {{"detections:model": "d" * 64, "frames:frames": "f" * 64, "geotags:geotags": "g" * 64}}
 
 
-    def build_units():
+    def scripted_units():
         """24 spots of 9 detections; spots come in pairs 0.18 m apart (separate units, one
         propagation group), pairs 2 m apart."""
         centres = [(2.0 * (k // 2), 0.18 * (k % 2)) for k in range(24)]
@@ -106,7 +106,7 @@ SCRIPT = textwrap.dedent(f'''
         current = [0]
         if hold:
             hold_commit(hold, current)
-        units = build_units()
+        units = scripted_units()
         session = ReviewSession(VerdictStore(path), units, "crash-bot", DIGESTS)
         k = max((r["action_id"] for r in session.ledger.rows), default=0)
         while k < limit:
@@ -197,7 +197,7 @@ def check_log(store, namespace, reported):
     assert actions == list(range(1, m + 1))
     assert not reported or reported[-1] <= m <= reported[-1] + 1
     # The log is the script replayed: every action whole, in order.
-    units = namespace["build_units"]()
+    units = namespace["scripted_units"]()
     ledger = Ledger()
     for k in range(1, m + 1):
         step = namespace["action"](k, ledger, units)
