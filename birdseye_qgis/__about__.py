@@ -33,5 +33,9 @@ VERSION = _metadata().get("version", "unknown")
 
 
 def tr(text: str) -> str:
-    """Translate ``text`` in the plugin's one context for strings outside a QObject's ``tr``."""
-    return QCoreApplication.translate(NAME, text)
+    """Translate ``text`` outside a class's own ``tr``.
+
+    pylupdate5 files calls of a module-level ``tr()`` under the context "@default" (i18n/*.ts), so they
+    are looked up there, or their translations would never be found.
+    """
+    return QCoreApplication.translate("@default", text)

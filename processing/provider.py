@@ -8,8 +8,9 @@ import pkgutil
 from qgis.core import QgsMessageLog, Qgis, QgsProcessingProvider
 from qgis.PyQt.QtGui import QIcon
 
+from ..birdseye_qgis.__about__ import ICON_PATH, LOG_TAG, NAME
 from .algorithms import base
-from .algorithms.base import BirdsEyeAlgorithm, ICON_PATH
+from .algorithms.base import BirdsEyeAlgorithm
 
 
 def algorithm_classes() -> list[type[BirdsEyeAlgorithm]]:
@@ -27,8 +28,8 @@ def algorithm_classes() -> list[type[BirdsEyeAlgorithm]]:
         try:
             module = importlib.import_module(f"{algorithms.__name__}.{info.name}")
         except Exception as exc:  # noqa: BLE001 — reported, never fatal for QGIS
-            QgsMessageLog.logMessage(f"BirdsEye: algorithm module '{info.name}' failed to load: {exc}",
-                                     "BirdsEye", Qgis.Critical)
+            QgsMessageLog.logMessage(f"{NAME}: algorithm module '{info.name}' failed to load: {exc}",
+                                     LOG_TAG, Qgis.Critical)
             continue
         for _, cls in inspect.getmembers(module, inspect.isclass):
             if issubclass(cls, base.BirdsEyeAlgorithm) and cls.ALG_ID and cls.__module__ == module.__name__:
@@ -41,7 +42,7 @@ class BirdsEyeProvider(QgsProcessingProvider):
         return "birdseye"
 
     def name(self) -> str:
-        return "BirdsEye"
+        return NAME
 
     def longName(self) -> str:  # noqa: N802
         return "BirdsEye — survey-driven aerial labels and detection"

@@ -8,7 +8,6 @@ from __future__ import annotations
 
 import importlib
 import importlib.util
-from pathlib import Path
 from typing import NamedTuple
 
 from qgis.core import Qgis, QgsApplication, QgsMessageLog
@@ -16,14 +15,12 @@ from qgis.PyQt.QtCore import QCoreApplication, QLocale, Qt, QTranslator
 from qgis.PyQt.QtGui import QIcon
 from qgis.PyQt.QtWidgets import QAction, QMenu, QToolBar
 
+from ..__about__ import I18N_DIR, ICON_PATH, LOG_TAG, PLUGIN_ROOT, tr
+
 
 # The name QGIS imported the plugin under ("birdseye" when installed from the zip), so dock modules
 # are found whatever the plugin folder is called.
 PLUGIN_PACKAGE = __name__.rsplit(".birdseye_qgis.", 1)[0]
-PLUGIN_ROOT = Path(__file__).resolve().parents[2]
-ICON_PATH = PLUGIN_ROOT / "resources" / "icons" / "birdseye.svg"
-I18N_DIR = PLUGIN_ROOT / "i18n"  # birdseye_<locale>.qm, compiled from the .ts files by `make translations`
-LOG_TAG = "BirdsEye"
 MENU_OBJECT_NAME = "mBirdsEyeMenu"
 TOOLBAR_OBJECT_NAME = "mBirdsEyeToolBar"
 TOOLBOX_FILTER = "birdseye"
@@ -47,12 +44,6 @@ DOCKS: list[DockEntry] = [
     DockEntry("birdseye_qgis.gui.review.dock", "ReviewDock", "Review clusters"),
     DockEntry("birdseye_qgis.gui.sensor_bound_dock", "SensorBoundDock", "Sensor-bound calculator"),
 ]
-
-
-def tr(text: str) -> str:
-    # pylupdate5 files calls of a module-level tr() under the context "@default" (i18n/*.ts): look
-    # them up there, or their translations would never be found.
-    return QCoreApplication.translate("@default", text)
 
 
 def log(message: str, level=Qgis.Info) -> None:

@@ -16,7 +16,7 @@ from pathlib import Path
 
 from qgis.core import Qgis, QgsProject
 from qgis.gui import QgsDockWidget, QgsDoubleSpinBox, QgsFileWidget, QgsSpinBox
-from qgis.PyQt.QtCore import QCoreApplication, Qt, QTimer
+from qgis.PyQt.QtCore import Qt, QTimer
 from qgis.PyQt.QtGui import QBrush, QColor, QFont, QGuiApplication
 from qgis.PyQt.QtWidgets import (
     QAbstractItemView,
@@ -38,6 +38,7 @@ from qgis.PyQt.QtWidgets import (
     QWidget,
 )
 
+from ..__about__ import LOG_TAG, tr
 from ..core.design.number_lists import format_number_list, parse_altitudes
 from ..qgis_io.project_settings import store_sigma_label_px
 from ..core.design.bound_report import (
@@ -67,10 +68,6 @@ AXIS_TIPS = {
     "pitch": "Pitch attitude error (about the wing axis), degrees.",
     "yaw": "Heading error (about the vertical / optical axis), degrees.",
 }
-
-
-def tr(text: str) -> str:
-    return QCoreApplication.translate("SensorBoundDock", text)
 
 
 def _spin(decimals: int, minimum: float, maximum: float, step: float, suffix: str) -> QgsDoubleSpinBox:
@@ -524,7 +521,7 @@ class SensorBoundDock(QgsDockWidget):
         store_sigma_label_px(QgsProject.instance(), sigma)
         if self.iface is not None:
             self.iface.messageBar().pushMessage(
-                "BirdsEye", tr("σ_label = {s:.2f} px stored in the project: Write labels will use it as its label "
+                LOG_TAG, tr("σ_label = {s:.2f} px stored in the project: Write labels will use it as its label "
                                "sigma (project variable @birdseye_sigma_label_px).").format(s=sigma),
                 Qgis.Success, 6)
         return sigma

@@ -16,11 +16,11 @@ from qgis.core import (QgsCoordinateReferenceSystem, QgsCoordinateTransform, Qgs
                        QgsWkbTypes)
 from qgis.PyQt.QtCore import QVariant
 
+from ..__about__ import STYLE_DIR
 from ..core.errors import InputError
 from ..core.field.frame_records import FRAME_FIELD_NAMES
 from ..core.geometry.geodesy import ProjectedCRS, utm_epsg
 
-STYLE_DIR = Path(__file__).resolve().parents[2] / "resources" / "styles"
 WGS84 = "EPSG:4326"
 
 _QVARIANT = {"int": QVariant.Int, "double": QVariant.Double, "string": QVariant.String}

@@ -1,17 +1,14 @@
 """Shared base of every BirdsEye Processing algorithm: naming, groups, help, errors, progress."""
 from __future__ import annotations
 
-from pathlib import Path
 
 from qgis.core import QgsProcessingAlgorithm, QgsProcessingException
 from qgis.PyQt.QtCore import QCoreApplication
 from qgis.PyQt.QtGui import QIcon
 
+from ...birdseye_qgis.__about__ import HELP_DIR, ICON_PATH
 from ...birdseye_qgis.core.errors import Cancelled, InputError
 
-PLUGIN_ROOT = Path(__file__).resolve().parents[2]
-HELP_DIR = PLUGIN_ROOT / "resources" / "help"
-ICON_PATH = PLUGIN_ROOT / "resources" / "icons" / "birdseye.svg"
 
 GROUPS = {
     "field": "1 · Field data",

@@ -23,36 +23,41 @@ class ClusterDetections(ClusteringParametersMixin, BirdsEyeAlgorithm):
     ALG_ID = "clusterdetections"
     DISPLAY_NAME = "Cluster detections"
     GROUP = "detect"
+    DETECTIONS = "DETECTIONS"
+    GEOTAGS = "GEOTAGS"
+    FRAMES = "FRAMES"
+    OUTPUT = "OUTPUT"
+    OUTPUT_POINTS = "OUTPUT_POINTS"
 
     def initAlgorithm(self, config=None):  # noqa: N802
         self.addParameter(QgsProcessingParameterFeatureSource(
-            "DETECTIONS", self.tr("Detections (from Detect targets)"), [QgsProcessing.TypeVectorPoint]))
+            self.DETECTIONS, self.tr("Detections (from Detect targets)"), [QgsProcessing.TypeVectorPoint]))
         self.add_clustering_parameters(with_prediction=False)
         self.addParameter(QgsProcessingParameterFeatureSource(
-            "GEOTAGS", self.tr("Geotags (optional: fills matched_geotag_ids and hit)"),
+            self.GEOTAGS, self.tr("Geotags (optional: fills matched_geotag_ids and hit)"),
             [QgsProcessing.TypeVectorPoint], optional=True))
         self.addParameter(QgsProcessingParameterFeatureSource(
-            "FRAMES", self.tr("Frames of the flight (optional: only in-view geotags can match)"),
+            self.FRAMES, self.tr("Frames of the flight (optional: only in-view geotags can match)"),
             [QgsProcessing.TypeVector], optional=True))
         self.add_matching_parameters()
         self.addParameter(QgsProcessingParameterFeatureSink(
-            "OUTPUT", self.tr("Clusters"), QgsProcessing.TypeVectorPolygon))
+            self.OUTPUT, self.tr("Clusters"), QgsProcessing.TypeVectorPolygon))
         self.addParameter(QgsProcessingParameterFeatureSink(
-            "OUTPUT_POINTS", self.tr("De-duplicated points"), QgsProcessing.TypeVectorPoint, optional=True,
+            self.OUTPUT_POINTS, self.tr("De-duplicated points"), QgsProcessing.TypeVectorPoint, optional=True,
             createByDefault=False))
         for name, text in (("CLUSTER_COUNT", "Clusters"), ("HIT_COUNT", "Hit clusters"),
                            ("NOISE_POINTS", "De-duplicated points left as noise")):
             self.addOutput(QgsProcessingOutputNumber(name, self.tr(text)))
 
     def processAlgorithm(self, parameters, context, feedback):  # noqa: N802
-        source = self.parameterAsSource(parameters, "DETECTIONS", context)
+        source = self.parameterAsSource(parameters, self.DETECTIONS, context)
         if source is None:
             raise QgsProcessingException(self.tr("DETECTIONS: the detection layer cannot be read."))
         det, dropped = self.run_core(read_detections, source, context)
         if dropped:
             feedback.pushWarning(f"{dropped} detection(s) without a position or score were left out")
-        geotag_source = self.parameterAsSource(parameters, "GEOTAGS", context)
-        frame_source = self.parameterAsSource(parameters, "FRAMES", context)
+        geotag_source = self.parameterAsSource(parameters, self.GEOTAGS, context)
+        frame_source = self.parameterAsSource(parameters, self.FRAMES, context)
         geotags = self.run_core(read_geotags, geotag_source, context) if geotag_source is not None else None
         groups = self.run_core(read_pose_groups, frame_source)[0] if frame_source is not None else []
         feedback.setProgress(30)
@@ -61,9 +66,9 @@ class ClusterDetections(ClusteringParametersMixin, BirdsEyeAlgorithm):
         local = self._local_frame(det, groups, geotags)
         xy = det.local_xy(local)
         clustering = self.run_core(cluster_detections, xy, det.frame_id, det.score,
-                                   self.parameterAsDouble(parameters, "DEDUP_CM", context),
-                                   self.parameterAsDouble(parameters, "EPS_M", context),
-                                   self.parameterAsInt(parameters, "MIN_SAMPLES", context))
+                                   self.parameterAsDouble(parameters, self.DEDUP_CM, context),
+                                   self.parameterAsDouble(parameters, self.EPS_M, context),
+                                   self.parameterAsInt(parameters, self.MIN_SAMPLES, context))
         feedback.setProgress(55)
         n = clustering.n_clusters
         matched = [""] * n
@@ -73,12 +78,12 @@ class ClusterDetections(ClusteringParametersMixin, BirdsEyeAlgorithm):
             g_local = local.from_geodetic(geotags.lat, geotags.lon, h)
             if groups:
                 visible = self.run_core(in_view, groups, local, g_local,
-                                        self.parameterAsDouble(parameters, "EDGE_BUFFER_PX", context)).mask
+                                        self.parameterAsDouble(parameters, self.EDGE_BUFFER_PX, context)).mask
             else:
                 feedback.pushWarning("No FRAMES given: every geotag is treated as in view.")
                 visible = np.ones(len(geotags), dtype=bool)
             score = score_flight(clustering, g_local[:, :2], visible,
-                                 self.parameterAsDouble(parameters, "EPS_PRED_M", context))
+                                 self.parameterAsDouble(parameters, self.EPS_PRED_M, context))
             hit = score.cluster_hit
             matched = [",".join(str(geotags.ids[i]) for i in g) for g in score.cluster_geotags]
             feedback.pushInfo(f"{score.counts.n_hit_clusters} of {n} clusters match an in-view geotag; "
@@ -87,10 +92,10 @@ class ClusterDetections(ClusteringParametersMixin, BirdsEyeAlgorithm):
         crs = source.sourceCrs()
         outputs = {"CLUSTER_COUNT": n, "HIT_COUNT": int(hit.sum()),
                    "NOISE_POINTS": int((clustering.dbscan.labels < 0).sum())}
-        outputs["OUTPUT"] = self._write_clusters(parameters, context, feedback, clustering, xy, matched, hit, local,
+        outputs[self.OUTPUT] = self._write_clusters(parameters, context, feedback, clustering, xy, matched, hit, local,
                                                  crs)
-        if parameters.get("OUTPUT_POINTS"):
-            outputs["OUTPUT_POINTS"] = self._write_points(parameters, context, feedback, clustering, det, local, crs)
+        if parameters.get(self.OUTPUT_POINTS):
+            outputs[self.OUTPUT_POINTS] = self._write_points(parameters, context, feedback, clustering, det, local, crs)
         feedback.pushInfo(f"{len(det)} detections → {len(clustering.points)} de-duplicated points → {n} clusters "
                           f"({outputs['NOISE_POINTS']} points are noise).")
         return outputs
@@ -104,7 +109,7 @@ class ClusterDetections(ClusteringParametersMixin, BirdsEyeAlgorithm):
 
     def _write_clusters(self, parameters, context, feedback, clustering, xy, matched, hit, local, crs):
         fields = layers.qgs_fields(CLUSTER_FIELDS)
-        sink, dest_id = self.parameterAsSink(parameters, "OUTPUT", context, fields, QgsWkbTypes.Polygon, crs)
+        sink, dest_id = self.parameterAsSink(parameters, self.OUTPUT, context, fields, QgsWkbTypes.Polygon, crs)
         if sink is None:
             raise QgsProcessingException(self.tr("OUTPUT: the cluster layer cannot be created."))
         n = clustering.n_clusters
@@ -126,7 +131,7 @@ class ClusterDetections(ClusteringParametersMixin, BirdsEyeAlgorithm):
 
     def _write_points(self, parameters, context, feedback, clustering, det, local, crs):
         fields = layers.qgs_fields(POINT_FIELDS)
-        sink, dest_id = self.parameterAsSink(parameters, "OUTPUT_POINTS", context, fields, QgsWkbTypes.Point, crs)
+        sink, dest_id = self.parameterAsSink(parameters, self.OUTPUT_POINTS, context, fields, QgsWkbTypes.Point, crs)
         if sink is None:
             raise QgsProcessingException(self.tr("OUTPUT_POINTS: the point layer cannot be created."))
         pts = clustering.points

@@ -7,6 +7,7 @@ from qgis.core import (QgsProcessing, QgsProcessingOutputNumber, QgsProcessingOu
                        QgsProcessingParameterFile, QgsProcessingParameterFolderDestination,
                        QgsProcessingParameterNumber, QgsWkbTypes)
 
+from ...birdseye_qgis.__about__ import BUNDLED_MODEL
 from ...birdseye_qgis.qgis_io import layers
 from ...birdseye_qgis.qgis_io.detections import DETECTION_FIELDS
 from ...birdseye_qgis.core.detect.detector import DetectRequest, HeatmapModel, detect_frames
@@ -14,54 +15,61 @@ from ...birdseye_qgis.core.errors import InputError
 from ...birdseye_qgis.core.field.frame_records import poses_from_records
 from ...birdseye_qgis.core.geometry.geodesy import LocalFrame, ProjectedCRS
 from ..parameters.dem import DemParametersMixin
-from .base import PLUGIN_ROOT, BirdsEyeAlgorithm
+from .base import BirdsEyeAlgorithm
 
-DEFAULT_MODEL = PLUGIN_ROOT / "models" / "birdseye_demo_heatmap.onnx"
+DEFAULT_MODEL = BUNDLED_MODEL
 
 class Detect(DemParametersMixin, BirdsEyeAlgorithm):
     ALG_ID = "detect"
     DISPLAY_NAME = "Detect targets (ONNX heatmap model)"
     GROUP = "detect"
+    FRAMES = "FRAMES"
+    MODEL = "MODEL"
+    THRESHOLD = "THRESHOLD"
+    EDGE_BUFFER_PX = "EDGE_BUFFER_PX"
+    OUTPUT = "OUTPUT"
+    OUTPUT_HEATMAPS = "OUTPUT_HEATMAPS"
+    MODEL_DIGEST = "MODEL_DIGEST"
 
     def initAlgorithm(self, config=None):  # noqa: N802
         self.addParameter(QgsProcessingParameterFeatureSource(
-            "FRAMES", self.tr("Frames (from Import flight log or Import DJI images)"),
+            self.FRAMES, self.tr("Frames (from Import flight log or Import DJI images)"),
             [QgsProcessing.TypeVectorPolygon, QgsProcessing.TypeVectorPoint]))
         self.addParameter(QgsProcessingParameterFile(
-            "MODEL", self.tr("ONNX heatmap model (empty: the bundled demo model)"),
+            self.MODEL, self.tr("ONNX heatmap model (empty: the bundled demo model)"),
             fileFilter="ONNX models (*.onnx)", defaultValue=str(DEFAULT_MODEL), optional=True))
         self.addParameter(QgsProcessingParameterNumber(
-            "THRESHOLD", self.tr("Probability threshold (empty: the model's default)"),
+            self.THRESHOLD, self.tr("Probability threshold (empty: the model's default)"),
             QgsProcessingParameterNumber.Double, optional=True, minValue=0.0, maxValue=1.0))
         self.addParameter(QgsProcessingParameterNumber(
-            "EDGE_BUFFER_PX", self.tr("Edge buffer (px): detections closer to the image border are dropped"),
+            self.EDGE_BUFFER_PX, self.tr("Edge buffer (px): detections closer to the image border are dropped"),
             QgsProcessingParameterNumber.Double, 0.0, minValue=0.0))
         self.add_dem_parameters()
         self.addParameter(QgsProcessingParameterFeatureSink(
-            "OUTPUT", self.tr("Detections"), QgsProcessing.TypeVectorPoint))
+            self.OUTPUT, self.tr("Detections"), QgsProcessing.TypeVectorPoint))
         self.addParameter(QgsProcessingParameterFolderDestination(
-            "OUTPUT_HEATMAPS", self.tr("Heatmap folder (one PNG per frame)"), optional=True,
+            self.OUTPUT_HEATMAPS, self.tr("Heatmap folder (one PNG per frame)"), optional=True,
             createByDefault=False))
         for name, text in (("DETECTION_COUNT", "Detections written"), ("FRAMES_PROCESSED", "Frames processed"),
                            ("FRAMES_SKIPPED", "Frames skipped"), ("THRESHOLD_USED", "Threshold used")):
             self.addOutput(QgsProcessingOutputNumber(name, self.tr(text)))
-        self.addOutput(QgsProcessingOutputString("MODEL_DIGEST", self.tr("SHA-256 of the model")))
+        self.addOutput(QgsProcessingOutputString(self.MODEL_DIGEST, self.tr("SHA-256 of the model")))
 
     def processAlgorithm(self, parameters, context, feedback):  # noqa: N802
-        source = self.parameterAsSource(parameters, "FRAMES", context)
+        source = self.parameterAsSource(parameters, self.FRAMES, context)
         if source is None:
-            raise self.user_error(InputError("no frame layer given", field="FRAMES"))
+            raise self.user_error(InputError("no frame layer given", field=self.FRAMES))
         self.dem = self.read_dem(parameters, context)
         self.report_dem(feedback, self.dem)
-        model_path = self.parameterAsFile(parameters, "MODEL", context) or str(DEFAULT_MODEL)
+        model_path = self.parameterAsFile(parameters, self.MODEL, context) or str(DEFAULT_MODEL)
         threshold = None
-        if parameters.get("THRESHOLD") not in (None, ""):
-            threshold = self.parameterAsDouble(parameters, "THRESHOLD", context)
+        if parameters.get(self.THRESHOLD) not in (None, ""):
+            threshold = self.parameterAsDouble(parameters, self.THRESHOLD, context)
         heat_dir = None
-        if parameters.get("OUTPUT_HEATMAPS") not in (None, ""):
-            heat_dir = self.parameterAsString(parameters, "OUTPUT_HEATMAPS", context) or None
+        if parameters.get(self.OUTPUT_HEATMAPS) not in (None, ""):
+            heat_dir = self.parameterAsString(parameters, self.OUTPUT_HEATMAPS, context) or None
         request = DetectRequest(threshold=threshold,
-                                edge_buffer_px=self.parameterAsDouble(parameters, "EDGE_BUFFER_PX", context),
+                                edge_buffer_px=self.parameterAsDouble(parameters, self.EDGE_BUFFER_PX, context),
                                 heatmap_dir=heat_dir)
 
         model = self.run_core(HeatmapModel, model_path, log=feedback.pushInfo)
@@ -70,24 +78,24 @@ class Detect(DemParametersMixin, BirdsEyeAlgorithm):
         feedback.pushInfo(f"Model {model.name} (sha256 {model.digest[:12]}…): {meta.resolution_cm:g} cm/px, "
                           f"tiles {meta.tile_size} px with {meta.overlap_px} px overlap, threshold {used:g}"
                           f"{' (the model default)' if threshold is None else ''}.")
-        records = self.run_core(layers.read_frame_layer, source, self.tr("FRAMES"))
-        groups = self.run_core(poses_from_records, records, source.sourceName() or "FRAMES")
+        records = self.run_core(layers.read_frame_layer, source, self.tr(self.FRAMES))
+        groups = self.run_core(poses_from_records, records, source.sourceName() or self.FRAMES)
         crs = source.sourceCrs()
         to_crs = ProjectedCRS(layers.pyproj_crs(crs))
 
         fields = layers.qgs_fields(DETECTION_FIELDS)
-        sink, dest_id = self.parameterAsSink(parameters, "OUTPUT", context, fields, QgsWkbTypes.PointZ, crs)
+        sink, dest_id = self.parameterAsSink(parameters, self.OUTPUT, context, fields, QgsWkbTypes.PointZ, crs)
         if sink is None:
-            raise self.user_error(InputError("the detection output cannot be created", field="OUTPUT"))
+            raise self.user_error(InputError("the detection output cannot be created", field=self.OUTPUT))
         counts = self.run_core(self._detect, model, groups, records, request, to_crs, sink, fields, feedback)
         layers.style_on_load(context, dest_id, "detections.qml")
         feedback.pushInfo(f"{counts['detections']} detections in {counts['processed']} frames "
                           f"({counts['detections'] / max(1, counts['processed']):.2f} per frame); "
                           f"{counts['edge']} dropped within {request.edge_buffer_px:g} px of the border, "
                           f"{counts['no_ground']} whose ray missed the ground; {counts['skipped']} frames skipped.")
-        return {"OUTPUT": dest_id, "OUTPUT_HEATMAPS": heat_dir, "DETECTION_COUNT": counts["detections"],
+        return {"OUTPUT": dest_id, self.OUTPUT_HEATMAPS: heat_dir, "DETECTION_COUNT": counts["detections"],
                 "FRAMES_PROCESSED": counts["processed"], "FRAMES_SKIPPED": counts["skipped"],
-                "THRESHOLD_USED": used, "MODEL_DIGEST": model.digest}
+                "THRESHOLD_USED": used, self.MODEL_DIGEST: model.digest}
 
     def _detect(self, model, groups, records, request, to_crs, sink, fields, feedback) -> dict:
         """Stream every camera group's frames through the detector into the sink."""

@@ -45,25 +45,32 @@ class EvaluateDetections(ClusteringParametersMixin, BirdsEyeAlgorithm):
     ALG_ID = "evaluatedetections"
     DISPLAY_NAME = "Evaluate detections (recall, GMCF)"
     GROUP = "detect"
+    DETECTIONS = "DETECTIONS"
+    GEOTAGS = "GEOTAGS"
+    FRAMES = "FRAMES"
+    REVIEW = "REVIEW"
+    PREREGISTRATION = "PREREGISTRATION"
+    OUTPUT_JSON = "OUTPUT_JSON"
+    OUTPUT_REPORT = "OUTPUT_REPORT"
 
     def initAlgorithm(self, config=None):  # noqa: N802
         self.addParameter(QgsProcessingParameterMultipleLayers(
-            "DETECTIONS", self.tr("Detection layers (one per flight)"), QgsProcessing.TypeVectorPoint))
+            self.DETECTIONS, self.tr("Detection layers (one per flight)"), QgsProcessing.TypeVectorPoint))
         self.addParameter(QgsProcessingParameterFeatureSource(
-            "GEOTAGS", self.tr("Geotags"), [QgsProcessing.TypeVectorPoint]))
+            self.GEOTAGS, self.tr("Geotags"), [QgsProcessing.TypeVectorPoint]))
         self.addParameter(QgsProcessingParameterMultipleLayers(
-            "FRAMES", self.tr("Frame layers (one per flight, same order)"), QgsProcessing.TypeVector))
+            self.FRAMES, self.tr("Frame layers (one per flight, same order)"), QgsProcessing.TypeVector))
         self.add_clustering_parameters()
         self.addParameter(QgsProcessingParameterVectorLayer(
-            "REVIEW", self.tr("Review verdicts (optional: adds the POST scores)"), [QgsProcessing.TypeVector],
+            self.REVIEW, self.tr("Review verdicts (optional: adds the POST scores)"), [QgsProcessing.TypeVector],
             optional=True))
         self.addParameter(QgsProcessingParameterFile(
-            "PREREGISTRATION", self.tr("Sealed selection rule (optional: verified, its operating point is used)"),
+            self.PREREGISTRATION, self.tr("Sealed selection rule (optional: verified, its operating point is used)"),
             optional=True, fileFilter="Preregistration (*.json)"))
         self.addParameter(QgsProcessingParameterFileDestination(
-            "OUTPUT_JSON", self.tr("Scores (JSON)"), "JSON (*.json)"))
+            self.OUTPUT_JSON, self.tr("Scores (JSON)"), "JSON (*.json)"))
         self.addParameter(QgsProcessingParameterFileDestination(
-            "OUTPUT_REPORT", self.tr("Report (HTML)"), "HTML (*.html)", optional=True, createByDefault=True))
+            self.OUTPUT_REPORT, self.tr("Report (HTML)"), "HTML (*.html)", optional=True, createByDefault=True))
         for name, text in (("N_IN_VIEW", "Geotags in view"), ("N_RECOVERED", "Geotags recovered"),
                            ("RECALL_PRE", "recall_pre"), ("N_CLUSTERS", "Clusters"),
                            ("N_HIT_CLUSTERS", "Hit clusters"), ("GMCF_PRE", "gmcf_pre")):
@@ -71,23 +78,19 @@ class EvaluateDetections(ClusteringParametersMixin, BirdsEyeAlgorithm):
 
     def processAlgorithm(self, parameters, context, feedback):  # noqa: N802
         flights = self.read_flights(parameters, context, feedback)
-        geotag_source = self.parameterAsSource(parameters, "GEOTAGS", context)
+        geotag_source = self.parameterAsSource(parameters, self.GEOTAGS, context)
         if geotag_source is None:
             raise QgsProcessingException(self.tr("GEOTAGS: the geotag layer cannot be read."))
         geotags = self.run_core(read_geotags, geotag_source, context)
         if len(geotags) == 0:
             raise QgsProcessingException(self.tr("GEOTAGS: the layer holds no point with a position."))
-        rule_path = self.parameterAsFile(parameters, "PREREGISTRATION", context)
+        rule_path = self.parameterAsFile(parameters, self.PREREGISTRATION, context)
         rule = None
         if rule_path:
             op, rule = self.run_core(operating_point_from_rule, rule_path, flights, feedback)
         else:
-            op = self.run_core(OperatingPoint, None, self.parameterAsDouble(parameters, "DEDUP_CM", context),
-                               self.parameterAsDouble(parameters, "EPS_M", context),
-                               self.parameterAsInt(parameters, "MIN_SAMPLES", context),
-                               self.parameterAsDouble(parameters, "EPS_PRED_M", context),
-                               self.parameterAsDouble(parameters, "EDGE_BUFFER_PX", context))
-        review = self.parameterAsVectorLayer(parameters, "REVIEW", context)
+            op = self.read_operating_point(parameters, context)
+        review = self.parameterAsVectorLayer(parameters, self.REVIEW, context)
         log = self.run_core(read_verdicts, review, context) if review is not None else None
         feedback.setProgress(20)
         progress, is_canceled = self.progress_callbacks(feedback, 20.0, 90.0)
@@ -101,19 +104,19 @@ class EvaluateDetections(ClusteringParametersMixin, BirdsEyeAlgorithm):
             if f.in_view.n_frames_without_ground:
                 feedback.pushWarning(f"{f.name}: {f.in_view.n_frames_without_ground} frame(s) without a ground "
                                      "height were not counted as processed")
-        out_json = self.parameterAsFileOutput(parameters, "OUTPUT_JSON", context)
+        out_json = self.parameterAsFileOutput(parameters, self.OUTPUT_JSON, context)
         try:
             Path(out_json).write_text(json.dumps(result, indent=2, ensure_ascii=False) + "\n", encoding="utf-8")
         except OSError as exc:
             raise QgsProcessingException(f"OUTPUT_JSON: cannot write {out_json} ({exc})") from exc
         outputs = {"OUTPUT_JSON": out_json}
-        out_report = self.parameterAsFileOutput(parameters, "OUTPUT_REPORT", context)
+        out_report = self.parameterAsFileOutput(parameters, self.OUTPUT_REPORT, context)
         if out_report:
             try:
                 Path(out_report).write_text(evaluation_report_html(evaluation), encoding="utf-8")
             except OSError as exc:
                 raise QgsProcessingException(f"OUTPUT_REPORT: cannot write {out_report} ({exc})") from exc
-            outputs["OUTPUT_REPORT"] = out_report
+            outputs[self.OUTPUT_REPORT] = out_report
         p = evaluation.pooled
         feedback.pushInfo(self._summary(result))
         outputs.update({"N_IN_VIEW": p.n_in_view, "N_RECOVERED": p.n_recovered, "RECALL_PRE": p.recall_pre,

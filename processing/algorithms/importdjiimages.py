@@ -15,25 +15,31 @@ class ImportDjiImages(DemParametersMixin, BirdsEyeAlgorithm):
     ALG_ID = "importdjiimages"
     DISPLAY_NAME = "Import DJI images"
     GROUP = "field"
+    IMAGES = "IMAGES"
+    CALIBRATION = "CALIBRATION"
+    OUTPUT_CRS = "OUTPUT_CRS"
+    OUTPUT = "OUTPUT"
+    FRAME_COUNT = "FRAME_COUNT"
+    UNPLACED_COUNT = "UNPLACED_COUNT"
 
     def initAlgorithm(self, config=None):  # noqa: N802
         self.addParameter(QgsProcessingParameterFile(
-            "IMAGES", self.tr("Folder of DJI images (JPEG)"), behavior=QgsProcessingParameterFile.Folder))
+            self.IMAGES, self.tr("Folder of DJI images (JPEG)"), behavior=QgsProcessingParameterFile.Folder))
         self.addParameter(QgsProcessingParameterFile(
-            "CALIBRATION", self.tr("Camera calibration (optional; Kalibr or OpenCV YAML)"), optional=True,
+            self.CALIBRATION, self.tr("Camera calibration (optional; Kalibr or OpenCV YAML)"), optional=True,
             fileFilter="Calibration (*.yaml *.yml);;All files (*)"))
         self.addParameter(QgsProcessingParameterCrs(
-            "OUTPUT_CRS", self.tr("Output CRS (empty: UTM zone of the site)"), optional=True))
+            self.OUTPUT_CRS, self.tr("Output CRS (empty: UTM zone of the site)"), optional=True))
         self.add_dem_parameters()
         self.addParameter(QgsProcessingParameterFeatureSink(
-            "OUTPUT", self.tr("DJI frames"), QgsProcessing.TypeVectorPolygon))
-        self.addOutput(QgsProcessingOutputNumber("FRAME_COUNT", self.tr("Frames written")))
-        self.addOutput(QgsProcessingOutputNumber("UNPLACED_COUNT", self.tr("Images that cannot be placed")))
+            self.OUTPUT, self.tr("DJI frames"), QgsProcessing.TypeVectorPolygon))
+        self.addOutput(QgsProcessingOutputNumber(self.FRAME_COUNT, self.tr("Frames written")))
+        self.addOutput(QgsProcessingOutputNumber(self.UNPLACED_COUNT, self.tr("Images that cannot be placed")))
 
     def processAlgorithm(self, parameters, context, feedback):  # noqa: N802
-        folder = self.parameterAsFile(parameters, "IMAGES", context)
-        calibration_path = self.parameterAsFile(parameters, "CALIBRATION", context)
-        chosen = self.run_core(layers.chosen_projected_crs, self.parameterAsCrs(parameters, "OUTPUT_CRS", context))
+        folder = self.parameterAsFile(parameters, self.IMAGES, context)
+        calibration_path = self.parameterAsFile(parameters, self.CALIBRATION, context)
+        chosen = self.run_core(layers.chosen_projected_crs, self.parameterAsCrs(parameters, self.OUTPUT_CRS, context))
         calibration = self.run_core(load_calibration, calibration_path) if calibration_path else None
         dem = self.read_dem(parameters, context)
         self.report_dem(feedback, dem)
@@ -49,5 +55,5 @@ class ImportDjiImages(DemParametersMixin, BirdsEyeAlgorithm):
         _, crs = self.run_core(layers.output_crs, chosen, result.frames.lat, result.frames.lon)
         feedback.pushInfo(f"Output CRS: {crs.authid() or crs.description()}")
         outputs = self.run_core(layers.write_frames, self, parameters, context, feedback, result, crs)
-        outputs["UNPLACED_COUNT"] = len(result.report.unplaced)
+        outputs[self.UNPLACED_COUNT] = len(result.report.unplaced)
         return outputs

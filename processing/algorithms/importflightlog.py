@@ -16,47 +16,57 @@ class ImportFlightLog(DemParametersMixin, BirdsEyeAlgorithm):
     ALG_ID = "importflightlog"
     DISPLAY_NAME = "Import flight log"
     GROUP = "field"
+    POSE_LOG = "POSE_LOG"
+    IMAGES = "IMAGES"
+    CALIBRATION = "CALIBRATION"
+    FPS = "FPS"
+    RADALT_SNR_MIN = "RADALT_SNR_MIN"
+    RTK_FILTER = "RTK_FILTER"
+    UTM_CRS = "UTM_CRS"
+    OUTPUT_CRS = "OUTPUT_CRS"
+    OUTPUT = "OUTPUT"
+    OUTPUT_TRACK = "OUTPUT_TRACK"
 
     RTK_FILTERS = ["All frames (float and no-RTK frames flagged)", "RTK fixed frames only"]
 
     def initAlgorithm(self, config=None):  # noqa: N802
         self.addParameter(QgsProcessingParameterFile(
-            "POSE_LOG", self.tr("Pose log (BirdsEye CSV or flight_data.db)"),
+            self.POSE_LOG, self.tr("Pose log (BirdsEye CSV or flight_data.db)"),
             fileFilter="Pose logs (*.csv *.txt *.db *.sqlite);;All files (*)"))
         self.addParameter(QgsProcessingParameterFile(
-            "IMAGES", self.tr("Image folder (images.csv or <sec>.<nsec>.png|jpg files)"),
+            self.IMAGES, self.tr("Image folder (images.csv or <sec>.<nsec>.png|jpg files)"),
             behavior=QgsProcessingParameterFile.Folder, optional=True))
         self.addParameter(QgsProcessingParameterFile(
-            "CALIBRATION", self.tr("Camera calibration (Kalibr camchain or OpenCV YAML)"),
+            self.CALIBRATION, self.tr("Camera calibration (Kalibr camchain or OpenCV YAML)"),
             fileFilter="Calibration (*.yaml *.yml);;All files (*)"))
-        fps = QgsProcessingParameterNumber("FPS", self.tr("Camera frame rate (frames/s)"),
+        fps = QgsProcessingParameterNumber(self.FPS, self.tr("Camera frame rate (frames/s)"),
                                            QgsProcessingParameterNumber.Double, 5.0, minValue=0.01)
         self.addParameter(fps)
         self.addParameter(QgsProcessingParameterNumber(
-            "RADALT_SNR_MIN", self.tr("Minimum altimeter SNR (dB)"), QgsProcessingParameterNumber.Double, 13.0))
+            self.RADALT_SNR_MIN, self.tr("Minimum altimeter SNR (dB)"), QgsProcessingParameterNumber.Double, 13.0))
         self.addParameter(QgsProcessingParameterEnum(
-            "RTK_FILTER", self.tr("RTK filter"), options=self.RTK_FILTERS, defaultValue=0))
+            self.RTK_FILTER, self.tr("RTK filter"), options=self.RTK_FILTERS, defaultValue=0))
         self.addParameter(QgsProcessingParameterCrs(
-            "UTM_CRS", self.tr("UTM zone of flight_data.db x, y (only for flight_data.db)"), optional=True))
+            self.UTM_CRS, self.tr("UTM zone of flight_data.db x, y (only for flight_data.db)"), optional=True))
         self.addParameter(QgsProcessingParameterCrs(
-            "OUTPUT_CRS", self.tr("Output CRS (empty: UTM zone of the site)"), optional=True))
+            self.OUTPUT_CRS, self.tr("Output CRS (empty: UTM zone of the site)"), optional=True))
         self.add_dem_parameters()
         self.addParameter(QgsProcessingParameterFeatureSink(
-            "OUTPUT", self.tr("Frames"), QgsProcessing.TypeVectorPolygon))
+            self.OUTPUT, self.tr("Frames"), QgsProcessing.TypeVectorPolygon))
         self.addParameter(QgsProcessingParameterFeatureSink(
-            "OUTPUT_TRACK", self.tr("Flight line"), QgsProcessing.TypeVectorLine, optional=True,
+            self.OUTPUT_TRACK, self.tr("Flight line"), QgsProcessing.TypeVectorLine, optional=True,
             createByDefault=True))
         for name, text in (("FRAME_COUNT", "Frames written"), ("UNMATCHED_STROBES", "Strobes without image"),
                            ("UNMATCHED_IMAGES", "Images without strobe"), ("BAD_ROWS", "Bad rows left out")):
             self.addOutput(QgsProcessingOutputNumber(name, self.tr(text)))
 
     def processAlgorithm(self, parameters, context, feedback):  # noqa: N802
-        pose_log = self.parameterAsFile(parameters, "POSE_LOG", context)
-        images = self.parameterAsFile(parameters, "IMAGES", context) or None
-        calibration = self.parameterAsFile(parameters, "CALIBRATION", context)
-        utm = self.parameterAsCrs(parameters, "UTM_CRS", context)
-        chosen = self.run_core(layers.chosen_projected_crs, self.parameterAsCrs(parameters, "OUTPUT_CRS", context))
-        utm_crs = self.run_core(layers.chosen_projected_crs, utm, "UTM_CRS")
+        pose_log = self.parameterAsFile(parameters, self.POSE_LOG, context)
+        images = self.parameterAsFile(parameters, self.IMAGES, context) or None
+        calibration = self.parameterAsFile(parameters, self.CALIBRATION, context)
+        utm = self.parameterAsCrs(parameters, self.UTM_CRS, context)
+        chosen = self.run_core(layers.chosen_projected_crs, self.parameterAsCrs(parameters, self.OUTPUT_CRS, context))
+        utm_crs = self.run_core(layers.chosen_projected_crs, utm, self.UTM_CRS)
         camera = self.run_core(load_calibration, calibration)
         feedback.pushInfo(f"Camera: {camera.width}×{camera.height} px, fx {camera.fx:.1f}, fy {camera.fy:.1f} "
                           f"({camera.source})")
@@ -65,17 +75,17 @@ class ImportFlightLog(DemParametersMixin, BirdsEyeAlgorithm):
         progress, is_canceled = self.progress_callbacks(feedback, 0.0, 80.0)
         result = self.run_core(
             import_flight_log, pose_log, images, camera, ground=self.dem_ground(dem),
-            fps=self.parameterAsDouble(parameters, "FPS", context),
-            radalt_snr_min=self.parameterAsDouble(parameters, "RADALT_SNR_MIN", context),
-            fixed_only=self.parameterAsEnum(parameters, "RTK_FILTER", context) == 1,
+            fps=self.parameterAsDouble(parameters, self.FPS, context),
+            radalt_snr_min=self.parameterAsDouble(parameters, self.RADALT_SNR_MIN, context),
+            fixed_only=self.parameterAsEnum(parameters, self.RTK_FILTER, context) == 1,
             utm_crs=None if utm_crs is None else utm_crs.crs, crs=chosen,
-            with_track=parameters.get("OUTPUT_TRACK") is not None,
+            with_track=parameters.get(self.OUTPUT_TRACK) is not None,
             progress=progress, is_canceled=is_canceled)
         layers.report_to_feedback(feedback, result.report)
         _, crs = self.run_core(layers.output_crs, chosen, result.frames.lat, result.frames.lon)
         feedback.pushInfo(f"Output CRS: {crs.authid() or crs.description()}")
         outputs = self.run_core(layers.write_frames, self, parameters, context, feedback, result, crs,
-                                "OUTPUT", "OUTPUT_TRACK")
+                                self.OUTPUT, self.OUTPUT_TRACK)
         counts = result.report.counts
         outputs.update(UNMATCHED_STROBES=counts.get("unmatched_strobes", 0),
                        UNMATCHED_IMAGES=counts.get("unmatched_images", 0), BAD_ROWS=counts.get("bad_rows", 0))

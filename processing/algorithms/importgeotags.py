@@ -16,6 +16,13 @@ class ImportGeotags(BirdsEyeAlgorithm):
     ALG_ID = "importgeotags"
     DISPLAY_NAME = "Import geotags"
     GROUP = "field"
+    INPUT = "INPUT"
+    INPUT_LAYER = "INPUT_LAYER"
+    FORMAT = "FORMAT"
+    FIX_FILTER = "FIX_FILTER"
+    POLE_HEIGHT_M = "POLE_HEIGHT_M"
+    OUTPUT_CRS = "OUTPUT_CRS"
+    OUTPUT = "OUTPUT"
 
     FORMAT_NAMES = ["Automatic (from the content)", "BirdsEye rover CSV (no header)", "CSV with a header",
                     "NMEA GGA log"]
@@ -29,39 +36,39 @@ class ImportGeotags(BirdsEyeAlgorithm):
 
     def initAlgorithm(self, config=None):  # noqa: N802
         self.addParameter(QgsProcessingParameterFile(
-            "INPUT", self.tr("Geotag file (rover CSV, CSV with header, NMEA)"), optional=True,
+            self.INPUT, self.tr("Geotag file (rover CSV, CSV with header, NMEA)"), optional=True,
             fileFilter="Geotags (*.csv *.txt *.nmea *.log *.gga);;All files (*)"))
         self.addParameter(QgsProcessingParameterFeatureSource(
-            "INPUT_LAYER", self.tr("…or a point layer"), [QgsProcessing.TypeVectorPoint], optional=True))
+            self.INPUT_LAYER, self.tr("…or a point layer"), [QgsProcessing.TypeVectorPoint], optional=True))
         self.addParameter(QgsProcessingParameterEnum(
-            "FORMAT", self.tr("File format"), options=self.FORMAT_NAMES, defaultValue=0))
+            self.FORMAT, self.tr("File format"), options=self.FORMAT_NAMES, defaultValue=0))
         for name, _, text in self.MAPPING:
             self.addParameter(QgsProcessingParameterString(name, self.tr(text), optional=True))
         self.addParameter(QgsProcessingParameterEnum(
-            "FIX_FILTER", self.tr("Fix filter"), options=self.FIX_FILTERS, defaultValue=0))
+            self.FIX_FILTER, self.tr("Fix filter"), options=self.FIX_FILTERS, defaultValue=0))
         self.addParameter(QgsProcessingParameterNumber(
-            "POLE_HEIGHT_M", self.tr("Antenna pole height (m), subtracted from heights"),
+            self.POLE_HEIGHT_M, self.tr("Antenna pole height (m), subtracted from heights"),
             QgsProcessingParameterNumber.Double, 0.0, minValue=0.0, maxValue=10.0))
         self.addParameter(QgsProcessingParameterCrs(
-            "OUTPUT_CRS", self.tr("Output CRS (empty: UTM zone of the site)"), optional=True))
+            self.OUTPUT_CRS, self.tr("Output CRS (empty: UTM zone of the site)"), optional=True))
         self.addParameter(QgsProcessingParameterFeatureSink(
-            "OUTPUT", self.tr("Geotags"), QgsProcessing.TypeVectorPoint))
+            self.OUTPUT, self.tr("Geotags"), QgsProcessing.TypeVectorPoint))
         for name, text in (("GEOTAG_COUNT", "Geotags written"), ("BAD_ROWS", "Bad rows left out"),
                            ("NOT_FIXED_DROPPED", "Geotags dropped by the fix filter"),
                            ("DUPLICATES", "Geotags flagged duplicate_2cm")):
             self.addOutput(QgsProcessingOutputNumber(name, self.tr(text)))
 
     def processAlgorithm(self, parameters, context, feedback):  # noqa: N802
-        path = self.parameterAsFile(parameters, "INPUT", context)
-        source = self.parameterAsSource(parameters, "INPUT_LAYER", context)
+        path = self.parameterAsFile(parameters, self.INPUT, context)
+        source = self.parameterAsSource(parameters, self.INPUT_LAYER, context)
         if bool(path) == (source is not None):
             raise QgsProcessingException(self.tr(
                 "Give either a geotag file (INPUT) or a point layer (INPUT_LAYER), not both and not neither."))
         mapping = {key: (self.parameterAsString(parameters, name, context) or "").strip() or None
                    for name, key, _ in self.MAPPING}
-        chosen = self.run_core(layers.chosen_projected_crs, self.parameterAsCrs(parameters, "OUTPUT_CRS", context))
+        chosen = self.run_core(layers.chosen_projected_crs, self.parameterAsCrs(parameters, self.OUTPUT_CRS, context))
         if path:
-            fmt = FORMATS[self.parameterAsEnum(parameters, "FORMAT", context)]
+            fmt = FORMATS[self.parameterAsEnum(parameters, self.FORMAT, context)]
             tags = self.run_core(read_geotags, path, fmt, ColumnMapping(**mapping))
         else:
             tags = self.run_core(self._from_layer, source, context, mapping)
@@ -73,8 +80,8 @@ class ImportGeotags(BirdsEyeAlgorithm):
             examples = "; ".join(str(e) for e in tags.problems[:5])
             feedback.reportError(f"{len(tags.problems)} bad row(s) left out; first: {examples}", False)
         prepared = self.run_core(prepare_geotags, tags,
-                                 fixed_only=self.parameterAsEnum(parameters, "FIX_FILTER", context) == 1,
-                                 pole_height_m=self.parameterAsDouble(parameters, "POLE_HEIGHT_M", context))
+                                 fixed_only=self.parameterAsEnum(parameters, self.FIX_FILTER, context) == 1,
+                                 pole_height_m=self.parameterAsDouble(parameters, self.POLE_HEIGHT_M, context))
         out = prepared.geotags
         feedback.pushInfo("Fix quality of the input: " + ", ".join(f"{k}: {v}" for k, v in
                                                                     prepared.counts_by_fix.items()))
@@ -90,7 +97,7 @@ class ImportGeotags(BirdsEyeAlgorithm):
         feedback.pushInfo(f"Output CRS: {crs.authid() or crs.description()}")
         x, y = crs_core.from_geodetic(out.lat, out.lon)
         fields = layers.qgs_fields(GEOTAG_FIELDS)
-        sink, dest_id = self.parameterAsSink(parameters, "OUTPUT", context, fields, QgsWkbTypes.PointZ, crs)
+        sink, dest_id = self.parameterAsSink(parameters, self.OUTPUT, context, fields, QgsWkbTypes.PointZ, crs)
         z = [h if h == h else 0.0 for h in out.h_ellipsoid.tolist()]
         n = self.run_core(layers.write_records, sink, fields, out.records(),
                           (layers.point_z(*p) for p in zip(x.tolist(), y.tolist(), z)),

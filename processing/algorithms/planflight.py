@@ -28,6 +28,28 @@ class PlanFlight(BirdsEyeAlgorithm):
     ALG_ID = "planflight"
     DISPLAY_NAME = "Plan the survey flight"
     GROUP = "plan"
+    GEOTAGS = "GEOTAGS"
+    SELECTED_ONLY = "SELECTED_ONLY"
+    ID_FIELD = "ID_FIELD"
+    HOME = "HOME"
+    CAMERA = "CAMERA"
+    CAPTURE = "CAPTURE"
+    FORCE = "FORCE"
+    OUTPUT_CRS = "OUTPUT_CRS"
+    OUTPUT_WAYPOINTS = "OUTPUT_WAYPOINTS"
+    OUTPUT_ROUTE = "OUTPUT_ROUTE"
+    MISSION_FILES = "MISSION_FILES"
+    ALTITUDE_M = "ALTITUDE_M"
+    SPEED_MS = "SPEED_MS"
+    MERGE_RADIUS_M = "MERGE_RADIUS_M"
+    HOVER_S = "HOVER_S"
+    MAX_WAYPOINTS = "MAX_WAYPOINTS"
+    MAX_FLIGHT_MIN = "MAX_FLIGHT_MIN"
+    CAPTURE_INTERVAL_S = "CAPTURE_INTERVAL_S"
+    FORWARD_OVERLAP_PCT = "FORWARD_OVERLAP_PCT"
+    FOOTPRINT_MARGIN_PX = "FOOTPRINT_MARGIN_PX"
+    DRONE = "DRONE"
+    PAYLOAD = "PAYLOAD"
 
     CAPTURE_OPTIONS = [(CAPTURE_PHOTO, "Photo at each waypoint"), (CAPTURE_TIMED, "Timed capture (interval)")]
     #: Mission file outputs: parameter, core format key, label, file filter.
@@ -38,46 +60,46 @@ class PlanFlight(BirdsEyeAlgorithm):
 
     def initAlgorithm(self, config=None):  # noqa: N802
         self.addParameter(QgsProcessingParameterVectorLayer(
-            "GEOTAGS", self.tr("Geotags (point layer)"), [QgsProcessing.TypeVectorPoint]))
+            self.GEOTAGS, self.tr("Geotags (point layer)"), [QgsProcessing.TypeVectorPoint]))
         self.addParameter(QgsProcessingParameterBoolean(
-            "SELECTED_ONLY", self.tr("Selected geotags only"), defaultValue=False))
+            self.SELECTED_ONLY, self.tr("Selected geotags only"), defaultValue=False))
         self.addParameter(QgsProcessingParameterField(
-            "ID_FIELD", self.tr("Geotag id field (empty: 'id' if present, else the feature number)"),
-            parentLayerParameterName="GEOTAGS", optional=True))
+            self.ID_FIELD, self.tr("Geotag id field (empty: 'id' if present, else the feature number)"),
+            parentLayerParameterName=self.GEOTAGS, optional=True))
         self.addParameter(QgsProcessingParameterPoint(
-            "HOME", self.tr("Home: take-off and landing point (optional)"), optional=True))
-        self._number("ALTITUDE_M", "Flight altitude above the ground, relative to take-off [m] (2–120)", 12.0)
-        self._number("SPEED_MS", "Flight speed [m/s]", 3.0, minimum=0.0)
-        self._number("MERGE_RADIUS_M", "Merge radius: geotags within this ground distance share a waypoint [m]",
+            self.HOME, self.tr("Home: take-off and landing point (optional)"), optional=True))
+        self._number(self.ALTITUDE_M, "Flight altitude above the ground, relative to take-off [m] (2–120)", 12.0)
+        self._number(self.SPEED_MS, "Flight speed [m/s]", 3.0, minimum=0.0)
+        self._number(self.MERGE_RADIUS_M, "Merge radius: geotags within this ground distance share a waypoint [m]",
                      2.0, minimum=0.0)
         self.addParameter(QgsProcessingParameterFile(
-            "CAMERA", self.tr("Camera calibration (Kalibr or OpenCV YAML; optional)"), optional=True,
+            self.CAMERA, self.tr("Camera calibration (Kalibr or OpenCV YAML; optional)"), optional=True,
             fileFilter="Calibration (*.yaml *.yml);;All files (*)"))
-        self._number("FOOTPRINT_MARGIN_PX", "Edge margin kept around geotags in the image [px]", 50.0,
+        self._number(self.FOOTPRINT_MARGIN_PX, "Edge margin kept around geotags in the image [px]", 50.0,
                      minimum=0.0, advanced=True)
-        self._number("HOVER_S", "Hover at each waypoint [s]", 2.0, minimum=0.0)
+        self._number(self.HOVER_S, "Hover at each waypoint [s]", 2.0, minimum=0.0)
         self.addParameter(QgsProcessingParameterEnum(
-            "CAPTURE", self.tr("Capture"), options=[label for _, label in self.CAPTURE_OPTIONS], defaultValue=0))
-        self._number("CAPTURE_INTERVAL_S", "Capture interval for timed capture [s] (0: from the camera)", 2.0,
+            self.CAPTURE, self.tr("Capture"), options=[label for _, label in self.CAPTURE_OPTIONS], defaultValue=0))
+        self._number(self.CAPTURE_INTERVAL_S, "Capture interval for timed capture [s] (0: from the camera)", 2.0,
                      minimum=0.0)
-        self._number("FORWARD_OVERLAP_PCT", "Forward overlap for the suggested interval [%]", 80.0,
+        self._number(self.FORWARD_OVERLAP_PCT, "Forward overlap for the suggested interval [%]", 80.0,
                      minimum=0.0, maximum=99.0, advanced=True)
-        self._number("MAX_WAYPOINTS", "Most waypoints per mission", 99, integer=True, minimum=1)
-        self._number("MAX_FLIGHT_MIN", "Longest flight per mission [min]", 20.0, minimum=0.0)
-        self._enum("DRONE", "DJI aircraft (KMZ)", list(DJI_DRONES))
-        self._enum("PAYLOAD", "DJI camera (KMZ)", list(DJI_PAYLOADS))
+        self._number(self.MAX_WAYPOINTS, "Most waypoints per mission", 99, integer=True, minimum=1)
+        self._number(self.MAX_FLIGHT_MIN, "Longest flight per mission [min]", 20.0, minimum=0.0)
+        self._enum(self.DRONE, "DJI aircraft (KMZ)", list(DJI_DRONES))
+        self._enum(self.PAYLOAD, "DJI camera (KMZ)", list(DJI_PAYLOADS))
         force = QgsProcessingParameterBoolean(
-            "FORCE", self.tr("Plan even if the points spread over more than 10 km"), defaultValue=False)
+            self.FORCE, self.tr("Plan even if the points spread over more than 10 km"), defaultValue=False)
         force.setFlags(force.flags() | QgsProcessingParameterDefinition.FlagAdvanced)
         self.addParameter(force)
-        crs = QgsProcessingParameterCrs("OUTPUT_CRS", self.tr("Output CRS (empty: UTM zone of the site)"),
+        crs = QgsProcessingParameterCrs(self.OUTPUT_CRS, self.tr("Output CRS (empty: UTM zone of the site)"),
                                         optional=True)
         crs.setFlags(crs.flags() | QgsProcessingParameterDefinition.FlagAdvanced)
         self.addParameter(crs)
         self.addParameter(QgsProcessingParameterFeatureSink(
-            "OUTPUT_WAYPOINTS", self.tr("Waypoints"), QgsProcessing.TypeVectorPoint))
+            self.OUTPUT_WAYPOINTS, self.tr("Waypoints"), QgsProcessing.TypeVectorPoint))
         self.addParameter(QgsProcessingParameterFeatureSink(
-            "OUTPUT_ROUTE", self.tr("Route"), QgsProcessing.TypeVectorLine))
+            self.OUTPUT_ROUTE, self.tr("Route"), QgsProcessing.TypeVectorLine))
         for name, _, label, file_filter in self.FILE_OUTPUTS:
             self.addParameter(QgsProcessingParameterFileDestination(
                 name, self.tr(label), file_filter, optional=True, createByDefault=False))
@@ -85,7 +107,7 @@ class PlanFlight(BirdsEyeAlgorithm):
                             ("WAYPOINT_COUNT", "Waypoints"), ("MISSION_COUNT", "Missions"),
                             ("GEOTAG_COUNT", "Geotags")):
             self.addOutput(QgsProcessingOutputNumber(name, self.tr(label)))
-        self.addOutput(QgsProcessingOutputString("MISSION_FILES", self.tr("Mission files written")))
+        self.addOutput(QgsProcessingOutputString(self.MISSION_FILES, self.tr("Mission files written")))
 
     def _number(self, name, label, default, minimum=None, maximum=None, integer=False, advanced=False):
         kind = QgsProcessingParameterNumber.Integer if integer else QgsProcessingParameterNumber.Double
@@ -105,17 +127,17 @@ class PlanFlight(BirdsEyeAlgorithm):
 
     # ------------------------------------------------------------------------------------------ run
     def processAlgorithm(self, parameters, context, feedback):  # noqa: N802
-        layer = self.parameterAsVectorLayer(parameters, "GEOTAGS", context)
+        layer = self.parameterAsVectorLayer(parameters, self.GEOTAGS, context)
         if layer is None:
             raise QgsProcessingException(self.tr("GEOTAGS: the geotag layer could not be opened."))
         source = layer
-        if self.parameterAsBool(parameters, "SELECTED_ONLY", context):
+        if self.parameterAsBool(parameters, self.SELECTED_ONLY, context):
             if layer.selectedFeatureCount() == 0:
                 raise QgsProcessingException(self.tr(
                     "SELECTED_ONLY is set but no geotag of layer '{}' is selected: select the geotags"
                     " of the partition to fly, or clear SELECTED_ONLY.").format(layer.name()))
             source = layer.materialize(QgsFeatureRequest().setFilterFids(layer.selectedFeatureIds()))
-        id_field = self.parameterAsString(parameters, "ID_FIELD", context) or (
+        id_field = self.parameterAsString(parameters, self.ID_FIELD, context) or (
             "id" if "id" in layer.fields().names() else "")
         # Ground heights only feed the uneven-ground warning; a geotag layer's h_ellipsoid is NULL where
         # unknown, while its Z is then 0, so the field is preferred.
@@ -128,27 +150,27 @@ class PlanFlight(BirdsEyeAlgorithm):
         ids = (columns["attributes"][id_field] if id_field else columns["row"].tolist())
         ids = [str(columns["row"][k]) if v is None else str(v) for k, v in enumerate(ids)]
 
-        point = self.parameterAsPoint(parameters, "HOME", context, QgsCoordinateReferenceSystem(layers.WGS84))
+        point = self.parameterAsPoint(parameters, self.HOME, context, QgsCoordinateReferenceSystem(layers.WGS84))
         home = None if point.isEmpty() else (point.y(), point.x())
 
         camera = None
-        camera_path = self.parameterAsFile(parameters, "CAMERA", context)
+        camera_path = self.parameterAsFile(parameters, self.CAMERA, context)
         if camera_path:
             camera = self.run_core(load_calibration, camera_path)
         settings = FlightSettings(
-            altitude_m=self.parameterAsDouble(parameters, "ALTITUDE_M", context),
-            speed_ms=self.parameterAsDouble(parameters, "SPEED_MS", context),
-            merge_radius_m=self.parameterAsDouble(parameters, "MERGE_RADIUS_M", context),
-            hover_s=self.parameterAsDouble(parameters, "HOVER_S", context),
-            max_waypoints=self.parameterAsInt(parameters, "MAX_WAYPOINTS", context),
-            max_flight_min=self.parameterAsDouble(parameters, "MAX_FLIGHT_MIN", context),
-            capture=self.CAPTURE_OPTIONS[self.parameterAsEnum(parameters, "CAPTURE", context)][0],
-            capture_interval_s=self.parameterAsDouble(parameters, "CAPTURE_INTERVAL_S", context),
-            forward_overlap=self.parameterAsDouble(parameters, "FORWARD_OVERLAP_PCT", context) / 100.0,
-            footprint_margin_px=self.parameterAsDouble(parameters, "FOOTPRINT_MARGIN_PX", context),
-            force=self.parameterAsBool(parameters, "FORCE", context))
+            altitude_m=self.parameterAsDouble(parameters, self.ALTITUDE_M, context),
+            speed_ms=self.parameterAsDouble(parameters, self.SPEED_MS, context),
+            merge_radius_m=self.parameterAsDouble(parameters, self.MERGE_RADIUS_M, context),
+            hover_s=self.parameterAsDouble(parameters, self.HOVER_S, context),
+            max_waypoints=self.parameterAsInt(parameters, self.MAX_WAYPOINTS, context),
+            max_flight_min=self.parameterAsDouble(parameters, self.MAX_FLIGHT_MIN, context),
+            capture=self.CAPTURE_OPTIONS[self.parameterAsEnum(parameters, self.CAPTURE, context)][0],
+            capture_interval_s=self.parameterAsDouble(parameters, self.CAPTURE_INTERVAL_S, context),
+            forward_overlap=self.parameterAsDouble(parameters, self.FORWARD_OVERLAP_PCT, context) / 100.0,
+            footprint_margin_px=self.parameterAsDouble(parameters, self.FOOTPRINT_MARGIN_PX, context),
+            force=self.parameterAsBool(parameters, self.FORCE, context))
         chosen_crs = self.run_core(layers.chosen_projected_crs,
-                                   self.parameterAsCrs(parameters, "OUTPUT_CRS", context))
+                                   self.parameterAsCrs(parameters, self.OUTPUT_CRS, context))
         requested = {fmt: self.parameterAsFileOutput(parameters, name, context)
                      for name, fmt, _, _ in self.FILE_OUTPUTS}
         requested = {fmt: path for fmt, path in requested.items() if path}
@@ -182,7 +204,7 @@ class PlanFlight(BirdsEyeAlgorithm):
 
     def _write_layers(self, parameters, context, feedback, plan, crs_core, crs):
         fields = layers.qgs_fields(WAYPOINT_FIELDS)
-        sink, waypoints_id = self.parameterAsSink(parameters, "OUTPUT_WAYPOINTS", context, fields,
+        sink, waypoints_id = self.parameterAsSink(parameters, self.OUTPUT_WAYPOINTS, context, fields,
                                                   QgsWkbTypes.PointZ, crs)
         records = waypoint_records(plan)
         x, y = crs_core.from_geodetic([r["lat"] for r in records], [r["lon"] for r in records])
@@ -192,7 +214,7 @@ class PlanFlight(BirdsEyeAlgorithm):
         layers.style_on_load(context, waypoints_id, "waypoints.qml")
 
         route_fields = layers.qgs_fields(ROUTE_FIELDS)
-        route_sink, route_id = self.parameterAsSink(parameters, "OUTPUT_ROUTE", context, route_fields,
+        route_sink, route_id = self.parameterAsSink(parameters, self.OUTPUT_ROUTE, context, route_fields,
                                                     QgsWkbTypes.LineString, crs)
         lines = []
         for mission in plan.missions:
@@ -203,13 +225,13 @@ class PlanFlight(BirdsEyeAlgorithm):
                          if len(lat) > 1 else None)
         self.run_core(layers.write_records, route_sink, route_fields, route_records(plan), lines)
         layers.style_on_load(context, route_id, "route.qml")
-        return {"OUTPUT_WAYPOINTS": waypoints_id, "OUTPUT_ROUTE": route_id}
+        return {"OUTPUT_WAYPOINTS": waypoints_id, self.OUTPUT_ROUTE: route_id}
 
     def _write_mission_files(self, specs, requested, parameters, context, feedback):
         """Each requested format: one file per mission (suffixed _m1, _m2… when several), the KML
         one file for all; returns the output values (first file of each format, all files)."""
-        drone = list(DJI_DRONES.values())[self.parameterAsEnum(parameters, "DRONE", context)]
-        payload = list(DJI_PAYLOADS.values())[self.parameterAsEnum(parameters, "PAYLOAD", context)]
+        drone = list(DJI_DRONES.values())[self.parameterAsEnum(parameters, self.DRONE, context)]
+        payload = list(DJI_PAYLOADS.values())[self.parameterAsEnum(parameters, self.PAYLOAD, context)]
         writers = {"kmz": lambda p, s: write_dji_kmz(p, s, drone, payload),
                    "plan": write_qgc_plan, "litchi": write_litchi_csv}
         outputs, written = {}, []
@@ -225,7 +247,7 @@ class PlanFlight(BirdsEyeAlgorithm):
             written += [str(p) for p in paths]
             feedback.pushInfo(self.tr("{fmt}: {files}").format(
                 fmt=FORMAT_NAMES[fmt], files=", ".join(Path(p).name for p in paths)))
-        outputs["MISSION_FILES"] = ";".join(written)
+        outputs[self.MISSION_FILES] = ";".join(written)
         return outputs
 
     def _log_summary(self, feedback, plan, geotag_count):

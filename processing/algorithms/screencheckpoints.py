@@ -16,7 +16,6 @@ from ...birdseye_qgis.core.labels.training_set import Geotags as LabelGeotags
 from ...birdseye_qgis.core.labels.training_set import project_labels
 from ...birdseye_qgis.core.scoring.evaluation import local_frame_for
 from ...birdseye_qgis.core.scoring.matching import in_view
-from ...birdseye_qgis.core.scoring.operating_point import OperatingPoint
 from ...birdseye_qgis.core.scoring.reports import screen_figure
 from ...birdseye_qgis.core.scoring.screening import DEFAULT_COLLAPSED_BELOW, DEFAULT_PIXEL_RADIUS_PX, DEFAULT_SPARSE_BELOW, ScreenRun, screen_checkpoints
 from .base import BirdsEyeAlgorithm
@@ -43,50 +42,57 @@ class ScreenCheckpoints(ClusteringParametersMixin, BirdsEyeAlgorithm):
     ALG_ID = "screencheckpoints"
     DISPLAY_NAME = "Screen checkpoints"
     GROUP = "detect"
+    CHECKPOINTS = "CHECKPOINTS"
+    FRAMES = "FRAMES"
+    GEOTAGS = "GEOTAGS"
+    THRESHOLD = "THRESHOLD"
+    PIXEL_RADIUS_PX = "PIXEL_RADIUS_PX"
+    COLLAPSED_BELOW = "COLLAPSED_BELOW"
+    SPARSE_BELOW = "SPARSE_BELOW"
+    OUTPUT_TABLE = "OUTPUT_TABLE"
+    OUTPUT_JSON = "OUTPUT_JSON"
+    OUTPUT_PLOT = "OUTPUT_PLOT"
+    N_HEALTHY = "N_HEALTHY"
 
     def initAlgorithm(self, config=None):  # noqa: N802
         self.addParameter(QgsProcessingParameterMultipleLayers(
-            "CHECKPOINTS", self.tr("ONNX checkpoints"), QgsProcessing.TypeFile))
+            self.CHECKPOINTS, self.tr("ONNX checkpoints"), QgsProcessing.TypeFile))
         self.addParameter(QgsProcessingParameterMultipleLayers(
-            "FRAMES", self.tr("Validation flights (frame layers with their images)"), QgsProcessing.TypeVector))
+            self.FRAMES, self.tr("Validation flights (frame layers with their images)"), QgsProcessing.TypeVector))
         self.addParameter(QgsProcessingParameterFeatureSource(
-            "GEOTAGS", self.tr("Geotags"), [QgsProcessing.TypeVectorPoint]))
+            self.GEOTAGS, self.tr("Geotags"), [QgsProcessing.TypeVectorPoint]))
         self.addParameter(QgsProcessingParameterNumber(
-            "THRESHOLD", self.tr("Detection threshold (empty: each checkpoint's default)"),
+            self.THRESHOLD, self.tr("Detection threshold (empty: each checkpoint's default)"),
             QgsProcessingParameterNumber.Double, None, optional=True, minValue=0.001, maxValue=0.999))
         self.add_clustering_parameters()
         self.addParameter(QgsProcessingParameterNumber(
-            "PIXEL_RADIUS_PX", self.tr("Pixel F1: match radius (px)"), QgsProcessingParameterNumber.Double,
+            self.PIXEL_RADIUS_PX, self.tr("Pixel F1: match radius (px)"), QgsProcessingParameterNumber.Double,
             DEFAULT_PIXEL_RADIUS_PX, minValue=0.5))
         self.addParameter(QgsProcessingParameterNumber(
-            "COLLAPSED_BELOW", self.tr("Collapsed if the distinct-position fraction is below"),
+            self.COLLAPSED_BELOW, self.tr("Collapsed if the distinct-position fraction is below"),
             QgsProcessingParameterNumber.Double, DEFAULT_COLLAPSED_BELOW, minValue=0.0, maxValue=1.0))
         self.addParameter(QgsProcessingParameterNumber(
-            "SPARSE_BELOW", self.tr("Too sparse if detections per frame on the worst flight are below"),
+            self.SPARSE_BELOW, self.tr("Too sparse if detections per frame on the worst flight are below"),
             QgsProcessingParameterNumber.Double, DEFAULT_SPARSE_BELOW, minValue=0.0))
         self.addParameter(QgsProcessingParameterFileDestination(
-            "OUTPUT_TABLE", self.tr("Checkpoint table (CSV)"), "CSV (*.csv)"))
+            self.OUTPUT_TABLE, self.tr("Checkpoint table (CSV)"), "CSV (*.csv)"))
         self.addParameter(QgsProcessingParameterFileDestination(
-            "OUTPUT_JSON", self.tr("Checkpoint table (JSON)"), "JSON (*.json)", optional=True, createByDefault=True))
+            self.OUTPUT_JSON, self.tr("Checkpoint table (JSON)"), "JSON (*.json)", optional=True, createByDefault=True))
         self.addParameter(QgsProcessingParameterFileDestination(
-            "OUTPUT_PLOT", self.tr("Frontier plot (PNG)"), "PNG (*.png)", optional=True, createByDefault=True))
-        self.addOutput(QgsProcessingOutputNumber("N_HEALTHY", self.tr("Healthy checkpoints")))
+            self.OUTPUT_PLOT, self.tr("Frontier plot (PNG)"), "PNG (*.png)", optional=True, createByDefault=True))
+        self.addOutput(QgsProcessingOutputNumber(self.N_HEALTHY, self.tr("Healthy checkpoints")))
 
     def processAlgorithm(self, parameters, context, feedback):  # noqa: N802
-        checkpoints = self.parameterAsFileList(parameters, "CHECKPOINTS", context)
-        frame_layers = self.parameterAsLayerList(parameters, "FRAMES", context)
+        checkpoints = self.parameterAsFileList(parameters, self.CHECKPOINTS, context)
+        frame_layers = self.parameterAsLayerList(parameters, self.FRAMES, context)
         if not checkpoints:
             raise QgsProcessingException(self.tr("CHECKPOINTS: give at least one ONNX file."))
         if not frame_layers:
             raise QgsProcessingException(self.tr("FRAMES: give at least one validation flight."))
-        threshold = None if parameters.get("THRESHOLD") in (None, "") else \
-            self.parameterAsDouble(parameters, "THRESHOLD", context)
-        op = self.run_core(OperatingPoint, threshold, self.parameterAsDouble(parameters, "DEDUP_CM", context),
-                           self.parameterAsDouble(parameters, "EPS_M", context),
-                           self.parameterAsInt(parameters, "MIN_SAMPLES", context),
-                           self.parameterAsDouble(parameters, "EPS_PRED_M", context),
-                           self.parameterAsDouble(parameters, "EDGE_BUFFER_PX", context))
-        geotag_source = self.parameterAsSource(parameters, "GEOTAGS", context)
+        threshold = None if parameters.get(self.THRESHOLD) in (None, "") else \
+            self.parameterAsDouble(parameters, self.THRESHOLD, context)
+        op = self.read_operating_point(parameters, context, threshold)
+        geotag_source = self.parameterAsSource(parameters, self.GEOTAGS, context)
         if geotag_source is None:
             raise QgsProcessingException(self.tr("GEOTAGS: the geotag layer cannot be read."))
         geotags = self.run_core(read_geotags, geotag_source, context)
@@ -120,31 +126,31 @@ class ScreenCheckpoints(ClusteringParametersMixin, BirdsEyeAlgorithm):
                                    progress, is_canceled, feedback)
                 runs.append(run)
         multi.setCurrentStep(steps)
-        screens = self.run_core(screen_checkpoints, runs, op, self.parameterAsDouble(parameters, "PIXEL_RADIUS_PX",
+        screens = self.run_core(screen_checkpoints, runs, op, self.parameterAsDouble(parameters, self.PIXEL_RADIUS_PX,
                                                                                    context),
-                                self.parameterAsDouble(parameters, "COLLAPSED_BELOW", context),
-                                self.parameterAsDouble(parameters, "SPARSE_BELOW", context))
+                                self.parameterAsDouble(parameters, self.COLLAPSED_BELOW, context),
+                                self.parameterAsDouble(parameters, self.SPARSE_BELOW, context))
         rows = [s.to_dict() for s in screens]
         for row in rows:
             row["threshold"] = op.threshold
         outputs = {"N_HEALTHY": sum(s.healthy for s in screens)}
-        table = self.parameterAsFileOutput(parameters, "OUTPUT_TABLE", context)
-        write_output(table, "OUTPUT_TABLE", lambda p: write_rows_csv(p, rows))
-        outputs["OUTPUT_TABLE"] = table
-        out_json = self.parameterAsFileOutput(parameters, "OUTPUT_JSON", context)
+        table = self.parameterAsFileOutput(parameters, self.OUTPUT_TABLE, context)
+        write_output(table, self.OUTPUT_TABLE, lambda p: write_rows_csv(p, rows))
+        outputs[self.OUTPUT_TABLE] = table
+        out_json = self.parameterAsFileOutput(parameters, self.OUTPUT_JSON, context)
         if out_json:
             document = {"operating_point": op.to_dict(), "flights": [n for n, _, _ in flights],
                         "pooling": "micro-average over flights (sums of counts, one division)",
                         "pixel_f1_note": "pixel-space F1 is for choosing checkpoints only, never a field score",
                         "checkpoints": rows}
-            write_output(out_json, "OUTPUT_JSON", lambda p: Path(p).write_text(
+            write_output(out_json, self.OUTPUT_JSON, lambda p: Path(p).write_text(
                 json.dumps(document, indent=1, ensure_ascii=False) + "\n", encoding="utf-8"))
-            outputs["OUTPUT_JSON"] = out_json
-        out_plot = self.parameterAsFileOutput(parameters, "OUTPUT_PLOT", context)
+            outputs[self.OUTPUT_JSON] = out_json
+        out_plot = self.parameterAsFileOutput(parameters, self.OUTPUT_PLOT, context)
         if out_plot:
-            write_output(out_plot, "OUTPUT_PLOT", lambda p: screen_figure(screens).savefig(
+            write_output(out_plot, self.OUTPUT_PLOT, lambda p: screen_figure(screens).savefig(
                 p, dpi=110, bbox_inches="tight"))
-            outputs["OUTPUT_PLOT"] = out_plot
+            outputs[self.OUTPUT_PLOT] = out_plot
         for s in screens:
             state = "healthy" if s.healthy else ", ".join(
                 w for w, on in (("collapsed", s.collapsed), ("too sparse", s.too_sparse)) if on)

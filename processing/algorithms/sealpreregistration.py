@@ -12,7 +12,6 @@ from qgis.core import (QgsProcessing, QgsProcessingException, QgsProcessingOutpu
 from ...birdseye_qgis.core.scoring import preregistration
 from ...birdseye_qgis.core.detect.detector import file_digest
 from ...birdseye_qgis.core.errors import InputError
-from ...birdseye_qgis.core.scoring.operating_point import OperatingPoint
 from .base import BirdsEyeAlgorithm
 from ..parameters.clustering import ClusteringParametersMixin
 
@@ -37,46 +36,48 @@ class SealPreregistration(ClusteringParametersMixin, BirdsEyeAlgorithm):
     ALG_ID = "sealpreregistration"
     DISPLAY_NAME = "Seal a preregistered selection rule"
     GROUP = "detect"
+    CHECKPOINTS = "CHECKPOINTS"
+    THRESHOLD = "THRESHOLD"
+    DESCRIPTIVE = "DESCRIPTIVE"
+    NOTE = "NOTE"
+    OUTPUT = "OUTPUT"
+    SEAL = "SEAL"
 
     def initAlgorithm(self, config=None):  # noqa: N802
         self.addParameter(QgsProcessingParameterMultipleLayers(
-            "CHECKPOINTS", self.tr("ONNX checkpoints (one arm each)"), QgsProcessing.TypeFile))
+            self.CHECKPOINTS, self.tr("ONNX checkpoints (one arm each)"), QgsProcessing.TypeFile))
         self.addParameter(QgsProcessingParameterNumber(
-            "THRESHOLD", self.tr("Detection threshold of the arms"), QgsProcessingParameterNumber.Double, 0.5,
+            self.THRESHOLD, self.tr("Detection threshold of the arms"), QgsProcessingParameterNumber.Double, 0.5,
             minValue=0.001, maxValue=0.999))
         self.add_clustering_parameters()
         self.addParameter(QgsProcessingParameterFile(
-            "DESCRIPTIVE", self.tr("Descriptive configurations (optional: a sweep or screen JSON, recorded only)"),
+            self.DESCRIPTIVE, self.tr("Descriptive configurations (optional: a sweep or screen JSON, recorded only)"),
             optional=True, fileFilter="JSON (*.json)"))
         self.addParameter(QgsProcessingParameterString(
-            "NOTE", self.tr("Note (what was chosen on which flights, what will be scored)"), "", multiLine=True,
+            self.NOTE, self.tr("Note (what was chosen on which flights, what will be scored)"), "", multiLine=True,
             optional=True))
         self.addParameter(QgsProcessingParameterFileDestination(
-            "OUTPUT", self.tr("Sealed rule (JSON)"), "JSON (*.json)"))
-        self.addOutput(QgsProcessingOutputString("SEAL", self.tr("Seal (SHA-256)")))
+            self.OUTPUT, self.tr("Sealed rule (JSON)"), "JSON (*.json)"))
+        self.addOutput(QgsProcessingOutputString(self.SEAL, self.tr("Seal (SHA-256)")))
 
     def processAlgorithm(self, parameters, context, feedback):  # noqa: N802
-        paths = self.parameterAsFileList(parameters, "CHECKPOINTS", context)
+        paths = self.parameterAsFileList(parameters, self.CHECKPOINTS, context)
         if not paths:
             raise QgsProcessingException(self.tr("CHECKPOINTS: give at least one ONNX file."))
-        op = self.run_core(OperatingPoint, self.parameterAsDouble(parameters, "THRESHOLD", context),
-                           self.parameterAsDouble(parameters, "DEDUP_CM", context),
-                           self.parameterAsDouble(parameters, "EPS_M", context),
-                           self.parameterAsInt(parameters, "MIN_SAMPLES", context),
-                           self.parameterAsDouble(parameters, "EPS_PRED_M", context),
-                           self.parameterAsDouble(parameters, "EDGE_BUFFER_PX", context))
+        op = self.read_operating_point(parameters, context,
+                                       self.parameterAsDouble(parameters, self.THRESHOLD, context))
         arms = []
         for path in paths:
             if not Path(path).is_file():
                 raise QgsProcessingException(f"CHECKPOINTS: {path} is not a file")
             arms.append(self.run_core(preregistration.make_arm, path, file_digest(path), op))
             feedback.pushInfo(f"Arm {arms[-1]['name']}: sha256 {arms[-1]['model_digest']}")
-        descriptive_path = self.parameterAsFile(parameters, "DESCRIPTIVE", context)
+        descriptive_path = self.parameterAsFile(parameters, self.DESCRIPTIVE, context)
         descriptive = self.run_core(read_descriptive, descriptive_path) if descriptive_path else []
         rule = {"arms": arms, "descriptive": descriptive,
-                "note": self.parameterAsString(parameters, "NOTE", context) or ""}
+                "note": self.parameterAsString(parameters, self.NOTE, context) or ""}
         document = self.run_core(preregistration.seal, rule)
-        out = self.parameterAsFileOutput(parameters, "OUTPUT", context)
+        out = self.parameterAsFileOutput(parameters, self.OUTPUT, context)
         try:
             preregistration.write(document, out)
         except OSError as exc:
@@ -84,4 +85,4 @@ class SealPreregistration(ClusteringParametersMixin, BirdsEyeAlgorithm):
         feedback.pushInfo(f"Sealed at {document['sealed_at']}: {document['seal']}")
         feedback.pushInfo("Record this seal somewhere you cannot edit later (an e-mail, a lab notebook, a "
                           "commit): the seal proves the rule unchanged only against a copy kept elsewhere.")
-        return {"OUTPUT": out, "SEAL": document["seal"]}
+        return {"OUTPUT": out, self.SEAL: document["seal"]}

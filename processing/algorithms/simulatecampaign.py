@@ -56,6 +56,18 @@ class SimulateCampaign(BirdsEyeAlgorithm):
     ALG_ID = "simulatecampaign"
     DISPLAY_NAME = "Simulate a campaign"
     GROUP = "simulate"
+    SIGMAS = "SIGMAS"
+    NOISE_OFF = "NOISE_OFF"
+    RENDER = "RENDER"
+    PLATFORM = "PLATFORM"
+    TERRAIN = "TERRAIN"
+    SIDE_OVERLAP = "SIDE_OVERLAP"
+    DJI_DEWARPED = "DJI_DEWARPED"
+    GEOID_UNDULATION_M = "GEOID_UNDULATION_M"
+    OUTPUT_FOLDER = "OUTPUT_FOLDER"
+    DEM = "DEM"
+    FRAMES_FOLDER = "FRAMES_FOLDER"
+    FRAME_COUNT = "FRAME_COUNT"
 
     def initAlgorithm(self, config=None):  # noqa: N802
         for advanced in (False, True):
@@ -65,40 +77,40 @@ class SimulateCampaign(BirdsEyeAlgorithm):
                         name, self.tr(label), kind, default, minValue=lo, maxValue=hi), advanced)
             if not advanced:
                 self.addParameter(QgsProcessingParameterString(
-                    "SIGMAS", self.tr("Pose noise Σ0: x, y, z (m), roll, pitch, yaw (deg)"),
+                    self.SIGMAS, self.tr("Pose noise Σ0: x, y, z (m), roll, pitch, yaw (deg)"),
                     ",".join(f"{s:g}" for s in DEFAULTS.sigmas)))
                 self.addParameter(QgsProcessingParameterBoolean(
-                    "NOISE_OFF", self.tr("Noise off (ideal poses, altimeter and geotags)"), False))
+                    self.NOISE_OFF, self.tr("Noise off (ideal poses, altimeter and geotags)"), False))
                 self.addParameter(QgsProcessingParameterBoolean(
-                    "RENDER", self.tr("Render frames (off: poses and geotags only)"), True))
+                    self.RENDER, self.tr("Render frames (off: poses and geotags only)"), True))
                 self.addParameter(QgsProcessingParameterEnum(
-                    "PLATFORM", self.tr("Platform"), options=[self.tr(t) for t in PLATFORM_LABELS],
+                    self.PLATFORM, self.tr("Platform"), options=[self.tr(t) for t in PLATFORM_LABELS],
                     defaultValue=PLATFORMS.index(DEFAULTS.platform)))
                 self.addParameter(QgsProcessingParameterEnum(
-                    "TERRAIN", self.tr("Terrain"), options=[self.tr(t) for t in TERRAIN_LABELS],
+                    self.TERRAIN, self.tr("Terrain"), options=[self.tr(t) for t in TERRAIN_LABELS],
                     defaultValue=TERRAIN_KINDS.index(DEFAULTS.terrain)))
             for name, label, kind, default, lo, hi, is_advanced in TERRAIN_NUMBERS:
                 if is_advanced == advanced:
                     self._add(QgsProcessingParameterNumber(
                         name, self.tr(label), kind, default, minValue=lo, maxValue=hi), advanced)
         self._add(QgsProcessingParameterNumber(
-            "SIDE_OVERLAP", self.tr("Side overlap of neighbouring lines (fraction; empty: {ins:g} for the payload, "
+            self.SIDE_OVERLAP, self.tr("Side overlap of neighbouring lines (fraction; empty: {ins:g} for the payload, "
                                     "{dji:g} for a DJI drone)").format(**DEFAULT_SIDE_OVERLAP),
             DOUBLE, None, optional=True, minValue=0.0, maxValue=0.9), True)
         self._add(QgsProcessingParameterBoolean(
-            "DJI_DEWARPED", self.tr("DJI drone undistorts its JPEGs (DewarpFlag 1)"), DEFAULTS.dji_dewarped), True)
+            self.DJI_DEWARPED, self.tr("DJI drone undistorts its JPEGs (DewarpFlag 1)"), DEFAULTS.dji_dewarped), True)
         geoid = QgsProcessingParameterNumber(
-            "GEOID_UNDULATION_M", self.tr("Geoid undulation N for altMSL (m; empty: EGM96 at the site)"),
+            self.GEOID_UNDULATION_M, self.tr("Geoid undulation N for altMSL (m; empty: EGM96 at the site)"),
             DOUBLE, None, optional=True, minValue=-120.0, maxValue=120.0)
         self._add(geoid, True)
-        self.addParameter(QgsProcessingParameterFolderDestination("OUTPUT_FOLDER", self.tr("Output folder")))
+        self.addParameter(QgsProcessingParameterFolderDestination(self.OUTPUT_FOLDER, self.tr("Output folder")))
         for name, text in (("GEOTAGS", "Geotags (rover CSV)"), ("POSES", "Pose log (CSV)"),
                            ("IMAGES", "Image list (images.csv)"), ("CALIBRATION", "Calibration (Kalibr YAML)")):
             self.addOutput(QgsProcessingOutputFile(name, self.tr(text)))
         self.addOutput(QgsProcessingOutputRasterLayer(
-            "DEM", self.tr("Terrain model (truth/dem.tif, ellipsoidal heights; none for flat terrain)")))
-        self.addOutput(QgsProcessingOutputFolder("FRAMES_FOLDER", self.tr("Frames folder")))
-        self.addOutput(QgsProcessingOutputNumber("FRAME_COUNT", self.tr("Frames")))
+            self.DEM, self.tr("Terrain model (truth/dem.tif, ellipsoidal heights; none for flat terrain)")))
+        self.addOutput(QgsProcessingOutputFolder(self.FRAMES_FOLDER, self.tr("Frames folder")))
+        self.addOutput(QgsProcessingOutputNumber(self.FRAME_COUNT, self.tr("Frames")))
 
     def _add(self, param, advanced: bool) -> None:
         if advanced:
@@ -108,30 +120,30 @@ class SimulateCampaign(BirdsEyeAlgorithm):
     def processAlgorithm(self, parameters, context, feedback):  # noqa: N802
         values = {name: (self.parameterAsInt if kind == INT else self.parameterAsDouble)(parameters, name, context)
                   for name, _, kind, *_ in NUMBERS + TERRAIN_NUMBERS}
-        terrain = TERRAIN_KINDS[self.parameterAsEnum(parameters, "TERRAIN", context)]
-        geoid = parameters.get("GEOID_UNDULATION_M")
-        side = parameters.get("SIDE_OVERLAP")
-        platform = PLATFORMS[self.parameterAsEnum(parameters, "PLATFORM", context)]
+        terrain = TERRAIN_KINDS[self.parameterAsEnum(parameters, self.TERRAIN, context)]
+        geoid = parameters.get(self.GEOID_UNDULATION_M)
+        side = parameters.get(self.SIDE_OVERLAP)
+        platform = PLATFORMS[self.parameterAsEnum(parameters, self.PLATFORM, context)]
         config = CampaignConfig(
             seed=values["SEED"], n_targets=values["N_TARGETS"], field_width_m=values["FIELD_WIDTH_M"],
             field_length_m=values["FIELD_LENGTH_M"], site_lat=values["SITE_LAT"], site_lon=values["SITE_LON"],
             ground_height_m=values["GROUND_HEIGHT_M"], altitude_m=values["ALTITUDE_M"],
             speed_ms=values["SPEED_MS"], fps=values["FPS"], ins_rate_hz=values["INS_RATE_HZ"],
             image_width=values["IMAGE_WIDTH"], image_height=values["IMAGE_HEIGHT"],
-            sigmas=self.run_core(parse_sigmas, self.parameterAsString(parameters, "SIGMAS", context)),
+            sigmas=self.run_core(parse_sigmas, self.parameterAsString(parameters, self.SIGMAS, context)),
             radalt_sigma_m=values["RADALT_SIGMA_M"], rtk_sigma_m=values["RTK_SIGMA_M"],
             n_missed=values["N_MISSED"], n_spurious=values["N_SPURIOUS"],
-            render=self.parameterAsBool(parameters, "RENDER", context),
-            noise_off=self.parameterAsBool(parameters, "NOISE_OFF", context),
-            side_overlap=None if side in (None, "") else self.parameterAsDouble(parameters, "SIDE_OVERLAP", context),
+            render=self.parameterAsBool(parameters, self.RENDER, context),
+            noise_off=self.parameterAsBool(parameters, self.NOISE_OFF, context),
+            side_overlap=None if side in (None, "") else self.parameterAsDouble(parameters, self.SIDE_OVERLAP, context),
             rtk_float_episodes=values["RTK_FLOAT_EPISODES"], platform=platform,
             forward_overlap=values["FORWARD_OVERLAP"],
-            dji_dewarped=self.parameterAsBool(parameters, "DJI_DEWARPED", context),
+            dji_dewarped=self.parameterAsBool(parameters, self.DJI_DEWARPED, context),
             geoid_undulation_m=None if geoid in (None, "")
-            else self.parameterAsDouble(parameters, "GEOID_UNDULATION_M", context),
+            else self.parameterAsDouble(parameters, self.GEOID_UNDULATION_M, context),
             terrain=terrain, slope_deg=values["SLOPE_DEG"], slope_aspect_deg=values["SLOPE_ASPECT_DEG"],
             relief_m=values["RELIEF_M"], hill_wavelength_m=values["HILL_WAVELENGTH_M"])
-        folder = self.parameterAsString(parameters, "OUTPUT_FOLDER", context)
+        folder = self.parameterAsString(parameters, self.OUTPUT_FOLDER, context)
         feedback.pushInfo(f"Simulating seed {config.seed}: {config.n_targets} targets in a "
                           f"{config.field_width_m:g} × {config.field_length_m:g} m field, flown at "
                           f"{config.altitude_m:g} m, {config.speed_ms:g} m/s, {config.fps:g} frames/s.")
@@ -153,6 +165,6 @@ class SimulateCampaign(BirdsEyeAlgorithm):
         feedback.pushInfo(f"Wrote {result.n_frames} frames, {log}{result.n_geotags} geotags to {result.folder}.")
         return {"OUTPUT_FOLDER": str(result.folder), "GEOTAGS": str(result.files["geotags"]),
                 "POSES": str(result.files.get("poses", "")), "IMAGES": str(result.files.get("images", "")),
-                "CALIBRATION": str(result.files.get("calibration", "")), "DEM": str(result.files.get("dem", "")),
-                "FRAMES_FOLDER": str(result.files.get("frames", "")),
-                "FRAME_COUNT": result.n_frames}
+                "CALIBRATION": str(result.files.get("calibration", "")), self.DEM: str(result.files.get("dem", "")),
+                self.FRAMES_FOLDER: str(result.files.get("frames", "")),
+                self.FRAME_COUNT: result.n_frames}

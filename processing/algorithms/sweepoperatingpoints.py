@@ -48,36 +48,46 @@ class SweepOperatingPoints(ClusteringParametersMixin, BirdsEyeAlgorithm):
     ALG_ID = "sweepoperatingpoints"
     DISPLAY_NAME = "Sweep operating points"
     GROUP = "detect"
+    DETECTIONS = "DETECTIONS"
+    GEOTAGS = "GEOTAGS"
+    FRAMES = "FRAMES"
+    DEDUP_CM = "DEDUP_CM"
+    EDGE_BUFFER_PX = "EDGE_BUFFER_PX"
+    MAX_GEOTAGS_PER_HIT = "MAX_GEOTAGS_PER_HIT"
+    MAX_MEAN_EXTENT_M = "MAX_MEAN_EXTENT_M"
+    OUTPUT_TABLE = "OUTPUT_TABLE"
+    OUTPUT_JSON = "OUTPUT_JSON"
+    OUTPUT_PLOT = "OUTPUT_PLOT"
 
     def initAlgorithm(self, config=None):  # noqa: N802
         self.addParameter(QgsProcessingParameterMultipleLayers(
-            "DETECTIONS", self.tr("Detection layers (one per flight, detected at the lowest threshold)"),
+            self.DETECTIONS, self.tr("Detection layers (one per flight, detected at the lowest threshold)"),
             QgsProcessing.TypeVectorPoint))
         self.addParameter(QgsProcessingParameterFeatureSource(
-            "GEOTAGS", self.tr("Geotags"), [QgsProcessing.TypeVectorPoint]))
+            self.GEOTAGS, self.tr("Geotags"), [QgsProcessing.TypeVectorPoint]))
         self.addParameter(QgsProcessingParameterMultipleLayers(
-            "FRAMES", self.tr("Frame layers (one per flight, same order)"), QgsProcessing.TypeVector))
+            self.FRAMES, self.tr("Frame layers (one per flight, same order)"), QgsProcessing.TypeVector))
         for name, text, default in LISTS:
             self.addParameter(QgsProcessingParameterString(name, self.tr(text), default))
         self.addParameter(QgsProcessingParameterNumber(
-            "DEDUP_CM", self.tr("De-duplication grid cell (cm)"), QgsProcessingParameterNumber.Double,
+            self.DEDUP_CM, self.tr("De-duplication grid cell (cm)"), QgsProcessingParameterNumber.Double,
             DEFAULT_DEDUP_CM, minValue=0.1, maxValue=100.0))
         self.addParameter(QgsProcessingParameterNumber(
-            "EDGE_BUFFER_PX", self.tr("Edge buffer of the in-view test (px)"), QgsProcessingParameterNumber.Double,
+            self.EDGE_BUFFER_PX, self.tr("Edge buffer of the in-view test (px)"), QgsProcessingParameterNumber.Double,
             DEFAULT_EDGE_BUFFER_PX, minValue=0.0, maxValue=1000.0))
         self.addParameter(QgsProcessingParameterNumber(
-            "MAX_GEOTAGS_PER_HIT", self.tr("Credible: mean geotags per hit cluster at most"),
+            self.MAX_GEOTAGS_PER_HIT, self.tr("Credible: mean geotags per hit cluster at most"),
             QgsProcessingParameterNumber.Double, DEFAULT_MAX_GEOTAGS_PER_HIT, minValue=1.0))
         self.addParameter(QgsProcessingParameterNumber(
-            "MAX_MEAN_EXTENT_M", self.tr("Credible: mean median cluster extent at most (m)"),
+            self.MAX_MEAN_EXTENT_M, self.tr("Credible: mean median cluster extent at most (m)"),
             QgsProcessingParameterNumber.Double, DEFAULT_MAX_MEAN_EXTENT_M, minValue=0.0))
         self.addParameter(QgsProcessingParameterFileDestination(
-            "OUTPUT_TABLE", self.tr("Configurations (CSV)"), "CSV (*.csv)"))
+            self.OUTPUT_TABLE, self.tr("Configurations (CSV)"), "CSV (*.csv)"))
         self.addParameter(QgsProcessingParameterFileDestination(
-            "OUTPUT_JSON", self.tr("Configurations and Pareto front (JSON)"), "JSON (*.json)", optional=True,
+            self.OUTPUT_JSON, self.tr("Configurations and Pareto front (JSON)"), "JSON (*.json)", optional=True,
             createByDefault=True))
         self.addParameter(QgsProcessingParameterFileDestination(
-            "OUTPUT_PLOT", self.tr("Frontier plot (PNG)"), "PNG (*.png)", optional=True, createByDefault=True))
+            self.OUTPUT_PLOT, self.tr("Frontier plot (PNG)"), "PNG (*.png)", optional=True, createByDefault=True))
         for name, text in (("N_CONFIGURATIONS", "Configurations"), ("N_CREDIBLE", "Credible configurations"),
                            ("N_PARETO", "Configurations on the Pareto front")):
             self.addOutput(QgsProcessingOutputNumber(name, self.tr(text)))
@@ -86,7 +96,7 @@ class SweepOperatingPoints(ClusteringParametersMixin, BirdsEyeAlgorithm):
         lists = {name: self.run_core(parse_list, self.parameterAsString(parameters, name, context), name)
                  for name, _, _ in LISTS}
         grid = self.run_core(SweepGrid, lists["THRESHOLDS"], lists["EPS_M"], lists["MIN_SAMPLES"],
-                             lists["EPS_PRED_M"], self.parameterAsDouble(parameters, "DEDUP_CM", context))
+                             lists["EPS_PRED_M"], self.parameterAsDouble(parameters, self.DEDUP_CM, context))
         flights = self.read_flights(parameters, context, feedback)
         for f in flights:
             t = f.detections.threshold
@@ -95,7 +105,7 @@ class SweepOperatingPoints(ClusteringParametersMixin, BirdsEyeAlgorithm):
                     f"THRESHOLDS: {f.name} was detected at threshold {t}, above the sweep's lowest threshold "
                     f"{grid.thresholds.min()}; detections below {t} were never made. Run Detect at the lowest "
                     "threshold of the sweep, or raise THRESHOLDS.")
-        geotag_source = self.parameterAsSource(parameters, "GEOTAGS", context)
+        geotag_source = self.parameterAsSource(parameters, self.GEOTAGS, context)
         if geotag_source is None:
             raise QgsProcessingException(self.tr("GEOTAGS: the geotag layer cannot be read."))
         geotags = self.run_core(read_geotags, geotag_source, context)
@@ -103,7 +113,7 @@ class SweepOperatingPoints(ClusteringParametersMixin, BirdsEyeAlgorithm):
         local = self.run_core(local_frame_for, [p for f in flights for p in f.pose_groups], geotags)
         h = np.where(np.isfinite(geotags.height), geotags.height, local.h0)
         g_local = local.from_geodetic(geotags.lat, geotags.lon, h) if len(geotags) else np.empty((0, 3))
-        edge = self.parameterAsDouble(parameters, "EDGE_BUFFER_PX", context)
+        edge = self.parameterAsDouble(parameters, self.EDGE_BUFFER_PX, context)
         sweep_flights = []
         for f in flights:
             visible = self.run_core(in_view, f.pose_groups, local, g_local, edge).mask
@@ -114,18 +124,18 @@ class SweepOperatingPoints(ClusteringParametersMixin, BirdsEyeAlgorithm):
                           "threshold × eps × min_samples × eps_pred)")
         progress, is_canceled = self.progress_callbacks(feedback, 15.0, 95.0)
         result = self.run_core(sweep, sweep_flights, grid,
-                               self.parameterAsDouble(parameters, "MAX_GEOTAGS_PER_HIT", context),
-                               self.parameterAsDouble(parameters, "MAX_MEAN_EXTENT_M", context),
+                               self.parameterAsDouble(parameters, self.MAX_GEOTAGS_PER_HIT, context),
+                               self.parameterAsDouble(parameters, self.MAX_MEAN_EXTENT_M, context),
                                progress, is_canceled)
         rows = result.rows()
         for row in rows:
             row["edge_buffer_px"] = edge
         outputs = {"N_CONFIGURATIONS": len(rows), "N_CREDIBLE": int(result.credible.sum()),
                    "N_PARETO": int(result.pareto.sum())}
-        table = self.parameterAsFileOutput(parameters, "OUTPUT_TABLE", context)
-        write_output(table, "OUTPUT_TABLE", lambda p: write_rows_csv(p, rows))
-        outputs["OUTPUT_TABLE"] = table
-        out_json = self.parameterAsFileOutput(parameters, "OUTPUT_JSON", context)
+        table = self.parameterAsFileOutput(parameters, self.OUTPUT_TABLE, context)
+        write_output(table, self.OUTPUT_TABLE, lambda p: write_rows_csv(p, rows))
+        outputs[self.OUTPUT_TABLE] = table
+        out_json = self.parameterAsFileOutput(parameters, self.OUTPUT_JSON, context)
         if out_json:
             front = [r for r in rows if r["pareto"]]
             document = {"pooling": "micro-average over flights (sums of counts, one division)",
@@ -136,14 +146,14 @@ class SweepOperatingPoints(ClusteringParametersMixin, BirdsEyeAlgorithm):
                         "credibility": {"max_geotags_per_hit": result.max_geotags_per_hit,
                                         "max_mean_extent_m": result.max_mean_extent_m},
                         "pareto": front, "configurations": rows}
-            write_output(out_json, "OUTPUT_JSON", lambda p: Path(p).write_text(
+            write_output(out_json, self.OUTPUT_JSON, lambda p: Path(p).write_text(
                 json.dumps(document, indent=1, ensure_ascii=False) + "\n", encoding="utf-8"))
-            outputs["OUTPUT_JSON"] = out_json
-        out_plot = self.parameterAsFileOutput(parameters, "OUTPUT_PLOT", context)
+            outputs[self.OUTPUT_JSON] = out_json
+        out_plot = self.parameterAsFileOutput(parameters, self.OUTPUT_PLOT, context)
         if out_plot:
-            write_output(out_plot, "OUTPUT_PLOT", lambda p: sweep_figure(result).savefig(p, dpi=110,
+            write_output(out_plot, self.OUTPUT_PLOT, lambda p: sweep_figure(result).savefig(p, dpi=110,
                                                                                         bbox_inches="tight"))
-            outputs["OUTPUT_PLOT"] = out_plot
+            outputs[self.OUTPUT_PLOT] = out_plot
         for r in sorted((r for r in rows if r["pareto"]), key=lambda r: -r["recall_pre"]):
             feedback.pushInfo(f"Pareto: threshold {r['threshold']}, eps {r['eps_m']} m, min_samples "
                               f"{r['min_samples']}, eps_pred {r['eps_pred_m']} m → recall_pre {r['recall_pre']:.3f}, "

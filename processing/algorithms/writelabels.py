@@ -42,55 +42,69 @@ class WriteLabels(DemParametersMixin, BirdsEyeAlgorithm):
     ALG_ID = "writelabels"
     DISPLAY_NAME = "Write training labels"
     GROUP = "labels"
+    GEOTAGS = "GEOTAGS"
+    FRAMES = "FRAMES"
+    SIGMA_PX = "SIGMA_PX"
+    SENSOR_BOUND_JSON = "SENSOR_BOUND_JSON"
+    EDGE_BUFFER_PX = "EDGE_BUFFER_PX"
+    WRITE_RASTERS = "WRITE_RASTERS"
+    WRITE_TILES = "WRITE_TILES"
+    TILE_SIZE = "TILE_SIZE"
+    NEGATIVE_RATIO = "NEGATIVE_RATIO"
+    SEED = "SEED"
+    WRITE_COCO = "WRITE_COCO"
+    OUTPUT_FOLDER = "OUTPUT_FOLDER"
+    OUTPUT_FRAMES = "OUTPUT_FRAMES"
+    OUTPUT_GEOTAGS = "OUTPUT_GEOTAGS"
 
     def initAlgorithm(self, config=None):  # noqa: N802
         self.addParameter(QgsProcessingParameterFeatureSource(
-            "GEOTAGS", self.tr("Geotags (surveyed targets)"), [QgsProcessing.TypeVectorPoint]))
+            self.GEOTAGS, self.tr("Geotags (surveyed targets)"), [QgsProcessing.TypeVectorPoint]))
         self.addParameter(QgsProcessingParameterFeatureSource(
-            "FRAMES", self.tr("Frames (from Import flight log or Import DJI images)"),
+            self.FRAMES, self.tr("Frames (from Import flight log or Import DJI images)"),
             [QgsProcessing.TypeVectorPolygon]))
         self.addParameter(QgsProcessingParameterNumber(
-            "SIGMA_PX", self.tr("Soft-label σ (px); empty: the sensor-bound dock's value, else 10"),
+            self.SIGMA_PX, self.tr("Soft-label σ (px); empty: the sensor-bound dock's value, else 10"),
             QgsProcessingParameterNumber.Double, None, optional=True, minValue=0.5, maxValue=500.0))
         self.addParameter(QgsProcessingParameterFile(
-            "SENSOR_BOUND_JSON", self.tr("…or σ from a sensorbound result (JSON): r / 3"), optional=True,
+            self.SENSOR_BOUND_JSON, self.tr("…or σ from a sensorbound result (JSON): r / 3"), optional=True,
             fileFilter="JSON (*.json)"))
         self.addParameter(QgsProcessingParameterNumber(
-            "EDGE_BUFFER_PX", self.tr("Edge buffer (px): geotags this close to the border are 'edge', not labels"),
+            self.EDGE_BUFFER_PX, self.tr("Edge buffer (px): geotags this close to the border are 'edge', not labels"),
             QgsProcessingParameterNumber.Double, 0.0, minValue=0.0, maxValue=1000.0))
         self.add_dem_parameters()
         self.addParameter(QgsProcessingParameterBoolean(
-            "WRITE_RASTERS", self.tr("Write one soft-label raster per frame"), defaultValue=True))
+            self.WRITE_RASTERS, self.tr("Write one soft-label raster per frame"), defaultValue=True))
         self.addParameter(QgsProcessingParameterBoolean(
-            "WRITE_TILES", self.tr("Write a tiled training set (image and label tiles)"), defaultValue=False))
+            self.WRITE_TILES, self.tr("Write a tiled training set (image and label tiles)"), defaultValue=False))
         self.addParameter(QgsProcessingParameterNumber(
-            "TILE_SIZE", self.tr("Tile size (px)"), QgsProcessingParameterNumber.Integer, 224,
+            self.TILE_SIZE, self.tr("Tile size (px)"), QgsProcessingParameterNumber.Integer, 224,
             minValue=16, maxValue=4096))
         self.addParameter(QgsProcessingParameterNumber(
-            "NEGATIVE_RATIO", self.tr("Negative tiles kept per positive tile"),
+            self.NEGATIVE_RATIO, self.tr("Negative tiles kept per positive tile"),
             QgsProcessingParameterNumber.Double, 1.0, minValue=0.0, maxValue=100.0))
         self.addParameter(QgsProcessingParameterNumber(
-            "SEED", self.tr("Random seed for the negative-tile sample"), QgsProcessingParameterNumber.Integer,
+            self.SEED, self.tr("Random seed for the negative-tile sample"), QgsProcessingParameterNumber.Integer,
             0, minValue=0))
         self.addParameter(QgsProcessingParameterBoolean(
-            "WRITE_COCO", self.tr("Write COCO-keypoints JSON"), defaultValue=False))
-        self.addParameter(QgsProcessingParameterFolderDestination("OUTPUT_FOLDER", self.tr("Label folder")))
+            self.WRITE_COCO, self.tr("Write COCO-keypoints JSON"), defaultValue=False))
+        self.addParameter(QgsProcessingParameterFolderDestination(self.OUTPUT_FOLDER, self.tr("Label folder")))
         self.addParameter(QgsProcessingParameterFeatureSink(
-            "OUTPUT_FRAMES", self.tr("Frames with label counts"), QgsProcessing.TypeVectorPolygon,
+            self.OUTPUT_FRAMES, self.tr("Frames with label counts"), QgsProcessing.TypeVectorPolygon,
             optional=True, createByDefault=True))
         self.addParameter(QgsProcessingParameterFeatureSink(
-            "OUTPUT_GEOTAGS", self.tr("Geotags with frames seen"), QgsProcessing.TypeVectorPoint,
+            self.OUTPUT_GEOTAGS, self.tr("Geotags with frames seen"), QgsProcessing.TypeVectorPoint,
             optional=True, createByDefault=True))
         for name, text in (("LABEL_COUNT", "Labels written"), ("FRAMES_WITH_LABELS", "Frames with labels"),
                            ("GEOTAGS_NEVER_IN_VIEW", "Geotags never in view"), ("SIGMA_USED_PX", "σ used (px)")):
             self.addOutput(QgsProcessingOutputNumber(name, self.tr(text)))
 
     def sigma(self, parameters, context, feedback) -> float:
-        bound = self.parameterAsFile(parameters, "SENSOR_BOUND_JSON", context)
-        if parameters.get("SIGMA_PX") is not None:
+        bound = self.parameterAsFile(parameters, self.SENSOR_BOUND_JSON, context)
+        if parameters.get(self.SIGMA_PX) is not None:
             if bound:
                 feedback.pushWarning("SIGMA_PX is given: SENSOR_BOUND_JSON is ignored")
-            return self.parameterAsDouble(parameters, "SIGMA_PX", context)
+            return self.parameterAsDouble(parameters, self.SIGMA_PX, context)
         if bound:
             return sigma_from_bound_json(bound)
         value = read_sigma_label_px(context.project() or QgsProject.instance())
@@ -101,8 +115,8 @@ class WriteLabels(DemParametersMixin, BirdsEyeAlgorithm):
 
     def processAlgorithm(self, parameters, context, feedback):  # noqa: N802
         steps = QgsProcessingMultiStepFeedback(3, feedback)
-        geotag_source = self.parameterAsSource(parameters, "GEOTAGS", context)
-        frame_source = self.parameterAsSource(parameters, "FRAMES", context)
+        geotag_source = self.parameterAsSource(parameters, self.GEOTAGS, context)
+        frame_source = self.parameterAsSource(parameters, self.FRAMES, context)
         if geotag_source is None or frame_source is None:
             raise QgsProcessingException(self.tr("GEOTAGS and FRAMES are both required."))
         sigma = self.sigma(parameters, context, feedback)
@@ -112,14 +126,14 @@ class WriteLabels(DemParametersMixin, BirdsEyeAlgorithm):
         records = self.run_core(layers.read_frame_layer, frame_source)
         groups = self.run_core(poses_from_records, records, frame_source.sourceName())
         request = LabelRequest(
-            sigma_px=sigma, edge_buffer_px=self.parameterAsDouble(parameters, "EDGE_BUFFER_PX", context),
-            write_rasters=self.parameterAsBoolean(parameters, "WRITE_RASTERS", context),
-            tile_size=self.parameterAsInt(parameters, "TILE_SIZE", context)
-            if self.parameterAsBoolean(parameters, "WRITE_TILES", context) else 0,
-            negative_ratio=self.parameterAsDouble(parameters, "NEGATIVE_RATIO", context),
-            seed=self.parameterAsInt(parameters, "SEED", context),
-            coco=self.parameterAsBoolean(parameters, "WRITE_COCO", context))
-        out_dir = self.parameterAsString(parameters, "OUTPUT_FOLDER", context)
+            sigma_px=sigma, edge_buffer_px=self.parameterAsDouble(parameters, self.EDGE_BUFFER_PX, context),
+            write_rasters=self.parameterAsBoolean(parameters, self.WRITE_RASTERS, context),
+            tile_size=self.parameterAsInt(parameters, self.TILE_SIZE, context)
+            if self.parameterAsBoolean(parameters, self.WRITE_TILES, context) else 0,
+            negative_ratio=self.parameterAsDouble(parameters, self.NEGATIVE_RATIO, context),
+            seed=self.parameterAsInt(parameters, self.SEED, context),
+            coco=self.parameterAsBoolean(parameters, self.WRITE_COCO, context))
+        out_dir = self.parameterAsString(parameters, self.OUTPUT_FOLDER, context)
         all_lat = np.concatenate([g[0].lat for g in groups] + [geotags.lat])
         all_lon = np.concatenate([g[0].lon for g in groups] + [geotags.lon])
         local = LocalFrame.around(all_lat, all_lon, np.concatenate([g[0].height for g in groups]))
@@ -216,7 +230,7 @@ class WriteLabels(DemParametersMixin, BirdsEyeAlgorithm):
         return {name: dest_id}
 
     def _write_frames(self, parameters, context, source, counts):
-        return self._write_copy(parameters, context, "OUTPUT_FRAMES", source,
+        return self._write_copy(parameters, context, self.OUTPUT_FRAMES, source,
                                 QgsField("n_labels", QVariant.Int), counts.tolist(), "frames.qml")
 
     def _write_geotags(self, parameters, context, source, frames_per_geotag):
@@ -229,5 +243,5 @@ class WriteLabels(DemParametersMixin, BirdsEyeAlgorithm):
             else:
                 counts.append(int(frames_per_geotag[k]))
                 k += 1
-        return self._write_copy(parameters, context, "OUTPUT_GEOTAGS", source,
+        return self._write_copy(parameters, context, self.OUTPUT_GEOTAGS, source,
                                 QgsField("frames_seen", QVariant.Int), counts, "geotags.qml")

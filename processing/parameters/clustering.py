@@ -6,6 +6,7 @@ from qgis.core import QgsProcessingException, QgsProcessingParameterNumber
 
 from ...birdseye_qgis.core.detect.clustering import DEFAULT_DEDUP_CM, DEFAULT_EPS_M, DEFAULT_MIN_SAMPLES
 from ...birdseye_qgis.core.scoring.evaluation import Flight
+from ...birdseye_qgis.core.scoring.operating_point import OperatingPoint
 from ...birdseye_qgis.core.scoring.operating_point import DEFAULT_EDGE_BUFFER_PX, DEFAULT_EPS_PRED_M
 from ...birdseye_qgis.qgis_io.detections import read_detections, read_pose_groups
 
@@ -13,16 +14,22 @@ from ...birdseye_qgis.qgis_io.detections import read_detections, read_pose_group
 class ClusteringParametersMixin:
     """Mixed into a ``BirdsEyeAlgorithm``: the method's clustering parameters with their defaults."""
 
+    DEDUP_CM = "DEDUP_CM"
+    EPS_M = "EPS_M"
+    MIN_SAMPLES = "MIN_SAMPLES"
+    EPS_PRED_M = "EPS_PRED_M"
+    EDGE_BUFFER_PX = "EDGE_BUFFER_PX"
+
     def add_clustering_parameters(self, with_prediction: bool = True) -> None:
         """DEDUP_CM, EPS_M, MIN_SAMPLES (and EPS_PRED_M, EDGE_BUFFER_PX) with the method's defaults."""
         self.addParameter(QgsProcessingParameterNumber(
-            "DEDUP_CM", self.tr("De-duplication grid cell (cm)"), QgsProcessingParameterNumber.Double,
+            self.DEDUP_CM, self.tr("De-duplication grid cell (cm)"), QgsProcessingParameterNumber.Double,
             DEFAULT_DEDUP_CM, minValue=0.1, maxValue=100.0))
         self.addParameter(QgsProcessingParameterNumber(
-            "EPS_M", self.tr("DBSCAN radius EPS (m)"), QgsProcessingParameterNumber.Double, DEFAULT_EPS_M,
+            self.EPS_M, self.tr("DBSCAN radius EPS (m)"), QgsProcessingParameterNumber.Double, DEFAULT_EPS_M,
             minValue=0.001, maxValue=50.0))
         self.addParameter(QgsProcessingParameterNumber(
-            "MIN_SAMPLES", self.tr("DBSCAN minimum points per neighbourhood (itself included)"),
+            self.MIN_SAMPLES, self.tr("DBSCAN minimum points per neighbourhood (itself included)"),
             QgsProcessingParameterNumber.Integer, DEFAULT_MIN_SAMPLES, minValue=1, maxValue=1000))
         if with_prediction:
             self.add_matching_parameters()
@@ -30,11 +37,19 @@ class ClusteringParametersMixin:
     def add_matching_parameters(self) -> None:
         """EPS_PRED_M and EDGE_BUFFER_PX: when a geotag counts as seen and as matched by a cluster."""
         self.addParameter(QgsProcessingParameterNumber(
-            "EPS_PRED_M", self.tr("Match radius geotag ↔ cluster core points EPS_PRED (m)"),
+            self.EPS_PRED_M, self.tr("Match radius geotag ↔ cluster core points EPS_PRED (m)"),
             QgsProcessingParameterNumber.Double, DEFAULT_EPS_PRED_M, minValue=0.001, maxValue=50.0))
         self.addParameter(QgsProcessingParameterNumber(
-            "EDGE_BUFFER_PX", self.tr("Edge buffer of the in-view test (px)"), QgsProcessingParameterNumber.Double,
+            self.EDGE_BUFFER_PX, self.tr("Edge buffer of the in-view test (px)"), QgsProcessingParameterNumber.Double,
             DEFAULT_EDGE_BUFFER_PX, minValue=0.0, maxValue=1000.0))
+
+    def read_operating_point(self, parameters, context, threshold=None) -> OperatingPoint:
+        """The operating point the dialog's clustering and matching parameters describe."""
+        return self.run_core(OperatingPoint, threshold, self.parameterAsDouble(parameters, self.DEDUP_CM, context),
+                             self.parameterAsDouble(parameters, self.EPS_M, context),
+                             self.parameterAsInt(parameters, self.MIN_SAMPLES, context),
+                             self.parameterAsDouble(parameters, self.EPS_PRED_M, context),
+                             self.parameterAsDouble(parameters, self.EDGE_BUFFER_PX, context))
 
     def read_flights(self, parameters, context, feedback, detections_name="DETECTIONS", frames_name="FRAMES"):
         """Detection layers paired in order with frame layers (one flight each) as core Flights."""

@@ -22,24 +22,28 @@ DATUM_LABELS = ("Ellipsoidal (WGS84), like RTK and INS heights",
 class DemParametersMixin:
     """Adds and reads the DEM parameters; ``dem_ground`` gives the ground-model factory."""
 
+    DEM = "DEM"
+    DEM_VERTICAL_DATUM = "DEM_VERTICAL_DATUM"
+    GEOID_UNDULATION_M = "GEOID_UNDULATION_M"
+
     def add_dem_parameters(self) -> None:
         self.addParameter(QgsProcessingParameterRasterLayer(
-            "DEM", self.tr("Terrain model (DEM/DSM raster, projected CRS in metres; empty: level ground)"),
+            self.DEM, self.tr("Terrain model (DEM/DSM raster, projected CRS in metres; empty: level ground)"),
             optional=True))
         self.addParameter(QgsProcessingParameterEnum(
-            "DEM_VERTICAL_DATUM", self.tr("DEM heights are measured from"), options=list(DATUM_LABELS),
+            self.DEM_VERTICAL_DATUM, self.tr("DEM heights are measured from"), options=list(DATUM_LABELS),
             defaultValue=2))
         self.addParameter(QgsProcessingParameterNumber(
-            "GEOID_UNDULATION_M", self.tr("Geoid undulation N at the site (m; ellipsoidal = MSL + N)"),
+            self.GEOID_UNDULATION_M, self.tr("Geoid undulation N at the site (m; ellipsoidal = MSL + N)"),
             QgsProcessingParameterNumber.Double, None, optional=True, minValue=-120.0, maxValue=120.0))
 
     def read_dem(self, parameters, context) -> DemRaster | None:
-        layer = self.parameterAsRasterLayer(parameters, "DEM", context)
+        layer = self.parameterAsRasterLayer(parameters, self.DEM, context)
         if layer is None:
             return None
-        datum = VERTICAL_DATUMS[self.parameterAsEnum(parameters, "DEM_VERTICAL_DATUM", context)]
-        undulation = (self.parameterAsDouble(parameters, "GEOID_UNDULATION_M", context)
-                      if parameters.get("GEOID_UNDULATION_M") not in (None, "") else None)
+        datum = VERTICAL_DATUMS[self.parameterAsEnum(parameters, self.DEM_VERTICAL_DATUM, context)]
+        undulation = (self.parameterAsDouble(parameters, self.GEOID_UNDULATION_M, context)
+                      if parameters.get(self.GEOID_UNDULATION_M) not in (None, "") else None)
         try:
             return layers.read_dem(layer, datum, undulation)
         except InputError as exc:

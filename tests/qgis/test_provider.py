@@ -45,7 +45,8 @@ def test_every_algorithm_module_registers_one_algorithm_named_after_its_file(bir
 
 @pytest.mark.parametrize("alg_id", ALGORITHM_MODULES)
 def test_algorithm_contract(birdseye_provider, alg_id):
-    from birdseye.processing.algorithms.base import GROUPS, HELP_DIR
+    from birdseye.birdseye_qgis.__about__ import HELP_DIR
+    from birdseye.processing.algorithms.base import GROUPS
 
     alg = QgsApplication.processingRegistry().algorithmById(f"birdseye:{alg_id}")
     assert alg is not None, f"birdseye:{alg_id} is not registered"
