@@ -1,7 +1,7 @@
 """BirdsEye for QGIS — survey-driven aerial training sets and detector review."""
 
 
-def classFactory(iface):  # noqa: N802 (QGIS API name)
+def classFactory(iface):
     """QGIS entry point; imports lazily so a missing optional package never stops QGIS starting."""
     from .birdseye_qgis.gui.plugin import BirdsEyePlugin
     from .processing.provider import BirdsEyeProvider

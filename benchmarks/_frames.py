@@ -1,7 +1,7 @@
 """Random nadir frames over a square field, for benchmarks at the method's campaign scale."""
+import _path  # noqa: F401
 import numpy as np
 
-import _path  # noqa: F401
 from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame
 from birdseye.birdseye_qgis.core.geometry.poses import FramePoses
 from birdseye.birdseye_qgis.core.geometry.rotations import euler_zyx_to_rotmat, rotmat_to_quat

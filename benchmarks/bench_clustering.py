@@ -20,19 +20,25 @@ import os
 os.environ.setdefault("OMP_NUM_THREADS", "1")
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
-import time  # noqa: E402
+import time
 
-import numpy as np  # noqa: E402
+import _path  # noqa: F401
+import numpy as np
 
-import _path  # noqa: E402,F401
-from birdseye.birdseye_qgis.core.geometry.camera import CameraModel  # noqa: E402
-from birdseye.birdseye_qgis.core.detect.clustering import (cluster_detections, cluster_hulls, dbscan,  # noqa: E402
-                                                     deduplicate, neighbour_graph, summarize_clusters)
-from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame  # noqa: E402
-from birdseye.birdseye_qgis.core.geometry.ground import LevelPlaneGround  # noqa: E402
-from birdseye.birdseye_qgis.core.geometry.poses import FrameGeometry, FramePoses  # noqa: E402
-from birdseye.birdseye_qgis.core.geometry.projection import project_in_view  # noqa: E402
-from birdseye.birdseye_qgis.core.geometry.rotations import euler_zyx_to_rotmat, rotmat_to_quat  # noqa: E402
+from birdseye.birdseye_qgis.core.detect.clustering import (
+    cluster_detections,
+    cluster_hulls,
+    dbscan,
+    deduplicate,
+    neighbour_graph,
+    summarize_clusters,
+)
+from birdseye.birdseye_qgis.core.geometry.camera import CameraModel
+from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame
+from birdseye.birdseye_qgis.core.geometry.ground import LevelPlaneGround
+from birdseye.birdseye_qgis.core.geometry.poses import FrameGeometry, FramePoses
+from birdseye.birdseye_qgis.core.geometry.projection import project_in_view
+from birdseye.birdseye_qgis.core.geometry.rotations import euler_zyx_to_rotmat, rotmat_to_quat
 from birdseye.birdseye_qgis.core.scoring.matching import in_view
 from birdseye.birdseye_qgis.core.scoring.pre_review import PreCounts, score_flight
 from birdseye.birdseye_qgis.core.scoring.sweep import SweepFlight, SweepGrid, sweep
@@ -150,8 +156,9 @@ def bench_sweep():
     result = sweep([flight], grid)
     t_sweep = time.perf_counter() - t0
     cpu = time.process_time() - cpu0
-    print(f"   sweep: {t_sweep:.1f} s wall ({cpu:.1f} s CPU) = {t_sweep / grid.size * 1e3:.2f} ms per configuration   (goal "
-          f"{GOAL_SWEEP_S:.0f} s: {t_sweep / GOAL_SWEEP_S:.2f} × goal wall, {cpu / GOAL_SWEEP_S:.2f} × goal CPU); {int(result.credible.sum()):,} credible, "
+    print(f"   sweep: {t_sweep:.1f} s wall ({cpu:.1f} s CPU) = {t_sweep / grid.size * 1e3:.2f} ms per "
+          f"configuration   (goal {GOAL_SWEEP_S:.0f} s: {t_sweep / GOAL_SWEEP_S:.2f} × goal wall, "
+          f"{cpu / GOAL_SWEEP_S:.2f} × goal CPU); {int(result.credible.sum()):,} credible, "
           f"{int(result.pareto.sum())} on the Pareto front")
     best = np.unravel_index(np.nanargmax(np.where(result.pareto, result.recall_pre + result.gmcf_pre, -1)),
                             grid.shape)

@@ -10,19 +10,19 @@ import os
 os.environ.setdefault("OMP_NUM_THREADS", "1")
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
-import time  # noqa: E402
+import time
 
-import numpy as np  # noqa: E402
+import _path  # noqa: F401
+import numpy as np
 
-import _path  # noqa: E402,F401
-from birdseye.birdseye_qgis.core.geometry.camera import CameraModel  # noqa: E402
+from birdseye.birdseye_qgis.core.geometry.camera import CameraModel
 from birdseye.birdseye_qgis.core.geometry.dem import DemGround, intersect_heightfield
-from birdseye.birdseye_qgis.core.sim.terrain import synthetic_terrain  # noqa: E402
-from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame  # noqa: E402
-from birdseye.birdseye_qgis.core.geometry.ground import LevelPlaneGround  # noqa: E402
-from birdseye.birdseye_qgis.core.geometry.poses import FrameGeometry, FramePoses  # noqa: E402
-from birdseye.birdseye_qgis.core.geometry.projection import pixel_to_ground  # noqa: E402
-from birdseye.birdseye_qgis.core.geometry.rotations import euler_zyx_to_rotmat, rotmat_to_quat  # noqa: E402
+from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame
+from birdseye.birdseye_qgis.core.geometry.ground import LevelPlaneGround
+from birdseye.birdseye_qgis.core.geometry.poses import FrameGeometry, FramePoses
+from birdseye.birdseye_qgis.core.geometry.projection import pixel_to_ground
+from birdseye.birdseye_qgis.core.geometry.rotations import euler_zyx_to_rotmat, rotmat_to_quat
+from birdseye.birdseye_qgis.core.sim.terrain import synthetic_terrain
 
 N_PIXELS = 1_000_000
 GOAL_S = 2.0

@@ -19,16 +19,25 @@ import argparse
 import time
 from pathlib import Path
 
-import _path  # noqa: F401  (puts the plugin on sys.path as ``birdseye``)
+import _path
 import numpy as np
 
-from birdseye.birdseye_qgis.core.geometry.camera import load_calibration
-from birdseye.birdseye_qgis.core.detect.detector import (DetectRequest, HeatmapModel, cut_tiles, detect_frames,
-                                                  model_size, normalise, read_bgr, read_reduction, resample,
-                                                  tile_spans)
+from birdseye.birdseye_qgis.core.detect.detector import (
+    DetectRequest,
+    HeatmapModel,
+    cut_tiles,
+    detect_frames,
+    model_size,
+    normalise,
+    read_bgr,
+    read_reduction,
+    resample,
+    tile_spans,
+)
 from birdseye.birdseye_qgis.core.field.flight_log import import_flight_log
-from birdseye.birdseye_qgis.core.field.frames import frame_records
 from birdseye.birdseye_qgis.core.field.frame_records import poses_from_records
+from birdseye.birdseye_qgis.core.field.frames import frame_records
+from birdseye.birdseye_qgis.core.geometry.camera import load_calibration
 from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame
 from birdseye.birdseye_qgis.core.geometry.poses import FrameGeometry
 from birdseye.birdseye_qgis.core.sim.campaign import CampaignConfig, simulate_campaign

@@ -28,10 +28,16 @@ if not (PLUGIN_PATH / "birdseye").is_symlink():
     (PLUGIN_PATH / "birdseye").symlink_to(REPO, target_is_directory=True)
 sys.path.insert(0, str(PLUGIN_PATH))
 
-from birdseye.birdseye_qgis.core.plan.flight_plan import (  # noqa: E402
-    FlightSettings, default_tsp_seconds, distance_matrix, nearest_neighbour_tour, plan_flight,
-    solve_tour, tour_length)
 from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame  # noqa: E402
+from birdseye.birdseye_qgis.core.plan.flight_plan import (  # noqa: E402
+    FlightSettings,
+    default_tsp_seconds,
+    distance_matrix,
+    nearest_neighbour_tour,
+    plan_flight,
+    solve_tour,
+    tour_length,
+)
 
 
 def lkh_tour(xy: np.ndarray, runs: int) -> np.ndarray:

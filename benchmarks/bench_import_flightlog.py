@@ -31,8 +31,8 @@ def peak_rss_mb() -> float:
 
 def run_import(folder: Path) -> None:
     """The measured part, in a fresh process so the peak RSS is the import's alone."""
-    from birdseye.birdseye_qgis.core.geometry.camera import load_calibration
     from birdseye.birdseye_qgis.core.field.flight_log import import_pose_log
+    from birdseye.birdseye_qgis.core.geometry.camera import load_calibration
 
     camera = load_calibration(folder / "camchain.yaml")
     t0 = time.perf_counter()

@@ -10,17 +10,17 @@ import os
 os.environ.setdefault("OMP_NUM_THREADS", "1")
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
-import resource  # noqa: E402
-import shutil  # noqa: E402
-import tempfile  # noqa: E402
-import time  # noqa: E402
-from pathlib import Path  # noqa: E402
+import resource
+import shutil
+import tempfile
+import time
+from pathlib import Path
 
-import numpy as np  # noqa: E402
+import _path  # noqa: F401
+import numpy as np
+from _frames import random_frames, random_ground_points
 
-import _path  # noqa: E402,F401
-from birdseye.birdseye_qgis.core.labels.training_set import Geotags, LabelRequest, project_labels, write_label_set  # noqa: E402
-from _frames import random_frames, random_ground_points  # noqa: E402
+from birdseye.birdseye_qgis.core.labels.training_set import Geotags, LabelRequest, project_labels, write_label_set
 
 N_FRAMES, TARGET_LABELS = 3_976, 25_315
 BASELINE_S = 14 * 60 + 27

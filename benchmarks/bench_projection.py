@@ -8,16 +8,16 @@ import os
 os.environ.setdefault("OMP_NUM_THREADS", "1")
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
-import time  # noqa: E402
+import time
 
-import numpy as np  # noqa: E402
+import _path  # noqa: F401
+import numpy as np
+from _frames import random_frames, random_ground_points
 
-import _path  # noqa: E402,F401
-from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame  # noqa: E402
-from birdseye.birdseye_qgis.core.geometry.ground import LevelPlaneGround  # noqa: E402
-from birdseye.birdseye_qgis.core.geometry.poses import FrameGeometry  # noqa: E402
-from birdseye.birdseye_qgis.core.geometry.projection import project_all, project_in_view  # noqa: E402
-from _frames import random_frames, random_ground_points  # noqa: E402
+from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame
+from birdseye.birdseye_qgis.core.geometry.ground import LevelPlaneGround
+from birdseye.birdseye_qgis.core.geometry.poses import FrameGeometry
+from birdseye.birdseye_qgis.core.geometry.projection import project_all, project_in_view
 
 N_FRAMES, N_POINTS = 12_524, 3_317
 # 55,600 labels over 12,524 frames in the method ⇒ ~4.4 points per frame: a ~100 m × 94 m field.

@@ -17,9 +17,9 @@ import tempfile
 import time
 from pathlib import Path
 
+import _path  # noqa: F401
 import numpy as np
 
-import _path  # noqa: F401
 from birdseye.birdseye_qgis.core.sim.campaign import CampaignConfig, deployed_camera, simulate_campaign
 
 REPEATS = 3
@@ -84,7 +84,7 @@ def stages():
     grain = fine.sample(e, n)[..., 0].copy()
     h_px, w_px = e.shape
     t_crop, _ = best_of(lambda: scene._canopy(e, n, ec, nc, gsd, leaf))
-    layers = lambda: (np.ones((3, h_px, w_px), np.float32), np.ones((h_px, w_px), np.float32),  # noqa: E731
+    layers = lambda: (np.ones((3, h_px, w_px), np.float32), np.ones((h_px, w_px), np.float32),
                       np.zeros((h_px, w_px), np.float32))
     t_alloc, _ = best_of(layers)
     t_scatter, _ = best_of(lambda: scene._draw_scatter(e, n, ec, nc, gsd, *layers(), grain))
@@ -127,7 +127,8 @@ def main():
     one_core = render + jpeg
     print("Ratios (one core, CPU time; pipeline wall time in brackets)")
     print(f"  vs the 1 s/frame goal:                 {one_core:6.2f}  [{median:5.2f}]  (< 1 meets the goal)")
-    print(f"  vs real time at 5 frames/s (0.2 s):    {one_core / 0.2:6.2f}  [{median / 0.2:5.2f}]  (× slower than the camera)")
+    print(f"  vs real time at 5 frames/s (0.2 s):    {one_core / 0.2:6.2f}  [{median / 0.2:5.2f}]  "
+          "(× slower than the camera)")
     print(f"  vs JPEG encode + write alone:          {one_core / jpeg:6.1f}  [{median / jpeg:5.1f}]  (× the floor)")
     n_default = 1109
     print(f"  default campaign (~{n_default} frames): ~{n_default * one_core / 60:.0f} min on one core "

@@ -5,7 +5,7 @@ import importlib
 import inspect
 import pkgutil
 
-from qgis.core import QgsMessageLog, Qgis, QgsProcessingProvider
+from qgis.core import Qgis, QgsMessageLog, QgsProcessingProvider
 from qgis.PyQt.QtGui import QIcon
 
 from ..birdseye_qgis.__about__ import ICON_PATH, LOG_TAG, NAME
@@ -44,12 +44,12 @@ class BirdsEyeProvider(QgsProcessingProvider):
     def name(self) -> str:
         return NAME
 
-    def longName(self) -> str:  # noqa: N802
+    def longName(self) -> str:
         return "BirdsEye — survey-driven aerial labels and detection"
 
     def icon(self) -> QIcon:
         return QIcon(str(ICON_PATH))
 
-    def loadAlgorithms(self) -> None:  # noqa: N802
+    def loadAlgorithms(self) -> None:
         for cls in algorithm_classes():
             self.addAlgorithm(cls())

@@ -81,12 +81,12 @@ class Checker(ast.NodeVisitor):
     def report(self, node: ast.AST, message: str) -> None:
         self.problems.append(f"{self.path}:{node.lineno}: {message}")
 
-    def visit_Import(self, node: ast.Import) -> None:  # noqa: N802 (ast.NodeVisitor's API)
+    def visit_Import(self, node: ast.Import) -> None:
         for alias in node.names:
             if alias.name.split(".")[0] in ("PyQt5", "PyQt6"):
                 self.report(node, f"imports {alias.name} directly; import it from qgis.PyQt")
 
-    def visit_ImportFrom(self, node: ast.ImportFrom) -> None:  # noqa: N802 (ast.NodeVisitor's API)
+    def visit_ImportFrom(self, node: ast.ImportFrom) -> None:
         module = node.module or ""
         if module.split(".")[0] in ("PyQt5", "PyQt6"):
             self.report(node, f"imports from {module} directly; import from qgis.PyQt")
@@ -99,17 +99,17 @@ class Checker(ast.NodeVisitor):
                     continue
                 self.qt_names[alias.asname or alias.name] = f"PyQt6.{parts[2]}.{alias.name}"
 
-    def visit_Try(self, node: ast.Try) -> None:  # noqa: N802 (ast.NodeVisitor's API)
+    def visit_Try(self, node: ast.Try) -> None:
         for child in node.body + node.orelse + node.finalbody:
             self.visit(child)
         for handler in node.handlers:
             if handler.type is None or "ImportError" not in ast.unparse(handler.type):
                 self.visit(handler)
 
-    def visit_If(self, node: ast.If) -> None:  # noqa: N802 (ast.NodeVisitor's API)
+    def visit_If(self, node: ast.If) -> None:
         self._visit_guarded(node)
 
-    def visit_IfExp(self, node: ast.IfExp) -> None:  # noqa: N802 (ast.NodeVisitor's API)
+    def visit_IfExp(self, node: ast.IfExp) -> None:
         self._visit_guarded(node)
 
     def _visit_guarded(self, node) -> None:
@@ -122,7 +122,7 @@ class Checker(ast.NodeVisitor):
             for child in value if isinstance(value, list) else [value]:
                 self.visit(child)
 
-    def visit_Attribute(self, node: ast.Attribute) -> None:  # noqa: N802 (ast.NodeVisitor's API)
+    def visit_Attribute(self, node: ast.Attribute) -> None:
         if node.attr == "exec_":
             self.report(node, "exec_() is gone in PyQt6; call exec()")
         chain = attribute_chain(node)

@@ -208,17 +208,17 @@ class TerminalFeedback:
                 if self.live:
                     print("\r" + " " * 48 + "\r", end="", flush=True)
 
-            def pushInfo(self, info):  # noqa: N802 (QGIS API)
+            def pushInfo(self, info):
                 if info.startswith("Results: "):  # processing.run's raw dict; the summary has the numbers
                     return
                 self.end_line()
                 print(f"    {info}", flush=True)
 
-            def pushWarning(self, warning):  # noqa: N802
+            def pushWarning(self, warning):
                 self.end_line()
                 print(f"    warning: {warning}", flush=True)
 
-            def reportError(self, error, fatalError=False):  # noqa: N802, N803
+            def reportError(self, error, fatalError=False):
                 self.end_line()
                 self.errors.append(error)
                 print(f"    error: {error}", flush=True)
@@ -285,8 +285,11 @@ def preflight(steps: list[Step], model: Path | None) -> None:
 
 def layer_destinations(algorithm) -> set[str]:
     """Names of the parameters whose output is a map layer (those get loaded into the project)."""
-    from qgis.core import (QgsProcessingParameterFeatureSink, QgsProcessingParameterRasterDestination,
-                           QgsProcessingParameterVectorDestination)
+    from qgis.core import (
+        QgsProcessingParameterFeatureSink,
+        QgsProcessingParameterRasterDestination,
+        QgsProcessingParameterVectorDestination,
+    )
 
     kinds = (QgsProcessingParameterFeatureSink, QgsProcessingParameterRasterDestination,
              QgsProcessingParameterVectorDestination)
@@ -296,8 +299,13 @@ def layer_destinations(algorithm) -> set[str]:
 def run_step(step: Step, values: dict, project) -> tuple[dict, list]:
     """Run one step; returns (results, [(loaded and styled layer, hidden?)]). Raises DemoError when it fails."""
     import processing
-    from qgis.core import (QgsApplication, QgsProcessingContext, QgsProcessingException,
-                           QgsProcessingOutputLayerDefinition, QgsProcessingUtils)
+    from qgis.core import (
+        QgsApplication,
+        QgsProcessingContext,
+        QgsProcessingException,
+        QgsProcessingOutputLayerDefinition,
+        QgsProcessingUtils,
+    )
 
     algorithm = QgsApplication.processingRegistry().algorithmById(f"birdseye:{step.alg_id}")
     params = {name: resolve(value, values) for name, value in step.params.items()}

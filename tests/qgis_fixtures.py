@@ -1,4 +1,5 @@
-"""Fixtures for every suite that runs with pytest-qgis (registered by tests/conftest.py): the ``birdseye`` provider in the registry and a fuller iface stub.
+"""Fixtures for every suite that runs with pytest-qgis (registered by tests/conftest.py): the ``birdseye``
+provider in the registry and a fuller iface stub.
 
 pytest-qgis creates the one ``QgsApplication`` of the run (with widgets, offscreen); nothing here
 builds QGIS objects at import time.
@@ -77,13 +78,13 @@ class _IfaceUiPatches:
         self.iface = iface
         self.plugin_menus = {}
 
-    def addDockWidget(self, area, dock):  # noqa: N802 (QGIS API name)
+    def addDockWidget(self, area, dock):
         self.iface.mainWindow().addDockWidget(area, dock)
 
-    def removeDockWidget(self, dock):  # noqa: N802
+    def removeDockWidget(self, dock):
         self.iface.mainWindow().removeDockWidget(dock)
 
-    def addToolBar(self, toolbar, area=None):  # noqa: N802
+    def addToolBar(self, toolbar, area=None):
         from qgis.PyQt.QtCore import Qt
         from qgis.PyQt.QtWidgets import QToolBar
 
@@ -94,7 +95,7 @@ class _IfaceUiPatches:
         main_window.addToolBar(area if area is not None else Qt.TopToolBarArea, toolbar)
         return toolbar
 
-    def pluginMenu(self):  # noqa: N802
+    def pluginMenu(self):
         from qgis.PyQt.QtWidgets import QMenu
 
         menu_bar = self.iface.mainWindow().menuBar()
@@ -106,13 +107,13 @@ class _IfaceUiPatches:
         menu_bar.addMenu(menu)
         return menu
 
-    def addPluginToMenu(self, name, action):  # noqa: N802
+    def addPluginToMenu(self, name, action):
         submenu = self.plugin_menus.get(name)
         if submenu is None:
             submenu = self.plugin_menus[name] = self.pluginMenu().addMenu(name)
         submenu.addAction(action)
 
-    def removePluginMenu(self, name, action):  # noqa: N802
+    def removePluginMenu(self, name, action):
         submenu = self.plugin_menus.get(name)
         if submenu is not None:
             submenu.removeAction(action)

@@ -77,10 +77,12 @@ def build_network(width: int = WIDTH):
     from torch import nn
 
     def conv_bn(cin, cout, stride=1):
-        return nn.Sequential(nn.Conv2d(cin, cout, 3, stride, 1, bias=False), nn.BatchNorm2d(cout), nn.ReLU(inplace=True))
+        return nn.Sequential(nn.Conv2d(cin, cout, 3, stride, 1, bias=False), nn.BatchNorm2d(cout),
+                             nn.ReLU(inplace=True))
 
     def up(cin, cout):
-        return nn.Sequential(nn.ConvTranspose2d(cin, cout, 2, 2, bias=False), nn.BatchNorm2d(cout), nn.ReLU(inplace=True))
+        return nn.Sequential(nn.ConvTranspose2d(cin, cout, 2, 2, bias=False), nn.BatchNorm2d(cout),
+                             nn.ReLU(inplace=True))
 
     c1, c2, c3 = width, 2 * width, 4 * width
 
@@ -436,11 +438,11 @@ def load_campaign(folder: Path) -> Campaign:
     """Import a simulated campaign with the plugin's own importers (as the toolbox does)."""
     import csv
 
-    from birdseye.birdseye_qgis.core.geometry.camera import load_calibration
     from birdseye.birdseye_qgis.core.field.flight_log import import_flight_log
-    from birdseye.birdseye_qgis.core.field.frames import frame_records
     from birdseye.birdseye_qgis.core.field.frame_records import poses_from_records
+    from birdseye.birdseye_qgis.core.field.frames import frame_records
     from birdseye.birdseye_qgis.core.field.geotags import read_geotags
+    from birdseye.birdseye_qgis.core.geometry.camera import load_calibration
     from birdseye.birdseye_qgis.core.labels.training_set import Geotags
 
     fps = json.loads((folder / "truth" / "campaign.json").read_text())["parameters"]["fps"]
@@ -479,12 +481,13 @@ def evaluate(model_path, campaigns, thresholds) -> dict:
       very frame; ``truth_precision``: detections within MATCH_RADIUS_M of a true target.
     The model runs once at the lowest threshold; higher ones keep detections with score ≥ t.
     """
-    from birdseye.birdseye_qgis.core.scoring.evaluation import Detections, Flight, Geotags, evaluate_flights
-    from birdseye.birdseye_qgis.core.scoring.operating_point import OperatingPoint
+    from scipy.spatial import cKDTree
+
     from birdseye.birdseye_qgis.core.detect.detector import DetectRequest, HeatmapModel, detect_frames
     from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame
     from birdseye.birdseye_qgis.core.labels.training_set import project_labels
-    from scipy.spatial import cKDTree
+    from birdseye.birdseye_qgis.core.scoring.evaluation import Detections, Flight, Geotags, evaluate_flights
+    from birdseye.birdseye_qgis.core.scoring.operating_point import OperatingPoint
 
     model = HeatmapModel(model_path)
     totals = {t: dict(n_in_view=0, n_recovered=0, n_clusters=0, n_hit_clusters=0, truth_in_view=0,

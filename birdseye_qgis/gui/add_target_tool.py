@@ -19,7 +19,7 @@ class AddTargetTool(QgsMapToolEmitPoint):
 
     def __init__(self, canvas):
         super().__init__(canvas)
-        self.setCursor(QCursor(Qt.CrossCursor))
+        self.setCursor(QCursor(Qt.CursorShape.CrossCursor))
         self._marker: QgsVertexMarker | None = None
         self._previous_tool = None
 
@@ -38,7 +38,7 @@ class AddTargetTool(QgsMapToolEmitPoint):
                 self.canvas().unsetMapTool(self)
         self._previous_tool = None
 
-    def canvasMoveEvent(self, event):  # noqa: N802 (QGIS API)
+    def canvasMoveEvent(self, event):
         """A cross follows the pointer, so the user sees where the target will go."""
         if self._marker is None:
             self._marker = QgsVertexMarker(self.canvas())
@@ -48,14 +48,14 @@ class AddTargetTool(QgsMapToolEmitPoint):
             self._marker.setPenWidth(2)
         self._marker.setCenter(event.mapPoint())
 
-    def canvasReleaseEvent(self, event):  # noqa: N802
-        if event.button() == Qt.LeftButton:
+    def canvasReleaseEvent(self, event):
+        if event.button() == Qt.MouseButton.LeftButton:
             self.target_added.emit(QgsPointXY(event.mapPoint()), self.canvas().mapSettings().destinationCrs())
-        elif event.button() == Qt.RightButton:
+        elif event.button() == Qt.MouseButton.RightButton:
             self.cancelled.emit()
 
-    def keyPressEvent(self, event):  # noqa: N802
-        if event.key() == Qt.Key_Escape:
+    def keyPressEvent(self, event):
+        if event.key() == Qt.Key.Key_Escape:
             event.accept()
             self.cancelled.emit()
 

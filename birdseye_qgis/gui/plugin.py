@@ -13,10 +13,14 @@ from typing import NamedTuple
 from qgis.core import Qgis, QgsApplication, QgsMessageLog
 from qgis.PyQt.QtCore import QCoreApplication, QLocale, Qt, QTranslator
 from qgis.PyQt.QtGui import QIcon
-from qgis.PyQt.QtWidgets import QAction, QMenu, QToolBar
+from qgis.PyQt.QtWidgets import QMenu, QToolBar
+
+try:
+    from qgis.PyQt.QtGui import QAction  # Qt 6 (QGIS 4)
+except ImportError:
+    from qgis.PyQt.QtWidgets import QAction  # Qt 5 (QGIS 3)
 
 from ..__about__ import I18N_DIR, ICON_PATH, LOG_TAG, PLUGIN_ROOT, tr
-
 
 # The name QGIS imported the plugin under ("birdseye" when installed from the zip), so dock modules
 # are found whatever the plugin folder is called.
@@ -90,7 +94,7 @@ class BirdsEyePlugin:
         self.translator = load_translator()
 
     # ------------------------------------------------------------------ Processing
-    def initProcessing(self) -> None:  # noqa: N802 (QGIS API name)
+    def initProcessing(self) -> None:
         """Register the ``birdseye`` provider once (desktop and ``qgis_process`` both call this)."""
         if self.provider is not None:
             return
@@ -100,7 +104,7 @@ class BirdsEyePlugin:
             self.provider = None
 
     # ------------------------------------------------------------------ desktop
-    def initGui(self) -> None:  # noqa: N802 (QGIS API name)
+    def initGui(self) -> None:
         self.initProcessing()
         main_window = self.iface.mainWindow()
         icon = QIcon(str(ICON_PATH))
@@ -205,7 +209,7 @@ class BirdsEyePlugin:
             return None
         if not dock.objectName():
             dock.setObjectName(f"BirdsEye{entry.class_name}")
-        self.iface.addDockWidget(Qt.RightDockWidgetArea, dock)
+        self.iface.addDockWidget(Qt.DockWidgetArea.RightDockWidgetArea, dock)
         action = self.dock_actions.get(entry)
         if action is not None:
             dock.visibilityChanged.connect(action.setChecked)

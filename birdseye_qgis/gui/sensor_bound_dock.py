@@ -39,8 +39,6 @@ from qgis.PyQt.QtWidgets import (
 )
 
 from ..__about__ import LOG_TAG, tr
-from ..core.design.number_lists import format_number_list, parse_altitudes
-from ..qgis_io.project_settings import store_sigma_label_px
 from ..core.design.bound_report import (
     ACCEPT_COLOUR,
     REJECT_COLOUR,
@@ -49,10 +47,12 @@ from ..core.design.bound_report import (
     format_sigma,
     stride_for,
 )
+from ..core.design.number_lists import format_number_list, parse_altitudes
 from ..core.design.platforms import DEPLOYED, PLATFORMS
-from ..core.geometry.camera import CALIBRATION_FILE_FILTER, load_calibration
-from ..core.errors import InputError
 from ..core.design.sensor_bound import AXES, AXIS_CONVENTION, SIGMA_UNITS, Intrinsics, evaluate_bounds, lambda_target
+from ..core.errors import InputError
+from ..core.geometry.camera import CALIBRATION_FILE_FILTER, load_calibration
+from ..qgis_io.project_settings import store_sigma_label_px
 
 SENSOR_BOUND_ALG = "birdseye:sensorbound"
 PRESET_DEPLOYED = DEPLOYED.name
@@ -84,15 +84,16 @@ def _spin(decimals: int, minimum: float, maximum: float, step: float, suffix: st
 
 def _shrinkable(widget) -> None:
     """Let a spin box shrink below the width of its widest possible value, so the dock stays narrow."""
-    widget.setAlignment(Qt.AlignRight)
+    widget.setAlignment(Qt.AlignmentFlag.AlignRight)
     widget.setMinimumWidth(64)
-    widget.setSizePolicy(QSizePolicy.Expanding, QSizePolicy.Fixed)
+    widget.setSizePolicy(QSizePolicy.Policy.Expanding, QSizePolicy.Policy.Fixed)
 
 
-def _cell(text: str, tip: str = "", align=Qt.AlignRight | Qt.AlignVCenter) -> QTableWidgetItem:
+def _cell(text: str, tip: str = "",
+          align=Qt.AlignmentFlag.AlignRight | Qt.AlignmentFlag.AlignVCenter) -> QTableWidgetItem:
     item = QTableWidgetItem(text)
     item.setTextAlignment(int(align))
-    item.setFlags(Qt.ItemIsEnabled | Qt.ItemIsSelectable)
+    item.setFlags(Qt.ItemFlag.ItemIsEnabled | Qt.ItemFlag.ItemIsSelectable)
     if tip:
         item.setToolTip(tip)
     return item
@@ -103,7 +104,7 @@ def _verdict_cell(kappa, verdict: str) -> QTableWidgetItem:
     item = _cell(f"{format_kappa(kappa)}  {'✓' if accepted else '✗'}",
                  (tr("Accept") if accepted else tr("Reject")) + tr(
                      ": κ* = λ_target / sup; every variance of the budget may grow by this factor. "
-                     "Accept when κ* ≥ 1."), Qt.AlignCenter)
+                     "Accept when κ* ≥ 1."), Qt.AlignmentFlag.AlignCenter)
     item.setBackground(QBrush(QColor(ACCEPT_COLOUR if accepted else REJECT_COLOUR)))
     item.setForeground(QBrush(QColor("white")))
     font = item.font()
@@ -155,17 +156,17 @@ class SensorBoundDock(QgsDockWidget):
                                 self.full_button, self.processing_button)
         scroll = QScrollArea()
         scroll.setWidgetResizable(True)
-        scroll.setFrameShape(QFrame.NoFrame)
+        scroll.setFrameShape(QFrame.Shape.NoFrame)
         scroll.setWidget(body)
         self.setWidget(scroll)
 
     def _camera_group(self) -> QGroupBox:
         group = QGroupBox(tr("Camera"))
         form = QFormLayout(group)
-        form.setFieldGrowthPolicy(QFormLayout.AllNonFixedFieldsGrow)
+        form.setFieldGrowthPolicy(QFormLayout.FieldGrowthPolicy.AllNonFixedFieldsGrow)
         self.preset_combo = QComboBox()
         self.preset_combo.addItems([tr(name) for name in PRESETS])
-        self.preset_combo.setSizeAdjustPolicy(QComboBox.AdjustToMinimumContentsLengthWithIcon)
+        self.preset_combo.setSizeAdjustPolicy(QComboBox.SizeAdjustPolicy.AdjustToMinimumContentsLengthWithIcon)
         self.preset_combo.setMinimumContentsLength(12)
         self.preset_combo.setToolTip(tr("A platform sets the camera and the pose-noise budget together."))
         self.preset_combo.activated.connect(lambda index: self.apply_preset(PRESETS[index]))
@@ -225,7 +226,7 @@ class SensorBoundDock(QgsDockWidget):
     def _mission_group(self) -> QGroupBox:
         group = QGroupBox(tr("Label tolerance and altitudes"))
         form = QFormLayout(group)
-        form.setFieldGrowthPolicy(QFormLayout.AllNonFixedFieldsGrow)
+        form.setFieldGrowthPolicy(QFormLayout.FieldGrowthPolicy.AllNonFixedFieldsGrow)
         row = QHBoxLayout()
         self.tolerance_spin = _spin(1, 0.1, 1000.0, 1.0, " px")
         self.tolerance_spin.setToolTip(tr("Label radius r at 3σ: the label must stay within r px of the target."))
@@ -249,7 +250,7 @@ class SensorBoundDock(QgsDockWidget):
         box = QVBoxLayout(group)
         self.status_label = QLabel()
         self.status_label.setWordWrap(True)
-        self.status_label.setTextInteractionFlags(Qt.TextSelectableByMouse)
+        self.status_label.setTextInteractionFlags(Qt.TextInteractionFlag.TextSelectableByMouse)
         box.addWidget(self.status_label)
 
         self.results_table = QTableWidget(0, 5)
@@ -287,16 +288,16 @@ class SensorBoundDock(QgsDockWidget):
 
     @staticmethod
     def _style_table(table: QTableWidget) -> None:
-        table.setEditTriggers(QAbstractItemView.NoEditTriggers)
-        table.setSelectionMode(QAbstractItemView.NoSelection)
-        table.setFocusPolicy(Qt.NoFocus)
+        table.setEditTriggers(QAbstractItemView.EditTrigger.NoEditTriggers)
+        table.setSelectionMode(QAbstractItemView.SelectionMode.NoSelection)
+        table.setFocusPolicy(Qt.FocusPolicy.NoFocus)
         table.setAlternatingRowColors(True)
         table.verticalHeader().setVisible(False)
-        table.horizontalHeader().setSectionResizeMode(QHeaderView.Stretch)
-        table.horizontalHeader().setDefaultAlignment(Qt.AlignCenter)
-        table.setVerticalScrollBarPolicy(Qt.ScrollBarAlwaysOff)
-        table.setHorizontalScrollBarPolicy(Qt.ScrollBarAlwaysOff)
-        table.setSizePolicy(QSizePolicy.Expanding, QSizePolicy.Fixed)
+        table.horizontalHeader().setSectionResizeMode(QHeaderView.ResizeMode.Stretch)
+        table.horizontalHeader().setDefaultAlignment(Qt.AlignmentFlag.AlignCenter)
+        table.setVerticalScrollBarPolicy(Qt.ScrollBarPolicy.ScrollBarAlwaysOff)
+        table.setHorizontalScrollBarPolicy(Qt.ScrollBarPolicy.ScrollBarAlwaysOff)
+        table.setSizePolicy(QSizePolicy.Policy.Expanding, QSizePolicy.Policy.Fixed)
 
     def _plot_group(self) -> QGroupBox:
         from matplotlib.backends.backend_qtagg import FigureCanvasQTAgg
@@ -309,7 +310,7 @@ class SensorBoundDock(QgsDockWidget):
         self.canvas = FigureCanvasQTAgg(self.figure)
         self.field_plot = LmaxFieldPlot(self.figure)
         self.canvas.setMinimumHeight(270)
-        self.canvas.setSizePolicy(QSizePolicy.Expanding, QSizePolicy.Expanding)
+        self.canvas.setSizePolicy(QSizePolicy.Policy.Expanding, QSizePolicy.Policy.Expanding)
         box.addWidget(self.canvas)
         return group
 
@@ -440,7 +441,7 @@ class SensorBoundDock(QgsDockWidget):
         try:
             camera, altitudes = self.camera(), self.altitudes()
             stride = 1 if full_resolution else stride_for(camera, PREVIEW_MAX_POINTS)
-            QGuiApplication.setOverrideCursor(Qt.WaitCursor)
+            QGuiApplication.setOverrideCursor(Qt.CursorShape.WaitCursor)
             try:
                 result = evaluate_bounds(camera, altitudes, self.sigmas(), self.tolerance_px(), stride)
             finally:
@@ -471,7 +472,7 @@ class SensorBoundDock(QgsDockWidget):
         table.setRowCount(len(entries))
         for row, e in enumerate(entries):
             u, v = e["worst_pixel"]
-            table.setItem(row, 0, _cell(f"{e['altitude_m']:g} m", align=Qt.AlignCenter))
+            table.setItem(row, 0, _cell(f"{e['altitude_m']:g} m", align=Qt.AlignmentFlag.AlignCenter))
             table.setItem(row, 1, _cell(f"{e['sup_trace_px2']:.4g}"))
             table.setItem(row, 2, _cell(f"{e['sup_lmax_px2']:.4g}", tr("worst pixel ({u:.0f}, {v:.0f})").format(
                 u=u, v=v)))

@@ -3,8 +3,7 @@ detections write, and the readers every scoring algorithm and the review dock sh
 from __future__ import annotations
 
 import numpy as np
-from qgis.core import (QgsCoordinateReferenceSystem, QgsCoordinateTransform, QgsFeatureRequest, QgsProject,
-                       QgsWkbTypes)
+from qgis.core import QgsCoordinateReferenceSystem, QgsCoordinateTransform, QgsFeatureRequest, QgsProject, QgsWkbTypes
 
 from ..core.errors import InputError
 from ..core.field.frame_records import poses_from_records

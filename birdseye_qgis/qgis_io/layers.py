@@ -10,11 +10,24 @@ from __future__ import annotations
 from pathlib import Path
 
 import numpy as np
-from qgis.core import (QgsCoordinateReferenceSystem, QgsCoordinateTransform, QgsFeature, QgsFeatureSink,
-                       QgsField, QgsFields, QgsGeometry, QgsLineString, QgsPoint, QgsPointXY, QgsPolygon,
-                       QgsProcessingLayerPostProcessorInterface, QgsProject, QgsUnitTypes,
-                       QgsWkbTypes)
-from qgis.PyQt.QtCore import QVariant
+from qgis.core import (
+    Qgis,
+    QgsCoordinateReferenceSystem,
+    QgsCoordinateTransform,
+    QgsFeature,
+    QgsFeatureSink,
+    QgsField,
+    QgsFields,
+    QgsGeometry,
+    QgsLineString,
+    QgsPoint,
+    QgsPointXY,
+    QgsPolygon,
+    QgsProcessingLayerPostProcessorInterface,
+    QgsProject,
+    QgsUnitTypes,
+    QgsWkbTypes,
+)
 
 from ..__about__ import STYLE_DIR
 from ..core.errors import InputError
@@ -23,7 +36,15 @@ from ..core.geometry.geodesy import ProjectedCRS, utm_epsg
 
 WGS84 = "EPSG:4326"
 
-_QVARIANT = {"int": QVariant.Int, "double": QVariant.Double, "string": QVariant.String}
+# Field types: QGIS 3.38 moved QgsField to QMetaType.Type, the only kind QGIS 4 (Qt 6) has; 3.22 takes QVariant.
+if Qgis.QGIS_VERSION_INT >= 33800:
+    from qgis.PyQt.QtCore import QMetaType
+
+    FIELD_TYPES = {"int": QMetaType.Type.Int, "double": QMetaType.Type.Double, "string": QMetaType.Type.QString}
+else:
+    from qgis.PyQt.QtCore import QVariant
+
+    FIELD_TYPES = {"int": QVariant.Int, "double": QVariant.Double, "string": QVariant.String}  # noqa: QGS402
 
 
 # ------------------------------------------------------------------------------------------ fields
@@ -31,10 +52,15 @@ def qgs_fields(spec) -> QgsFields:
     """QgsFields from a core schema: (name, type, description) with type "int"/"double"/"string"."""
     fields = QgsFields()
     for name, kind, description in spec:
-        f = QgsField(name, _QVARIANT[kind])
-        f.setComment(description)
-        fields.append(f)
+        fields.append(qgs_field(name, kind, description))
     return fields
+
+
+def qgs_field(name: str, kind: str, description: str = "") -> QgsField:
+    """One field of type "int", "double" or "string", on QGIS 3.22 and QGIS 4 alike."""
+    field = QgsField(name, FIELD_TYPES[kind])
+    field.setComment(description)
+    return field
 
 
 # ------------------------------------------------------------------------------------------ geometry
@@ -89,7 +115,7 @@ class _StyleOnLoad(QgsProcessingLayerPostProcessorInterface):
         self.style_path = style_path
         self.layer_name = layer_name
 
-    def postProcessLayer(self, layer, context, feedback):  # noqa: N802 (QGIS API)
+    def postProcessLayer(self, layer, context, feedback):
         if layer is None or not layer.isValid():
             return
         message, ok = layer.loadNamedStyle(str(self.style_path))
@@ -200,7 +226,7 @@ def read_point_layer(source, transform_context=None, attributes=(), source_name:
             vertex = geometry.vertexAt(0)
             try:
                 p = transform.transform(vertex.x(), vertex.y())
-            except Exception as exc:  # noqa: BLE001 — QgsCsException: a point outside the CRS's area
+            except Exception as exc:
                 raise InputError(f"cannot be transformed to WGS84 ({exc}); is the layer's CRS right?",
                                  source=name, row=number, field="geometry") from exc
             lat.append(p.y()), lon.append(p.x())

@@ -243,7 +243,7 @@ def _create_geopackage(path: Path) -> None:
     ds = driver.CreateDataSource(str(path)) if driver is not None else None
     if ds is None:
         raise InputError("cannot be created as a GeoPackage (is the folder writable?)", source=str(path))
-    ds = None  # noqa: F841 — closing the data source writes it
+    ds = None
 
 
 _WGS84_WKT = ('GEOGCS["WGS 84",DATUM["WGS_1984",SPHEROID["WGS 84",6378137,298.257223563,AUTHORITY["EPSG","7030"]],'
@@ -398,10 +398,10 @@ def read_review_inputs(detection_layers, frame_layer, geotag_layer) -> ReviewInp
     import numpy as np
     from qgis.core import QgsProcessingContext, QgsProject
 
-    from .detections import read_detections, read_geotags, read_pose_groups
-    from . import layers as layer_io
     from ..core.review.chips import review_local_frame
     from ..core.review.units import ReviewLayer
+    from . import layers as layer_io
+    from .detections import read_detections, read_geotags, read_pose_groups
 
     if not detection_layers:
         raise InputError("choose at least one detection layer to review")

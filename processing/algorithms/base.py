@@ -1,14 +1,12 @@
 """Shared base of every BirdsEye Processing algorithm: naming, groups, help, errors, progress."""
 from __future__ import annotations
 
-
 from qgis.core import QgsProcessingAlgorithm, QgsProcessingException
 from qgis.PyQt.QtCore import QCoreApplication
 from qgis.PyQt.QtGui import QIcon
 
 from ...birdseye_qgis.__about__ import HELP_DIR, ICON_PATH
 from ...birdseye_qgis.core.errors import Cancelled, InputError
-
 
 GROUPS = {
     "field": "1 · Field data",
@@ -37,28 +35,28 @@ class BirdsEyeAlgorithm(QgsProcessingAlgorithm):
     def name(self) -> str:
         return self.ALG_ID
 
-    def displayName(self) -> str:  # noqa: N802
+    def displayName(self) -> str:
         return self.tr(self.DISPLAY_NAME)
 
     def group(self) -> str:
         return self.tr(GROUPS[self.GROUP])
 
-    def groupId(self) -> str:  # noqa: N802
+    def groupId(self) -> str:
         return self.GROUP
 
     def icon(self) -> QIcon:
         return QIcon(str(ICON_PATH))
 
-    def createInstance(self):  # noqa: N802
+    def createInstance(self):
         return type(self)()
 
-    def shortHelpString(self) -> str:  # noqa: N802
+    def shortHelpString(self) -> str:
         path = HELP_DIR / f"{self.ALG_ID}.md"
         if not path.is_file():
             return ""
         return markdown_to_html(self.tr(path.read_text(encoding="utf-8")))
 
-    def helpUrl(self) -> str:  # noqa: N802
+    def helpUrl(self) -> str:
         return ""
 
     # -------------------------------------------------------------- helpers for subclasses

@@ -2,22 +2,34 @@
 from __future__ import annotations
 
 import numpy as np
-from qgis.core import (QgsGeometry,
-                       QgsPointXY, QgsProcessing, QgsProcessingException, QgsProcessingOutputNumber,
-                       QgsProcessingParameterFeatureSink, QgsProcessingParameterFeatureSource,
-                       QgsWkbTypes)
+from qgis.core import (
+    QgsGeometry,
+    QgsPointXY,
+    QgsProcessing,
+    QgsProcessingException,
+    QgsProcessingOutputNumber,
+    QgsProcessingParameterFeatureSink,
+    QgsProcessingParameterFeatureSource,
+    QgsWkbTypes,
+)
 
-from ...birdseye_qgis.qgis_io import layers
-from ...birdseye_qgis.core.detect.clustering import (HULL_BUFFER_M,
-                                              cluster_detections, cluster_hulls)
+from ...birdseye_qgis.core.detect.clustering import HULL_BUFFER_M, cluster_detections, cluster_hulls
 from ...birdseye_qgis.core.geometry.geodesy import LocalFrame
 from ...birdseye_qgis.core.scoring.evaluation import Detections, local_frame_for
 from ...birdseye_qgis.core.scoring.matching import in_view
 from ...birdseye_qgis.core.scoring.pre_review import score_flight
-from ...birdseye_qgis.qgis_io.detections import (CLUSTER_FIELDS, POINT_FIELDS, read_detections, read_geotags,
-                                                   read_pose_groups, to_layer_xy)
+from ...birdseye_qgis.qgis_io import layers
+from ...birdseye_qgis.qgis_io.detections import (
+    CLUSTER_FIELDS,
+    POINT_FIELDS,
+    read_detections,
+    read_geotags,
+    read_pose_groups,
+    to_layer_xy,
+)
 from ..parameters.clustering import ClusteringParametersMixin
 from .base import BirdsEyeAlgorithm
+
 
 class ClusterDetections(ClusteringParametersMixin, BirdsEyeAlgorithm):
     ALG_ID = "clusterdetections"
@@ -29,7 +41,7 @@ class ClusterDetections(ClusteringParametersMixin, BirdsEyeAlgorithm):
     OUTPUT = "OUTPUT"
     OUTPUT_POINTS = "OUTPUT_POINTS"
 
-    def initAlgorithm(self, config=None):  # noqa: N802
+    def initAlgorithm(self, config=None):
         self.addParameter(QgsProcessingParameterFeatureSource(
             self.DETECTIONS, self.tr("Detections (from Detect targets)"), [QgsProcessing.TypeVectorPoint]))
         self.add_clustering_parameters(with_prediction=False)
@@ -49,13 +61,14 @@ class ClusterDetections(ClusteringParametersMixin, BirdsEyeAlgorithm):
                            ("NOISE_POINTS", "De-duplicated points left as noise")):
             self.addOutput(QgsProcessingOutputNumber(name, self.tr(text)))
 
-    def processAlgorithm(self, parameters, context, feedback):  # noqa: N802
+    def processAlgorithm(self, parameters, context, feedback):
         source = self.parameterAsSource(parameters, self.DETECTIONS, context)
         if source is None:
             raise QgsProcessingException(self.tr("DETECTIONS: the detection layer cannot be read."))
         det, dropped = self.run_core(read_detections, source, context)
         if dropped:
-            feedback.pushWarning(f"{dropped} detection(s) without a position or score were left out")
+            feedback.pushWarning(self.tr("{dropped} detection(s) without a position or score "
+                                         "were left out").format(dropped=dropped))
         geotag_source = self.parameterAsSource(parameters, self.GEOTAGS, context)
         frame_source = self.parameterAsSource(parameters, self.FRAMES, context)
         geotags = self.run_core(read_geotags, geotag_source, context) if geotag_source is not None else None
@@ -80,14 +93,17 @@ class ClusterDetections(ClusteringParametersMixin, BirdsEyeAlgorithm):
                 visible = self.run_core(in_view, groups, local, g_local,
                                         self.parameterAsDouble(parameters, self.EDGE_BUFFER_PX, context)).mask
             else:
-                feedback.pushWarning("No FRAMES given: every geotag is treated as in view.")
+                feedback.pushWarning(self.tr("No FRAMES given: every geotag is treated as in "
+                                             "view."))
                 visible = np.ones(len(geotags), dtype=bool)
             score = score_flight(clustering, g_local[:, :2], visible,
                                  self.parameterAsDouble(parameters, self.EPS_PRED_M, context))
             hit = score.cluster_hit
             matched = [",".join(str(geotags.ids[i]) for i in g) for g in score.cluster_geotags]
-            feedback.pushInfo(f"{score.counts.n_hit_clusters} of {n} clusters match an in-view geotag; "
-                              f"{score.counts.n_recovered} of {score.counts.n_in_view} in-view geotags recovered.")
+            feedback.pushInfo(self.tr("{n_hit_clusters} of {n} clusters match an in-view geotag; "
+                                      "{n_recovered} of {n_in_view} in-view geotags recovered.").format(
+                                  n_hit_clusters=score.counts.n_hit_clusters, n=n,
+                                  n_recovered=score.counts.n_recovered, n_in_view=score.counts.n_in_view))
         feedback.setProgress(65)
         crs = source.sourceCrs()
         outputs = {"CLUSTER_COUNT": n, "HIT_COUNT": int(hit.sum()),
@@ -96,8 +112,10 @@ class ClusterDetections(ClusteringParametersMixin, BirdsEyeAlgorithm):
                                                  crs)
         if parameters.get(self.OUTPUT_POINTS):
             outputs[self.OUTPUT_POINTS] = self._write_points(parameters, context, feedback, clustering, det, local, crs)
-        feedback.pushInfo(f"{len(det)} detections → {len(clustering.points)} de-duplicated points → {n} clusters "
-                          f"({outputs['NOISE_POINTS']} points are noise).")
+        feedback.pushInfo(self.tr("{n_det} detections → {n_points} de-duplicated points → {n} "
+                                  "clusters ({NOISE_POINTS} points are noise).").format(
+                              n_det=len(det), n_points=len(clustering.points), n=n,
+                              NOISE_POINTS=outputs['NOISE_POINTS']))
         return outputs
 
     @staticmethod

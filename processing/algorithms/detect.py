@@ -2,18 +2,25 @@
 from __future__ import annotations
 
 import numpy as np
-from qgis.core import (QgsProcessing, QgsProcessingOutputNumber, QgsProcessingOutputString,
-                       QgsProcessingParameterFeatureSink, QgsProcessingParameterFeatureSource,
-                       QgsProcessingParameterFile, QgsProcessingParameterFolderDestination,
-                       QgsProcessingParameterNumber, QgsWkbTypes)
+from qgis.core import (
+    QgsProcessing,
+    QgsProcessingOutputNumber,
+    QgsProcessingOutputString,
+    QgsProcessingParameterFeatureSink,
+    QgsProcessingParameterFeatureSource,
+    QgsProcessingParameterFile,
+    QgsProcessingParameterFolderDestination,
+    QgsProcessingParameterNumber,
+    QgsWkbTypes,
+)
 
 from ...birdseye_qgis.__about__ import BUNDLED_MODEL
-from ...birdseye_qgis.qgis_io import layers
-from ...birdseye_qgis.qgis_io.detections import DETECTION_FIELDS
 from ...birdseye_qgis.core.detect.detector import DetectRequest, HeatmapModel, detect_frames
 from ...birdseye_qgis.core.errors import InputError
 from ...birdseye_qgis.core.field.frame_records import poses_from_records
 from ...birdseye_qgis.core.geometry.geodesy import LocalFrame, ProjectedCRS
+from ...birdseye_qgis.qgis_io import layers
+from ...birdseye_qgis.qgis_io.detections import DETECTION_FIELDS
 from ..parameters.dem import DemParametersMixin
 from .base import BirdsEyeAlgorithm
 
@@ -31,7 +38,7 @@ class Detect(DemParametersMixin, BirdsEyeAlgorithm):
     OUTPUT_HEATMAPS = "OUTPUT_HEATMAPS"
     MODEL_DIGEST = "MODEL_DIGEST"
 
-    def initAlgorithm(self, config=None):  # noqa: N802
+    def initAlgorithm(self, config=None):
         self.addParameter(QgsProcessingParameterFeatureSource(
             self.FRAMES, self.tr("Frames (from Import flight log or Import DJI images)"),
             [QgsProcessing.TypeVectorPolygon, QgsProcessing.TypeVectorPoint]))
@@ -55,7 +62,7 @@ class Detect(DemParametersMixin, BirdsEyeAlgorithm):
             self.addOutput(QgsProcessingOutputNumber(name, self.tr(text)))
         self.addOutput(QgsProcessingOutputString(self.MODEL_DIGEST, self.tr("SHA-256 of the model")))
 
-    def processAlgorithm(self, parameters, context, feedback):  # noqa: N802
+    def processAlgorithm(self, parameters, context, feedback):
         source = self.parameterAsSource(parameters, self.FRAMES, context)
         if source is None:
             raise self.user_error(InputError("no frame layer given", field=self.FRAMES))
@@ -75,9 +82,12 @@ class Detect(DemParametersMixin, BirdsEyeAlgorithm):
         model = self.run_core(HeatmapModel, model_path, log=feedback.pushInfo)
         meta = model.metadata
         used = meta.default_threshold if threshold is None else threshold
-        feedback.pushInfo(f"Model {model.name} (sha256 {model.digest[:12]}…): {meta.resolution_cm:g} cm/px, "
-                          f"tiles {meta.tile_size} px with {meta.overlap_px} px overlap, threshold {used:g}"
-                          f"{' (the model default)' if threshold is None else ''}.")
+        feedback.pushInfo(self.tr("Model {name} (sha256 {value}…): {resolution_cm:g} cm/px, "
+                                  "tiles {tile_size} px with {overlap_px} px overlap, threshold "
+                                  "{used:g}{value2}.").format(
+                              name=model.name, value=model.digest[:12], resolution_cm=meta.resolution_cm,
+                              tile_size=meta.tile_size, overlap_px=meta.overlap_px, used=used,
+                              value2=' (the model default)' if threshold is None else ''))
         records = self.run_core(layers.read_frame_layer, source, self.tr(self.FRAMES))
         groups = self.run_core(poses_from_records, records, source.sourceName() or self.FRAMES)
         crs = source.sourceCrs()
@@ -89,10 +99,14 @@ class Detect(DemParametersMixin, BirdsEyeAlgorithm):
             raise self.user_error(InputError("the detection output cannot be created", field=self.OUTPUT))
         counts = self.run_core(self._detect, model, groups, records, request, to_crs, sink, fields, feedback)
         layers.style_on_load(context, dest_id, "detections.qml")
-        feedback.pushInfo(f"{counts['detections']} detections in {counts['processed']} frames "
-                          f"({counts['detections'] / max(1, counts['processed']):.2f} per frame); "
-                          f"{counts['edge']} dropped within {request.edge_buffer_px:g} px of the border, "
-                          f"{counts['no_ground']} whose ray missed the ground; {counts['skipped']} frames skipped.")
+        feedback.pushInfo(self.tr("{detections} detections in {processed} frames ({value:.2f} "
+                                  "per frame); {edge} dropped within {edge_buffer_px:g} px of "
+                                  "the border, {no_ground} whose ray missed the ground; "
+                                  "{skipped} frames skipped.").format(
+                              detections=counts['detections'], processed=counts['processed'],
+                              value=counts['detections'] / max(1, counts['processed']), edge=counts['edge'],
+                              edge_buffer_px=request.edge_buffer_px, no_ground=counts['no_ground'],
+                              skipped=counts['skipped']))
         return {"OUTPUT": dest_id, self.OUTPUT_HEATMAPS: heat_dir, "DETECTION_COUNT": counts["detections"],
                 "FRAMES_PROCESSED": counts["processed"], "FRAMES_SKIPPED": counts["skipped"],
                 "THRESHOLD_USED": used, self.MODEL_DIGEST: model.digest}
@@ -115,7 +129,8 @@ class Detect(DemParametersMixin, BirdsEyeAlgorithm):
                                        is_canceled=is_canceled, ground=self.dem_ground(self.dem)):
                 if found.skipped:
                     counts["skipped"] += 1
-                    feedback.pushWarning(f"Frame {found.frame_id}: {found.skipped}; skipped.")
+                    feedback.pushWarning(self.tr("Frame {frame_id}: {skipped}; skipped.").format(
+                                             frame_id=found.frame_id, skipped=found.skipped))
                     continue
                 counts["processed"] += 1
                 counts["edge"] += found.n_edge
@@ -133,7 +148,10 @@ class Detect(DemParametersMixin, BirdsEyeAlgorithm):
             done += len(poses)
         if coarse:
             feedback.pushWarning(
-                f"{len(coarse)} frame(s) (e.g. {', '.join(str(f) for f in coarse[:5])}) are coarser than 1.5× the "
-                f"model's resolution of {model.metadata.resolution_cm:g} cm/px: targets look smaller than in "
-                "training, so expect fewer detections (fly lower or use a model trained at that resolution).")
+                self.tr("{n_coarse} frame(s) (e.g. {items}) are coarser than 1.5× the model's "
+                        "resolution of {resolution_cm:g} cm/px: targets look smaller than in "
+                        "training, so expect fewer detections (fly lower or use a model trained "
+                        "at that resolution).").format(
+                    n_coarse=len(coarse), items=', '.join(str(f) for f in coarse[:5]),
+                    resolution_cm=model.metadata.resolution_cm))
         return counts

@@ -4,18 +4,25 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from qgis.core import (QgsProcessing, QgsProcessingException, QgsProcessingOutputNumber,
-                       QgsProcessingParameterFeatureSource, QgsProcessingParameterFile,
-                       QgsProcessingParameterFileDestination, QgsProcessingParameterMultipleLayers,
-                       QgsProcessingParameterVectorLayer)
+from qgis.core import (
+    QgsProcessing,
+    QgsProcessingException,
+    QgsProcessingOutputNumber,
+    QgsProcessingParameterFeatureSource,
+    QgsProcessingParameterFile,
+    QgsProcessingParameterFileDestination,
+    QgsProcessingParameterMultipleLayers,
+    QgsProcessingParameterVectorLayer,
+)
 
+from ...birdseye_qgis.__about__ import tr
 from ...birdseye_qgis.core.scoring import preregistration
 from ...birdseye_qgis.core.scoring.evaluation import evaluate_flights
 from ...birdseye_qgis.core.scoring.operating_point import OperatingPoint
 from ...birdseye_qgis.core.scoring.reports import evaluation_report_html
-from .base import BirdsEyeAlgorithm
 from ...birdseye_qgis.qgis_io.detections import read_geotags, read_verdicts
 from ..parameters.clustering import ClusteringParametersMixin
+from .base import BirdsEyeAlgorithm
 
 
 def operating_point_from_rule(path, flights, feedback) -> tuple[OperatingPoint, dict]:
@@ -35,8 +42,10 @@ def operating_point_from_rule(path, flights, feedback) -> tuple[OperatingPoint, 
             raise preregistration.SealError(
                 f"{f.name} was detected at threshold {t}, above the sealed {op.threshold}: detections between "
                 "the two were never made; run Detect again at the sealed threshold", source=str(path))
-    feedback.pushInfo(f"Sealed rule verified (seal {doc['seal'][:12]}…, sealed {doc['sealed_at']}); arm "
-                      f"'{arm['name']}': its operating point replaces the dialog's values: {op.to_dict()}")
+    feedback.pushInfo(tr("Sealed rule verified (seal {value}…, sealed {sealed_at}); arm "
+                         "'{name}': its operating point replaces the dialog's values: {value2}").format(
+                          value=doc['seal'][:12], sealed_at=doc['sealed_at'], name=arm['name'],
+                          value2=op.to_dict()))
     return op, {"seal": doc["seal"], "sealed_at": doc["sealed_at"], "arm": arm["name"],
                 "model_digest": arm["model_digest"]}
 
@@ -53,7 +62,7 @@ class EvaluateDetections(ClusteringParametersMixin, BirdsEyeAlgorithm):
     OUTPUT_JSON = "OUTPUT_JSON"
     OUTPUT_REPORT = "OUTPUT_REPORT"
 
-    def initAlgorithm(self, config=None):  # noqa: N802
+    def initAlgorithm(self, config=None):
         self.addParameter(QgsProcessingParameterMultipleLayers(
             self.DETECTIONS, self.tr("Detection layers (one per flight)"), QgsProcessing.TypeVectorPoint))
         self.addParameter(QgsProcessingParameterFeatureSource(
@@ -76,7 +85,7 @@ class EvaluateDetections(ClusteringParametersMixin, BirdsEyeAlgorithm):
                            ("N_HIT_CLUSTERS", "Hit clusters"), ("GMCF_PRE", "gmcf_pre")):
             self.addOutput(QgsProcessingOutputNumber(name, self.tr(text)))
 
-    def processAlgorithm(self, parameters, context, feedback):  # noqa: N802
+    def processAlgorithm(self, parameters, context, feedback):
         flights = self.read_flights(parameters, context, feedback)
         geotag_source = self.parameterAsSource(parameters, self.GEOTAGS, context)
         if geotag_source is None:
@@ -102,20 +111,23 @@ class EvaluateDetections(ClusteringParametersMixin, BirdsEyeAlgorithm):
             feedback.pushWarning(note)
         for f in evaluation.flights:
             if f.in_view.n_frames_without_ground:
-                feedback.pushWarning(f"{f.name}: {f.in_view.n_frames_without_ground} frame(s) without a ground "
-                                     "height were not counted as processed")
+                feedback.pushWarning(self.tr("{name}: {n_frames_without_ground} frame(s) without "
+                                             "a ground height were not counted as processed").format(
+                                         name=f.name, n_frames_without_ground=f.in_view.n_frames_without_ground))
         out_json = self.parameterAsFileOutput(parameters, self.OUTPUT_JSON, context)
         try:
             Path(out_json).write_text(json.dumps(result, indent=2, ensure_ascii=False) + "\n", encoding="utf-8")
         except OSError as exc:
-            raise QgsProcessingException(f"OUTPUT_JSON: cannot write {out_json} ({exc})") from exc
+            raise QgsProcessingException(self.tr("OUTPUT_JSON: cannot write {out_json} ({exc})").format(
+                                             out_json=out_json, exc=exc)) from exc
         outputs = {"OUTPUT_JSON": out_json}
         out_report = self.parameterAsFileOutput(parameters, self.OUTPUT_REPORT, context)
         if out_report:
             try:
                 Path(out_report).write_text(evaluation_report_html(evaluation), encoding="utf-8")
             except OSError as exc:
-                raise QgsProcessingException(f"OUTPUT_REPORT: cannot write {out_report} ({exc})") from exc
+                raise QgsProcessingException(self.tr("OUTPUT_REPORT: cannot write {out_report} "
+                                                     "({exc})").format(out_report=out_report, exc=exc)) from exc
             outputs[self.OUTPUT_REPORT] = out_report
         p = evaluation.pooled
         feedback.pushInfo(self._summary(result))

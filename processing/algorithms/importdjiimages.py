@@ -1,12 +1,17 @@
 """birdseye:importdjiimages — a folder of DJI drone JPEGs → frame footprints from their own metadata."""
 from __future__ import annotations
 
-from qgis.core import (QgsProcessing, QgsProcessingOutputNumber, QgsProcessingParameterCrs,
-                       QgsProcessingParameterFeatureSink, QgsProcessingParameterFile)
+from qgis.core import (
+    QgsProcessing,
+    QgsProcessingOutputNumber,
+    QgsProcessingParameterCrs,
+    QgsProcessingParameterFeatureSink,
+    QgsProcessingParameterFile,
+)
 
-from ...birdseye_qgis.qgis_io import layers
-from ...birdseye_qgis.core.geometry.camera import load_calibration
 from ...birdseye_qgis.core.field.dji import import_dji_images
+from ...birdseye_qgis.core.geometry.camera import load_calibration
+from ...birdseye_qgis.qgis_io import layers
 from ..parameters.dem import DemParametersMixin
 from .base import BirdsEyeAlgorithm
 
@@ -22,7 +27,7 @@ class ImportDjiImages(DemParametersMixin, BirdsEyeAlgorithm):
     FRAME_COUNT = "FRAME_COUNT"
     UNPLACED_COUNT = "UNPLACED_COUNT"
 
-    def initAlgorithm(self, config=None):  # noqa: N802
+    def initAlgorithm(self, config=None):
         self.addParameter(QgsProcessingParameterFile(
             self.IMAGES, self.tr("Folder of DJI images (JPEG)"), behavior=QgsProcessingParameterFile.Folder))
         self.addParameter(QgsProcessingParameterFile(
@@ -36,7 +41,7 @@ class ImportDjiImages(DemParametersMixin, BirdsEyeAlgorithm):
         self.addOutput(QgsProcessingOutputNumber(self.FRAME_COUNT, self.tr("Frames written")))
         self.addOutput(QgsProcessingOutputNumber(self.UNPLACED_COUNT, self.tr("Images that cannot be placed")))
 
-    def processAlgorithm(self, parameters, context, feedback):  # noqa: N802
+    def processAlgorithm(self, parameters, context, feedback):
         folder = self.parameterAsFile(parameters, self.IMAGES, context)
         calibration_path = self.parameterAsFile(parameters, self.CALIBRATION, context)
         chosen = self.run_core(layers.chosen_projected_crs, self.parameterAsCrs(parameters, self.OUTPUT_CRS, context))
@@ -48,12 +53,14 @@ class ImportDjiImages(DemParametersMixin, BirdsEyeAlgorithm):
                                is_canceled=is_canceled, dem=dem)
         layers.report_to_feedback(feedback, result.report)
         for error in result.report.unplaced[5:]:
-            feedback.pushInfo(f"Not placed: {error}")
+            feedback.pushInfo(self.tr("Not placed: {error}").format(error=error))
         cameras = {id(c): c for c in result.frames.cameras}.values()
         for cam in cameras:
-            feedback.pushInfo(f"Camera: {cam.width}×{cam.height} px, fx {cam.fx:.1f}, fy {cam.fy:.1f} ({cam.source})")
+            feedback.pushInfo(self.tr("Camera: {width}×{height} px, fx {fx:.1f}, fy {fy:.1f} "
+                                      "({source})").format(
+                                  width=cam.width, height=cam.height, fx=cam.fx, fy=cam.fy, source=cam.source))
         _, crs = self.run_core(layers.output_crs, chosen, result.frames.lat, result.frames.lon)
-        feedback.pushInfo(f"Output CRS: {crs.authid() or crs.description()}")
+        feedback.pushInfo(self.tr("Output CRS: {value}").format(value=crs.authid() or crs.description()))
         outputs = self.run_core(layers.write_frames, self, parameters, context, feedback, result, crs)
         outputs[self.UNPLACED_COUNT] = len(result.report.unplaced)
         return outputs

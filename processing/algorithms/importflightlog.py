@@ -1,13 +1,19 @@
 """birdseye:importflightlog — pose log (or flight_data.db) + images + calibration → frame footprints."""
 from __future__ import annotations
 
-from qgis.core import (QgsProcessingParameterCrs, QgsProcessingParameterEnum, QgsProcessingParameterFeatureSink,
-                       QgsProcessingParameterFile, QgsProcessingParameterNumber, QgsProcessingOutputNumber,
-                       QgsProcessing)
+from qgis.core import (
+    QgsProcessing,
+    QgsProcessingOutputNumber,
+    QgsProcessingParameterCrs,
+    QgsProcessingParameterEnum,
+    QgsProcessingParameterFeatureSink,
+    QgsProcessingParameterFile,
+    QgsProcessingParameterNumber,
+)
 
-from ...birdseye_qgis.qgis_io import layers
-from ...birdseye_qgis.core.geometry.camera import load_calibration
 from ...birdseye_qgis.core.field.flight_log import import_flight_log
+from ...birdseye_qgis.core.geometry.camera import load_calibration
+from ...birdseye_qgis.qgis_io import layers
 from ..parameters.dem import DemParametersMixin
 from .base import BirdsEyeAlgorithm
 
@@ -29,7 +35,7 @@ class ImportFlightLog(DemParametersMixin, BirdsEyeAlgorithm):
 
     RTK_FILTERS = ["All frames (float and no-RTK frames flagged)", "RTK fixed frames only"]
 
-    def initAlgorithm(self, config=None):  # noqa: N802
+    def initAlgorithm(self, config=None):
         self.addParameter(QgsProcessingParameterFile(
             self.POSE_LOG, self.tr("Pose log (BirdsEye CSV or flight_data.db)"),
             fileFilter="Pose logs (*.csv *.txt *.db *.sqlite);;All files (*)"))
@@ -60,7 +66,7 @@ class ImportFlightLog(DemParametersMixin, BirdsEyeAlgorithm):
                            ("UNMATCHED_IMAGES", "Images without strobe"), ("BAD_ROWS", "Bad rows left out")):
             self.addOutput(QgsProcessingOutputNumber(name, self.tr(text)))
 
-    def processAlgorithm(self, parameters, context, feedback):  # noqa: N802
+    def processAlgorithm(self, parameters, context, feedback):
         pose_log = self.parameterAsFile(parameters, self.POSE_LOG, context)
         images = self.parameterAsFile(parameters, self.IMAGES, context) or None
         calibration = self.parameterAsFile(parameters, self.CALIBRATION, context)
@@ -68,8 +74,10 @@ class ImportFlightLog(DemParametersMixin, BirdsEyeAlgorithm):
         chosen = self.run_core(layers.chosen_projected_crs, self.parameterAsCrs(parameters, self.OUTPUT_CRS, context))
         utm_crs = self.run_core(layers.chosen_projected_crs, utm, self.UTM_CRS)
         camera = self.run_core(load_calibration, calibration)
-        feedback.pushInfo(f"Camera: {camera.width}×{camera.height} px, fx {camera.fx:.1f}, fy {camera.fy:.1f} "
-                          f"({camera.source})")
+        feedback.pushInfo(self.tr("Camera: {width}×{height} px, fx {fx:.1f}, fy {fy:.1f} "
+                                  "({source})").format(
+                              width=camera.width, height=camera.height, fx=camera.fx, fy=camera.fy,
+                              source=camera.source))
         dem = self.read_dem(parameters, context)
         self.report_dem(feedback, dem)
         progress, is_canceled = self.progress_callbacks(feedback, 0.0, 80.0)
@@ -83,7 +91,7 @@ class ImportFlightLog(DemParametersMixin, BirdsEyeAlgorithm):
             progress=progress, is_canceled=is_canceled)
         layers.report_to_feedback(feedback, result.report)
         _, crs = self.run_core(layers.output_crs, chosen, result.frames.lat, result.frames.lon)
-        feedback.pushInfo(f"Output CRS: {crs.authid() or crs.description()}")
+        feedback.pushInfo(self.tr("Output CRS: {value}").format(value=crs.authid() or crs.description()))
         outputs = self.run_core(layers.write_frames, self, parameters, context, feedback, result, crs,
                                 self.OUTPUT, self.OUTPUT_TRACK)
         counts = result.report.counts

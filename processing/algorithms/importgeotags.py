@@ -1,14 +1,29 @@
 """birdseye:importgeotags — rover survey (file or point layer) → styled PointZ geotag layer."""
 from __future__ import annotations
 
-from qgis.core import (QgsProcessing, QgsProcessingException, QgsProcessingOutputNumber,
-                       QgsProcessingParameterCrs, QgsProcessingParameterEnum, QgsProcessingParameterFeatureSink,
-                       QgsProcessingParameterFeatureSource, QgsProcessingParameterFile,
-                       QgsProcessingParameterNumber, QgsProcessingParameterString, QgsWkbTypes)
+from qgis.core import (
+    QgsProcessing,
+    QgsProcessingException,
+    QgsProcessingOutputNumber,
+    QgsProcessingParameterCrs,
+    QgsProcessingParameterEnum,
+    QgsProcessingParameterFeatureSink,
+    QgsProcessingParameterFeatureSource,
+    QgsProcessingParameterFile,
+    QgsProcessingParameterNumber,
+    QgsProcessingParameterString,
+    QgsWkbTypes,
+)
 
+from ...birdseye_qgis.core.field.geotags import (
+    FORMATS,
+    GEOTAG_FIELDS,
+    ColumnMapping,
+    geotags_from_columns,
+    prepare_geotags,
+    read_geotags,
+)
 from ...birdseye_qgis.qgis_io import layers
-from ...birdseye_qgis.core.field.geotags import (FORMATS, GEOTAG_FIELDS, ColumnMapping, geotags_from_columns,
-                                             prepare_geotags, read_geotags)
 from .base import BirdsEyeAlgorithm
 
 
@@ -34,7 +49,7 @@ class ImportGeotags(BirdsEyeAlgorithm):
                ("FIX_FIELD", "fix", "Fix quality column/field"),
                ("LABEL_FIELD", "label", "Label column/field"))
 
-    def initAlgorithm(self, config=None):  # noqa: N802
+    def initAlgorithm(self, config=None):
         self.addParameter(QgsProcessingParameterFile(
             self.INPUT, self.tr("Geotag file (rover CSV, CSV with header, NMEA)"), optional=True,
             fileFilter="Geotags (*.csv *.txt *.nmea *.log *.gga);;All files (*)"))
@@ -58,7 +73,7 @@ class ImportGeotags(BirdsEyeAlgorithm):
                            ("DUPLICATES", "Geotags flagged duplicate_2cm")):
             self.addOutput(QgsProcessingOutputNumber(name, self.tr(text)))
 
-    def processAlgorithm(self, parameters, context, feedback):  # noqa: N802
+    def processAlgorithm(self, parameters, context, feedback):
         path = self.parameterAsFile(parameters, self.INPUT, context)
         source = self.parameterAsSource(parameters, self.INPUT_LAYER, context)
         if bool(path) == (source is not None):
@@ -78,7 +93,8 @@ class ImportGeotags(BirdsEyeAlgorithm):
             raise QgsProcessingException(self.tr("The input holds no usable geotag.") + first)
         if tags.problems:
             examples = "; ".join(str(e) for e in tags.problems[:5])
-            feedback.reportError(f"{len(tags.problems)} bad row(s) left out; first: {examples}", False)
+            feedback.reportError(self.tr("{n_problems} bad row(s) left out; first: {examples}").format(
+                                     n_problems=len(tags.problems), examples=examples), False)
         prepared = self.run_core(prepare_geotags, tags,
                                  fixed_only=self.parameterAsEnum(parameters, self.FIX_FILTER, context) == 1,
                                  pole_height_m=self.parameterAsDouble(parameters, self.POLE_HEIGHT_M, context))
@@ -86,15 +102,16 @@ class ImportGeotags(BirdsEyeAlgorithm):
         feedback.pushInfo("Fix quality of the input: " + ", ".join(f"{k}: {v}" for k, v in
                                                                     prepared.counts_by_fix.items()))
         if prepared.dropped_not_fixed:
-            feedback.pushWarning(f"{prepared.dropped_not_fixed} geotag(s) without an RTK fixed solution were "
-                                 "left out (fix filter: RTK fixed only)")
+            feedback.pushWarning(self.tr("{dropped_not_fixed} geotag(s) without an RTK fixed "
+                                         "solution were left out (fix filter: RTK fixed only)").format(
+                                     dropped_not_fixed=prepared.dropped_not_fixed))
         if prepared.duplicates:
-            feedback.pushWarning(f"{prepared.duplicates} geotag(s) lie within 2 cm of an earlier one "
-                                 "(flag duplicate_2cm)")
+            feedback.pushWarning(self.tr("{duplicates} geotag(s) lie within 2 cm of an earlier "
+                                         "one (flag duplicate_2cm)").format(duplicates=prepared.duplicates))
         if len(out) == 0:
             raise QgsProcessingException(self.tr("No geotag is left to write (all were filtered out)."))
         crs_core, crs = self.run_core(layers.output_crs, chosen, out.lat, out.lon)
-        feedback.pushInfo(f"Output CRS: {crs.authid() or crs.description()}")
+        feedback.pushInfo(self.tr("Output CRS: {value}").format(value=crs.authid() or crs.description()))
         x, y = crs_core.from_geodetic(out.lat, out.lon)
         fields = layers.qgs_fields(GEOTAG_FIELDS)
         sink, dest_id = self.parameterAsSink(parameters, self.OUTPUT, context, fields, QgsWkbTypes.PointZ, crs)

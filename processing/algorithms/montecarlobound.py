@@ -39,7 +39,7 @@ class MonteCarloBoundAlgorithm(DesignParametersMixin, BirdsEyeAlgorithm):
     OUTPUT_JSON = "OUTPUT_JSON"
     OUTPUT_PNG = "OUTPUT_PNG"
 
-    def initAlgorithm(self, config=None):  # noqa: N802
+    def initAlgorithm(self, config=None):
         self.add_camera_parameters()
         self.add_altitudes_parameter()
         self.add_sigmas_parameter()
@@ -62,7 +62,7 @@ class MonteCarloBoundAlgorithm(DesignParametersMixin, BirdsEyeAlgorithm):
             self.OUTPUT_PNG, self.tr("Scaling-study plot (PNG, one panel per altitude)"), "PNG files (*.png)",
             optional=True, createByDefault=True))
 
-    def processAlgorithm(self, parameters, context, feedback):  # noqa: N802
+    def processAlgorithm(self, parameters, context, feedback):
         camera = self.camera_from_parameters(parameters, context, feedback)
         altitudes = self.altitudes_from_parameters(parameters, context)
         sigmas = self.sigmas_from_parameters(parameters, context)

@@ -4,23 +4,52 @@ from __future__ import annotations
 from pathlib import Path
 
 import numpy as np
-from qgis.core import (QgsCoordinateReferenceSystem, QgsFeatureRequest, QgsGeometry, QgsLineString,
-                       QgsProcessing,
-                       QgsProcessingException, QgsProcessingOutputNumber, QgsProcessingOutputString,
-                       QgsProcessingParameterBoolean, QgsProcessingParameterCrs,
-                       QgsProcessingParameterDefinition, QgsProcessingParameterEnum,
-                       QgsProcessingParameterFeatureSink, QgsProcessingParameterField,
-                       QgsProcessingParameterFile, QgsProcessingParameterFileDestination,
-                       QgsProcessingParameterNumber, QgsProcessingParameterPoint,
-                       QgsProcessingParameterVectorLayer, QgsWkbTypes)
+from qgis.core import (
+    QgsCoordinateReferenceSystem,
+    QgsFeatureRequest,
+    QgsGeometry,
+    QgsLineString,
+    QgsProcessing,
+    QgsProcessingException,
+    QgsProcessingOutputNumber,
+    QgsProcessingOutputString,
+    QgsProcessingParameterBoolean,
+    QgsProcessingParameterCrs,
+    QgsProcessingParameterDefinition,
+    QgsProcessingParameterEnum,
+    QgsProcessingParameterFeatureSink,
+    QgsProcessingParameterField,
+    QgsProcessingParameterFile,
+    QgsProcessingParameterFileDestination,
+    QgsProcessingParameterNumber,
+    QgsProcessingParameterPoint,
+    QgsProcessingParameterVectorLayer,
+    QgsWkbTypes,
+)
 
-from ...birdseye_qgis.qgis_io import layers
 from ...birdseye_qgis.core.geometry.camera import load_calibration
-from ...birdseye_qgis.core.plan.flight_plan import (ROUTE_FIELDS, WAYPOINT_FIELDS, FlightSettings, plan_flight,
-                                               route_records, waypoint_records)
-from ...birdseye_qgis.core.plan.mission_files import (CAPTURE_PHOTO, CAPTURE_TIMED, DJI_DRONES, DJI_PAYLOADS,
-                                                 FORMAT_NAMES, check_waypoint_limits, mission_file_paths,
-                                                 write_dji_kmz, write_kml, write_litchi_csv, write_qgc_plan)
+from ...birdseye_qgis.core.plan.flight_plan import (
+    ROUTE_FIELDS,
+    WAYPOINT_FIELDS,
+    FlightSettings,
+    plan_flight,
+    route_records,
+    waypoint_records,
+)
+from ...birdseye_qgis.core.plan.mission_files import (
+    CAPTURE_PHOTO,
+    CAPTURE_TIMED,
+    DJI_DRONES,
+    DJI_PAYLOADS,
+    FORMAT_NAMES,
+    check_waypoint_limits,
+    mission_file_paths,
+    write_dji_kmz,
+    write_kml,
+    write_litchi_csv,
+    write_qgc_plan,
+)
+from ...birdseye_qgis.qgis_io import layers
 from .base import BirdsEyeAlgorithm
 
 
@@ -58,7 +87,7 @@ class PlanFlight(BirdsEyeAlgorithm):
                     ("OUTPUT_LITCHI", "litchi", "Litchi mission (CSV)", "Litchi CSV (*.csv)"),
                     ("OUTPUT_KML", "kml", "Google Earth (KML)", "KML (*.kml)")]
 
-    def initAlgorithm(self, config=None):  # noqa: N802
+    def initAlgorithm(self, config=None):
         self.addParameter(QgsProcessingParameterVectorLayer(
             self.GEOTAGS, self.tr("Geotags (point layer)"), [QgsProcessing.TypeVectorPoint]))
         self.addParameter(QgsProcessingParameterBoolean(
@@ -126,7 +155,7 @@ class PlanFlight(BirdsEyeAlgorithm):
         self.addParameter(param)
 
     # ------------------------------------------------------------------------------------------ run
-    def processAlgorithm(self, parameters, context, feedback):  # noqa: N802
+    def processAlgorithm(self, parameters, context, feedback):
         layer = self.parameterAsVectorLayer(parameters, self.GEOTAGS, context)
         if layer is None:
             raise QgsProcessingException(self.tr("GEOTAGS: the geotag layer could not be opened."))

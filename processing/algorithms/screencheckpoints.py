@@ -5,10 +5,16 @@ import json
 from pathlib import Path
 
 import numpy as np
-from qgis.core import (QgsProcessing, QgsProcessingException, QgsProcessingMultiStepFeedback,
-                       QgsProcessingOutputNumber, QgsProcessingParameterFeatureSource,
-                       QgsProcessingParameterFileDestination, QgsProcessingParameterMultipleLayers,
-                       QgsProcessingParameterNumber)
+from qgis.core import (
+    QgsProcessing,
+    QgsProcessingException,
+    QgsProcessingMultiStepFeedback,
+    QgsProcessingOutputNumber,
+    QgsProcessingParameterFeatureSource,
+    QgsProcessingParameterFileDestination,
+    QgsProcessingParameterMultipleLayers,
+    QgsProcessingParameterNumber,
+)
 
 from ...birdseye_qgis.core.detect.detector import DetectRequest, HeatmapModel, detect_frames
 from ...birdseye_qgis.core.errors import Cancelled
@@ -17,11 +23,17 @@ from ...birdseye_qgis.core.labels.training_set import project_labels
 from ...birdseye_qgis.core.scoring.evaluation import local_frame_for
 from ...birdseye_qgis.core.scoring.matching import in_view
 from ...birdseye_qgis.core.scoring.reports import screen_figure
-from ...birdseye_qgis.core.scoring.screening import DEFAULT_COLLAPSED_BELOW, DEFAULT_PIXEL_RADIUS_PX, DEFAULT_SPARSE_BELOW, ScreenRun, screen_checkpoints
-from .base import BirdsEyeAlgorithm
+from ...birdseye_qgis.core.scoring.screening import (
+    DEFAULT_COLLAPSED_BELOW,
+    DEFAULT_PIXEL_RADIUS_PX,
+    DEFAULT_SPARSE_BELOW,
+    ScreenRun,
+    screen_checkpoints,
+)
 from ...birdseye_qgis.qgis_io.detections import read_geotags, read_pose_groups
 from ...birdseye_qgis.qgis_io.outputs import write_output, write_rows_csv
 from ..parameters.clustering import ClusteringParametersMixin
+from .base import BirdsEyeAlgorithm
 
 
 def pixel_labels(poses, local, geotags, edge_buffer_px):
@@ -54,7 +66,7 @@ class ScreenCheckpoints(ClusteringParametersMixin, BirdsEyeAlgorithm):
     OUTPUT_PLOT = "OUTPUT_PLOT"
     N_HEALTHY = "N_HEALTHY"
 
-    def initAlgorithm(self, config=None):  # noqa: N802
+    def initAlgorithm(self, config=None):
         self.addParameter(QgsProcessingParameterMultipleLayers(
             self.CHECKPOINTS, self.tr("ONNX checkpoints"), QgsProcessing.TypeFile))
         self.addParameter(QgsProcessingParameterMultipleLayers(
@@ -82,7 +94,7 @@ class ScreenCheckpoints(ClusteringParametersMixin, BirdsEyeAlgorithm):
             self.OUTPUT_PLOT, self.tr("Frontier plot (PNG)"), "PNG (*.png)", optional=True, createByDefault=True))
         self.addOutput(QgsProcessingOutputNumber(self.N_HEALTHY, self.tr("Healthy checkpoints")))
 
-    def processAlgorithm(self, parameters, context, feedback):  # noqa: N802
+    def processAlgorithm(self, parameters, context, feedback):
         checkpoints = self.parameterAsFileList(parameters, self.CHECKPOINTS, context)
         frame_layers = self.parameterAsLayerList(parameters, self.FRAMES, context)
         if not checkpoints:
@@ -154,9 +166,11 @@ class ScreenCheckpoints(ClusteringParametersMixin, BirdsEyeAlgorithm):
         for s in screens:
             state = "healthy" if s.healthy else ", ".join(
                 w for w, on in (("collapsed", s.collapsed), ("too sparse", s.too_sparse)) if on)
-            feedback.pushInfo(f"{s.checkpoint}: {state}; recall_pre {_fmt(s.counts.recall_pre)}, gmcf_pre "
-                              f"{_fmt(s.counts.gmcf_pre)}, pixel F1 {_fmt(s.pixel_f1)}, review load "
-                              f"{_fmt(s.relative_review_load)}{' (frontier)' if s.frontier else ''}")
+            feedback.pushInfo(self.tr("{checkpoint}: {state}; recall_pre {value}, gmcf_pre "
+                                      "{value2}, pixel F1 {value3}, review load {value4}{value5}").format(
+                                  checkpoint=s.checkpoint, state=state, value=_fmt(s.counts.recall_pre),
+                                  value2=_fmt(s.counts.gmcf_pre), value3=_fmt(s.pixel_f1),
+                                  value4=_fmt(s.relative_review_load), value5=' (frontier)' if s.frontier else ''))
         return outputs
 
     def _detect(self, model, name, flight_name, groups, images, op, local, truth, progress, is_canceled, feedback):
@@ -182,8 +196,9 @@ class ScreenCheckpoints(ClusteringParametersMixin, BirdsEyeAlgorithm):
                 raise QgsProcessingException(self.tr("Cancelled by the user.")) from None
             done += len(poses)
         if skipped:
-            feedback.pushWarning(f"{name} on {flight_name}: {skipped} frame(s) skipped (unreadable image or no "
-                                 "ground height)")
+            feedback.pushWarning(self.tr("{name} on {flight_name}: {skipped} frame(s) skipped "
+                                         "(unreadable image or no ground height)").format(
+                                     name=name, flight_name=flight_name, skipped=skipped))
         geotag_xy, label_frames, label_uv = truth
         return ScreenRun(name, flight_name, n_frames, _concat(frame_ids, np.empty(0, dtype=object)),
                          _concat(uvs, np.empty((0, 2))), _concat(xys, np.empty((0, 2))), label_frames, label_uv,

@@ -4,16 +4,22 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from qgis.core import (QgsProcessing, QgsProcessingException, QgsProcessingOutputString,
-                       QgsProcessingParameterFile, QgsProcessingParameterFileDestination,
-                       QgsProcessingParameterMultipleLayers, QgsProcessingParameterNumber,
-                       QgsProcessingParameterString)
+from qgis.core import (
+    QgsProcessing,
+    QgsProcessingException,
+    QgsProcessingOutputString,
+    QgsProcessingParameterFile,
+    QgsProcessingParameterFileDestination,
+    QgsProcessingParameterMultipleLayers,
+    QgsProcessingParameterNumber,
+    QgsProcessingParameterString,
+)
 
-from ...birdseye_qgis.core.scoring import preregistration
 from ...birdseye_qgis.core.detect.detector import file_digest
 from ...birdseye_qgis.core.errors import InputError
-from .base import BirdsEyeAlgorithm
+from ...birdseye_qgis.core.scoring import preregistration
 from ..parameters.clustering import ClusteringParametersMixin
+from .base import BirdsEyeAlgorithm
 
 
 def read_descriptive(path) -> list:
@@ -43,7 +49,7 @@ class SealPreregistration(ClusteringParametersMixin, BirdsEyeAlgorithm):
     OUTPUT = "OUTPUT"
     SEAL = "SEAL"
 
-    def initAlgorithm(self, config=None):  # noqa: N802
+    def initAlgorithm(self, config=None):
         self.addParameter(QgsProcessingParameterMultipleLayers(
             self.CHECKPOINTS, self.tr("ONNX checkpoints (one arm each)"), QgsProcessing.TypeFile))
         self.addParameter(QgsProcessingParameterNumber(
@@ -60,7 +66,7 @@ class SealPreregistration(ClusteringParametersMixin, BirdsEyeAlgorithm):
             self.OUTPUT, self.tr("Sealed rule (JSON)"), "JSON (*.json)"))
         self.addOutput(QgsProcessingOutputString(self.SEAL, self.tr("Seal (SHA-256)")))
 
-    def processAlgorithm(self, parameters, context, feedback):  # noqa: N802
+    def processAlgorithm(self, parameters, context, feedback):
         paths = self.parameterAsFileList(parameters, self.CHECKPOINTS, context)
         if not paths:
             raise QgsProcessingException(self.tr("CHECKPOINTS: give at least one ONNX file."))
@@ -69,9 +75,10 @@ class SealPreregistration(ClusteringParametersMixin, BirdsEyeAlgorithm):
         arms = []
         for path in paths:
             if not Path(path).is_file():
-                raise QgsProcessingException(f"CHECKPOINTS: {path} is not a file")
+                raise QgsProcessingException(self.tr("CHECKPOINTS: {path} is not a file").format(path=path))
             arms.append(self.run_core(preregistration.make_arm, path, file_digest(path), op))
-            feedback.pushInfo(f"Arm {arms[-1]['name']}: sha256 {arms[-1]['model_digest']}")
+            feedback.pushInfo(self.tr("Arm {name}: sha256 {model_digest}").format(
+                                  name=arms[-1]['name'], model_digest=arms[-1]['model_digest']))
         descriptive_path = self.parameterAsFile(parameters, self.DESCRIPTIVE, context)
         descriptive = self.run_core(read_descriptive, descriptive_path) if descriptive_path else []
         rule = {"arms": arms, "descriptive": descriptive,
@@ -81,8 +88,11 @@ class SealPreregistration(ClusteringParametersMixin, BirdsEyeAlgorithm):
         try:
             preregistration.write(document, out)
         except OSError as exc:
-            raise QgsProcessingException(f"OUTPUT: cannot write {out} ({exc})") from exc
-        feedback.pushInfo(f"Sealed at {document['sealed_at']}: {document['seal']}")
-        feedback.pushInfo("Record this seal somewhere you cannot edit later (an e-mail, a lab notebook, a "
-                          "commit): the seal proves the rule unchanged only against a copy kept elsewhere.")
+            raise QgsProcessingException(
+                self.tr("OUTPUT: cannot write {out} ({exc})").format(out=out, exc=exc)) from exc
+        feedback.pushInfo(self.tr("Sealed at {sealed_at}: {seal}").format(
+                              sealed_at=document['sealed_at'], seal=document['seal']))
+        feedback.pushInfo(self.tr("Record this seal somewhere you cannot edit later (an e-mail, "
+                                  "a lab notebook, a commit): the seal proves the rule unchanged "
+                                  "only against a copy kept elsewhere."))
         return {"OUTPUT": out, self.SEAL: document["seal"]}

@@ -26,7 +26,7 @@ class SensorBoundAlgorithm(DesignParametersMixin, BirdsEyeAlgorithm):
     OUTPUT_REPORT = "OUTPUT_REPORT"
     OUTPUT_RASTER = "OUTPUT_RASTER"
 
-    def initAlgorithm(self, config=None):  # noqa: N802
+    def initAlgorithm(self, config=None):
         self.add_camera_parameters()
         self.add_altitudes_parameter()
         self.add_sigmas_parameter()
@@ -43,7 +43,7 @@ class SensorBoundAlgorithm(DesignParametersMixin, BirdsEyeAlgorithm):
             self.OUTPUT_RASTER, self.tr("λ_max field, one band per altitude (GeoTIFF in pixel coordinates)"),
             "GeoTIFF files (*.tif *.tiff)", optional=True, createByDefault=False))
 
-    def processAlgorithm(self, parameters, context, feedback):  # noqa: N802
+    def processAlgorithm(self, parameters, context, feedback):
         camera = self.camera_from_parameters(parameters, context, feedback)
         altitudes = self.altitudes_from_parameters(parameters, context)
         sigmas = self.sigmas_from_parameters(parameters, context)

@@ -1,14 +1,27 @@
 """birdseye:simulatecampaign — a deterministic synthetic campaign in the BirdsEye file formats."""
 from __future__ import annotations
 
-from qgis.core import (QgsProcessingOutputFile, QgsProcessingOutputFolder, QgsProcessingOutputNumber,
-                       QgsProcessingOutputRasterLayer,
-                       QgsProcessingParameterBoolean, QgsProcessingParameterDefinition, QgsProcessingParameterEnum,
-                       QgsProcessingParameterFolderDestination, QgsProcessingParameterNumber,
-                       QgsProcessingParameterString)
+from qgis.core import (
+    QgsProcessingOutputFile,
+    QgsProcessingOutputFolder,
+    QgsProcessingOutputNumber,
+    QgsProcessingOutputRasterLayer,
+    QgsProcessingParameterBoolean,
+    QgsProcessingParameterDefinition,
+    QgsProcessingParameterEnum,
+    QgsProcessingParameterFolderDestination,
+    QgsProcessingParameterNumber,
+    QgsProcessingParameterString,
+)
 
-from ...birdseye_qgis.core.sim.campaign import (DEFAULT_SIDE_OVERLAP, PLATFORMS, TERRAIN_KINDS, CampaignConfig,
-                                                parse_sigmas, simulate_campaign)
+from ...birdseye_qgis.core.sim.campaign import (
+    DEFAULT_SIDE_OVERLAP,
+    PLATFORMS,
+    TERRAIN_KINDS,
+    CampaignConfig,
+    parse_sigmas,
+    simulate_campaign,
+)
 from .base import BirdsEyeAlgorithm
 
 DEFAULTS = CampaignConfig()
@@ -69,7 +82,7 @@ class SimulateCampaign(BirdsEyeAlgorithm):
     FRAMES_FOLDER = "FRAMES_FOLDER"
     FRAME_COUNT = "FRAME_COUNT"
 
-    def initAlgorithm(self, config=None):  # noqa: N802
+    def initAlgorithm(self, config=None):
         for advanced in (False, True):
             for name, label, kind, default, lo, hi, is_advanced in NUMBERS:
                 if is_advanced == advanced:
@@ -117,7 +130,7 @@ class SimulateCampaign(BirdsEyeAlgorithm):
             param.setFlags(param.flags() | QgsProcessingParameterDefinition.FlagAdvanced)
         self.addParameter(param)
 
-    def processAlgorithm(self, parameters, context, feedback):  # noqa: N802
+    def processAlgorithm(self, parameters, context, feedback):
         values = {name: (self.parameterAsInt if kind == INT else self.parameterAsDouble)(parameters, name, context)
                   for name, _, kind, *_ in NUMBERS + TERRAIN_NUMBERS}
         terrain = TERRAIN_KINDS[self.parameterAsEnum(parameters, self.TERRAIN, context)]
@@ -144,25 +157,34 @@ class SimulateCampaign(BirdsEyeAlgorithm):
             terrain=terrain, slope_deg=values["SLOPE_DEG"], slope_aspect_deg=values["SLOPE_ASPECT_DEG"],
             relief_m=values["RELIEF_M"], hill_wavelength_m=values["HILL_WAVELENGTH_M"])
         folder = self.parameterAsString(parameters, self.OUTPUT_FOLDER, context)
-        feedback.pushInfo(f"Simulating seed {config.seed}: {config.n_targets} targets in a "
-                          f"{config.field_width_m:g} × {config.field_length_m:g} m field, flown at "
-                          f"{config.altitude_m:g} m, {config.speed_ms:g} m/s, {config.fps:g} frames/s.")
+        feedback.pushInfo(self.tr("Simulating seed {seed}: {n_targets} targets in a "
+                                  "{field_width_m:g} × {field_length_m:g} m field, flown at "
+                                  "{altitude_m:g} m, {speed_ms:g} m/s, {fps:g} frames/s.").format(
+                              seed=config.seed, n_targets=config.n_targets, field_width_m=config.field_width_m,
+                              field_length_m=config.field_length_m, altitude_m=config.altitude_m,
+                              speed_ms=config.speed_ms, fps=config.fps))
         if terrain == "flat" and (config.slope_deg or config.relief_m):
-            feedback.pushWarning("TERRAIN is flat: SLOPE_DEG and RELIEF_M are ignored (choose plane or hills).")
+            feedback.pushWarning(self.tr("TERRAIN is flat: SLOPE_DEG and RELIEF_M are ignored "
+                                         "(choose plane or hills)."))
         elif terrain == "plane" and config.relief_m:
-            feedback.pushWarning("TERRAIN is a plane: RELIEF_M is ignored (choose hills).")
+            feedback.pushWarning(self.tr("TERRAIN is a plane: RELIEF_M is ignored (choose hills)."))
         elif terrain != "flat":
             feedback.pushInfo(f"Terrain: {terrain}, {config.slope_deg:g}° slope facing {config.slope_aspect_deg:g}°"
                               + (f", hills of {config.relief_m:g} m every {config.hill_wavelength_m:g} m"
                                  if terrain == "hills" else "") + "; the drone follows it.")
         if platform == "dji":
-            feedback.pushInfo(f"A DJI drone: photos on the lines with {config.forward_overlap:.0%} forward and "
-                              f"{config.effective_side_overlap:.0%} side overlap; the pose in each JPEG's metadata "
-                              "carries heading, tilt and height errors (truth/dji_metadata_errors.csv).")
+            feedback.pushInfo(self.tr("A DJI drone: photos on the lines with "
+                                      "{forward_overlap:.0%} forward and "
+                                      "{effective_side_overlap:.0%} side overlap; the pose in "
+                                      "each JPEG's metadata carries heading, tilt and height "
+                                      "errors (truth/dji_metadata_errors.csv).").format(
+                                  forward_overlap=config.forward_overlap,
+                                  effective_side_overlap=config.effective_side_overlap))
         progress, is_canceled = self.progress_callbacks(feedback, 2.0, 100.0)
         result = self.run_core(simulate_campaign, config, folder, progress=progress, is_canceled=is_canceled)
         log = "" if platform == "dji" else f"{result.n_poses} pose rows, "
-        feedback.pushInfo(f"Wrote {result.n_frames} frames, {log}{result.n_geotags} geotags to {result.folder}.")
+        feedback.pushInfo(self.tr("Wrote {n_frames} frames, {log}{n_geotags} geotags to {folder}.").format(
+                              n_frames=result.n_frames, log=log, n_geotags=result.n_geotags, folder=result.folder))
         return {"OUTPUT_FOLDER": str(result.folder), "GEOTAGS": str(result.files["geotags"]),
                 "POSES": str(result.files.get("poses", "")), "IMAGES": str(result.files.get("images", "")),
                 "CALIBRATION": str(result.files.get("calibration", "")), self.DEM: str(result.files.get("dem", "")),

@@ -5,10 +5,16 @@ import json
 from pathlib import Path
 
 import numpy as np
-from qgis.core import (QgsProcessing, QgsProcessingException, QgsProcessingOutputNumber,
-                       QgsProcessingParameterFeatureSource, QgsProcessingParameterFileDestination,
-                       QgsProcessingParameterMultipleLayers, QgsProcessingParameterNumber,
-                       QgsProcessingParameterString)
+from qgis.core import (
+    QgsProcessing,
+    QgsProcessingException,
+    QgsProcessingOutputNumber,
+    QgsProcessingParameterFeatureSource,
+    QgsProcessingParameterFileDestination,
+    QgsProcessingParameterMultipleLayers,
+    QgsProcessingParameterNumber,
+    QgsProcessingParameterString,
+)
 
 from ...birdseye_qgis.core.detect.clustering import DEFAULT_DEDUP_CM
 from ...birdseye_qgis.core.errors import InputError
@@ -16,11 +22,17 @@ from ...birdseye_qgis.core.scoring.evaluation import local_frame_for
 from ...birdseye_qgis.core.scoring.matching import in_view
 from ...birdseye_qgis.core.scoring.operating_point import DEFAULT_EDGE_BUFFER_PX
 from ...birdseye_qgis.core.scoring.reports import sweep_figure
-from ...birdseye_qgis.core.scoring.sweep import DEFAULT_MAX_GEOTAGS_PER_HIT, DEFAULT_MAX_MEAN_EXTENT_M, SweepFlight, SweepGrid, sweep
-from .base import BirdsEyeAlgorithm
+from ...birdseye_qgis.core.scoring.sweep import (
+    DEFAULT_MAX_GEOTAGS_PER_HIT,
+    DEFAULT_MAX_MEAN_EXTENT_M,
+    SweepFlight,
+    SweepGrid,
+    sweep,
+)
 from ...birdseye_qgis.qgis_io.detections import read_geotags
 from ...birdseye_qgis.qgis_io.outputs import write_output, write_rows_csv
 from ..parameters.clustering import ClusteringParametersMixin
+from .base import BirdsEyeAlgorithm
 
 LISTS = (("THRESHOLDS", "Detection thresholds (comma-separated probabilities)", "0.3,0.4,0.5,0.6,0.7"),
          ("EPS_M", "DBSCAN radii EPS (m, comma-separated)", "0.05,0.10,0.15,0.20"),
@@ -59,7 +71,7 @@ class SweepOperatingPoints(ClusteringParametersMixin, BirdsEyeAlgorithm):
     OUTPUT_JSON = "OUTPUT_JSON"
     OUTPUT_PLOT = "OUTPUT_PLOT"
 
-    def initAlgorithm(self, config=None):  # noqa: N802
+    def initAlgorithm(self, config=None):
         self.addParameter(QgsProcessingParameterMultipleLayers(
             self.DETECTIONS, self.tr("Detection layers (one per flight, detected at the lowest threshold)"),
             QgsProcessing.TypeVectorPoint))
@@ -92,7 +104,7 @@ class SweepOperatingPoints(ClusteringParametersMixin, BirdsEyeAlgorithm):
                            ("N_PARETO", "Configurations on the Pareto front")):
             self.addOutput(QgsProcessingOutputNumber(name, self.tr(text)))
 
-    def processAlgorithm(self, parameters, context, feedback):  # noqa: N802
+    def processAlgorithm(self, parameters, context, feedback):
         lists = {name: self.run_core(parse_list, self.parameterAsString(parameters, name, context), name)
                  for name, _, _ in LISTS}
         grid = self.run_core(SweepGrid, lists["THRESHOLDS"], lists["EPS_M"], lists["MIN_SAMPLES"],
@@ -102,9 +114,10 @@ class SweepOperatingPoints(ClusteringParametersMixin, BirdsEyeAlgorithm):
             t = f.detections.threshold
             if t is not None and t > grid.thresholds.min() + 1e-12:
                 raise QgsProcessingException(
-                    f"THRESHOLDS: {f.name} was detected at threshold {t}, above the sweep's lowest threshold "
-                    f"{grid.thresholds.min()}; detections below {t} were never made. Run Detect at the lowest "
-                    "threshold of the sweep, or raise THRESHOLDS.")
+                    self.tr("THRESHOLDS: {name} was detected at threshold {t}, above the sweep's "
+                            "lowest threshold {value}; detections below {t} were never made. Run "
+                            "Detect at the lowest threshold of the sweep, or raise THRESHOLDS.").format(
+                        name=f.name, t=t, value=grid.thresholds.min()))
         geotag_source = self.parameterAsSource(parameters, self.GEOTAGS, context)
         if geotag_source is None:
             raise QgsProcessingException(self.tr("GEOTAGS: the geotag layer cannot be read."))
@@ -119,9 +132,11 @@ class SweepOperatingPoints(ClusteringParametersMixin, BirdsEyeAlgorithm):
             visible = self.run_core(in_view, f.pose_groups, local, g_local, edge).mask
             sweep_flights.append(SweepFlight(f.detections.local_xy(local), f.detections.score,
                                              g_local[visible, :2], f.name))
-            feedback.pushInfo(f"{f.name}: {len(f.detections)} detections, {int(visible.sum())} geotags in view")
-        feedback.pushInfo(f"Sweeping {grid.size} configurations ({' × '.join(map(str, grid.shape))}: "
-                          "threshold × eps × min_samples × eps_pred)")
+            feedback.pushInfo(self.tr("{name}: {n_detections} detections, {value} geotags in view").format(
+                                  name=f.name, n_detections=len(f.detections), value=int(visible.sum())))
+        feedback.pushInfo(self.tr("Sweeping {size} configurations ({items}: threshold × eps × "
+                                  "min_samples × eps_pred)").format(
+                              size=grid.size, items=' × '.join(map(str, grid.shape))))
         progress, is_canceled = self.progress_callbacks(feedback, 15.0, 95.0)
         result = self.run_core(sweep, sweep_flights, grid,
                                self.parameterAsDouble(parameters, self.MAX_GEOTAGS_PER_HIT, context),
@@ -155,10 +170,12 @@ class SweepOperatingPoints(ClusteringParametersMixin, BirdsEyeAlgorithm):
                                                                                         bbox_inches="tight"))
             outputs[self.OUTPUT_PLOT] = out_plot
         for r in sorted((r for r in rows if r["pareto"]), key=lambda r: -r["recall_pre"]):
-            feedback.pushInfo(f"Pareto: threshold {r['threshold']}, eps {r['eps_m']} m, min_samples "
-                              f"{r['min_samples']}, eps_pred {r['eps_pred_m']} m → recall_pre {r['recall_pre']:.3f}, "
-                              f"gmcf_pre {r['gmcf_pre']:.3f}")
+            feedback.pushInfo(self.tr("Pareto: threshold {threshold}, eps {eps_m} m, min_samples "
+                                      "{min_samples}, eps_pred {eps_pred_m} m → recall_pre "
+                                      "{recall_pre:.3f}, gmcf_pre {gmcf_pre:.3f}").format(
+                                  threshold=r['threshold'], eps_m=r['eps_m'], min_samples=r['min_samples'],
+                                  eps_pred_m=r['eps_pred_m'], recall_pre=r['recall_pre'], gmcf_pre=r['gmcf_pre']))
         if not outputs["N_CREDIBLE"]:
-            feedback.pushWarning("No configuration passed the credibility filter.")
+            feedback.pushWarning(self.tr("No configuration passed the credibility filter."))
         feedback.setProgress(100)
         return outputs

@@ -33,7 +33,7 @@ class TerrainSlopeAlgorithm(DesignParametersMixin, BirdsEyeAlgorithm):
     OUTPUT_JSON = "OUTPUT_JSON"
     OUTPUT_PNG = "OUTPUT_PNG"
 
-    def initAlgorithm(self, config=None):  # noqa: N802
+    def initAlgorithm(self, config=None):
         self.add_camera_parameters()
         self.addParameter(QgsProcessingParameterNumber(
             self.ALTITUDE_M, self.tr("Altitude above the ground [m]"), QgsProcessingParameterNumber.Double,
@@ -48,7 +48,7 @@ class TerrainSlopeAlgorithm(DesignParametersMixin, BirdsEyeAlgorithm):
             self.OUTPUT_PNG, self.tr("Contour plot (PNG)"), "PNG files (*.png)", optional=True,
             createByDefault=True))
 
-    def processAlgorithm(self, parameters, context, feedback):  # noqa: N802
+    def processAlgorithm(self, parameters, context, feedback):
         camera = self.camera_from_parameters(parameters, context, feedback)
         altitude = self.parameterAsDouble(parameters, self.ALTITUDE_M, context)
         if not (altitude > 0 and math.isfinite(altitude)):

@@ -4,21 +4,37 @@ from __future__ import annotations
 import json
 
 import numpy as np
-from qgis.core import (QgsFeature, QgsFeatureSink, QgsField, QgsFields,
-                       QgsProcessing, QgsProcessingException, QgsProcessingMultiStepFeedback,
-                       QgsProcessingOutputNumber, QgsProcessingParameterBoolean,
-                       QgsProcessingParameterFeatureSink, QgsProcessingParameterFeatureSource,
-                       QgsProcessingParameterFile, QgsProcessingParameterFolderDestination,
-                       QgsProcessingParameterNumber, QgsProject)
-from qgis.PyQt.QtCore import QVariant
+from qgis.core import (
+    QgsFeature,
+    QgsFeatureSink,
+    QgsField,
+    QgsFields,
+    QgsProcessing,
+    QgsProcessingException,
+    QgsProcessingMultiStepFeedback,
+    QgsProcessingOutputNumber,
+    QgsProcessingParameterBoolean,
+    QgsProcessingParameterFeatureSink,
+    QgsProcessingParameterFeatureSource,
+    QgsProcessingParameterFile,
+    QgsProcessingParameterFolderDestination,
+    QgsProcessingParameterNumber,
+    QgsProject,
+)
 
-from ...birdseye_qgis.qgis_io import layers
+from ...birdseye_qgis.__about__ import tr
 from ...birdseye_qgis.core.field.frame_records import poses_from_records
 from ...birdseye_qgis.core.geometry.geodesy import LocalFrame
-from ...birdseye_qgis.core.labels.training_set import (Geotags, LabelRequest, LabelWriter, frames_without_ground,
-                                          project_labels)
-from ..parameters.dem import DemParametersMixin
+from ...birdseye_qgis.core.labels.training_set import (
+    Geotags,
+    LabelRequest,
+    LabelWriter,
+    frames_without_ground,
+    project_labels,
+)
+from ...birdseye_qgis.qgis_io import layers
 from ...birdseye_qgis.qgis_io.project_settings import read_sigma_label_px
+from ..parameters.dem import DemParametersMixin
 from .base import BirdsEyeAlgorithm
 
 
@@ -29,12 +45,14 @@ def sigma_from_bound_json(path: str) -> float:
         tolerance = float(doc["inputs"]["tolerance_px"])
     except (OSError, ValueError, KeyError, TypeError) as exc:
         raise QgsProcessingException(
-            f"{path}: not a sensorbound result (expected inputs.tolerance_px): {exc}") from exc
+            tr("{path}: not a sensorbound result (expected inputs.tolerance_px): {exc}").format(
+                path=path, exc=exc)) from exc
     rejected = [a["altitude_m"] for a in doc.get("altitudes", []) if a.get("verdict_exact") == "reject"]
     if rejected:
         raise QgsProcessingException(
-            f"{path}: the pose-noise budget is rejected at {', '.join(f'{a:g} m' for a in rejected)}; "
-            f"labels of σ = {tolerance / 3:g} px would not contain the projection error there")
+            tr("{path}: the pose-noise budget is rejected at {items}; labels of σ = {value:g} px "
+               "would not contain the projection error there").format(
+                path=path, items=', '.join(f'{a:g} m' for a in rejected), value=tolerance / 3))
     return tolerance / 3.0
 
 
@@ -57,7 +75,7 @@ class WriteLabels(DemParametersMixin, BirdsEyeAlgorithm):
     OUTPUT_FRAMES = "OUTPUT_FRAMES"
     OUTPUT_GEOTAGS = "OUTPUT_GEOTAGS"
 
-    def initAlgorithm(self, config=None):  # noqa: N802
+    def initAlgorithm(self, config=None):
         self.addParameter(QgsProcessingParameterFeatureSource(
             self.GEOTAGS, self.tr("Geotags (surveyed targets)"), [QgsProcessing.TypeVectorPoint]))
         self.addParameter(QgsProcessingParameterFeatureSource(
@@ -103,17 +121,18 @@ class WriteLabels(DemParametersMixin, BirdsEyeAlgorithm):
         bound = self.parameterAsFile(parameters, self.SENSOR_BOUND_JSON, context)
         if parameters.get(self.SIGMA_PX) is not None:
             if bound:
-                feedback.pushWarning("SIGMA_PX is given: SENSOR_BOUND_JSON is ignored")
+                feedback.pushWarning(self.tr("SIGMA_PX is given: SENSOR_BOUND_JSON is ignored"))
             return self.parameterAsDouble(parameters, self.SIGMA_PX, context)
         if bound:
             return sigma_from_bound_json(bound)
         value = read_sigma_label_px(context.project() or QgsProject.instance())
         if value is not None:
-            feedback.pushInfo(f"σ = {value:g} px from the project (sensor-bound calculator)")
+            feedback.pushInfo(self.tr("σ = {value:g} px from the project (sensor-bound "
+                                      "calculator)").format(value=value))
             return value
         return 10.0
 
-    def processAlgorithm(self, parameters, context, feedback):  # noqa: N802
+    def processAlgorithm(self, parameters, context, feedback):
         steps = QgsProcessingMultiStepFeedback(3, feedback)
         geotag_source = self.parameterAsSource(parameters, self.GEOTAGS, context)
         frame_source = self.parameterAsSource(parameters, self.FRAMES, context)
@@ -137,19 +156,24 @@ class WriteLabels(DemParametersMixin, BirdsEyeAlgorithm):
         all_lat = np.concatenate([g[0].lat for g in groups] + [geotags.lat])
         all_lon = np.concatenate([g[0].lon for g in groups] + [geotags.lon])
         local = LocalFrame.around(all_lat, all_lon, np.concatenate([g[0].height for g in groups]))
-        feedback.pushInfo(f"{len(records)} frames ({len(groups)} camera(s)), {len(geotags)} geotags, "
-                          f"σ = {sigma:g} px, edge buffer {request.edge_buffer_px:g} px")
+        feedback.pushInfo(self.tr("{n_records} frames ({n_groups} camera(s)), {n_geotags} "
+                                  "geotags, σ = {sigma:g} px, edge buffer {edge_buffer_px:g} px").format(
+                              n_records=len(records), n_groups=len(groups), n_geotags=len(geotags), sigma=sigma,
+                              edge_buffer_px=request.edge_buffer_px))
 
         no_ground = [poses.frame_id[i] for poses, _ in groups for i in np.flatnonzero(frames_without_ground(poses))]
         steep = [r["frame_id"] for r in records if "steep_terrain" in (r.get("flags") or "")]
         if steep and dem is None:
-            feedback.pushWarning(f"{len(steep)} frame(s) lie on terrain steeper than the level plane's 10° envelope "
-                                 f"(flag steep_terrain; first: {', '.join(str(i) for i in steep[:5])}): their labels "
-                                 "drift off target — give the DEM (parameter DEM)")
+            feedback.pushWarning(self.tr("{n_steep} frame(s) lie on terrain steeper than the "
+                                         "level plane's 10° envelope (flag steep_terrain; first: "
+                                         "{items}): their labels drift off target — give the DEM "
+                                         "(parameter DEM)").format(
+                                     n_steep=len(steep), items=', '.join(str(i) for i in steep[:5])))
         if no_ground and dem is None:
-            feedback.pushWarning(f"{len(no_ground)} frame(s) have no ground height (no usable altimeter reading, "
-                                 f"flag no_ground_height) and get no labels; first: "
-                                 f"{', '.join(str(i) for i in no_ground[:5])}")
+            feedback.pushWarning(self.tr("{n_no_ground} frame(s) have no ground height (no "
+                                         "usable altimeter reading, flag no_ground_height) and "
+                                         "get no labels; first: {items}").format(
+                                     n_no_ground=len(no_ground), items=', '.join(str(i) for i in no_ground[:5])))
         label_counts = np.zeros(len(records), dtype=np.int64)
         steps.setCurrentStep(0)
         projected = [self.run_core(project_labels, poses, geotags, request.edge_buffer_px, local,
@@ -191,22 +215,29 @@ class WriteLabels(DemParametersMixin, BirdsEyeAlgorithm):
     def _log_summary(feedback, summary) -> None:
         lpf, fpg = summary["labels_per_frame"], summary["frames_per_geotag"]
         feedback.pushInfo(
-            f"{summary['n_labels']} labels in {summary['n_frames_with_labels']} of {summary['n_frames']} frames "
-            f"(labels per labelled frame: mean {lpf['mean']:g}, max {lpf['max']}); "
-            f"{summary['n_geotags_in_view']} of {summary['n_geotags']} geotags in view "
-            f"(frames per geotag: mean {fpg['mean']:g}, max {fpg['max']})")
+            tr("{n_labels} labels in {n_frames_with_labels} of {n_frames} frames (labels per "
+               "labelled frame: mean {mean:g}, max {max}); {n_geotags_in_view} of {n_geotags} "
+               "geotags in view (frames per geotag: mean {mean2:g}, max {max2})").format(
+                n_labels=summary['n_labels'], n_frames_with_labels=summary['n_frames_with_labels'],
+                n_frames=summary['n_frames'], mean=lpf['mean'], max=lpf['max'],
+                n_geotags_in_view=summary['n_geotags_in_view'], n_geotags=summary['n_geotags'], mean2=fpg['mean'],
+                max2=fpg['max']))
         if summary["n_occluded"]:
-            feedback.pushInfo(f"{summary['n_occluded']} projections were hidden behind terrain (not written)")
+            feedback.pushInfo(tr("{n_occluded} projections were hidden behind terrain (not "
+                                 "written)").format(n_occluded=summary['n_occluded']))
         if summary["n_edge"]:
-            feedback.pushInfo(f"{summary['n_edge']} projections fell within the edge buffer (not written)")
+            feedback.pushInfo(tr("{n_edge} projections fell within the edge buffer (not written)").format(
+                                  n_edge=summary['n_edge']))
         never = summary["geotags_never_in_view"]
         if never:
             shown = ", ".join(str(i) for i in never[:10]) + (" …" if len(never) > 10 else "")
-            feedback.pushWarning(f"{len(never)} geotag(s) never in view of any frame: {shown}")
+            feedback.pushWarning(tr("{n_never} geotag(s) never in view of any frame: {shown}").format(
+                                     n_never=len(never), shown=shown))
         tiles = summary.get("tiles")
         if tiles and tiles["missing_images"]:
-            feedback.reportError(f"{len(tiles['missing_images'])} image(s) could not be read for tiles; first: "
-                                 f"{tiles['missing_images'][0]}", False)
+            feedback.reportError(tr("{value} image(s) could not be read for tiles; first: "
+                                    "{value2}").format(
+                                     value=len(tiles['missing_images']), value2=tiles['missing_images'][0]), False)
 
     def _write_copy(self, parameters, context, name, source, extra: QgsField, values, style):
         """A copy of ``source`` with one more field; the user's input layer is never modified."""
@@ -231,7 +262,8 @@ class WriteLabels(DemParametersMixin, BirdsEyeAlgorithm):
 
     def _write_frames(self, parameters, context, source, counts):
         return self._write_copy(parameters, context, self.OUTPUT_FRAMES, source,
-                                QgsField("n_labels", QVariant.Int), counts.tolist(), "frames.qml")
+                                layers.qgs_field("n_labels", "int", "labels written in this frame"),
+                                counts.tolist(), "frames.qml")
 
     def _write_geotags(self, parameters, context, source, frames_per_geotag):
         # Geotags without a usable position were skipped when reading: align counts by feature order.
@@ -244,4 +276,5 @@ class WriteLabels(DemParametersMixin, BirdsEyeAlgorithm):
                 counts.append(int(frames_per_geotag[k]))
                 k += 1
         return self._write_copy(parameters, context, self.OUTPUT_GEOTAGS, source,
-                                QgsField("frames_seen", QVariant.Int), counts, "geotags.qml")
+                                layers.qgs_field("frames_seen", "int", "frames whose labels include this geotag"),
+                                counts, "geotags.qml")

@@ -6,8 +6,7 @@ from qgis.core import QgsProcessingException, QgsProcessingParameterNumber
 
 from ...birdseye_qgis.core.detect.clustering import DEFAULT_DEDUP_CM, DEFAULT_EPS_M, DEFAULT_MIN_SAMPLES
 from ...birdseye_qgis.core.scoring.evaluation import Flight
-from ...birdseye_qgis.core.scoring.operating_point import OperatingPoint
-from ...birdseye_qgis.core.scoring.operating_point import DEFAULT_EDGE_BUFFER_PX, DEFAULT_EPS_PRED_M
+from ...birdseye_qgis.core.scoring.operating_point import DEFAULT_EDGE_BUFFER_PX, DEFAULT_EPS_PRED_M, OperatingPoint
 from ...birdseye_qgis.qgis_io.detections import read_detections, read_pose_groups
 
 

@@ -7,12 +7,17 @@ DEM every algorithm keeps the level plane at the altimeter depth, unchanged.
 from __future__ import annotations
 
 import numpy as np
-from qgis.core import (QgsProcessingException, QgsProcessingParameterEnum, QgsProcessingParameterNumber,
-                       QgsProcessingParameterRasterLayer)
+from qgis.core import (
+    QgsProcessingException,
+    QgsProcessingParameterEnum,
+    QgsProcessingParameterNumber,
+    QgsProcessingParameterRasterLayer,
+)
 
-from ...birdseye_qgis.qgis_io import layers
-from ...birdseye_qgis.core.geometry.dem import VERTICAL_DATUMS, DemGround, DemRaster
+from ...birdseye_qgis.__about__ import tr
 from ...birdseye_qgis.core.errors import InputError
+from ...birdseye_qgis.core.geometry.dem import VERTICAL_DATUMS, DemGround, DemRaster
+from ...birdseye_qgis.qgis_io import layers
 
 DATUM_LABELS = ("Ellipsoidal (WGS84), like RTK and INS heights",
                 "Mean sea level (give the geoid undulation N)",
@@ -65,5 +70,7 @@ class DemParametersMixin:
         if dem is None:
             return
         z = dem.heights
-        feedback.pushInfo(f"DEM {dem.source}: {z.shape[1]}×{z.shape[0]} cells of {dem.cell_size_m:g} m, heights "
-                          f"{np.nanmin(z):.1f}…{np.nanmax(z):.1f} m ({dem.vertical_datum})")
+        feedback.pushInfo(tr("DEM {source}: {value}×{value2} cells of {cell_size_m:g} m, heights "
+                             "{value3:.1f}…{value4:.1f} m ({vertical_datum})").format(
+                              source=dem.source, value=z.shape[1], value2=z.shape[0], cell_size_m=dem.cell_size_m,
+                              value3=np.nanmin(z), value4=np.nanmax(z), vertical_datum=dem.vertical_datum))

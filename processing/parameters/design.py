@@ -17,12 +17,11 @@ from qgis.core import (
     QgsProcessingParameterString,
 )
 
-from ...birdseye_qgis.core.geometry.camera import load_calibration
-from ...birdseye_qgis.core.errors import InputError
-from ...birdseye_qgis.core.design.platforms import DEPLOYED, PLATFORMS
 from ...birdseye_qgis.core.design.number_lists import SIGMAS_HINT, format_number_list, parse_altitudes, parse_sigmas
+from ...birdseye_qgis.core.design.platforms import DEPLOYED, PLATFORMS
 from ...birdseye_qgis.core.design.sensor_bound import Intrinsics
-from ...birdseye_qgis.core.geometry.camera import CALIBRATION_FILE_FILTER
+from ...birdseye_qgis.core.errors import InputError
+from ...birdseye_qgis.core.geometry.camera import CALIBRATION_FILE_FILTER, load_calibration
 
 # The platform the BirdsEye method was deployed on (camera calibration, INS and altimeter budget).
 DEPLOYED_CAMERA = DEPLOYED.camera
@@ -100,7 +99,8 @@ class DesignParametersMixin:
             try:
                 camera = load_calibration(path)
             except InputError as exc:
-                raise QgsProcessingException(f"{self.CALIBRATION}: {exc}") from exc
+                raise QgsProcessingException(self.tr("{CALIBRATION}: {exc}").format(
+                                                 CALIBRATION=self.CALIBRATION, exc=exc)) from exc
             if feedback is not None:
                 feedback.pushInfo(self.tr(
                     "Camera from {file}: {w}×{h} px, fx {fx:.4f}, fy {fy:.4f}, cx {cx:.4f}, cy {cy:.4f} px "

@@ -163,7 +163,8 @@ BAD_ZIPS = {
     "icon_missing": (dict(drop={"birdseye/resources/icons/birdseye.svg"}), "icon"),
     "author_with_slash": (dict(add=[("metadata-edit", lambda t: re.sub(r"(?m)^author=.*$", "author=A/B", t))]),
                           "author"),
-    "empty_dependencies": (dict(add=[("metadata-edit", lambda t: t + "plugin_dependencies=\n")]), "plugin_dependencies"),
+    "empty_dependencies": (dict(add=[("metadata-edit", lambda t: t + "plugin_dependencies=\n")]),
+                           "plugin_dependencies"),
     "bad_url": (dict(add=[("metadata-edit", lambda t: re.sub(r"(?m)^repository=.*$", "repository=github", t))]),
                 "repository"),
 }
@@ -241,7 +242,8 @@ def test_english_ts_lists_every_tr_string(tmp_path):
     committed = ts_messages(REPO_ROOT / "i18n" / "birdseye_en.ts")
     current = ts_messages(fresh)
     assert current - committed == set(), "strings missing from i18n/birdseye_en.ts: run make translations"
-    assert committed - current == set(), "i18n/birdseye_en.ts lists strings no longer in the code: run make translations"
+    assert committed - current == set(), \
+        "i18n/birdseye_en.ts lists strings no longer in the code: run make translations"
     assert len(current) > 200
 
 

@@ -19,8 +19,17 @@ from types import SimpleNamespace
 
 import numpy as np
 import pytest
-from qgis.core import (QgsCoordinateReferenceSystem, QgsFeature, QgsField, QgsGeometry, QgsPoint,
-                       QgsPointXY, QgsProject, QgsVectorFileWriter, QgsVectorLayer)
+from qgis.core import (
+    QgsCoordinateReferenceSystem,
+    QgsFeature,
+    QgsField,
+    QgsGeometry,
+    QgsPoint,
+    QgsPointXY,
+    QgsProject,
+    QgsVectorFileWriter,
+    QgsVectorLayer,
+)
 from qgis.PyQt.QtCore import QPoint, Qt, QVariant
 
 from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame, ProjectedCRS
@@ -114,7 +123,7 @@ def campaign(birdseye_provider, tmp_path_factory):
     local = LocalFrame.around(np.concatenate([g.lat for g in groups]), np.concatenate([g.lon for g in groups]),
                               np.concatenate([g.ground_height for g in groups]))
     targets, distractors = read_truth(folder)
-    in_view = lambda pts: len(detections_of(pts, groups, local, np.random.default_rng(0), np.ones(len(pts))))  # noqa
+    in_view = lambda pts: len(detections_of(pts, groups, local, np.random.default_rng(0), np.ones(len(pts))))
     real = [(float(t["lat"]), float(t["lon"]), float(t["h_ground"])) for t in targets]
     real = [p for p in real if in_view([p]) >= 4]
     fakes = [(float(d["lat"]), float(d["lon"]), 400.0) for d in distractors]

@@ -13,12 +13,11 @@ import json
 
 import numpy as np
 import pytest
-from qgis.core import (QgsFeature, QgsField, QgsGeometry, QgsPoint, QgsPointXY, QgsProcessingException,
-                       QgsVectorLayer)
+from qgis.core import QgsFeature, QgsField, QgsGeometry, QgsPoint, QgsPointXY, QgsProcessingException, QgsVectorLayer
 from qgis.PyQt.QtCore import QVariant
 
-from birdseye.birdseye_qgis.core.geometry.camera import CameraModel
 from birdseye.birdseye_qgis.core.field.frame_records import FRAME_FIELDS
+from birdseye.birdseye_qgis.core.geometry.camera import CameraModel
 from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame, ProjectedCRS
 from birdseye.birdseye_qgis.core.geometry.rotations import euler_zyx_to_rotmat, rotmat_to_quat
 
@@ -266,7 +265,8 @@ def test_sweep_refuses_thresholds_below_the_detect_threshold(birdseye_provider, 
                                      "OUTPUT_TABLE": str(tmp_path / "t.csv")})
     with pytest.raises(QgsProcessingException, match="EPS_M.*not a number"):
         run("sweepoperatingpoints", {"DETECTIONS": [detection_layer(DETECTIONS)], "GEOTAGS": geotag_layer(),
-                                     "FRAMES": [frame_layer()], "EPS_M": "0.1;x", "OUTPUT_TABLE": str(tmp_path / "t.csv")})
+                                     "FRAMES": [frame_layer()], "EPS_M": "0.1;x",
+                                     "OUTPUT_TABLE": str(tmp_path / "t.csv")})
 
 
 # -------------------------------------------------------------------------------- preregistration

@@ -5,11 +5,10 @@ import json
 
 import pytest
 from qgis.core import QgsRasterLayer
-
-from birdseye.birdseye_qgis.core.sim.terrain import synthetic_terrain
-from birdseye.birdseye_qgis.core.sim.campaign import CampaignConfig, simulate_campaign
-
 from test_writelabels import write_geotiff
+
+from birdseye.birdseye_qgis.core.sim.campaign import CampaignConfig, simulate_campaign
+from birdseye.birdseye_qgis.core.sim.terrain import synthetic_terrain
 
 
 @pytest.fixture(scope="module")
@@ -86,13 +85,14 @@ def test_dji_footprints_on_a_dem_at_the_take_off_height_match_the_level_ones(bir
     """Real DJI frames (Brighton Beach): a flat MSL DEM at the take-off height gives the level footprints;
     one 13 m lower (the field below the knoll the drone took off from) gives footprints larger by
     (40 + 13) / 40; a DEM 40 m off every terrain around is refused as another vertical reference."""
+    from pathlib import Path
+
     import numpy as np
     import processing
-    from pathlib import Path
     from qgis.core import QgsProcessingException
 
     brighton = Path(__file__).resolve().parents[1] / "data" / "brighton_beach"
-    run = lambda **extra: {f["frame_id"]: f for f in processing.run(  # noqa: E731
+    run = lambda **extra: {f["frame_id"]: f for f in processing.run(
         "birdseye:importdjiimages", {"IMAGES": str(brighton), "OUTPUT": "TEMPORARY_OUTPUT", **extra})["OUTPUT"]
         .getFeatures()}
     level = run()

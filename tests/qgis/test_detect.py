@@ -12,11 +12,11 @@ import numpy as np
 import pytest
 from qgis.core import QgsFeature, QgsGeometry, QgsPointXY, QgsProcessingException, QgsVectorLayer
 
-from birdseye.birdseye_qgis.core.geometry.camera import CameraModel
+from birdseye.birdseye_qgis.core.detect.model_metadata import ModelMetadata, embed_metadata
 from birdseye.birdseye_qgis.core.field.frame_records import FRAME_FIELDS, euler_degrees
+from birdseye.birdseye_qgis.core.geometry.camera import CameraModel
 from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame, ProjectedCRS
 from birdseye.birdseye_qgis.core.geometry.ground import LevelPlaneGround
-from birdseye.birdseye_qgis.core.detect.model_metadata import ModelMetadata, embed_metadata
 from birdseye.birdseye_qgis.core.geometry.poses import FrameGeometry, FramePoses
 from birdseye.birdseye_qgis.core.geometry.projection import project_pairs
 from birdseye.birdseye_qgis.core.geometry.rotations import euler_zyx_to_rotmat, rotmat_to_quat
@@ -41,8 +41,8 @@ def identity_model(path, threshold=0.3, **changes):
     x = helper.make_tensor_value_info("image", TensorProto.FLOAT, ["n", 3, "h", "w"])
     y = helper.make_tensor_value_info("heat", TensorProto.FLOAT, ["n", 1, "h", "w"])
     w = helper.make_tensor("k", TensorProto.FLOAT, [1, 3, 1, 1], [1 / 3] * 3)
-    model = helper.make_model(helper.make_graph([helper.make_node("Conv", ["image", "k"], ["heat"])], "g", [x], [y], [w]),
-                              opset_imports=[helper.make_opsetid("", 17)])
+    graph = helper.make_graph([helper.make_node("Conv", ["image", "k"], ["heat"])], "g", [x], [y], [w])
+    model = helper.make_model(graph, opset_imports=[helper.make_opsetid("", 17)])
     embed_metadata(model, ModelMetadata(**{**dict(resolution_cm=1.0, tile_size=64, tiles_overlap_pct=12.5,
                                                   output_kind="probability", default_threshold=threshold), **changes}))
     onnx.save(model, str(path))

@@ -11,7 +11,6 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-
 from test_dji_simulation import fixed_geotags, label_errors, run, simulate, write_labels
 
 E2E_FLIGHT = {"SEED": 11, "N_TARGETS": 20, "FIELD_WIDTH_M": 18.0, "FIELD_LENGTH_M": 16.0}

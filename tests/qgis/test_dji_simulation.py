@@ -20,7 +20,7 @@ from birdseye.birdseye_qgis.core.geometry.projection import project_pairs
 from birdseye.birdseye_qgis.core.sim.dji_images import dji_camera_model
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "data"))
-from rendered_holes import dark_core_centroid  # noqa: E402  (one measurement of a rendered hole)
+from rendered_holes import dark_core_centroid
 
 # One line of 1280 × 960 frames from 8 m (8.9 mm per pixel) over a 10 × 8 m field with 10 burrows;
 # exact geotags so that only the poses move the labels.
@@ -67,7 +67,7 @@ def label_errors(folder, labels):
     first = cv2.imread(labels[0]["image"], cv2.IMREAD_GRAYSCALE)
     camera = dji_camera_model(first.shape[1], first.shape[0])
     t = [truth[Path(r["image"]).name] for r in labels]
-    num = lambda key: np.array([float(r[key]) for r in t])  # noqa: E731
+    num = lambda key: np.array([float(r[key]) for r in t])
     quat = np.stack([num(k) for k in ("qw", "qx", "qy", "qz")], axis=1)
     poses = FramePoses(np.arange(len(t)), num("lat_deg"), num("lon_deg"), num("height_m"), quat, num("ground_h_m"),
                        camera)
@@ -109,7 +109,7 @@ def test_labels_from_erroneous_dji_metadata_miss_by_tens_of_pixels(birdseye_prov
             super().__init__()
             self.infos = []
 
-        def pushInfo(self, info):  # noqa: N802
+        def pushInfo(self, info):
             self.infos.append(info)
 
     folder = tmp_path / "dji"

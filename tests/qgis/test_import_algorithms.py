@@ -7,18 +7,29 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from qgis.core import (QgsCategorizedSymbolRenderer, QgsCoordinateReferenceSystem, QgsCoordinateTransform,
-                       QgsFeature, QgsGeometry, QgsPoint, QgsProcessingContext, QgsProcessingException,
-                       QgsProcessingFeedback, QgsProject, QgsVectorLayer, QgsWkbTypes)
+from qgis.core import (
+    QgsCategorizedSymbolRenderer,
+    QgsCoordinateReferenceSystem,
+    QgsCoordinateTransform,
+    QgsFeature,
+    QgsGeometry,
+    QgsPoint,
+    QgsProcessingContext,
+    QgsProcessingException,
+    QgsProcessingFeedback,
+    QgsProject,
+    QgsVectorLayer,
+    QgsWkbTypes,
+)
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "data"))
-from synthetic_flight import HEADER, make_flight  # noqa: E402
+from synthetic_flight import HEADER, make_flight
 
-from birdseye.birdseye_qgis.qgis_io import layers  # noqa: E402
 from birdseye.birdseye_qgis.core.field.flight_track import TRACK_FIELDS
+from birdseye.birdseye_qgis.core.field.frame_records import poses_from_records
 from birdseye.birdseye_qgis.core.field.frames import FRAME_LAYER_FIELDS
-from birdseye.birdseye_qgis.core.field.frame_records import poses_from_records  # noqa: E402
-from birdseye.birdseye_qgis.core.field.geotags import GEOTAG_FIELD_NAMES  # noqa: E402
+from birdseye.birdseye_qgis.core.field.geotags import GEOTAG_FIELD_NAMES
+from birdseye.birdseye_qgis.qgis_io import layers
 
 BRIGHTON = Path(__file__).resolve().parents[1] / "data" / "brighton_beach"
 
@@ -30,13 +41,13 @@ class Recorder(QgsProcessingFeedback):
         super().__init__()
         self.errors, self.warnings, self.infos = [], [], []
 
-    def reportError(self, error, fatalError=False):  # noqa: N802, N803
+    def reportError(self, error, fatalError=False):
         self.errors.append(error)
 
-    def pushWarning(self, warning):  # noqa: N802
+    def pushWarning(self, warning):
         self.warnings.append(warning)
 
-    def pushInfo(self, info):  # noqa: N802
+    def pushInfo(self, info):
         self.infos.append(info)
 
 

@@ -13,15 +13,15 @@ from pathlib import Path
 
 import numpy as np
 
+from birdseye.birdseye_qgis.core.design.sensor_bound import pixel_covariance, sigmas_to_variances
 from birdseye.birdseye_qgis.core.geometry.camera import load_calibration
 from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame
 from birdseye.birdseye_qgis.core.geometry.poses import FrameGeometry, FramePoses
 from birdseye.birdseye_qgis.core.geometry.projection import project_pairs
-from birdseye.birdseye_qgis.core.design.sensor_bound import pixel_covariance, sigmas_to_variances
 from birdseye.birdseye_qgis.core.sim.campaign import CampaignConfig, simulate_campaign
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "data"))
-from rendered_holes import dark_core_centroid  # noqa: E402  (one measurement of a rendered hole)
+from rendered_holes import dark_core_centroid
 
 
 def rows(path):
@@ -50,7 +50,7 @@ def truth_projection(folder, labels):
     truth = {Path(r["image"]).name: r for r in rows(folder / "truth" / "frames_true.csv")}
     geotags = [line.split(",") for line in (folder / "geotags.csv").read_text().splitlines()]
     t = [truth[Path(r["image"]).name] for r in labels]
-    num = lambda key: np.array([float(r[key]) for r in t])  # noqa: E731
+    num = lambda key: np.array([float(r[key]) for r in t])
     quat = np.stack([num(k) for k in ("qw", "qx", "qy", "qz")], axis=1)
     poses = FramePoses(np.arange(len(t)), num("lat_deg"), num("lon_deg"), num("height_m"), quat, num("ground_h_m"),
                        camera)

@@ -5,15 +5,25 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from qgis.core import (QgsCoordinateReferenceSystem, QgsCoordinateTransform, QgsFeature, QgsField,
-                       QgsGeometry, QgsPointXY, QgsProcessingContext, QgsProcessingException,
-                       QgsProcessingFeedback, QgsProject, QgsVectorLayer, QgsWkbTypes)
+from qgis.core import (
+    QgsCoordinateReferenceSystem,
+    QgsCoordinateTransform,
+    QgsFeature,
+    QgsField,
+    QgsGeometry,
+    QgsPointXY,
+    QgsProcessingContext,
+    QgsProcessingException,
+    QgsProcessingFeedback,
+    QgsProject,
+    QgsVectorLayer,
+    QgsWkbTypes,
+)
 from qgis.PyQt.QtCore import QVariant
 
 from birdseye.birdseye_qgis.core.geometry.camera import CameraModel, write_kalibr_yaml
 from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame, ProjectedCRS
-from birdseye.birdseye_qgis.core.plan.mission_files import (parse_dji_kmz, parse_kml, parse_litchi_csv,
-                                                       parse_qgc_plan)
+from birdseye.birdseye_qgis.core.plan.mission_files import parse_dji_kmz, parse_kml, parse_litchi_csv, parse_qgc_plan
 
 LAT0, LON0 = 48.1371, 11.5754  # UTM zone 32N
 UTM = "EPSG:32632"
@@ -25,13 +35,13 @@ class CapturingFeedback(QgsProcessingFeedback):
         super().__init__()
         self.errors, self.warnings, self.infos = [], [], []
 
-    def reportError(self, error, fatalError=False):  # noqa: N802, N803 (QGIS API)
+    def reportError(self, error, fatalError=False):
         self.errors.append(error)
 
-    def pushWarning(self, warning):  # noqa: N802
+    def pushWarning(self, warning):
         self.warnings.append(warning)
 
-    def pushInfo(self, info):  # noqa: N802
+    def pushInfo(self, info):
         self.infos.append(info)
 
 

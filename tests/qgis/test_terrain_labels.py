@@ -29,13 +29,13 @@ import numpy as np
 import pytest
 from qgis.core import QgsProcessingFeedback, QgsRasterLayer
 
+from birdseye.birdseye_qgis.core.design.terrain_slope import slope_error_px
 from birdseye.birdseye_qgis.core.geometry.camera import load_calibration
 from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame
 from birdseye.birdseye_qgis.core.geometry.poses import FrameGeometry, FramePoses
-from birdseye.birdseye_qgis.core.design.terrain_slope import slope_error_px
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "data"))
-from rendered_holes import dark_core_centroid  # noqa: E402  (one measurement of a rendered hole)
+from rendered_holes import dark_core_centroid
 
 SLOPE_DEG = 20.0
 CAMPAIGN = {"SEED": 7, "N_TARGETS": 14, "FIELD_WIDTH_M": 8.0, "FIELD_LENGTH_M": 6.0, "IMAGE_WIDTH": 640,
@@ -48,7 +48,7 @@ class Warnings(QgsProcessingFeedback):
         super().__init__()
         self.warnings = []
 
-    def pushWarning(self, warning):  # noqa: N802
+    def pushWarning(self, warning):
         self.warnings.append(warning)
         super().pushWarning(warning)
 
@@ -81,7 +81,7 @@ def campaign(birdseye_provider, tmp_path_factory):
     run("writelabels", {**common, "DEM": dem, "DEM_VERTICAL_DATUM": 0, "OUTPUT_FOLDER": str(base / "dem")})
     level_feedback = Warnings()
     run("writelabels", {**common, "OUTPUT_FOLDER": str(base / "level")}, level_feedback)
-    key = lambda r: (int(r["frame_id"]), int(r["geotag_id"]))  # noqa: E731
+    key = lambda r: (int(r["frame_id"]), int(r["geotag_id"]))
     return {"folder": folder, "frames": frames, "level_warnings": level_feedback.warnings,
             "dem_labels": {key(r): r for r in rows(base / "dem" / "labels.csv")},
             "level_labels": {key(r): r for r in rows(base / "level" / "labels.csv")}}
@@ -100,7 +100,7 @@ def measured(campaign):
     targets = {int(r["geotag_row"]): r for r in rows(folder / "truth" / "targets.csv") if r["geotag_row"]}
     keys = sorted(campaign["dem_labels"])
     recs = [frames[k[0]] for k in keys]
-    num = lambda name: np.array([float(f[name]) for f in recs])  # noqa: E731
+    num = lambda name: np.array([float(f[name]) for f in recs])
     poses = FramePoses(np.arange(len(keys)), num("lat"), num("lon"), num("height_m"),
                        np.stack([num(q) for q in ("qw", "qx", "qy", "qz")], axis=1), num("ground_h_m"), camera)
     geometry = FrameGeometry(poses, LocalFrame.around(poses.lat, poses.lon, poses.height))

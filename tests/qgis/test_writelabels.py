@@ -138,7 +138,7 @@ def test_a_flat_dem_gives_the_level_plane_labels_and_a_wrong_datum_is_refused(bi
             "OUTPUT_FRAMES": None, "OUTPUT_GEOTAGS": None}
     run("writelabels", {**base, "OUTPUT_FOLDER": str(tmp_path / "plane")})
     run("writelabels", {**base, "DEM": layer, "DEM_VERTICAL_DATUM": 0, "OUTPUT_FOLDER": str(tmp_path / "dem")})
-    read = lambda name: {(r["frame_id"], r["geotag_id"]): (float(r["u"]), float(r["v"]))  # noqa: E731
+    read = lambda name: {(r["frame_id"], r["geotag_id"]): (float(r["u"]), float(r["v"]))
                          for r in csv.DictReader(open(tmp_path / name / "labels.csv"))}
     plane, with_dem = read("plane"), read("dem")
     common = set(plane) & set(with_dem)

@@ -185,7 +185,8 @@ def cluster_centroids_and_extents(xy, cluster, n_clusters: int):
     c, p = cluster[member], xy[member]
     n = np.bincount(c, minlength=n_clusters).astype(float)
     with np.errstate(invalid="ignore", divide="ignore"):
-        centroid = np.column_stack([np.bincount(c, p[:, 0], n_clusters), np.bincount(c, p[:, 1], n_clusters)]) / n[:, None]
+        sums = np.column_stack([np.bincount(c, p[:, 0], n_clusters), np.bincount(c, p[:, 1], n_clusters)])
+        centroid = sums / n[:, None]
     dist = np.hypot(*(p - centroid[c]).T)
     return centroid, 2.0 * _grouped_median(c, dist, n_clusters)
 

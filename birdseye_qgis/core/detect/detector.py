@@ -39,9 +39,9 @@ import numpy as np
 from ..errors import Cancelled, InputError
 from ..geometry.geodesy import LocalFrame
 from ..geometry.ground import LevelPlaneGround
-from .model_metadata import ModelMetadata
 from ..geometry.poses import FrameGeometry, FramePoses
 from ..geometry.projection import pixel_to_ground
+from .model_metadata import ModelMetadata
 
 #: ONNX Runtime providers tried before the CPU, in order of preference.
 GPU_PROVIDERS = ("CUDAExecutionProvider", "ROCMExecutionProvider", "DmlExecutionProvider",
@@ -93,7 +93,7 @@ class HeatmapModel:
         if self.session is None:
             try:
                 self.session = ort.InferenceSession(str(self.path), options, providers=["CPUExecutionProvider"])
-            except Exception as exc:  # noqa: BLE001 — a corrupt file is the user's to fix
+            except Exception as exc:
                 raise InputError(f"ONNX Runtime cannot load this model ({exc})", source=str(path)) from exc
         self.providers = self.session.get_providers()
         if gpu and gpu[0] in self.providers:

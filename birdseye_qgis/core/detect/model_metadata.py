@@ -161,7 +161,7 @@ def read_onnx_metadata(path) -> ModelMetadata:
 
     try:
         model = onnx.load(str(path), load_external_data=False)
-    except Exception as exc:  # noqa: BLE001 — any parse failure is the user's file
+    except Exception as exc:
         raise InputError(f"is not a readable ONNX model ({exc})", source=str(path)) from exc
     props = {p.key: p.value for p in model.metadata_props}
     graph_inputs = [i for i in model.graph.input if i.name not in {t.name for t in model.graph.initializer}]

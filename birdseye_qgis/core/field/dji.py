@@ -50,8 +50,8 @@ from ..geometry.dem import DemGround, DemRaster, check_vertical_datum
 from ..geometry.geodesy import ProjectedCRS
 from ..geometry.poses import FramePoses
 from ..geometry.rotations import euler_zyx_to_rotmat, rotmat_to_quat
-from .import_report import FlightImport, ImportReport
 from .frames import Frames, compute_footprints
+from .import_report import FlightImport, ImportReport
 from .pose_log import RTK_FIXED, RTK_FLOAT, RTK_NONE
 
 #: Gimbal frame (x optical axis, y image right, z image down) → OpenCV camera frame.

@@ -4,16 +4,17 @@ from __future__ import annotations
 import math
 import sqlite3
 from pathlib import Path
-import numpy as np
-from ..geometry.camera import CameraModel
-from ..errors import InputError
-from ..geometry.geodesy import ProjectedCRS
-from .import_report import FlightImport, ImportReport, apply_rtk_filter, name_list, report_ground
-from .flight_track import flight_track
-from .frames import Frames, RADALT_WINDOW_S, compute_footprints, ground_heights, rtk_flags
-from .images import STAMP_NAME
-from .pose_log import RowProblems
 
+import numpy as np
+
+from ..errors import InputError
+from ..geometry.camera import CameraModel
+from ..geometry.geodesy import ProjectedCRS
+from .flight_track import flight_track
+from .frames import RADALT_WINDOW_S, Frames, compute_footprints, ground_heights, rtk_flags
+from .images import STAMP_NAME
+from .import_report import FlightImport, ImportReport, apply_rtk_filter, name_list, report_ground
+from .pose_log import RowProblems
 
 FLIGHT_DB_TABLE = "cam0_images_flight_data"
 _DB_REQUIRED = ("x", "y", "z", "q", "u", "a", "t", "rtk_status", "radalt", "save_loc")

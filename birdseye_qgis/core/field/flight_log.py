@@ -25,14 +25,16 @@ ground intersection of each image border (:func:`compute_footprints`), written i
 from __future__ import annotations
 
 from pathlib import Path
+
 import numpy as np
-from ..geometry.camera import CameraModel
+
 from ..errors import InputError
+from ..geometry.camera import CameraModel
 from ..geometry.geodesy import ProjectedCRS
-from .flight_track import flight_track
-from .frames import Frames, RADALT_WINDOW_S, compute_footprints, ground_heights, rtk_flags
-from .images import list_images, sync_strobes
 from .flight_db import read_flight_db_frames
+from .flight_track import flight_track
+from .frames import RADALT_WINDOW_S, Frames, compute_footprints, ground_heights, rtk_flags
+from .images import list_images, sync_strobes
 from .import_report import FlightImport, ImportReport, apply_rtk_filter, name_list, report_ground
 from .pose_log import check_cancel, read_pose_log
 

@@ -2,7 +2,9 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
+
 import numpy as np
+
 from ..geometry.geodesy import LocalFrame, ProjectedCRS
 
 #: The flight line is split where the pose log has a gap longer than this (s).

@@ -8,8 +8,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..geometry.camera import CameraModel
 from ..errors import InputError
+from ..geometry.camera import CameraModel
 from ..geometry.poses import FramePoses
 from ..geometry.rotations import quat_to_rotmat, rotmat_to_euler_zyx
 

@@ -3,12 +3,14 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+
 import numpy as np
-from .frame_records import FRAME_FIELDS, euler_degrees
+
 from ..geometry.geodesy import LocalFrame, ProjectedCRS
 from ..geometry.ground import LevelPlaneGround
 from ..geometry.poses import FrameGeometry, FramePoses, ground_height_from_altimeter
 from ..geometry.projection import footprints
+from .frame_records import FRAME_FIELDS, euler_degrees
 from .pose_log import RTK_FIXED, RTK_FLOAT, check_cancel
 
 #: A strobe row whose altimeter reading is bad takes the ground height interpolated from good

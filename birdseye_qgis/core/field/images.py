@@ -7,11 +7,12 @@ import os
 import re
 from dataclasses import dataclass, field
 from pathlib import Path
+
 import numpy as np
+
 from ..errors import InputError
 from .geotags import split_lines
 from .pose_log import RowProblems
-
 
 STAMP_NAME = re.compile(r"^(\d+)\.(\d+)\.(png|jpe?g|tiff?)$", re.IGNORECASE)
 

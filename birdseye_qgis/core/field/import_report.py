@@ -3,11 +3,11 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from pathlib import Path
+
 import numpy as np
+
 from .frames import FLAT_ENVELOPE_DEG, Footprints, Frames
 from .pose_log import RTK_FIXED
-
-
 
 
 @dataclass

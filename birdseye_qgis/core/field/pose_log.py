@@ -5,7 +5,9 @@ import math
 from dataclasses import dataclass, field
 from itertools import islice
 from pathlib import Path
+
 import numpy as np
+
 from ..errors import Cancelled, InputError
 
 POSE_LOG_COLUMNS = ("time_s", "lat_deg", "lon_deg", "height_m", "qw", "qx", "qy", "qz", "rtk_status",

@@ -38,8 +38,8 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from ..geometry.camera import CameraModel
 from ..errors import Cancelled, InputError
+from ..geometry.camera import CameraModel
 from ..geometry.geodesy import LocalFrame
 from .mission_files import CAPTURE_PHOTO, CAPTURE_TIMED, MissionSpec
 

@@ -565,7 +565,7 @@ def parse_litchi_csv(path) -> dict:
                 raise InputError(f"{len(row)} columns, expected {len(LITCHI_COLUMNS)}",
                                  source=str(path), row=r)
             rows.append(dict(zip(LITCHI_COLUMNS, row)))
-    col = lambda name: np.array([float(r[name]) for r in rows])  # noqa: E731
+    col = lambda name: np.array([float(r[name]) for r in rows])
     return {
         "header": header,
         "lat": col("latitude"), "lon": col("longitude"), "altitude": col("altitude(m)"),

@@ -4,7 +4,18 @@ from __future__ import annotations
 import json
 from dataclasses import dataclass
 from typing import Iterable, Mapping, Sequence
-from ..scoring.verdicts import ADDED, CONFIRMED, CONVENTIONS, DIRECT, HARD_NEGATIVE, PROPAGATED_PREFIX, UNCERTAIN, UNREVIEWED, VerdictLog
+
+from ..scoring.verdicts import (
+    ADDED,
+    CONFIRMED,
+    CONVENTIONS,
+    DIRECT,
+    HARD_NEGATIVE,
+    PROPAGATED_PREFIX,
+    UNCERTAIN,
+    UNREVIEWED,
+    VerdictLog,
+)
 from .units import ADDED_PREFIX, PROPAGATION_RULE, UnitRef, added_key
 
 #: The verdicts a reviewer gives (``added`` is given with the map tool).

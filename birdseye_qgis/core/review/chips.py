@@ -6,7 +6,9 @@ import threading
 from collections import OrderedDict
 from dataclasses import dataclass
 from typing import Sequence
+
 import numpy as np
+
 from ..geometry.geodesy import LocalFrame
 from ..geometry.ground import LevelPlaneGround
 from ..geometry.poses import FrameGeometry, FramePoses

@@ -6,7 +6,9 @@ import json
 import math
 from dataclasses import dataclass, field
 from typing import Iterable, Mapping, Sequence
+
 import numpy as np
+
 from ..scoring.verdicts import CONFIRMED, DIRECT, HARD_NEGATIVE, UNCERTAIN
 
 

@@ -3,9 +3,18 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from typing import Sequence
+
 import numpy as np
-from ..detect.clustering import (DEFAULT_DEDUP_CM, DEFAULT_EPS_M, DEFAULT_MIN_SAMPLES, Clustering, cluster_detections,
-                         dbscan, neighbour_graph)
+
+from ..detect.clustering import (
+    DEFAULT_DEDUP_CM,
+    DEFAULT_EPS_M,
+    DEFAULT_MIN_SAMPLES,
+    Clustering,
+    cluster_detections,
+    dbscan,
+    neighbour_graph,
+)
 from ..errors import InputError
 from ..geometry.geodesy import LocalFrame
 from ..geometry.poses import FramePoses

@@ -3,9 +3,10 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from typing import Sequence
+
 import numpy as np
-from ..detect.clustering import (Clustering,
-                         cluster_detections)
+
+from ..detect.clustering import Clustering, cluster_detections
 from ..errors import Cancelled, InputError
 from ..geometry.geodesy import LocalFrame
 from ..geometry.poses import FramePoses

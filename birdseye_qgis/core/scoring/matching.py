@@ -3,7 +3,9 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from typing import Sequence
+
 import numpy as np
+
 from ..errors import Cancelled
 from ..geometry.geodesy import LocalFrame
 from ..geometry.ground import LevelPlaneGround

@@ -3,7 +3,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass, fields
 from typing import Mapping
-from ..detect.clustering import (DEFAULT_DEDUP_CM, DEFAULT_EPS_M, DEFAULT_MIN_SAMPLES)
+
+from ..detect.clustering import DEFAULT_DEDUP_CM, DEFAULT_EPS_M, DEFAULT_MIN_SAMPLES
 from ..errors import InputError
 
 DEFAULT_EPS_PRED_M = 0.20

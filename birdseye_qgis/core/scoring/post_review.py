@@ -3,6 +3,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, fields
 from typing import Sequence
+
 from .pre_review import PreCounts, ratio
 from .verdicts import CONFIRMED, CONVENTIONS, VerdictLog, combine
 

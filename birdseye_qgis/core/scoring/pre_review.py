@@ -3,8 +3,10 @@ from __future__ import annotations
 
 from dataclasses import dataclass, fields
 from typing import Iterable
+
 import numpy as np
-from ..detect.clustering import (Clustering)
+
+from ..detect.clustering import Clustering
 from .matching import match_to_clusters
 
 

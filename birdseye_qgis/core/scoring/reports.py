@@ -3,7 +3,9 @@ from __future__ import annotations
 
 import math
 from typing import Iterable, Sequence
+
 import numpy as np
+
 from .evaluation import Evaluation
 from .screening import CheckpointScreen
 from .sweep import SweepResult

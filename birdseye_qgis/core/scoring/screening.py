@@ -3,8 +3,10 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from typing import Sequence
+
 import numpy as np
-from ..detect.clustering import (cluster_detections)
+
+from ..detect.clustering import cluster_detections
 from .operating_point import OperatingPoint
 from .pre_review import PreCounts, ratio, score_flight
 from .sweep import pareto_front

@@ -4,9 +4,10 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from typing import Sequence
+
 import numpy as np
-from ..detect.clustering import (DEFAULT_DEDUP_CM, cluster_centroids_and_extents, dbscan, deduplicate,
-                         neighbour_graph)
+
+from ..detect.clustering import DEFAULT_DEDUP_CM, cluster_centroids_and_extents, dbscan, deduplicate, neighbour_graph
 from ..errors import Cancelled, InputError
 from .matching import match_to_clusters
 

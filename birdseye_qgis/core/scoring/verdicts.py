@@ -5,8 +5,10 @@ import math
 from dataclasses import dataclass
 from datetime import datetime, timezone
 from typing import Iterable, Mapping, Sequence
+
 import numpy as np
-from ..detect.clustering import (Clustering)
+
+from ..detect.clustering import Clustering
 from ..errors import InputError
 from .matching import match_to_clusters
 

@@ -24,8 +24,8 @@ import math
 
 import numpy as np
 
-from ..geometry.dem import DemGround, DemRaster, heightfield_from_dem, intersect_heightfield
 from ..errors import InputError
+from ..geometry.dem import DemGround, DemRaster, heightfield_from_dem, intersect_heightfield
 from ..geometry.geodesy import LocalFrame, ProjectedCRS, meridian_convergence_deg
 from ..geometry.ground import GroundModel, LevelPlaneGround
 from ..geometry.poses import FrameGeometry

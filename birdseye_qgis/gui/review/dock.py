@@ -15,8 +15,17 @@ from __future__ import annotations
 import time
 
 import numpy as np
-from qgis.core import (Qgis, QgsCoordinateReferenceSystem, QgsCoordinateTransform, QgsMessageLog, QgsPointXY,
-                       QgsProject, QgsSettings, QgsVectorLayer, QgsWkbTypes)
+from qgis.core import (
+    Qgis,
+    QgsCoordinateReferenceSystem,
+    QgsCoordinateTransform,
+    QgsMessageLog,
+    QgsPointXY,
+    QgsProject,
+    QgsSettings,
+    QgsVectorLayer,
+    QgsWkbTypes,
+)
 from qgis.gui import QgsDockWidget
 from qgis.PyQt.QtCore import Qt, QThreadPool, QTimer
 from qgis.PyQt.QtWidgets import QApplication, QFrame, QLabel, QScrollArea, QVBoxLayout, QWidget
@@ -35,10 +44,17 @@ from ...qgis_io.review_store import ReviewSession, RowMeta, VerdictStore, defaul
 from ..add_target_tool import AddTargetTool
 from .jobs import ChipLoader, JobSignals, ScoreJob
 from .map_context import ReviewMap
-from .model import VERDICT_COLOURS, fill_scores_table
-from .model import unit_summary_html
-from .widgets import (CHIP_DISPLAY_PX, SETTINGS_REVIEWER, ReviewPanel, build_review_area, build_setup_box,
-                      default_reviewer, show_banner, show_chips)
+from .model import VERDICT_COLOURS, fill_scores_table, unit_summary_html
+from .widgets import (
+    CHIP_DISPLAY_PX,
+    SETTINGS_REVIEWER,
+    ReviewPanel,
+    build_review_area,
+    build_setup_box,
+    default_reviewer,
+    show_banner,
+    show_chips,
+)
 
 SCORE_DELAY_MS = 120
 
@@ -95,8 +111,8 @@ class ReviewDock(QgsDockWidget):
     def _build_ui(self):
         scroll = QScrollArea()
         scroll.setWidgetResizable(True)
-        scroll.setFrameShape(QFrame.NoFrame)
-        scroll.setHorizontalScrollBarPolicy(Qt.ScrollBarAlwaysOff)
+        scroll.setFrameShape(QFrame.Shape.NoFrame)
+        scroll.setHorizontalScrollBarPolicy(Qt.ScrollBarPolicy.ScrollBarAlwaysOff)
         body = QWidget()
         outer = QVBoxLayout(body)
         outer.setContentsMargins(6, 6, 6, 6)
@@ -104,7 +120,7 @@ class ReviewDock(QgsDockWidget):
         outer.addWidget(build_setup_box(self))
         self.banner = QLabel()
         self.banner.setWordWrap(True)
-        self.banner.setTextFormat(Qt.RichText)
+        self.banner.setTextFormat(Qt.TextFormat.RichText)
         self.banner.hide()
         outer.addWidget(self.banner)
         self.panel = ReviewPanel(self)
@@ -123,16 +139,16 @@ class ReviewDock(QgsDockWidget):
             if isinstance(layer, QgsVectorLayer) and layer.isValid() and \
                     QgsWkbTypes.geometryType(layer.wkbType()) == QgsWkbTypes.PointGeometry and \
                     {"frame_id", "score", "u", "v"} <= set(layer.fields().names()):
-                self.detections_combo.addItemWithCheckState(layer.name(), Qt.Checked if layer.id() in checked
-                                                            else Qt.Unchecked, layer.id())
+                self.detections_combo.addItemWithCheckState(layer.name(), Qt.CheckState.Checked if layer.id() in checked
+                                                            else Qt.CheckState.Unchecked, layer.id())
 
     def set_inputs(self, detection_layers, frame_layer, geotag_layer, store_path: str | None = None):
         """Choose the review's layers (what the user does in the setup box)."""
         self._refill_detection_layers()
         ids = {layer.id() for layer in detection_layers}
         for i in range(self.detections_combo.count()):
-            self.detections_combo.setItemCheckState(i, Qt.Checked if self.detections_combo.itemData(i) in ids
-                                                    else Qt.Unchecked)
+            self.detections_combo.setItemCheckState(i, Qt.CheckState.Checked if self.detections_combo.itemData(i) in ids
+                                                    else Qt.CheckState.Unchecked)
         self.frames_combo.setLayer(frame_layer)
         self.geotags_combo.setLayer(geotag_layer)
         if store_path is not None:
@@ -152,17 +168,18 @@ class ReviewDock(QgsDockWidget):
         detection_layers = self._chosen_detection_layers()
         frame_layer, geotag_layer = self.frames_combo.currentLayer(), self.geotags_combo.currentLayer()
         if not detection_layers:
-            show_banner(self.banner, [tr("Choose at least one detection layer (an output of Detect targets).")], error=True)
+            show_banner(self.banner, [tr("Choose at least one detection layer (an output of Detect targets).")],
+                        error=True)
             return False
         store_path = self.store_widget.filePath().strip() or default_store_path(
             detection_layers, QgsProject.instance().fileName())
         if not store_path:
-            show_banner(self.banner, [tr("Choose a GeoPackage for the verdict log (save the project first to get one next "
-                                  "to it).")], error=True)
+            show_banner(self.banner, [tr("Choose a GeoPackage for the verdict log (save the project first to get "
+                                         "one next to it).")], error=True)
             return False
         if not store_path.lower().endswith(".gpkg"):
             store_path += ".gpkg"
-        QApplication.setOverrideCursor(Qt.WaitCursor)
+        QApplication.setOverrideCursor(Qt.CursorShape.WaitCursor)
         try:
             params = self._read_params()
             inputs = read_review_inputs(detection_layers, frame_layer, geotag_layer)
@@ -278,8 +295,8 @@ class ReviewDock(QgsDockWidget):
             self._stop_session()
             self.panel.setEnabled(False)
             self.setup_box.setCollapsed(False)
-            show_banner(self.banner, [tr("A layer of the review was removed from the project; the review stopped. Every "
-                                  "verdict is in the log; choose the layers again to resume.")])
+            show_banner(self.banner, [tr("A layer of the review was removed from the project; the review stopped. "
+                                         "Every verdict is in the log; choose the layers again to resume.")])
 
     # ------------------------------------------------------------------ entries, filters, status
     def _rebuild_entries(self):
@@ -566,7 +583,7 @@ class ReviewDock(QgsDockWidget):
 
     # ------------------------------------------------------------------ map context
     # ------------------------------------------------------------------ lifetime
-    def closeEvent(self, event):  # noqa: N802
+    def closeEvent(self, event):
         self._end_add_target()
         super().closeEvent(event)
 

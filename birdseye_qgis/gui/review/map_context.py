@@ -1,8 +1,16 @@
 """What the review shows on the map: the unit under review (centred and marked), the survey, the verdicts."""
 from __future__ import annotations
 
-from qgis.core import (Qgis, QgsCoordinateReferenceSystem, QgsCoordinateTransform, QgsMessageLog, QgsPointXY,
-                       QgsProject, QgsRectangle, QgsVectorLayer)
+from qgis.core import (
+    Qgis,
+    QgsCoordinateReferenceSystem,
+    QgsCoordinateTransform,
+    QgsMessageLog,
+    QgsPointXY,
+    QgsProject,
+    QgsRectangle,
+    QgsVectorLayer,
+)
 from qgis.gui import QgsVertexMarker
 from qgis.PyQt import sip
 from qgis.PyQt.QtCore import QTimer

@@ -39,31 +39,31 @@ class UnitTableModel(QAbstractTableModel):
         if self.keys:
             self.dataChanged.emit(self.index(0, 0), self.index(len(self.keys) - 1, len(self.HEADERS) - 1))
 
-    def rowCount(self, parent=QModelIndex()):  # noqa: N802
+    def rowCount(self, parent=QModelIndex()):
         return 0 if parent.isValid() else len(self.keys)
 
-    def columnCount(self, parent=QModelIndex()):  # noqa: N802
+    def columnCount(self, parent=QModelIndex()):
         return 0 if parent.isValid() else len(self.HEADERS)
 
-    def headerData(self, section, orientation, role=Qt.DisplayRole):  # noqa: N802
-        if orientation == Qt.Horizontal and role == Qt.DisplayRole:
+    def headerData(self, section, orientation, role=Qt.ItemDataRole.DisplayRole):
+        if orientation == Qt.Orientation.Horizontal and role == Qt.ItemDataRole.DisplayRole:
             return self.HEADERS[section]
         return None
 
-    def data(self, index, role=Qt.DisplayRole):
+    def data(self, index, role=Qt.ItemDataRole.DisplayRole):
         if not index.isValid() or self.dock.session is None or index.row() >= len(self.keys):
             return None
         key, col = self.keys[index.row()], index.column()
         d = self.dock
-        if role == Qt.DisplayRole:
+        if role == Qt.ItemDataRole.DisplayRole:
             return self.cell_text(key, col)
-        if role == Qt.DecorationRole and col == 1:
+        if role == Qt.ItemDataRole.DecorationRole and col == 1:
             return QColor(VERDICT_COLOURS[d.display_verdict(key)])
-        if role == Qt.ToolTipRole:
+        if role == Qt.ItemDataRole.ToolTipRole:
             return self.row_tooltip(key)
-        if role == Qt.TextAlignmentRole and col in (0, 3, 4):
-            return int(Qt.AlignRight | Qt.AlignVCenter)
-        if role == Qt.FontRole and key == d.current_key:
+        if role == Qt.ItemDataRole.TextAlignmentRole and col in (0, 3, 4):
+            return int(Qt.AlignmentFlag.AlignRight | Qt.AlignmentFlag.AlignVCenter)
+        if role == Qt.ItemDataRole.FontRole and key == d.current_key:
             font = QFont()
             font.setBold(True)
             return font
@@ -119,7 +119,8 @@ def fill_scores_table(t, result) -> None:
         for r, cells in ((3 * k + 1, recall), (3 * k + 2, gmcf)):
             for c, text in enumerate(cells):
                 item = QTableWidgetItem(text)
-                item.setTextAlignment(Qt.AlignCenter if c else Qt.AlignLeft | Qt.AlignVCenter)
+                item.setTextAlignment(Qt.AlignmentFlag.AlignCenter if c
+                                      else Qt.AlignmentFlag.AlignLeft | Qt.AlignmentFlag.AlignVCenter)
                 if c >= 2:
                     item.setToolTip(tips[c - 2])
                 t.setItem(r, c, item)

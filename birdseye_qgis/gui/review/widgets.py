@@ -3,13 +3,36 @@ areas, whose widgets become attributes of the dock so its slots (and tests) reac
 from __future__ import annotations
 
 from qgis.core import QgsMapLayerProxyModel, QgsSettings
-from qgis.gui import (QgsCheckableComboBox, QgsCollapsibleGroupBox, QgsDoubleSpinBox, QgsFileWidget,
-                      QgsMapLayerComboBox, QgsSpinBox)
+from qgis.gui import (
+    QgsCheckableComboBox,
+    QgsCollapsibleGroupBox,
+    QgsDoubleSpinBox,
+    QgsFileWidget,
+    QgsMapLayerComboBox,
+    QgsSpinBox,
+)
 from qgis.PyQt.QtCore import QEvent, Qt
 from qgis.PyQt.QtGui import QImage, QPixmap
-from qgis.PyQt.QtWidgets import (QAbstractItemView, QCheckBox, QComboBox, QFormLayout, QFrame, QGridLayout,
-                                 QHBoxLayout, QHeaderView, QLabel, QLineEdit, QProgressBar, QPushButton,
-                                 QSizePolicy, QTableView, QTableWidget, QToolButton, QVBoxLayout, QWidget)
+from qgis.PyQt.QtWidgets import (
+    QAbstractItemView,
+    QCheckBox,
+    QComboBox,
+    QFormLayout,
+    QFrame,
+    QGridLayout,
+    QHBoxLayout,
+    QHeaderView,
+    QLabel,
+    QLineEdit,
+    QProgressBar,
+    QPushButton,
+    QSizePolicy,
+    QTableView,
+    QTableWidget,
+    QToolButton,
+    QVBoxLayout,
+    QWidget,
+)
 
 from ...__about__ import tr
 from ...core.detect.clustering import DEFAULT_DEDUP_CM
@@ -27,11 +50,12 @@ FILTERS = [("all", "All units"), ("todo", "To review (no vote yet)"), ("confirme
            ("propagated", "Propagated votes only"), ("conflict", "Conventions disagree"),
            ("unmatched", "No geotag nearby"), ("added", "Added targets")]
 # Keys → command; digits also arrive with the keypad modifier.
-KEYMAP = {Qt.Key_1: "confirmed_real", Qt.Key_C: "confirmed_real", Qt.Key_2: "hard_negative",
-          Qt.Key_H: "hard_negative", Qt.Key_3: "uncertain", Qt.Key_U: "uncertain", Qt.Key_0: "unreviewed",
-          Qt.Key_Backspace: "unreviewed", Qt.Key_N: "next", Qt.Key_Right: "next", Qt.Key_P: "previous",
-          Qt.Key_Left: "previous", Qt.Key_Home: "first", Qt.Key_End: "last", Qt.Key_A: "add",
-          Qt.Key_Escape: "cancel_add"}
+KEYMAP = {Qt.Key.Key_1: "confirmed_real", Qt.Key.Key_C: "confirmed_real",
+          Qt.Key.Key_2: "hard_negative", Qt.Key.Key_H: "hard_negative",
+          Qt.Key.Key_3: "uncertain", Qt.Key.Key_U: "uncertain",
+          Qt.Key.Key_0: "unreviewed", Qt.Key.Key_Backspace: "unreviewed",
+          Qt.Key.Key_N: "next", Qt.Key.Key_Right: "next", Qt.Key.Key_P: "previous", Qt.Key.Key_Left: "previous",
+          Qt.Key.Key_Home: "first", Qt.Key.Key_End: "last", Qt.Key.Key_A: "add", Qt.Key.Key_Escape: "cancel_add"}
 
 
 def default_reviewer() -> str:
@@ -53,7 +77,7 @@ class ChipStrip(QWidget):
         self.grid.setSpacing(6)
         self.tiles: list[QWidget] = []
         self.message = QLabel()
-        self.message.setAlignment(Qt.AlignCenter)
+        self.message.setAlignment(Qt.AlignmentFlag.AlignCenter)
         self.message.setMinimumHeight(CHIP_DISPLAY_PX // 2)
         self.message.setStyleSheet("color:#666; border:1px dashed #bbb; border-radius:4px; padding:12px;")
         self.grid.addWidget(self.message, 0, 0, 1, 3)
@@ -83,7 +107,7 @@ class ChipStrip(QWidget):
             image.setToolTip(tip)
             text = QLabel(caption)
             text.setStyleSheet("color:#eee; font-size:11px;")
-            text.setAlignment(Qt.AlignCenter)
+            text.setAlignment(Qt.AlignmentFlag.AlignCenter)
             v.addWidget(image)
             v.addWidget(text)
             self.tiles.append(tile)
@@ -106,9 +130,9 @@ class ChipStrip(QWidget):
         self.grid.setColumnStretch(0, 1)                # empty side columns centre the chips
         self.grid.setColumnStretch(columns + 1, 1)
         for i, tile in enumerate(self.tiles):
-            self.grid.addWidget(tile, i // columns, 1 + i % columns, Qt.AlignCenter)
+            self.grid.addWidget(tile, i // columns, 1 + i % columns, Qt.AlignmentFlag.AlignCenter)
 
-    def resizeEvent(self, event):  # noqa: N802
+    def resizeEvent(self, event):
         super().resizeEvent(event)
         if self.tiles:
             self._reflow()
@@ -120,25 +144,26 @@ class ReviewPanel(QWidget):
     def __init__(self, dock):
         super().__init__()
         self.dock = dock
-        self.setFocusPolicy(Qt.StrongFocus)
+        self.setFocusPolicy(Qt.FocusPolicy.StrongFocus)
 
     @staticmethod
     def command(event) -> str | None:
-        modifiers = event.modifiers() & ~Qt.KeypadModifier
-        if event.key() == Qt.Key_Z and modifiers == Qt.ControlModifier:
+        modifiers = event.modifiers() & ~Qt.KeyboardModifier.KeypadModifier
+        if event.key() == Qt.Key.Key_Z and modifiers == Qt.KeyboardModifier.ControlModifier:
             return "undo"
-        if modifiers not in (Qt.NoModifier, Qt.ShiftModifier) and event.key() not in (Qt.Key_Left, Qt.Key_Right):
+        if modifiers not in (Qt.KeyboardModifier.NoModifier, Qt.KeyboardModifier.ShiftModifier) \
+                and event.key() not in (Qt.Key.Key_Left, Qt.Key.Key_Right):
             return None
         return KEYMAP.get(event.key())
 
     def event(self, event):
         # Our keys win over QGIS's window-wide shortcuts while the review area has the focus.
-        if event.type() == QEvent.ShortcutOverride and self.command(event) is not None:
+        if event.type() == QEvent.Type.ShortcutOverride and self.command(event) is not None:
             event.accept()
             return True
         return super().event(event)
 
-    def keyPressEvent(self, event):  # noqa: N802
+    def keyPressEvent(self, event):
         command = self.command(event)
         if command is None:
             super().keyPressEvent(event)
@@ -162,9 +187,9 @@ def tool_button(text, slot, tip):
     b = QToolButton()
     b.setText(tr(text))
     b.setToolTip(tr(tip))
-    b.setFocusPolicy(Qt.NoFocus)
-    b.setToolButtonStyle(Qt.ToolButtonTextOnly)
-    b.setSizePolicy(QSizePolicy.Expanding, QSizePolicy.Fixed)
+    b.setFocusPolicy(Qt.FocusPolicy.NoFocus)
+    b.setToolButtonStyle(Qt.ToolButtonStyle.ToolButtonTextOnly)
+    b.setSizePolicy(QSizePolicy.Policy.Expanding, QSizePolicy.Policy.Fixed)
     b.clicked.connect(slot)
     return b
 
@@ -172,7 +197,7 @@ def tool_button(text, slot, tip):
 def build_setup_box(dock):
     box = QgsCollapsibleGroupBox(tr("Review setup"))
     form = QFormLayout(box)
-    form.setFieldGrowthPolicy(QFormLayout.AllNonFixedFieldsGrow)
+    form.setFieldGrowthPolicy(QFormLayout.FieldGrowthPolicy.AllNonFixedFieldsGrow)
     dock.detections_combo = QgsCheckableComboBox()
     dock.detections_combo.setDefaultText(tr("choose one or more detection layers"))
     dock.detections_combo.setToolTip(tr("Outputs of Detect targets over one flight (several checkpoints or "
@@ -266,9 +291,9 @@ def build_review_area(dock, panel):
     for key, text in FILTERS:
         dock.verdict_filter.addItem(tr(text), key)
     for combo in (dock.layer_filter, dock.verdict_filter):
-        combo.setSizeAdjustPolicy(QComboBox.AdjustToMinimumContentsLengthWithIcon)
+        combo.setSizeAdjustPolicy(QComboBox.SizeAdjustPolicy.AdjustToMinimumContentsLengthWithIcon)
         combo.setMinimumContentsLength(6)
-        combo.setFocusPolicy(Qt.ClickFocus)
+        combo.setFocusPolicy(Qt.FocusPolicy.ClickFocus)
         combo.currentIndexChanged.connect(dock._on_filter)
         combo.activated.connect(lambda *_: dock.panel.setFocus())
     row.addWidget(QLabel(tr("Fired by")))
@@ -280,16 +305,16 @@ def build_review_area(dock, panel):
     dock.model = UnitTableModel(dock)
     dock.table = QTableView()
     dock.table.setModel(dock.model)
-    dock.table.setFocusPolicy(Qt.NoFocus)
-    dock.table.setSelectionBehavior(QAbstractItemView.SelectRows)
-    dock.table.setSelectionMode(QAbstractItemView.SingleSelection)
+    dock.table.setFocusPolicy(Qt.FocusPolicy.NoFocus)
+    dock.table.setSelectionBehavior(QAbstractItemView.SelectionBehavior.SelectRows)
+    dock.table.setSelectionMode(QAbstractItemView.SelectionMode.SingleSelection)
     dock.table.setAlternatingRowColors(True)
     dock.table.verticalHeader().hide()
     dock.table.verticalHeader().setDefaultSectionSize(20)
     header = dock.table.horizontalHeader()
     header.setMinimumSectionSize(24)
-    header.setSectionResizeMode(QHeaderView.ResizeToContents)
-    header.setSectionResizeMode(1, QHeaderView.Stretch)
+    header.setSectionResizeMode(QHeaderView.ResizeMode.ResizeToContents)
+    header.setSectionResizeMode(1, QHeaderView.ResizeMode.Stretch)
     dock.table.setMinimumHeight(120)
     dock.table.setMaximumHeight(150)
     dock.table.clicked.connect(lambda index: dock.go_to(dock.model.keys[index.row()]))
@@ -297,15 +322,15 @@ def build_review_area(dock, panel):
     # the current unit
     dock.unit_label = QLabel()
     dock.unit_label.setWordWrap(True)
-    dock.unit_label.setTextFormat(Qt.RichText)
+    dock.unit_label.setTextFormat(Qt.TextFormat.RichText)
     dock.unit_label.setStyleSheet("QLabel{background:#f5f7fa;border:1px solid #d8dde6;border-radius:4px;"
                                   "padding:6px;}")
     v.addWidget(dock.unit_label)
     dock.chips = ChipStrip()
-    dock.chips.setSizePolicy(QSizePolicy.Expanding, QSizePolicy.Minimum)
+    dock.chips.setSizePolicy(QSizePolicy.Policy.Expanding, QSizePolicy.Policy.Minimum)
     v.addWidget(dock.chips)
     dock.chip_legend = QLabel()
-    dock.chip_legend.setTextFormat(Qt.RichText)
+    dock.chip_legend.setTextFormat(Qt.TextFormat.RichText)
     dock.chip_legend.setStyleSheet("color:#555; font-size:11px;")
     v.addWidget(dock.chip_legend)
     # verdicts and moves
@@ -347,7 +372,7 @@ def build_review_area(dock, panel):
     dock.advance_check = QCheckBox(tr("Next unit after a verdict"))
     dock.advance_check.setChecked(True)
     for c in (dock.propagate_check, dock.advance_check):
-        c.setFocusPolicy(Qt.NoFocus)
+        c.setFocusPolicy(Qt.FocusPolicy.NoFocus)
         v.addWidget(c)
     dock.propagate_check.toggled.connect(dock._on_propagate_toggled)
     # scores
@@ -364,16 +389,16 @@ def build_review_area(dock, panel):
         dock.scores_table.horizontalHeaderItem(c + 2).setToolTip(tr("After review, {}").format(
             CONVENTION_TEXT[convention]))
     dock.scores_table.verticalHeader().hide()
-    dock.scores_table.setFocusPolicy(Qt.NoFocus)
-    dock.scores_table.setEditTriggers(QAbstractItemView.NoEditTriggers)
-    dock.scores_table.setSelectionMode(QAbstractItemView.NoSelection)
-    dock.scores_table.horizontalHeader().setSectionResizeMode(QHeaderView.Stretch)
-    dock.scores_table.horizontalHeader().setSectionResizeMode(0, QHeaderView.ResizeToContents)
-    dock.scores_table.horizontalHeader().setSectionResizeMode(1, QHeaderView.ResizeToContents)
+    dock.scores_table.setFocusPolicy(Qt.FocusPolicy.NoFocus)
+    dock.scores_table.setEditTriggers(QAbstractItemView.EditTrigger.NoEditTriggers)
+    dock.scores_table.setSelectionMode(QAbstractItemView.SelectionMode.NoSelection)
+    dock.scores_table.horizontalHeader().setSectionResizeMode(QHeaderView.ResizeMode.Stretch)
+    dock.scores_table.horizontalHeader().setSectionResizeMode(0, QHeaderView.ResizeMode.ResizeToContents)
+    dock.scores_table.horizontalHeader().setSectionResizeMode(1, QHeaderView.ResizeMode.ResizeToContents)
     dock.scores_table.setWordWrap(False)
     dock.scores_table.horizontalHeader().setStyleSheet("QHeaderView::section{padding:1px 2px;font-size:11px;}")
     dock.scores_table.verticalHeader().setDefaultSectionSize(20)
-    dock.scores_table.setVerticalScrollBarPolicy(Qt.ScrollBarAlwaysOff)
+    dock.scores_table.setVerticalScrollBarPolicy(Qt.ScrollBarPolicy.ScrollBarAlwaysOff)
     v.addWidget(dock.scores_table)
     dock.scores_note = QLabel(tr("GMCF is a lower bound on precision, not precision; recall after review is an "
                                  "upper bound (≥). The spread between the conventions is part of the result."))
@@ -397,7 +422,7 @@ def show_chips(strip: ChipStrip, legend_label: QLabel, plans, images, n_frames: 
         items = []
         for plan, rgb in zip(plans, images):
             h, w = rgb.shape[:2]
-            pixmap = QPixmap.fromImage(QImage(rgb.tobytes(), w, h, 3 * w, QImage.Format_RGB888).copy())
+            pixmap = QPixmap.fromImage(QImage(rgb.tobytes(), w, h, 3 * w, QImage.Format.Format_RGB888).copy())
             caption = tr("frame {f}").format(f=plan.frame_id) + (
                 f" · {plan.score:.2f}" if plan.score is not None else "")
             items.append((pixmap, caption, plan.image))

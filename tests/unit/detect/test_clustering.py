@@ -2,8 +2,14 @@
 import numpy as np
 import pytest
 
-from birdseye.birdseye_qgis.core.detect.clustering import (cluster_detections, cluster_hulls, dbscan, deduplicate,
-                                                     neighbour_graph, summarize_clusters)
+from birdseye.birdseye_qgis.core.detect.clustering import (
+    cluster_detections,
+    cluster_hulls,
+    dbscan,
+    deduplicate,
+    neighbour_graph,
+    summarize_clusters,
+)
 from birdseye.birdseye_qgis.core.errors import InputError
 
 

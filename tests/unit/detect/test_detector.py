@@ -11,11 +11,11 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from birdseye.birdseye_qgis.core.geometry.camera import CameraModel
+from birdseye.birdseye_qgis.core.detect.model_metadata import ModelMetadata, ModelMetadataError, embed_metadata
 from birdseye.birdseye_qgis.core.errors import Cancelled, InputError
+from birdseye.birdseye_qgis.core.geometry.camera import CameraModel
 from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame
 from birdseye.birdseye_qgis.core.geometry.ground import LevelPlaneGround
-from birdseye.birdseye_qgis.core.detect.model_metadata import ModelMetadata, ModelMetadataError, embed_metadata
 from birdseye.birdseye_qgis.core.geometry.poses import FrameGeometry, FramePoses
 from birdseye.birdseye_qgis.core.geometry.projection import pixel_to_ground, project_pairs
 from birdseye.birdseye_qgis.core.geometry.rotations import euler_zyx_to_rotmat, rotmat_to_quat
@@ -25,10 +25,20 @@ pytest.importorskip("onnxruntime")
 cv2 = pytest.importorskip("cv2")
 from onnx import TensorProto, helper  # noqa: E402
 
-from birdseye.birdseye_qgis.core.detect.detector import (DetectRequest, HeatmapModel, cut_tiles,  # noqa: E402
-                                                  detect_frames, find_peaks, frame_heatmap, model_size,
-                                                  read_bgr, read_reduction, stitch, tile_spans,
-                                                  to_frame_pixels)
+from birdseye.birdseye_qgis.core.detect.detector import (  # noqa: E402
+    DetectRequest,
+    HeatmapModel,
+    cut_tiles,
+    detect_frames,
+    find_peaks,
+    frame_heatmap,
+    model_size,
+    read_bgr,
+    read_reduction,
+    stitch,
+    tile_spans,
+    to_frame_pixels,
+)
 
 NADIR = np.array([[0.0, 1.0, 0.0], [-1.0, 0.0, 0.0], [0.0, 0.0, 1.0]])
 
@@ -129,7 +139,8 @@ def test_peaks_are_subpixel_centroids_of_each_blob():
         centres = np.array([[rng.uniform(15, 45), rng.uniform(15, 65)], [rng.uniform(75, 105), rng.uniform(15, 65)]])
         sigma, amp = rng.uniform(2.0, 5.0), rng.uniform(0.5, 1.0)
         yy, xx = np.mgrid[0:80, 0:120]
-        heat = np.maximum.reduce([amp * np.exp(-((xx - u) ** 2 + (yy - v) ** 2) / (2 * sigma ** 2)) for u, v in centres])
+        heat = np.maximum.reduce([amp * np.exp(-((xx - u) ** 2 + (yy - v) ** 2) / (2 * sigma ** 2))
+                                  for u, v in centres])
         uv, score = find_peaks(heat, 0.3, blur_sigma_px=1.0)
         order = np.argsort(uv[:, 0])
         assert len(uv) == 2
@@ -303,7 +314,8 @@ def test_frames_stream_one_at_a_time_with_progress_and_cancel(tmp_path):
 def test_threshold_defaults_to_the_model_and_is_checked(tmp_path):
     poses, local = campaign(n=1, dist=(0, 0, 0, 0, 0))
     path = tmp_path / "f.png"
-    cv2.imwrite(str(path), gaussian_image(200, 150, [[60, 75]], 3.0, 0.9) // 2 + gaussian_image(200, 150, [[140, 75]], 3.0, 0.9))
+    cv2.imwrite(str(path), gaussian_image(200, 150, [[60, 75]], 3.0, 0.9) // 2
+                + gaussian_image(200, 150, [[140, 75]], 3.0, 0.9))
     # Humps of ≈0.45 and 0.9 (0.37 and 0.74 after the peak blur).
     low = HeatmapModel(conv_model(tmp_path / "low.onnx", threshold=0.3))
     high = HeatmapModel(conv_model(tmp_path / "high.onnx", threshold=0.5))

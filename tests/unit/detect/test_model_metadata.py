@@ -4,9 +4,14 @@ import json
 import numpy as np
 import pytest
 
+from birdseye.birdseye_qgis.core.detect.model_metadata import (
+    ModelMetadata,
+    ModelMetadataError,
+    embed_metadata,
+    read_onnx_metadata,
+    validate,
+)
 from birdseye.birdseye_qgis.core.errors import InputError
-from birdseye.birdseye_qgis.core.detect.model_metadata import (ModelMetadata, ModelMetadataError, embed_metadata,
-                                                         read_onnx_metadata, validate)
 
 onnx = pytest.importorskip("onnx")
 from onnx import TensorProto, helper  # noqa: E402

@@ -19,8 +19,8 @@ from birdseye.birdseye_qgis.core.field.dji import (
     import_dji_images,
     read_dji_metadata,
 )
-from birdseye.birdseye_qgis.core.field.frames import frame_records
 from birdseye.birdseye_qgis.core.field.frame_records import poses_from_records
+from birdseye.birdseye_qgis.core.field.frames import frame_records
 from birdseye.birdseye_qgis.core.geometry.camera import CameraModel, camera_from_dji_dewarp
 from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame
 from birdseye.birdseye_qgis.core.geometry.poses import FrameGeometry, FramePoses

@@ -11,21 +11,19 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "data"))
-from synthetic_flight import HEADER, make_flight, write_images  # noqa: E402
+from synthetic_flight import HEADER, make_flight, write_images
 
-from birdseye.birdseye_qgis.core.geometry.camera import load_calibration  # noqa: E402
-from birdseye.birdseye_qgis.core.errors import InputError  # noqa: E402
-from birdseye.birdseye_qgis.core.field.flight_log import import_flight_log
-from birdseye.birdseye_qgis.core.field.flight_log import import_pose_log
+from birdseye.birdseye_qgis.core.errors import InputError
+from birdseye.birdseye_qgis.core.field.flight_log import import_flight_log, import_pose_log
 from birdseye.birdseye_qgis.core.field.flight_track import flight_track
+from birdseye.birdseye_qgis.core.field.frame_records import FRAME_FIELD_NAMES, euler_degrees, poses_from_records
 from birdseye.birdseye_qgis.core.field.frames import FRAME_LAYER_FIELDS, frame_records, ground_heights
 from birdseye.birdseye_qgis.core.field.images import list_images, sync_strobes
 from birdseye.birdseye_qgis.core.field.pose_log import read_pose_log
-from birdseye.birdseye_qgis.core.field.frame_records import (FRAME_FIELD_NAMES, euler_degrees,  # noqa: E402
-                                                       poses_from_records)
-from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame, ProjectedCRS  # noqa: E402
-from birdseye.birdseye_qgis.core.geometry.poses import FrameGeometry  # noqa: E402
-from birdseye.birdseye_qgis.core.geometry.rotations import euler_zyx_to_rotmat, rotmat_to_quat  # noqa: E402
+from birdseye.birdseye_qgis.core.geometry.camera import load_calibration
+from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame, ProjectedCRS
+from birdseye.birdseye_qgis.core.geometry.poses import FrameGeometry
+from birdseye.birdseye_qgis.core.geometry.rotations import euler_zyx_to_rotmat, rotmat_to_quat
 
 ROW = "100.{k:02d},52.0,5.0,60.0,1,0,0,0,3,15.0,20.0,{strobe}"
 

@@ -2,9 +2,9 @@
 import numpy as np
 import pytest
 
-from birdseye.birdseye_qgis.core.geometry.camera import CameraModel
 from birdseye.birdseye_qgis.core.errors import InputError
 from birdseye.birdseye_qgis.core.field.frame_records import FRAME_FIELD_NAMES, euler_degrees, poses_from_records
+from birdseye.birdseye_qgis.core.geometry.camera import CameraModel
 from birdseye.birdseye_qgis.core.geometry.rotations import euler_zyx_to_rotmat, rotmat_to_quat
 
 CAM_A = CameraModel(1920, 1200, 4264.0, 4262.0, 958.0, 592.0)

@@ -9,9 +9,14 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from birdseye.birdseye_qgis.core.errors import InputError
+from birdseye.birdseye_qgis.core.field.geotags import (
+    ColumnMapping,
+    detect_format,
+    geotags_from_columns,
+    prepare_geotags,
+    read_geotags,
+)
 from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame
-from birdseye.birdseye_qgis.core.field.geotags import (ColumnMapping, detect_format, geotags_from_columns,
-                                                   prepare_geotags, read_geotags)
 
 
 def write(tmp_path, name, text):

@@ -2,8 +2,13 @@
 import numpy as np
 import pytest
 
-from birdseye.birdseye_qgis.core.geometry.camera import (CalibrationError, CameraModel, camera_from_dji_dewarp,
-                                                 load_calibration, write_kalibr_yaml)
+from birdseye.birdseye_qgis.core.geometry.camera import (
+    CalibrationError,
+    CameraModel,
+    camera_from_dji_dewarp,
+    load_calibration,
+    write_kalibr_yaml,
+)
 
 DEPLOYED = dict(width=1920, height=1200, fx=4264.4945, fy=4262.8927, cx=958.4594, cy=592.5033)
 # A strongly distorted lens, so the round trips are tested where fixed-point iteration would fail.

@@ -4,20 +4,27 @@ import math
 import numpy as np
 import pytest
 
-from birdseye.birdseye_qgis.core.geometry import geodesy
 from birdseye.birdseye_qgis.core.design import terrain_slope as ts
-from birdseye.birdseye_qgis.core.geometry.camera import CameraModel
-from birdseye.birdseye_qgis.core.geometry.dem import (TAKEOFF_REACH_M, DemGround, DemRaster, Heightfield,
-                                             check_vertical_datum,
-                                             exceeds_flat_envelope, flat_envelope_warning,
-                                             frame_terrain_slope, heightfield_from_dem,
-                                             intersect_heightfield)
-from birdseye.birdseye_qgis.core.sim.terrain import synthetic_terrain
 from birdseye.birdseye_qgis.core.errors import InputError
+from birdseye.birdseye_qgis.core.geometry import geodesy
+from birdseye.birdseye_qgis.core.geometry.camera import CameraModel
+from birdseye.birdseye_qgis.core.geometry.dem import (
+    TAKEOFF_REACH_M,
+    DemGround,
+    DemRaster,
+    Heightfield,
+    check_vertical_datum,
+    exceeds_flat_envelope,
+    flat_envelope_warning,
+    frame_terrain_slope,
+    heightfield_from_dem,
+    intersect_heightfield,
+)
 from birdseye.birdseye_qgis.core.geometry.ground import LevelPlaneGround
 from birdseye.birdseye_qgis.core.geometry.poses import FrameGeometry, FramePoses
 from birdseye.birdseye_qgis.core.geometry.projection import footprints, pixel_to_ground, project_pairs
 from birdseye.birdseye_qgis.core.geometry.rotations import euler_zyx_to_rotmat, rotmat_to_quat
+from birdseye.birdseye_qgis.core.sim.terrain import synthetic_terrain
 
 NADIR = np.array([[0.0, 1.0, 0.0], [-1.0, 0.0, 0.0], [0.0, 0.0, 1.0]])
 SITE = (-27.55, 151.95, 400.0)

@@ -6,8 +6,14 @@ from birdseye.birdseye_qgis.core.geometry import geodesy
 from birdseye.birdseye_qgis.core.geometry.camera import CameraModel
 from birdseye.birdseye_qgis.core.geometry.ground import LevelPlaneGround
 from birdseye.birdseye_qgis.core.geometry.poses import FrameGeometry, FramePoses, ground_height_from_altimeter
-from birdseye.birdseye_qgis.core.geometry.projection import (candidate_pairs, footprints, pixel_to_ground,
-                                                     project_all, project_in_view, project_pairs)
+from birdseye.birdseye_qgis.core.geometry.projection import (
+    candidate_pairs,
+    footprints,
+    pixel_to_ground,
+    project_all,
+    project_in_view,
+    project_pairs,
+)
 from birdseye.birdseye_qgis.core.geometry.rotations import euler_zyx_to_rotmat, rotmat_to_quat
 
 # Nadir mounting: camera x = body right, camera y = −body forward (image top = forward), z = body down.
@@ -98,7 +104,7 @@ def test_nadir_conventions_north_east_and_heading():
 
 def test_attitude_moves_the_nadir_point_the_right_way():
     cam = make_camera(dist=(0, 0, 0, 0, 0))
-    below = lambda g: project_pairs(g, [0], g.ground_point[:1]).uv[0]  # noqa: E731
+    below = lambda g: project_pairs(g, [0], g.ground_point[:1]).uv[0]
     # Roll right (right wing down) turns the belly, and the camera, to the left: the point below
     # appears right of centre, by f·tan(roll).
     u, v = below(geometry(cam, roll=5.0)[0])

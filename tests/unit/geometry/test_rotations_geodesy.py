@@ -5,9 +5,16 @@ from scipy.linalg import expm
 from scipy.spatial.transform import Rotation
 
 from birdseye.birdseye_qgis.core.geometry import geodesy
-from birdseye.birdseye_qgis.core.geometry.rotations import (euler_zyx_to_rotmat, hat, invert_transform,
-                                                    quat_to_rotmat, rotmat_to_euler_zyx, rotmat_to_quat,
-                                                    se3_exp, so3_exp)
+from birdseye.birdseye_qgis.core.geometry.rotations import (
+    euler_zyx_to_rotmat,
+    hat,
+    invert_transform,
+    quat_to_rotmat,
+    rotmat_to_euler_zyx,
+    rotmat_to_quat,
+    se3_exp,
+    so3_exp,
+)
 
 
 def test_quaternion_matches_scipy_and_round_trips():

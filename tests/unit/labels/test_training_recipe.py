@@ -14,13 +14,13 @@ torch = pytest.importorskip("torch", reason="torch is a training extra: pip inst
 cv2 = pytest.importorskip("cv2")
 onnxruntime = pytest.importorskip("onnxruntime")
 
-from birdseye.birdseye_qgis.core.geometry.camera import CameraModel  # noqa: E402
 from birdseye.birdseye_qgis.core.detect.detector import DetectRequest, HeatmapModel, detect_frames  # noqa: E402
-from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame  # noqa: E402
-from birdseye.birdseye_qgis.core.labels.training_set import Geotags, LabelRequest, project_labels, write_label_set  # noqa: E402
 from birdseye.birdseye_qgis.core.detect.model_metadata import read_onnx_metadata  # noqa: E402
+from birdseye.birdseye_qgis.core.geometry.camera import CameraModel  # noqa: E402
+from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame  # noqa: E402
 from birdseye.birdseye_qgis.core.geometry.poses import FrameGeometry, FramePoses  # noqa: E402
 from birdseye.birdseye_qgis.core.geometry.rotations import euler_zyx_to_rotmat, rotmat_to_quat  # noqa: E402
+from birdseye.birdseye_qgis.core.labels.training_set import Geotags, LabelRequest, project_labels, write_label_set  # noqa: E402
 
 RECIPE = Path(__file__).resolve().parents[3] / "training" / "train_heatmap.py"
 NADIR = np.array([[0.0, 1.0, 0.0], [-1.0, 0.0, 0.0], [0.0, 0.0, 1.0]])

@@ -10,11 +10,17 @@ from hypothesis import strategies as st
 
 from birdseye.birdseye_qgis.core.geometry.camera import CameraModel
 from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame
-from birdseye.birdseye_qgis.core.labels.training_set import (Geotags, LabelRequest, project_labels, soft_label_raster,
-                                                 tile_origins, write_label_set)
 from birdseye.birdseye_qgis.core.geometry.poses import FramePoses
 from birdseye.birdseye_qgis.core.geometry.rotations import euler_zyx_to_rotmat, rotmat_to_quat
 from birdseye.birdseye_qgis.core.labels.sparse_png import encode_gray_png
+from birdseye.birdseye_qgis.core.labels.training_set import (
+    Geotags,
+    LabelRequest,
+    project_labels,
+    soft_label_raster,
+    tile_origins,
+    write_label_set,
+)
 
 NADIR = np.array([[0.0, 1.0, 0.0], [-1.0, 0.0, 0.0], [0.0, 0.0, 1.0]])
 

@@ -3,19 +3,39 @@ import itertools
 
 import numpy as np
 import pytest
-from hypothesis import given, settings as hsettings, strategies as st
+from hypothesis import given
+from hypothesis import settings as hsettings
+from hypothesis import strategies as st
 
-from birdseye.birdseye_qgis.core.geometry.camera import CameraModel
 from birdseye.birdseye_qgis.core.errors import InputError
-from birdseye.birdseye_qgis.core.plan.flight_plan import (
-    ACCELERATION_MS2, CLIMB_RATE_MS, DESCENT_RATE_MS, PHOTO_ACTION_S, WAYPOINT_FIELDS, FlightSettings,
-    along_track_footprint_m, distance_matrix, footprint_radius_m, leg_time_s, merge_geotags,
-    min_enclosing_circle, mission_metrics, nearest_neighbour_tour, order_route, plan_flight,
-    solve_tour, split_route, suggested_capture_interval_s, tour_length, waypoint_records)
+from birdseye.birdseye_qgis.core.geometry.camera import CameraModel
 from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame
 from birdseye.birdseye_qgis.core.geometry.poses import FrameGeometry, FramePoses
 from birdseye.birdseye_qgis.core.geometry.projection import project_pairs
 from birdseye.birdseye_qgis.core.geometry.rotations import euler_zyx_to_rotmat, rotmat_to_quat
+from birdseye.birdseye_qgis.core.plan.flight_plan import (
+    ACCELERATION_MS2,
+    CLIMB_RATE_MS,
+    DESCENT_RATE_MS,
+    PHOTO_ACTION_S,
+    WAYPOINT_FIELDS,
+    FlightSettings,
+    along_track_footprint_m,
+    distance_matrix,
+    footprint_radius_m,
+    leg_time_s,
+    merge_geotags,
+    min_enclosing_circle,
+    mission_metrics,
+    nearest_neighbour_tour,
+    order_route,
+    plan_flight,
+    solve_tour,
+    split_route,
+    suggested_capture_interval_s,
+    tour_length,
+    waypoint_records,
+)
 
 LAT0, LON0 = 52.2, 5.6
 # A nadir camera as the brief defines it: camera x = body right, y = −body forward, z = body down.

@@ -8,12 +8,25 @@ import numpy as np
 import pytest
 
 from birdseye.birdseye_qgis.core.errors import InputError
-from birdseye.birdseye_qgis.core.plan.flight_plan import FlightSettings, plan_flight
 from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame
+from birdseye.birdseye_qgis.core.plan.flight_plan import FlightSettings, plan_flight
 from birdseye.birdseye_qgis.core.plan.mission_files import (
-    DJI_DRONES, DJI_PAYLOADS, LITCHI_STAY_FOR, LITCHI_TAKE_PHOTO, MissionSpec,
-    check_waypoint_limits, mission_file_paths, parse_dji_kmz, parse_kml, parse_litchi_csv,
-    parse_qgc_plan, write_dji_kmz, write_kml, write_litchi_csv, write_qgc_plan)
+    DJI_DRONES,
+    DJI_PAYLOADS,
+    LITCHI_STAY_FOR,
+    LITCHI_TAKE_PHOTO,
+    MissionSpec,
+    check_waypoint_limits,
+    mission_file_paths,
+    parse_dji_kmz,
+    parse_kml,
+    parse_litchi_csv,
+    parse_qgc_plan,
+    write_dji_kmz,
+    write_kml,
+    write_litchi_csv,
+    write_qgc_plan,
+)
 
 LAT0, LON0 = -34.95, 138.58
 TOL_DEG = 1e-7

@@ -12,16 +12,34 @@ import json
 import numpy as np
 import pytest
 
-from birdseye.birdseye_qgis.core.review.actions import Ledger, propagation_provenance, resume_key, unit_status
-from birdseye.birdseye_qgis.core.review.chips import FrameIndex, GEOTAG_COLOUR, ImageCache, LAYER_COLOURS, crop_window, load_chips, plan_point_chips, plan_unit_chips, render_chip
-from birdseye.birdseye_qgis.core.review.digests import check_inputs, content_digest
-from birdseye.birdseye_qgis.core.review.units import ReviewLayer, ReviewParameters, UnitRef, added_key, build_units, position_key, propagation_groups
 from birdseye.birdseye_qgis.core.geometry.camera import CameraModel
 from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame
 from birdseye.birdseye_qgis.core.geometry.ground import LevelPlaneGround
 from birdseye.birdseye_qgis.core.geometry.poses import FrameGeometry, FramePoses
 from birdseye.birdseye_qgis.core.geometry.projection import project_all
 from birdseye.birdseye_qgis.core.geometry.rotations import euler_zyx_to_rotmat, rotmat_to_quat
+from birdseye.birdseye_qgis.core.review.actions import Ledger, propagation_provenance, resume_key, unit_status
+from birdseye.birdseye_qgis.core.review.chips import (
+    GEOTAG_COLOUR,
+    LAYER_COLOURS,
+    FrameIndex,
+    ImageCache,
+    crop_window,
+    load_chips,
+    plan_point_chips,
+    plan_unit_chips,
+    render_chip,
+)
+from birdseye.birdseye_qgis.core.review.digests import check_inputs, content_digest
+from birdseye.birdseye_qgis.core.review.units import (
+    ReviewLayer,
+    ReviewParameters,
+    UnitRef,
+    added_key,
+    build_units,
+    position_key,
+    propagation_groups,
+)
 from birdseye.birdseye_qgis.core.scoring.evaluation import Detections, Geotags
 from birdseye.birdseye_qgis.core.scoring.verdicts import CONVENTIONS, VerdictLog
 

@@ -8,9 +8,9 @@ view follows from the numbers alone.
 import numpy as np
 import pytest
 
-from birdseye.birdseye_qgis.core.geometry.camera import CameraModel
 from birdseye.birdseye_qgis.core.detect.clustering import cluster_detections
 from birdseye.birdseye_qgis.core.errors import InputError
+from birdseye.birdseye_qgis.core.geometry.camera import CameraModel
 from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame
 from birdseye.birdseye_qgis.core.geometry.poses import FramePoses
 from birdseye.birdseye_qgis.core.geometry.rotations import euler_zyx_to_rotmat, rotmat_to_quat
@@ -19,7 +19,12 @@ from birdseye.birdseye_qgis.core.scoring.matching import in_view, match_to_clust
 from birdseye.birdseye_qgis.core.scoring.operating_point import OperatingPoint
 from birdseye.birdseye_qgis.core.scoring.post_review import ReviewedFlight, post_scores
 from birdseye.birdseye_qgis.core.scoring.pre_review import PreCounts, pool, score_flight
-from birdseye.birdseye_qgis.core.scoring.screening import ScreenRun, distinct_position_fraction, pixel_matches, screen_checkpoints
+from birdseye.birdseye_qgis.core.scoring.screening import (
+    ScreenRun,
+    distinct_position_fraction,
+    pixel_matches,
+    screen_checkpoints,
+)
 from birdseye.birdseye_qgis.core.scoring.sweep import SweepFlight, SweepGrid, pareto_front, sweep
 from birdseye.birdseye_qgis.core.scoring.verdicts import CONVENTIONS, Verdict, VerdictLog, combine
 

@@ -11,18 +11,25 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from birdseye.birdseye_qgis.core.geometry.camera import load_calibration
 from birdseye.birdseye_qgis.core.errors import Cancelled, InputError
+from birdseye.birdseye_qgis.core.geometry.camera import load_calibration
 from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame
 from birdseye.birdseye_qgis.core.geometry.ground import LevelPlaneGround
 from birdseye.birdseye_qgis.core.geometry.poses import FrameGeometry, FramePoses, ground_height_from_altimeter
 from birdseye.birdseye_qgis.core.geometry.projection import project_all
 from birdseye.birdseye_qgis.core.geometry.rotations import quat_to_rotmat
 from birdseye.birdseye_qgis.core.sim.render import blur_kernels
+
 sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "data"))
-from rendered_holes import dark_core_centroid  # noqa: E402
-from birdseye.birdseye_qgis.core.sim.campaign import (NADIR_ROTATION, POSE_HEADER, CampaignConfig, parse_sigmas,
-                                                  simulate_campaign)
+from rendered_holes import dark_core_centroid
+
+from birdseye.birdseye_qgis.core.sim.campaign import (
+    NADIR_ROTATION,
+    POSE_HEADER,
+    CampaignConfig,
+    parse_sigmas,
+    simulate_campaign,
+)
 
 # A small rendered campaign (noise off): 3 × 3 m, 5 targets, 18 frames of 480 × 300 px from 4 m.
 SMALL = dict(seed=5, n_targets=5, field_width_m=3.0, field_length_m=3.0, altitude_m=4.0, fps=2.0,
@@ -504,8 +511,7 @@ def test_rendered_targets_sit_where_the_true_pose_projects_them_over_terrain(tmp
 
 
 def test_dem_terrain_casts_rays_onto_the_dem():
-    from birdseye.birdseye_qgis.core.sim.terrain import synthetic_terrain
-    from birdseye.birdseye_qgis.core.sim.terrain import DemTerrain
+    from birdseye.birdseye_qgis.core.sim.terrain import DemTerrain, synthetic_terrain
 
     lat0, lon0, h0 = -27.55, 151.95, 400.0
     local = LocalFrame(lat0, lon0, h0)
