@@ -1,7 +1,7 @@
 """Clustering and the operating-point sweep at the method's scale.
 
 1. **One million detections** de-duplicated (3 cm) and clustered (DBSCAN 0.10 m / 3), with the cluster
-   summaries — goal (issue 8): under 10 s. Baseline: scikit-learn's DBSCAN straight on the raw
+   summaries — goal: under 10 s. Baseline: scikit-learn's DBSCAN straight on the raw
    detections (no de-duplication), as one would write it first.
 2. **The method's 14,400-configuration sweep** (10 thresholds × 12 EPS × 12 MIN_SAMPLES × 10
    EPS_PRED) on one simulated flight — goal: under 5 minutes. Baseline: recomputing everything per

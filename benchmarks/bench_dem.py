@@ -1,6 +1,6 @@
 """Back-projecting 1,000,000 pixels onto a hilly 1 m DEM (500 m × 500 m) with the DEM ground model.
 
-Goal (issue 10): under 2 s. The pixels come from four frames 10–20 m above the terrain (tilts of a few
+Goal: under 2 s. The pixels come from four frames 10–20 m above the terrain (tilts of a few
 degrees, any heading), spread uniformly over the image. Baselines: a naive ray march at a fixed
 0.1 m step along every ray (from the top of the terrain's height range, linear interpolation in the
 last step; timed on a subset and scaled), and the level-plane ground model on the same pixels.

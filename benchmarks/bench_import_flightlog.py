@@ -2,8 +2,8 @@
 
 46,205 frames at a 5 Hz strobe with 50 Hz INS rows between strobes (≈ 462k rows, ≈ 50 MB of CSV)
 and an ``images.csv``. Times the core import (parse + sync + ground heights + geometry + footprints,
-i.e. ``core.flight_log.import_pose_log``) and the process's peak resident memory, against the goal
-of the issue: under 30 s and under 1 GB. Writing the QGIS layer is not included.
+i.e. ``core.field.flight_log.import_pose_log``) and the process's peak resident memory, against the goal:
+under 30 s and under 1 GB. Writing the QGIS layer is not included.
 
 Run: ``.venv/bin/python benchmarks/bench_import_flightlog.py [--frames N]``
 """

@@ -1,7 +1,7 @@
 """Label writing at the scale of the method's largest field partition.
 
 The method's post-processing took 14 min 27 s (867 s) for 3,976 frames and 25,315 labels at
-1920×1200. Goal (issue 4): the same work — projection, every soft-label raster written, labels.csv
+1920×1200. Goal: the same work — projection, every soft-label raster written, labels.csv
 and labels.txt — in under 30 s on one core (≥ 29× faster). Memory must not grow with the number of
 frames: peak RSS is measured after a run of 1/4 of the frames and after the full run.
 """

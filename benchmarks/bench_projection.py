@@ -1,6 +1,6 @@
 """World → pixel at the scale of the method's largest field campaign: 12,524 frames × 3,317 points.
 
-Goal (issue 2): under 2 s on one core, with the spatial pre-filter. Baseline: the same projection
+Goal: under 2 s on one core, with the spatial pre-filter. Baseline: the same projection
 without the pre-filter (every frame against every point, in frame chunks).
 """
 import os

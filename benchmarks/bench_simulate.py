@@ -1,6 +1,6 @@
 """Rendering speed of ``simulatecampaign`` at the deployed camera's 1920 × 1200 px.
 
-Goal (issue 2 / the simulator's brief): a frame in well under 1 s. Figures:
+Goal: a frame in well under 1 s. Figures:
 
 * s/frame of the real pipeline (render + JPEG + write), from the gaps between progress calls of
   ``simulate_campaign`` on a small field flown at full resolution;

@@ -4,681 +4,731 @@
 <context>
     <name>@default</name>
     <message>
-        <location filename="../birdseye_qgis/gui/plugin.py" line="106"/>
+        <location filename="../birdseye_qgis/gui/plugin.py" line="103"/>
         <source>The BirdsEye Processing provider could not be registered.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/plugin.py" line="115"/>
+        <location filename="../birdseye_qgis/gui/plugin.py" line="112"/>
         <source>&amp;BirdsEye</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/plugin.py" line="117"/>
+        <location filename="../birdseye_qgis/gui/plugin.py" line="114"/>
         <source>BirdsEye</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/plugin.py" line="120"/>
+        <location filename="../birdseye_qgis/gui/plugin.py" line="117"/>
         <source>BirdsEye algorithms…</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/plugin.py" line="122"/>
+        <location filename="../birdseye_qgis/gui/plugin.py" line="119"/>
         <source>Open the Processing toolbox showing the BirdsEye algorithms</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/plugin.py" line="180"/>
+        <location filename="../birdseye_qgis/gui/plugin.py" line="177"/>
         <source>The Processing plugin is not active: enable it under Plugins ▸ Manage and Install Plugins, then try again.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/plugin.py" line="210"/>
+        <location filename="../birdseye_qgis/gui/plugin.py" line="207"/>
         <source>The &apos;{title}&apos; panel could not be opened ({module}.{cls}: {error}).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review_dock.py" line="275"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="66"/>
         <source>Review clusters</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review_dock.py" line="354"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="198"/>
         <source>Review setup</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review_dock.py" line="358"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="202"/>
         <source>choose one or more detection layers</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review_dock.py" line="359"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="203"/>
         <source>Outputs of Detect targets over one flight (several checkpoints or thresholds are reviewed together: one verdict per spot).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review_dock.py" line="361"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="205"/>
         <source>Detections</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review_dock.py" line="365"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="209"/>
         <source>The flight&apos;s frame layer (Import flight log or Import DJI images): poses, camera and image of every frame.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review_dock.py" line="367"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="211"/>
         <source>Frames</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review_dock.py" line="371"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="215"/>
         <source>The survey points (Import geotags).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review_dock.py" line="372"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="216"/>
         <source>Geotags</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review_dock.py" line="377"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="221"/>
         <source>GeoPackage holding the append-only verdict log (table birdseye_verdicts). Default: the first detection layer&apos;s GeoPackage, else one next to the project.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review_dock.py" line="380"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="224"/>
         <source>Verdict log</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review_dock.py" line="382"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="226"/>
         <source>Recorded with every verdict.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review_dock.py" line="384"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="228"/>
         <source>Reviewer</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review_dock.py" line="386"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="230"/>
         <source>Clustering and matching</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review_dock.py" line="396"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="240"/>
         <source>DBSCAN minimum points per neighbourhood (itself included).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review_dock.py" line="407"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="251"/>
         <source>Size of the image window cut around a detection.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review_dock.py" line="414"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="258"/>
         <source>Map scale the canvas zooms to around each unit.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review_dock.py" line="415"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="259"/>
         <source>Grid cell</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review_dock.py" line="415"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="259"/>
         <source>EPS</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review_dock.py" line="415"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="259"/>
         <source>Min. points</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review_dock.py" line="415"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="259"/>
         <source>EPS_PRED</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review_dock.py" line="415"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="259"/>
         <source>Edge buffer</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review_dock.py" line="415"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="259"/>
         <source>Chip window</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review_dock.py" line="415"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="259"/>
         <source>Map scale</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review_dock.py" line="421"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="265"/>
         <source>Start / resume review</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review_dock.py" line="444"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="279"/>
         <source>No review started</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review_dock.py" line="454"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="289"/>
         <source>All layers</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review_dock.py" line="464"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="299"/>
         <source>Fired by</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review_dock.py" line="466"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="301"/>
         <source>Show</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review_dock.py" line="504"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="339"/>
         <source>Previous (P)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review_dock.py" line="506"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="341"/>
         <source>Next (N)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review_dock.py" line="523"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="358"/>
         <source>Undo (Ctrl+Z)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review_dock.py" line="525"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="360"/>
         <source>Add missed target (A)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review_dock.py" line="531"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="366"/>
         <source>Propagate to units within {:.2f} m</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review_dock.py" line="532"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="367"/>
         <source>Off by default. When on, a verdict also votes (provenance propagated:{rule}) on the units chained to this one by gaps of at most {eps:.2f} m; conflicting votes are resolved under the three conventions, all shown.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review_dock.py" line="537"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="372"/>
         <source>Next unit after a verdict</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review_dock.py" line="544"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="379"/>
         <source>&lt;b&gt;Scores per detection layer&lt;/b&gt; — after review under each tie-break convention</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review_dock.py" line="546"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="381"/>
         <source>Recall and the geotag-matched cluster fraction (GMCF), computed as Evaluate detections computes them from this verdict log.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review_dock.py" line="550"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="385"/>
         <source>before
 review</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review_dock.py" line="554"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="389"/>
         <source>After review, {}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review_dock.py" line="568"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="403"/>
         <source>GMCF is a lower bound on precision, not precision; recall after review is an upper bound (≥). The spread between the conventions is part of the result.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review_dock.py" line="626"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="171"/>
         <source>Choose at least one detection layer (an output of Detect targets).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review_dock.py" line="631"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="177"/>
         <source>Choose a GeoPackage for the verdict log (save the project first to get one next to it).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review_dock.py" line="683"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="229"/>
         <source>{n} units from {k} layer(s); verdict log {path}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review_dock.py" line="768"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="298"/>
         <source>A layer of the review was removed from the project; the review stopped. Every verdict is in the log; choose the layers again to resume.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review_dock.py" line="826"/>
+        <location filename="../birdseye_qgis/gui/review/model.py" line="76"/>
         <source>Added target</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review_dock.py" line="854"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="335"/>
         <source>&lt;b&gt;{pos}&lt;/b&gt; of {vis} shown · {done} of {n} units reviewed · {added} added</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review_dock.py" line="915"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="388"/>
         <source>An added target can only be withdrawn (0 or Backspace) or undone.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review_dock.py" line="926"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="399"/>
         <source>Saved: {key} → {verdict}{more} ({time} UTC)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review_dock.py" line="926"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="399"/>
         <source>, {} propagated vote(s)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review_dock.py" line="941"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="414"/>
         <source>Nothing to undo.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review_dock.py" line="945"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="418"/>
         <source>Undone: action {action} on {key} (rows appended; nothing deleted).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review_dock.py" line="963"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="436"/>
         <source>The verdict was NOT saved: {error}. Check that {path} is writable and not locked, then try again.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review_dock.py" line="980"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="451"/>
         <source>Click the map where the missed target is (Esc or right click cancels).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review_dock.py" line="1005"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="472"/>
         <source>Added target {key} (Ctrl+Z undoes it).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review_dock.py" line="1005"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="472"/>
         <source>A target is already recorded there.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review_dock.py" line="1026"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="493"/>
         <source>No units: the detection layers have no clusters at these settings.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review_dock.py" line="1027"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="494"/>
         <source>Nothing to show</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review_dock.py" line="1038"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="506"/>
         <source>Loading frames…</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review_dock.py" line="1045"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="513"/>
         <source>&lt;b&gt;Added target&lt;/b&gt; {key}&lt;br&gt;{lat:.7f}°, {lon:.7f}° · recorded as a target the detector missed (the &lt;i&gt;a&lt;/i&gt; term). 0 withdraws it.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review_dock.py" line="1052"/>
+        <location filename="../birdseye_qgis/gui/review/model.py" line="137"/>
         <source>geotag {ids} within {eps:.2f} m</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review_dock.py" line="1052"/>
+        <location filename="../birdseye_qgis/gui/review/model.py" line="137"/>
         <source>no geotag within {eps:.2f} m</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review_dock.py" line="1059"/>
+        <location filename="../birdseye_qgis/gui/review/model.py" line="144"/>
         <source>none yet</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review_dock.py" line="1060"/>
+        <location filename="../birdseye_qgis/gui/review/model.py" line="145"/>
         <source>the conventions disagree</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review_dock.py" line="1132"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="418"/>
         <source>The frames could not be read: {}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review_dock.py" line="1134"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="420"/>
         <source>No frame of the frame layer shows this spot.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review_dock.py" line="1140"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="426"/>
         <source>frame {f}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review_dock.py" line="1147"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="432"/>
         <source>{shown} of {n} frames</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review_dock.py" line="1181"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="570"/>
         <source>updating…</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review_dock.py" line="1190"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="579"/>
         <source>Scores could not be computed: {}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review_dock.py" line="1205"/>
+        <location filename="../birdseye_qgis/gui/review/model.py" line="113"/>
         <source>recall</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review_dock.py" line="1207"/>
+        <location filename="../birdseye_qgis/gui/review/model.py" line="115"/>
         <source>GMCF</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review_dock.py" line="1237"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="227"/>
         <source>Review verdicts</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review_dock.py" line="1256"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="441"/>
         <source>Cannot start the review</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review_dock.py" line="1256"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="441"/>
         <source>Inputs changed since verdicts were recorded</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="112"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="104"/>
         <source>Accept</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="112"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="104"/>
         <source>Reject</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="112"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="104"/>
         <source>: κ* = λ_target / sup; every variance of the budget may grow by this factor. Accept when κ* ≥ 1.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="135"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="127"/>
         <source>Sensor-bound calculator</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="172"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="164"/>
         <source>Camera</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="179"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="171"/>
         <source>A platform sets the camera and the pose-noise budget together.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="182"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="173"/>
         <source>Platform</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="185"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="176"/>
         <source>Camera calibration (Kalibr or OpenCV YAML)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="186"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="177"/>
         <source>Load fx, fy, cx, cy and the image size from a Kalibr camchain or OpenCV YAML file.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="189"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="180"/>
         <source>Calibration</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="203"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="194"/>
         <source>Width</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="204"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="195"/>
         <source>Height</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="216"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="207"/>
         <source>Pose noise (1σ)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="236"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="227"/>
         <source>Label tolerance and altitudes</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="241"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="232"/>
         <source>Label radius r at 3σ: the label must stay within r px of the target.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="245"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="236"/>
         <source>σ_label = r/3: the Gaussian sigma of the soft labels (λ_target = σ_label²).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="249"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="240"/>
         <source>Tolerance r (3σ)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="251"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="242"/>
         <source>e.g. 10, 20</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="252"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="243"/>
         <source>Heights above the ground in metres, separated by commas.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="254"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="245"/>
         <source>Altitudes [m]</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="258"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="249"/>
         <source>Verdicts</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="266"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="257"/>
         <source>Altitude</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="266"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="257"/>
         <source>sup tr Σ
 [px²]</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="266"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="257"/>
         <source>sup λmax
 [px²]</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="266"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="257"/>
         <source>κ* trace</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="266"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="257"/>
         <source>κ* exact</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="268"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="259"/>
         <source>Largest trace of the label covariance over the frame (the linear, pessimistic criterion).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="270"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="261"/>
         <source>Largest eigenvalue of the label covariance over the frame (the exact criterion).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="276"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="267"/>
         <source>Details for</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="278"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="269"/>
         <source>The altitude whose budget table and λ_max field are shown.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="286"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="277"/>
         <source>Your σ</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="286"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="277"/>
         <source>Balanced σ
 (trace)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="286"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="277"/>
         <source>Balanced σ
 (exact)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="286"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="277"/>
         <source>Share of
 error</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="288"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="279"/>
         <source>The largest budget with no axis starved (maximum Σ log σ²) that meets the exact bound.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="290"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="281"/>
         <source>Each axis&apos;s share of the error of your budget at the worst pixel: improve the largest first.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="315"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="306"/>
         <source>λ_max field — red: the tolerance λ_target</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="328"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="319"/>
         <source>Evaluate every pixel</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="329"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="320"/>
         <source>Re-evaluate on the full-resolution grid (stride 1 px), as the Processing algorithm does by default.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="332"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="323"/>
         <source>Use σ_label in Write labels</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="333"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="324"/>
         <source>Store σ_label = r/3 px in the project; Write labels uses it as its default label sigma (SIGMA_PX).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="336"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="327"/>
         <source>Run in Processing…</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="337"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="328"/>
         <source>Open the Sensor bound algorithm with these values, to write the JSON results, the HTML report and the λ_max raster.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="358"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="349"/>
         <source>Altitudes</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="435"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="427"/>
         <source>σ_label = {value:.2f} px</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="461"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="453"/>
         <source>every pixel</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="461"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="453"/>
         <source>preview grid: every {s} px and the frame edges</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="466"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="458"/>
         <source>λ_target = (r/3)² = {lam:.4g} px² · {grid}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="485"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="477"/>
         <source>worst pixel ({u:.0f}, {v:.0f})</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="503"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="495"/>
         <source>worst at ({u:.0f}, {v:.0f})</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="532"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="524"/>
         <source>σ_label = {s:.2f} px stored in the project: Write labels will use it as its label sigma (project variable @birdseye_sigma_label_px).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/gui/review/map_context.py" line="81"/>
+        <source>Verdict layer {uri} could not be loaded</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/evaluatedetections.py" line="45"/>
+        <source>Sealed rule verified (seal {value}…, sealed {sealed_at}); arm '{name}': its operating point replaces the dialog's values: {value2}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/writelabels.py" line="47"/>
+        <source>{path}: not a sensorbound result (expected inputs.tolerance_px): {exc}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/writelabels.py" line="52"/>
+        <source>{path}: the pose-noise budget is rejected at {items}; labels of σ = {value:g} px would not contain the projection error there</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/writelabels.py" line="217"/>
+        <source>{n_labels} labels in {n_frames_with_labels} of {n_frames} frames (labels per labelled frame: mean {mean:g}, max {max}); {n_geotags_in_view} of {n_geotags} geotags in view (frames per geotag: mean {mean2:g}, max {max2})</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/writelabels.py" line="226"/>
+        <source>{n_occluded} projections were hidden behind terrain (not written)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/writelabels.py" line="229"/>
+        <source>{n_edge} projections fell within the edge buffer (not written)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/writelabels.py" line="234"/>
+        <source>{n_never} geotag(s) never in view of any frame: {shown}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/writelabels.py" line="238"/>
+        <source>{value} image(s) could not be read for tiles; first: {value2}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/parameters/dem.py" line="73"/>
+        <source>DEM {source}: {value}×{value2} cells of {cell_size_m:g} m, heights {value3:.1f}…{value4:.1f} m ({vertical_datum})</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
 <context>
     <name>BirdsEyeAlgorithm</name>
     <message>
-        <location filename="../processing/algorithms/base.py" line="93"/>
+        <location filename="../processing/algorithms/base.py" line="88"/>
         <source>Cancelled by the user.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -686,65 +736,128 @@ error</source>
 <context>
     <name>ClusterDetections</name>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="146"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="45"/>
         <source>Detections (from Detect targets)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="149"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="48"/>
         <source>Geotags (optional: fills matched_geotag_ids and hit)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="152"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="51"/>
         <source>Frames of the flight (optional: only in-view geotags can match)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="156"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="55"/>
         <source>Clusters</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="158"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="57"/>
         <source>De-duplicated points</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="168"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="67"/>
         <source>DETECTIONS: the detection layer cannot be read.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="178"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="78"/>
         <source>The detection layer holds no detection with a position.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="227"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="132"/>
         <source>OUTPUT: the cluster layer cannot be created.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="249"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="154"/>
         <source>OUTPUT_POINTS: the point layer cannot be created.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/clusterdetections.py" line="70"/>
+        <source>{dropped} detection(s) without a position or score were left out</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/clusterdetections.py" line="96"/>
+        <source>No FRAMES given: every geotag is treated as in view.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/clusterdetections.py" line="103"/>
+        <source>{n_hit_clusters} of {n} clusters match an in-view geotag; {n_recovered} of {n_in_view} in-view geotags recovered.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/clusterdetections.py" line="115"/>
+        <source>{n_det} detections → {n_points} de-duplicated points → {n} clusters ({NOISE_POINTS} points are noise).</source>
+        <translation type="unfinished"></translation>
+    </message>
+</context>
+<context>
+    <name>ClusteringParametersMixin</name>
+    <message>
+        <location filename="../processing/parameters/clustering.py" line="24"/>
+        <source>De-duplication grid cell (cm)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/parameters/clustering.py" line="27"/>
+        <source>DBSCAN radius EPS (m)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/parameters/clustering.py" line="30"/>
+        <source>DBSCAN minimum points per neighbourhood (itself included)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/parameters/clustering.py" line="38"/>
+        <source>Match radius geotag ↔ cluster core points EPS_PRED (m)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/parameters/clustering.py" line="41"/>
+        <source>Edge buffer of the in-view test (px)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/parameters/clustering.py" line="58"/>
+        <source>{name}: give at least one detection layer.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/parameters/clustering.py" line="61"/>
+        <source>{name}: give one frame layer per detection layer, in the same order (got {detections} detection layer(s) and {frames} frame layer(s)).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/parameters/clustering.py" line="69"/>
+        <source>{layer}: {n} detection(s) without a position or score left out</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
 <context>
     <name>DemParametersMixin</name>
     <message>
-        <location filename="../processing/dem_parameters.py" line="26"/>
+        <location filename="../processing/parameters/dem.py" line="35"/>
         <source>Terrain model (DEM/DSM raster, projected CRS in metres; empty: level ground)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/dem_parameters.py" line="29"/>
+        <location filename="../processing/parameters/dem.py" line="38"/>
         <source>DEM heights are measured from</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/dem_parameters.py" line="32"/>
+        <location filename="../processing/parameters/dem.py" line="41"/>
         <source>Geoid undulation N at the site (m; ellipsoidal = MSL + N)</source>
         <translation type="unfinished"></translation>
     </message>
@@ -752,273 +865,378 @@ error</source>
 <context>
     <name>DesignParametersMixin</name>
     <message>
-        <location filename="../processing/design_parameters.py" line="129"/>
+        <location filename="../processing/parameters/design.py" line="54"/>
         <source>Camera calibration (Kalibr or OpenCV YAML; overrides the intrinsics below)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/design_parameters.py" line="144"/>
+        <location filename="../processing/parameters/design.py" line="69"/>
         <source>Pose sigmas, 1σ (x, y, z in metres; roll, pitch, yaw in degrees)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/design_parameters.py" line="149"/>
+        <location filename="../processing/parameters/design.py" line="74"/>
         <source>Altitudes above the ground [m], comma-separated</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/design_parameters.py" line="154"/>
+        <location filename="../processing/parameters/design.py" line="79"/>
         <source>Label tolerance r [px] (label radius at 3σ)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/design_parameters.py" line="171"/>
+        <location filename="../processing/parameters/design.py" line="105"/>
         <source>Camera from {file}: {w}×{h} px, fx {fx:.4f}, fy {fy:.4f}, cx {cx:.4f}, cy {cy:.4f} px (the typed intrinsics are ignored).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/design_parameters.py" line="182"/>
+        <location filename="../processing/parameters/design.py" line="123"/>
         <source>{name}: the focal length must be greater than 0 px, got {value:g}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/design_parameters.py" line="197"/>
+        <location filename="../processing/parameters/design.py" line="146"/>
         <source>{name}: the label tolerance must be greater than 0 px, got {value:g}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/design_parameters.py" line="204"/>
+        <location filename="../processing/parameters/design.py" line="153"/>
         <source>Cancelled by the user.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/parameters/design.py" line="51"/>
+        <source>Platform preset (sets the camera and the pose sigmas; Custom: the values below)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/parameters/design.py" line="51"/>
+        <source>Custom</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/parameters/design.py" line="92"/>
+        <source>Platform {name}. Sources: {sources}.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/parameters/design.py" line="95"/>
+        <source>Pose sigmas of the platform: {sigmas} ({hint}; the typed SIGMAS are ignored).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/parameters/design.py" line="102"/>
+        <source>{CALIBRATION}: {exc}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/parameters/design.py" line="114"/>
+        <source>Camera of the platform: {w}×{h} px, fx {fx:.4f}, fy {fy:.4f}, cx {cx:.4f}, cy {cy:.4f} px (the typed intrinsics are ignored).</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
 <context>
     <name>Detect</name>
     <message>
-        <location filename="../processing/algorithms/detect.py" line="38"/>
+        <location filename="../processing/algorithms/detect.py" line="42"/>
         <source>Frames (from Import flight log or Import DJI images)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/detect.py" line="41"/>
+        <location filename="../processing/algorithms/detect.py" line="45"/>
         <source>ONNX heatmap model (empty: the bundled demo model)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/detect.py" line="44"/>
+        <location filename="../processing/algorithms/detect.py" line="48"/>
         <source>Probability threshold (empty: the model&apos;s default)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/detect.py" line="47"/>
+        <location filename="../processing/algorithms/detect.py" line="51"/>
         <source>Edge buffer (px): detections closer to the image border are dropped</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/detect.py" line="51"/>
+        <location filename="../processing/algorithms/detect.py" line="55"/>
         <source>Detections</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/detect.py" line="53"/>
+        <location filename="../processing/algorithms/detect.py" line="57"/>
         <source>Heatmap folder (one PNG per frame)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/detect.py" line="59"/>
+        <location filename="../processing/algorithms/detect.py" line="63"/>
         <source>SHA-256 of the model</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/detect.py" line="84"/>
-        <source>FRAMES</source>
+        <location filename="../processing/algorithms/detect.py" line="85"/>
+        <source>Model {name} (sha256 {value}…): {resolution_cm:g} cm/px, tiles {tile_size} px with {overlap_px} px overlap, threshold {used:g}{value2}.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/detect.py" line="102"/>
+        <source>{detections} detections in {processed} frames ({value:.2f} per frame); {edge} dropped within {edge_buffer_px:g} px of the border, {no_ground} whose ray missed the ground; {skipped} frames skipped.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/detect.py" line="132"/>
+        <source>Frame {frame_id}: {skipped}; skipped.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/detect.py" line="150"/>
+        <source>{n_coarse} frame(s) (e.g. {items}) are coarser than 1.5× the model's resolution of {resolution_cm:g} cm/px: targets look smaller than in training, so expect fewer detections (fly lower or use a model trained at that resolution).</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
 <context>
     <name>EvaluateDetections</name>
     <message>
-        <location filename="../processing/algorithms/evaluatedetections.py" line="90"/>
+        <location filename="../processing/algorithms/evaluatedetections.py" line="66"/>
         <source>Detection layers (one per flight)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/evaluatedetections.py" line="92"/>
+        <location filename="../processing/algorithms/evaluatedetections.py" line="68"/>
         <source>Geotags</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/evaluatedetections.py" line="94"/>
+        <location filename="../processing/algorithms/evaluatedetections.py" line="70"/>
         <source>Frame layers (one per flight, same order)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/evaluatedetections.py" line="97"/>
+        <location filename="../processing/algorithms/evaluatedetections.py" line="73"/>
         <source>Review verdicts (optional: adds the POST scores)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/evaluatedetections.py" line="100"/>
+        <location filename="../processing/algorithms/evaluatedetections.py" line="76"/>
         <source>Sealed selection rule (optional: verified, its operating point is used)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/evaluatedetections.py" line="103"/>
+        <location filename="../processing/algorithms/evaluatedetections.py" line="79"/>
         <source>Scores (JSON)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/evaluatedetections.py" line="105"/>
+        <location filename="../processing/algorithms/evaluatedetections.py" line="81"/>
         <source>Report (HTML)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/evaluatedetections.py" line="116"/>
+        <location filename="../processing/algorithms/evaluatedetections.py" line="92"/>
         <source>GEOTAGS: the geotag layer cannot be read.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/evaluatedetections.py" line="119"/>
+        <location filename="../processing/algorithms/evaluatedetections.py" line="95"/>
         <source>GEOTAGS: the layer holds no point with a position.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/evaluatedetections.py" line="114"/>
+        <source>{name}: {n_frames_without_ground} frame(s) without a ground height were not counted as processed</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/evaluatedetections.py" line="121"/>
+        <source>OUTPUT_JSON: cannot write {out_json} ({exc})</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/evaluatedetections.py" line="129"/>
+        <source>OUTPUT_REPORT: cannot write {out_report} ({exc})</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
 <context>
     <name>ImportDjiImages</name>
     <message>
-        <location filename="../processing/algorithms/importdjiimages.py" line="23"/>
+        <location filename="../processing/algorithms/importdjiimages.py" line="31"/>
         <source>Folder of DJI images (JPEG)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importdjiimages.py" line="25"/>
+        <location filename="../processing/algorithms/importdjiimages.py" line="33"/>
         <source>Camera calibration (optional; Kalibr or OpenCV YAML)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importdjiimages.py" line="28"/>
+        <location filename="../processing/algorithms/importdjiimages.py" line="36"/>
         <source>Output CRS (empty: UTM zone of the site)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importdjiimages.py" line="31"/>
+        <location filename="../processing/algorithms/importdjiimages.py" line="39"/>
         <source>DJI frames</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importdjiimages.py" line="33"/>
+        <location filename="../processing/algorithms/importdjiimages.py" line="41"/>
         <source>Frames written</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importdjiimages.py" line="34"/>
+        <location filename="../processing/algorithms/importdjiimages.py" line="42"/>
         <source>Images that cannot be placed</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/importdjiimages.py" line="56"/>
+        <source>Not placed: {error}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/importdjiimages.py" line="59"/>
+        <source>Camera: {width}×{height} px, fx {fx:.1f}, fy {fy:.1f} ({source})</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/importdjiimages.py" line="63"/>
+        <source>Output CRS: {value}</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
 <context>
     <name>ImportFlightLog</name>
     <message>
-        <location filename="../processing/algorithms/importflightlog.py" line="23"/>
+        <location filename="../processing/algorithms/importflightlog.py" line="39"/>
         <source>Pose log (BirdsEye CSV or flight_data.db)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importflightlog.py" line="26"/>
+        <location filename="../processing/algorithms/importflightlog.py" line="42"/>
         <source>Image folder (images.csv or &lt;sec&gt;.&lt;nsec&gt;.png|jpg files)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importflightlog.py" line="29"/>
+        <location filename="../processing/algorithms/importflightlog.py" line="45"/>
         <source>Camera calibration (Kalibr camchain or OpenCV YAML)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importflightlog.py" line="32"/>
+        <location filename="../processing/algorithms/importflightlog.py" line="48"/>
         <source>Camera frame rate (frames/s)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importflightlog.py" line="35"/>
+        <location filename="../processing/algorithms/importflightlog.py" line="51"/>
         <source>Minimum altimeter SNR (dB)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importflightlog.py" line="37"/>
+        <location filename="../processing/algorithms/importflightlog.py" line="53"/>
         <source>RTK filter</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importflightlog.py" line="39"/>
+        <location filename="../processing/algorithms/importflightlog.py" line="55"/>
         <source>UTM zone of flight_data.db x, y (only for flight_data.db)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importflightlog.py" line="41"/>
+        <location filename="../processing/algorithms/importflightlog.py" line="57"/>
         <source>Output CRS (empty: UTM zone of the site)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importflightlog.py" line="44"/>
+        <location filename="../processing/algorithms/importflightlog.py" line="60"/>
         <source>Frames</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importflightlog.py" line="46"/>
+        <location filename="../processing/algorithms/importflightlog.py" line="62"/>
         <source>Flight line</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/importflightlog.py" line="77"/>
+        <source>Camera: {width}×{height} px, fx {fx:.1f}, fy {fy:.1f} ({source})</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/importflightlog.py" line="94"/>
+        <source>Output CRS: {value}</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
 <context>
     <name>ImportGeotags</name>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="31"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="53"/>
         <source>Geotag file (rover CSV, CSV with header, NMEA)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="34"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="56"/>
         <source>…or a point layer</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="36"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="58"/>
         <source>File format</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="40"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="62"/>
         <source>Fix filter</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="42"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="64"/>
         <source>Antenna pole height (m), subtracted from heights</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="45"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="67"/>
         <source>Output CRS (empty: UTM zone of the site)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="47"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="69"/>
         <source>Geotags</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="58"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="80"/>
         <source>Give either a geotag file (INPUT) or a point layer (INPUT_LAYER), not both and not neither.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="71"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="93"/>
         <source>The input holds no usable geotag.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="88"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="112"/>
         <source>No geotag is left to write (all were filtered out).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/importgeotags.py" line="96"/>
+        <source>{n_problems} bad row(s) left out; first: {examples}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/importgeotags.py" line="105"/>
+        <source>{dropped_not_fixed} geotag(s) without an RTK fixed solution were left out (fix filter: RTK fixed only)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/importgeotags.py" line="109"/>
+        <source>{duplicates} geotag(s) lie within 2 cm of an earlier one (flag duplicate_2cm)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/importgeotags.py" line="114"/>
+        <source>Output CRS: {value}</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
@@ -1093,92 +1311,92 @@ error</source>
 <context>
     <name>PlanFlight</name>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="40"/>
+        <location filename="../processing/algorithms/planflight.py" line="91"/>
         <source>Geotags (point layer)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="42"/>
+        <location filename="../processing/algorithms/planflight.py" line="93"/>
         <source>Selected geotags only</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="44"/>
+        <location filename="../processing/algorithms/planflight.py" line="95"/>
         <source>Geotag id field (empty: &apos;id&apos; if present, else the feature number)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="47"/>
+        <location filename="../processing/algorithms/planflight.py" line="98"/>
         <source>Home: take-off and landing point (optional)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="53"/>
+        <location filename="../processing/algorithms/planflight.py" line="104"/>
         <source>Camera calibration (Kalibr or OpenCV YAML; optional)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="59"/>
+        <location filename="../processing/algorithms/planflight.py" line="110"/>
         <source>Capture</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="69"/>
+        <location filename="../processing/algorithms/planflight.py" line="120"/>
         <source>Plan even if the points spread over more than 10 km</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="73"/>
+        <location filename="../processing/algorithms/planflight.py" line="124"/>
         <source>Output CRS (empty: UTM zone of the site)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="77"/>
+        <location filename="../processing/algorithms/planflight.py" line="128"/>
         <source>Waypoints</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="79"/>
+        <location filename="../processing/algorithms/planflight.py" line="130"/>
         <source>Route</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="88"/>
+        <location filename="../processing/algorithms/planflight.py" line="139"/>
         <source>Mission files written</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="110"/>
+        <location filename="../processing/algorithms/planflight.py" line="161"/>
         <source>GEOTAGS: the geotag layer could not be opened.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="114"/>
+        <location filename="../processing/algorithms/planflight.py" line="165"/>
         <source>SELECTED_ONLY is set but no geotag of layer &apos;{}&apos; is selected: select the geotags of the partition to fly, or clear SELECTED_ONLY.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="126"/>
+        <location filename="../processing/algorithms/planflight.py" line="177"/>
         <source>GEOTAGS: layer &apos;{}&apos; has no features: there is nothing to fly over.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="164"/>
+        <location filename="../processing/algorithms/planflight.py" line="215"/>
         <source>With this camera at {alt:g} m and {v:g} m/s, one photo every {s:.2f} s gives {o:g} % forward overlap.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="226"/>
+        <location filename="../processing/algorithms/planflight.py" line="277"/>
         <source>{fmt}: {files}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="233"/>
+        <location filename="../processing/algorithms/planflight.py" line="284"/>
         <source>{g} geotag(s) → {w} waypoint(s) in {m} mission(s); route {km:.2f} km; estimated flight time {t:.1f} min at {v:g} m/s and {alt:g} m.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="239"/>
+        <location filename="../processing/algorithms/planflight.py" line="290"/>
         <source>  mission {n}: {w} waypoint(s), {l:.0f} m, {t:.1f} min</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1186,116 +1404,151 @@ error</source>
 <context>
     <name>ScreenCheckpoints</name>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="45"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="70"/>
         <source>ONNX checkpoints</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="47"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="72"/>
         <source>Validation flights (frame layers with their images)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="49"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="74"/>
         <source>Geotags</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="51"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="76"/>
         <source>Detection threshold (empty: each checkpoint&apos;s default)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="55"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="80"/>
         <source>Pixel F1: match radius (px)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="58"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="83"/>
         <source>Collapsed if the distinct-position fraction is below</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="61"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="86"/>
         <source>Too sparse if detections per frame on the worst flight are below</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="64"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="89"/>
         <source>Checkpoint table (CSV)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="66"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="91"/>
         <source>Checkpoint table (JSON)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="68"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="93"/>
         <source>Frontier plot (PNG)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="70"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="95"/>
         <source>Healthy checkpoints</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="76"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="101"/>
         <source>CHECKPOINTS: give at least one ONNX file.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="78"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="103"/>
         <source>FRAMES: give at least one validation flight.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="88"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="109"/>
         <source>GEOTAGS: the geotag layer cannot be read.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="173"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="196"/>
         <source>Cancelled by the user.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="169"/>
+        <source>{checkpoint}: {state}; recall_pre {value}, gmcf_pre {value2}, pixel F1 {value3}, review load {value4}{value5}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="199"/>
+        <source>{name} on {flight_name}: {skipped} frame(s) skipped (unreadable image or no ground height)</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
 <context>
     <name>SealPreregistration</name>
     <message>
-        <location filename="../processing/algorithms/sealpreregistration.py" line="42"/>
+        <location filename="../processing/algorithms/sealpreregistration.py" line="53"/>
         <source>ONNX checkpoints (one arm each)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sealpreregistration.py" line="44"/>
+        <location filename="../processing/algorithms/sealpreregistration.py" line="55"/>
         <source>Detection threshold of the arms</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sealpreregistration.py" line="48"/>
+        <location filename="../processing/algorithms/sealpreregistration.py" line="59"/>
         <source>Descriptive configurations (optional: a sweep or screen JSON, recorded only)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sealpreregistration.py" line="51"/>
+        <location filename="../processing/algorithms/sealpreregistration.py" line="62"/>
         <source>Note (what was chosen on which flights, what will be scored)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sealpreregistration.py" line="54"/>
+        <location filename="../processing/algorithms/sealpreregistration.py" line="65"/>
         <source>Sealed rule (JSON)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sealpreregistration.py" line="56"/>
+        <location filename="../processing/algorithms/sealpreregistration.py" line="67"/>
         <source>Seal (SHA-256)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sealpreregistration.py" line="61"/>
+        <location filename="../processing/algorithms/sealpreregistration.py" line="72"/>
         <source>CHECKPOINTS: give at least one ONNX file.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/sealpreregistration.py" line="78"/>
+        <source>CHECKPOINTS: {path} is not a file</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/sealpreregistration.py" line="80"/>
+        <source>Arm {name}: sha256 {model_digest}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/sealpreregistration.py" line="91"/>
+        <source>OUTPUT: cannot write {out} ({exc})</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/sealpreregistration.py" line="93"/>
+        <source>Sealed at {sealed_at}: {seal}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/sealpreregistration.py" line="95"/>
+        <source>Record this seal somewhere you cannot edit later (an e-mail, a lab notebook, a commit): the seal proves the rule unchanged only against a copy kept elsewhere.</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
@@ -1322,12 +1575,12 @@ error</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sensorbound.py" line="93"/>
+        <location filename="../processing/algorithms/sensorbound.py" line="96"/>
         <source>{name}: the stride {stride} px does not divide the frame size, so the raster stops at the last multiple of the stride; the JSON suprema still include the frame edges.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sensorbound.py" line="102"/>
+        <location filename="../processing/algorithms/sensorbound.py" line="105"/>
         <source>{name}: cannot create the GeoTIFF {path}</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1335,101 +1588,171 @@ error</source>
 <context>
     <name>SimulateCampaign</name>
     <message>
-        <location filename="../processing/algorithms/simulatecampaign.py" line="62"/>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="92"/>
         <source>Pose noise Σ0: x, y, z (m), roll, pitch, yaw (deg)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/simulatecampaign.py" line="65"/>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="95"/>
         <source>Noise off (ideal poses, altimeter and geotags)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/simulatecampaign.py" line="67"/>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="97"/>
         <source>Render frames (off: poses and geotags only)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/simulatecampaign.py" line="69"/>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="102"/>
         <source>Terrain</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/simulatecampaign.py" line="76"/>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="115"/>
         <source>Geoid undulation N for altMSL (m; empty: EGM96 at the site)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/simulatecampaign.py" line="80"/>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="119"/>
         <source>Output folder</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/simulatecampaign.py" line="84"/>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="123"/>
         <source>Terrain model (truth/dem.tif, ellipsoidal heights; none for flat terrain)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/simulatecampaign.py" line="86"/>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="126"/>
         <source>Frames</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="99"/>
+        <source>Platform</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="109"/>
+        <source>Side overlap of neighbouring lines (fraction; empty: {ins:g} for the payload, {dji:g} for a DJI drone)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="113"/>
+        <source>DJI drone undistorts its JPEGs (DewarpFlag 1)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="125"/>
+        <source>Frames folder</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="160"/>
+        <source>Simulating seed {seed}: {n_targets} targets in a {field_width_m:g} × {field_length_m:g} m field, flown at {altitude_m:g} m, {speed_ms:g} m/s, {fps:g} frames/s.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="167"/>
+        <source>TERRAIN is flat: SLOPE_DEG and RELIEF_M are ignored (choose plane or hills).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="170"/>
+        <source>TERRAIN is a plane: RELIEF_M is ignored (choose hills).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="176"/>
+        <source>A DJI drone: photos on the lines with {forward_overlap:.0%} forward and {effective_side_overlap:.0%} side overlap; the pose in each JPEG&apos;s metadata carries heading, tilt and height errors (truth/dji_metadata_errors.csv).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="186"/>
+        <source>Wrote {n_frames} frames, {log}{n_geotags} geotags to {folder}.</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
 <context>
     <name>SweepOperatingPoints</name>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="67"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="75"/>
         <source>Detection layers (one per flight, detected at the lowest threshold)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="70"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="78"/>
         <source>Geotags</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="72"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="80"/>
         <source>Frame layers (one per flight, same order)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="76"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="84"/>
         <source>De-duplication grid cell (cm)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="79"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="87"/>
         <source>Edge buffer of the in-view test (px)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="82"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="90"/>
         <source>Credible: mean geotags per hit cluster at most</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="85"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="93"/>
         <source>Credible: mean median cluster extent at most (m)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="88"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="96"/>
         <source>Configurations (CSV)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="90"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="98"/>
         <source>Configurations and Pareto front (JSON)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="93"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="101"/>
         <source>Frontier plot (PNG)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="114"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="123"/>
         <source>GEOTAGS: the geotag layer cannot be read.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="116"/>
+        <source>THRESHOLDS: {name} was detected at threshold {t}, above the sweep&apos;s lowest threshold {value}; detections below {t} were never made. Run Detect at the lowest threshold of the sweep, or raise THRESHOLDS.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="135"/>
+        <source>{name}: {n_detections} detections, {value} geotags in view</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="137"/>
+        <source>Sweeping {size} configurations ({items}: threshold × eps × min_samples × eps_pred)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="173"/>
+        <source>Pareto: threshold {threshold}, eps {eps_m} m, min_samples {min_samples}, eps_pred {eps_pred_m} m → recall_pre {recall_pre:.3f}, gmcf_pre {gmcf_pre:.3f}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="179"/>
+        <source>No configuration passed the credibility filter.</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
@@ -1489,106 +1812,103 @@ error</source>
 <context>
     <name>WriteLabels</name>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="47"/>
+        <location filename="../processing/algorithms/writelabels.py" line="79"/>
         <source>Geotags (surveyed targets)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="49"/>
+        <location filename="../processing/algorithms/writelabels.py" line="81"/>
         <source>Frames (from Import flight log or Import DJI images)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="52"/>
+        <location filename="../processing/algorithms/writelabels.py" line="84"/>
         <source>Soft-label σ (px); empty: the sensor-bound dock's value, else 10</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="55"/>
+        <location filename="../processing/algorithms/writelabels.py" line="87"/>
         <source>…or σ from a sensorbound result (JSON): r / 3</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="58"/>
+        <location filename="../processing/algorithms/writelabels.py" line="90"/>
         <source>Edge buffer (px): geotags this close to the border are &apos;edge&apos;, not labels</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="62"/>
+        <location filename="../processing/algorithms/writelabels.py" line="94"/>
         <source>Write one soft-label raster per frame</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="64"/>
+        <location filename="../processing/algorithms/writelabels.py" line="96"/>
         <source>Write a tiled training set (image and label tiles)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="66"/>
+        <location filename="../processing/algorithms/writelabels.py" line="98"/>
         <source>Tile size (px)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="69"/>
+        <location filename="../processing/algorithms/writelabels.py" line="101"/>
         <source>Negative tiles kept per positive tile</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="72"/>
+        <location filename="../processing/algorithms/writelabels.py" line="104"/>
         <source>Random seed for the negative-tile sample</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="75"/>
+        <location filename="../processing/algorithms/writelabels.py" line="107"/>
         <source>Write COCO-keypoints JSON</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="77"/>
+        <location filename="../processing/algorithms/writelabels.py" line="109"/>
         <source>Label folder</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="78"/>
+        <location filename="../processing/algorithms/writelabels.py" line="110"/>
         <source>Frames with label counts</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="81"/>
+        <location filename="../processing/algorithms/writelabels.py" line="113"/>
         <source>Geotags with frames seen</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="107"/>
+        <location filename="../processing/algorithms/writelabels.py" line="140"/>
         <source>GEOTAGS and FRAMES are both required.</source>
         <translation type="unfinished"></translation>
     </message>
-</context>
-<context>
-    <name>alg</name>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="50"/>
-        <source>De-duplication grid cell (cm)</source>
+        <location filename="../processing/algorithms/writelabels.py" line="124"/>
+        <source>SIGMA_PX is given: SENSOR_BOUND_JSON is ignored</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="53"/>
-        <source>DBSCAN radius EPS (m)</source>
+        <location filename="../processing/algorithms/writelabels.py" line="130"/>
+        <source>σ = {value:g} px from the project (sensor-bound calculator)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="56"/>
-        <source>DBSCAN minimum points per neighbourhood (itself included)</source>
+        <location filename="../processing/algorithms/writelabels.py" line="159"/>
+        <source>{n_records} frames ({n_groups} camera(s)), {n_geotags} geotags, σ = {sigma:g} px, edge buffer {edge_buffer_px:g} px</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="64"/>
-        <source>Match radius geotag ↔ cluster core points EPS_PRED (m)</source>
+        <location filename="../processing/algorithms/writelabels.py" line="167"/>
+        <source>{n_steep} frame(s) lie on terrain steeper than the level plane's 10° envelope (flag steep_terrain; first: {items}): their labels drift off target — give the DEM (parameter DEM)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="67"/>
-        <source>Edge buffer of the in-view test (px)</source>
+        <location filename="../processing/algorithms/writelabels.py" line="173"/>
+        <source>{n_no_ground} frame(s) have no ground height (no usable altimeter reading, flag no_ground_height) and get no labels; first: {items}</source>
         <translation type="unfinished"></translation>
     </message>
 </context>

@@ -1,7 +1,7 @@
 """The sensor-bound calculator dock: a pose-noise budget against a label tolerance, live.
 
-Every number comes from ``core.sensor_bound.evaluate_bounds``, the function behind
-``birdseye:sensorbound``; the λ_max plot is ``core.bound_report.LmaxFieldPlot``, the one in the
+Every number comes from ``core.design.sensor_bound.evaluate_bounds``, the function behind
+``birdseye:sensorbound``; the λ_max plot is ``core.design.bound_report.LmaxFieldPlot``, the one in the
 algorithm's HTML report. While the user types, the bound is re-evaluated (debounced) on a coarse grid
 (``PREVIEW_MAX_POINTS``; the frame edges, where the worst pixel lies, are always on it); "Evaluate every
 pixel" runs the full-resolution grid, as the algorithm does by default.

@@ -1,6 +1,6 @@
 """The review's storage and inputs: the append-only verdict log in a GeoPackage, and layers → core.
 
-Verdict log (DESIGN §4 "Detections, clusters, review")
+Verdict log (docs/design.md#review-log)
 -----------------------------------------------------
 Table :data:`VERDICT_TABLE` of a GeoPackage (the first detection layer's, or one next to the project),
 a point layer in EPSG:4326 so QGIS can show it, and the ``REVIEW`` input of ``evaluatedetections``.

@@ -2,7 +2,7 @@
 ``terrainslope``): the camera, the pose sigmas, altitudes and the tolerance.
 
 Units at this interface: intrinsics in px, altitudes in metres above the ground, sigmas x, y, z in
-metres and roll, pitch, yaw in degrees (``core.sensor_bound.AXIS_CONVENTION``), tolerance r in px at 3σ.
+metres and roll, pitch, yaw in degrees (``core.design.sensor_bound.AXIS_CONVENTION``), tolerance r in px at 3σ.
 """
 from __future__ import annotations
 

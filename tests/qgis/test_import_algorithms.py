@@ -133,6 +133,10 @@ def test_import_geotags_refuses_unclear_input(birdseye_provider, tmp_path):
     assert "geographic CRS" in message and "OUTPUT_CRS" in message
     path.write_text("a,b,c\n1,2,3\n")
     assert "no latitude column" in run_failing("importgeotags", {"INPUT": str(path), "FORMAT": 2})
+    photo = tmp_path / "DJI_0018.JPG"
+    photo.write_bytes((Path(__file__).resolve().parents[1] / "data" / "brighton_beach" / "DJI_0018.JPG").read_bytes())
+    message = run_failing("importgeotags", {"INPUT": str(photo)})
+    assert "DJI_0018.JPG" in message and "is not a text CSV (a JPEG image)" in message and "\ufffd" not in message
 
 
 def test_geotag_style_is_applied_when_loaded(birdseye_provider, tmp_path):

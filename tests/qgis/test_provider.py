@@ -1,6 +1,6 @@
 """The ``birdseye`` provider and the plugin object, as QGIS sees them.
 
-Every algorithm module is checked against the contract in DESIGN §5 and base.py: one algorithm per
+Every algorithm module is checked against the contract in docs/design.md#algorithms and base.py: one algorithm per
 file named after its id, a group from the fixed set, UPPER_SNAKE parameter names, a help file, and
 ``createInstance`` giving a fresh object of the same class. The plugin's ``initGui``/``unload`` are run
 against pytest-qgis's iface (patched in conftest to act on a real main window).

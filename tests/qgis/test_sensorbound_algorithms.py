@@ -220,7 +220,7 @@ def test_montecarlobound_matches_the_core_and_the_linearisation_holds(birdseye_p
         assert entry["check"] == json.loads(json.dumps(check.to_json_dict()))
         assert entry["scaling"] == json.loads(json.dumps(study.to_json_dict()))
         assert entry["kappa_exact"] == pytest.approx(sb.evaluate_bound(DEPLOYED, altitude, DEPLOYED_SIGMAS).kappa_exact)
-        # the acceptance: sKLD < 1e-2 at scale 1 for the deployed platform at 10 and 20 m
+        # acceptance: sKLD < 1e-2 at scale 1 for the deployed platform at 10 and 20 m
         assert entry["max_skld"] < mc.SKLD_THRESHOLD and entry["linearisation_holds"] is True
         assert set(entry["scaling"]["per_axis"]) == set(sb.AXES)
     assert sum("the linearised bound holds" in line for line in feedback.infos) == 2

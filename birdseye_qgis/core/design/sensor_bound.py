@@ -7,7 +7,7 @@ distortion) looks down on a level plane at depth ``Z`` = the flying altitude in 
 point seen at pixel ``u = (u, v)`` lies at ``X_c = Z · (x, y, 1)`` in the camera frame (OpenCV optical
 frame: x right, y down, z forward), with normalised coordinates ``x = (u − cx)/fx``, ``y = (v − cy)/fy``.
 
-Pose error is a *left* perturbation of ``T_cam_world`` (DESIGN §3): ``X_c' = exp(ξ^) X_c`` with the
+Pose error is a *left* perturbation of ``T_cam_world`` (docs/design.md#pose-noise): ``X_c' = exp(ξ^) X_c`` with the
 twist ``ξ = [ρ, φ]`` (ρ in metres, φ in radians, both in the camera frame). To first order the label
 moves by ``J(u) ξ`` px with
 
@@ -47,7 +47,7 @@ Axis convention (interface order ``x, y, z, roll, pitch, yaw``; metres and degre
 * ``x, y, z`` are the translation ρ in the camera frame. For a nadir camera x = image right and
   y = image down are horizontal, z (the optical axis) is vertical. RTK horizontal noise is normally
   isotropic (σx = σy), which makes the heading irrelevant.
-* ``roll, pitch, yaw`` are the body attitude errors (forward-right-down body, DESIGN §3). The camera
+* ``roll, pitch, yaw`` are the body attitude errors (forward-right-down body, docs/design.md#attitude). The camera
   looks straight down with body forward = image up, so camera x = body right, camera y = −body forward,
   camera z = body down. Hence roll (about body forward) is a rotation about −y_c → φ_y, pitch (about
   body right) is a rotation about x_c → φ_x, yaw (about body down) is a rotation about the optical

@@ -4,7 +4,7 @@ Set-up (all lengths in metres, pixels in px):
 
 * A nadir camera (intrinsics ``fx, fy, cx, cy``) flies at height ``h`` = altitude above the *nadir
   point* N, the ground point straight below it; the altimeter gives ``h`` exactly.
-* The label writer's ground model is the level plane through N (DESIGN §3): every target is assumed to
+* The label writer's ground model is the level plane through N (docs/design.md#ground): every target is assumed to
   lie at N's height.
 * The true ground is a plane through N tilted by the slope ``α``. A target T at horizontal distance
   ``d`` from N, in the direction of steepest ascent (the worst case), lies ``d·tan α`` above N.

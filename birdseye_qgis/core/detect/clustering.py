@@ -4,7 +4,7 @@ Everything here works in a horizontal metric frame: ``xy`` arrays are (east, nor
 :class:`~.geodesy.LocalFrame` (the callers convert any layer CRS there), so a 3 cm cell is 3 cm
 wherever the field lies.
 
-The chain (DESIGN §1 step 6, issue "Clusters on the map and honest scores"):
+The chain (docs/design.md#workflow, step 6):
 
 1. **De-duplicate** on a square grid of ``cell_m`` (default 3 cm): every occupied cell becomes one
    point at the mean position of its detections. A burrow seen by 40 frames at the same spot gives a

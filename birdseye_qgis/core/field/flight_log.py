@@ -1,6 +1,6 @@
 """Flight logs → frames: pose-log parsing, strobe↔image sync, ground heights, footprints, frame records.
 
-Inputs (DESIGN §4):
+Inputs (docs/design.md §4.2–§4.3):
 
 * **BirdsEye pose log**: CSV with a header, one row per INS message:
   ``time_s, lat_deg, lon_deg, height_m, qw, qx, qy, qz, rtk_status, radalt_m, radalt_snr, strobe``

@@ -1,6 +1,6 @@
 """Rover geotags: read the survey files into one table, keep file order, flag what needs a look.
 
-Formats (DESIGN §4):
+Formats (docs/design.md#geotags):
 
 * **BirdsEye rover CSV** (no header): ``lat, lon, altWGS84, altMSL, gpsStatus, label`` — degrees,
   metres; ``gpsStatus`` is the NMEA GGA fix quality (4 RTK fixed, 5 RTK float, 2 DGPS, 1 autonomous).
@@ -9,7 +9,7 @@ Formats (DESIGN §4):
   common names (``lat``/``latitude``, ``lon``/``lng``/``longitude``, ``h``/``height``/``alt``, …).
 * **NMEA GGA** logs (any talker: ``$GPGGA``, ``$GNGGA``…): every GGA sentence with a position is one
   geotag; ellipsoidal height = MSL altitude + geoid separation (fields 9 and 11).
-* Any QGIS point layer, read by ``layers.py`` and handed over as columns (:func:`geotags_from_columns`).
+* Any QGIS point layer, read by ``qgis_io/layers.py`` and handed over as columns (:func:`geotags_from_columns`).
 
 Rows are numbered as lines of the file (1 = first line), so a message's "row N" is the line a user
 sees in a text editor or spreadsheet. A file with some bad rows keeps the good ones; the bad ones are
@@ -155,7 +155,34 @@ def read_nmea(path) -> Geotags:
 def _read_lines(path: Path) -> list[str]:
     if not path.is_file():
         raise InputError("file not found", source=str(path))
-    return split_lines(path.read_bytes())
+    data = path.read_bytes()
+    kind = binary_kind(data)
+    if kind is not None:
+        raise InputError(f"is not a text CSV ({kind}); give the rover's CSV or NMEA log, or load a point layer "
+                         "and use it as the input layer", source=str(path))
+    return split_lines(data)
+
+
+#: File signatures of what users pick by mistake instead of a CSV.
+_SIGNATURES = ((b"\x89PNG", "a PNG image"), (b"\xff\xd8\xff", "a JPEG image"), (b"PK\x03\x04", "a ZIP archive"),
+               (b"%PDF", "a PDF document"), (b"SQLite format 3\x00", "an SQLite database or GeoPackage"),
+               (b"II*\x00", "a TIFF image"), (b"MM\x00*", "a TIFF image"), (b"\xd0\xcf\x11\xe0", "an old Office file"))
+
+
+def binary_kind(data: bytes) -> str | None:
+    """What a file that is not text looks like ("a PNG image", …, "binary data"), or None for text.
+
+    Text may hold a BOM and the odd undecodable byte (they fail later as values, with their row); a known
+    signature, a NUL byte or mostly control bytes in the first 4 kB mean the file is not text at all.
+    """
+    for signature, kind in _SIGNATURES:
+        if data.startswith(signature):
+            return kind
+    head = data[:4096]
+    if b"\x00" in head:
+        return "binary data"
+    control = sum(b < 32 and b not in (9, 10, 13, 12) for b in head)
+    return "binary data" if head and control > 0.1 * len(head) else None
 
 
 def split_lines(data: bytes) -> list[str]:

@@ -1,6 +1,6 @@
 """Camera model: pinhole + Brown–Conrady distortion, and calibration loaders.
 
-Conventions (DESIGN §3):
+Conventions (docs/design.md#camera):
 
 * Camera frame = OpenCV optical frame: x right, y down, z forward (along the optical axis).
 * Pixel (0, 0) is the *centre* of the top-left pixel (OpenCV convention); u grows right, v down.

@@ -1,6 +1,6 @@
 """Geodesy: WGS84 ↔ a local metric frame ↔ the output CRS.
 
-Frames (DESIGN §3):
+Frames (docs/design.md#world):
 
 * Inputs are WGS84 latitude, longitude (degrees) and *ellipsoidal* height (metres).
 * Geometry is computed in a :class:`LocalFrame`: an east-north-up tangent frame at a site origin,

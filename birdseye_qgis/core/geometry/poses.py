@@ -1,6 +1,6 @@
 """Frame poses and the per-frame camera geometry derived from them.
 
-A :class:`FramePoses` is what a frame layer carries (DESIGN §3): the IMU/body position in WGS84
+A :class:`FramePoses` is what a frame layer carries (docs/design.md#frame-layer): the IMU/body position in WGS84
 (lat, lon, ellipsoidal height), the attitude quaternion ``q = (qw, qx, qy, qz)`` with
 ``v_ned = R(q) v_body`` (body = forward-right-down = the IMU frame of ``T_cam_imu``), and the
 ellipsoidal height of the level ground under the frame (from the altimeter, or NaN when a DEM

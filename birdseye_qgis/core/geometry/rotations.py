@@ -1,6 +1,6 @@
 """Rotation and pose conventions used throughout BirdsEye.
 
-Conventions (DESIGN §3), stated once here:
+Conventions (docs/design.md#attitude), stated once here:
 
 * Body / INS frame: x forward, y right, z down (FRD).
 * Attitude quaternion ``q = (qw, qx, qy, qz)`` (Hamilton, scalar first) with

@@ -1,6 +1,6 @@
 """Projected labels: every geotag in every frame that sees it, written as a training set.
 
-Per DESIGN §4, one output folder per run holds
+One output folder per run (docs/design.md#labels) holds
 
 * ``labels.csv`` — ``frame_id, image, geotag_id, label, u, v, sigma_px, margin_px``: u, v in the
   original (distorted) image, OpenCV pixel-centre convention; one row per geotag per frame in view;

@@ -1,6 +1,6 @@
 """Survey flight planning over geotags: merge → order (TSP) → split into missions → estimate.
 
-Frames and units (DESIGN §3):
+Frames and units (docs/design.md#world):
 
 * Geotags and home come in as WGS84 latitude/longitude (degrees). All geometry runs in a
   :class:`~.geodesy.LocalFrame` (east-north-up, metres) centred on the site; distances are

@@ -1,4 +1,4 @@
-"""Review units, verdict actions, input digests and image chips for the adjudication dock (issue 9).
+"""Review units, verdict actions, input digests and image chips for the review dock.
 
 Everything the review dock decides lives here, free of QGIS and Qt; ``review_store`` persists it and
 ``gui/review`` shows it. Scores are never computed here: the dock calls
@@ -53,5 +53,5 @@ Chips
 ``window_px`` around the detection (moved inside the image), the unit's detections in that frame and
 the geotags nearby projected into it (:func:`.projection.project_pairs` on the level ground);
 :func:`render_chip` draws them (detections as circles, geotags as crosses). Pixels follow the OpenCV
-convention (DESIGN §3): (0, 0) is the centre of the top-left pixel.
+convention (docs/design.md#camera): (0, 0) is the centre of the top-left pixel.
 """

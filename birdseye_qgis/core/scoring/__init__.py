@@ -1,6 +1,6 @@
 """Honest scores for a detector: recall and the geotag-matched cluster fraction, before and after review.
 
-Definitions (issue "Clusters on the map and honest scores"; the help texts repeat them)
+Definitions (docs/design.md#scores; the help texts repeat them)
 -------------------------------------------------------------------------------------
 Detections of all processed frames are back-projected, de-duplicated on a ``dedup_cm`` grid and
 clustered with DBSCAN (``eps_m``, ``min_samples``) in a local metric frame (:mod:`.clustering`).
@@ -26,7 +26,7 @@ clustered with DBSCAN (``eps_m``, ``min_samples``) in a local metric frame (:mod
   then divided once (:meth:`PreCounts.__add__`); ratios are never averaged. A geotag in view in two
   flights counts once per flight.
 
-Verdict log API (for the review dock, issue 9)
+Verdict log API (for the review dock)
 ----------------------------------------------
 The dock stores an append-only table; this module needs from each row only::
 

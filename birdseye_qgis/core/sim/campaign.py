@@ -1,18 +1,18 @@
-"""A deterministic synthetic survey campaign, written in the file contracts of DESIGN §4.
+"""A deterministic synthetic survey campaign, written in the file contracts of docs/design.md#files.
 
 What it simulates (every random draw from the SEED; same seed → identical files):
 
-* a field (:mod:`.sim_field`) centred on the site, with burrow targets and look-alikes, on level
-  ground or on terrain (:mod:`.sim_terrain`): a tilted plane or a plane with smooth hills, given as a
+* a field (:mod:`.field`) centred on the site, with burrow targets and look-alikes, on level
+  ground or on terrain (:mod:`.terrain`): a tilted plane or a plane with smooth hills, given as a
   DEM (ellipsoidal heights, the site's UTM zone) that is written with the campaign;
 * the rover survey: a geotag per target (RTK noise, a few float fixes), a few targets missed and a
   few spurious points;
-* the flight (:mod:`.sim_flight`): lawnmower lines at the set speed and height above the ground
+* the flight (:mod:`.flight`): lawnmower lines at the set speed and height above the ground
   (following the terrain), a multirotor's attitude, an INS log at ``ins_rate_hz`` with Σ0 noise
   (position in the local east/north/up axes, attitude as small body rotations about roll/pitch/yaw),
   a radar altimeter ranging along the body z axis to the terrain, and strobe rows at the camera's
   exposures;
-* the frames (:mod:`.sim_render`): every pixel's ray through the *true* pose and the lens onto the
+* the frames (:mod:`.render`): every pixel's ray through the *true* pose and the lens onto the
   field's terrain, with a real camera's photometry, written as timestamped JPEGs.
 
 Two platforms (``platform``):

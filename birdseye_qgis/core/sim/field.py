@@ -2,10 +2,10 @@
 
 Everything here is a function of the ground point (local east, north in metres, the site's
 :class:`~.geodesy.LocalFrame`), so a frame is rendered by evaluating :meth:`FieldScene.radiance` at the
-ground points of its pixels (see :mod:`.sim_render`). Layers, from the bottom:
+ground points of its pixels (see :mod:`.render`). Layers, from the bottom:
 
 * **soil** — colour and moisture at metre scale, patches at decimetre scale, grain and clods at
-  millimetre–centimetre scale (band-limited noise textures, :mod:`.sim_texture`), micro-relief lit by
+  millimetre–centimetre scale (band-limited noise textures, :mod:`.texture`), micro-relief lit by
   the sun, and shrinkage cracks (thin dark lines) in some patches;
 * **features** — the targets (burrows: a dark hole with a lighter crescent of loose soil) and
   target-sized look-alikes that are *not* targets: dark moist patches, shaded depressions, loose-soil
@@ -19,7 +19,7 @@ ground points of its pixels (see :mod:`.sim_render`). Layers, from the bottom:
 * **light** — sky (ambient) plus sun (direct), moving cloud shadows on the direct part.
 
 :meth:`FieldScene.radiance` returns linear RGB radiance (before exposure, vignetting, blur, noise and
-tone curve, which :mod:`.sim_render` applies).
+tone curve, which :mod:`.render` applies).
 """
 from __future__ import annotations
 

@@ -1,6 +1,6 @@
 """The simulated survey flight: lawnmower lines over the field, flown by a multirotor.
 
-Frames (DESIGN §3): positions in the site's :class:`~.geodesy.LocalFrame` (east, north, up; metres),
+Frames (docs/design.md#frames): positions in the site's :class:`~.geodesy.LocalFrame` (east, north, up; metres),
 attitudes as body (forward-right-down) → local rotations, converted to the pose log's body → NED
 quaternions at each pose's own position (so yaw is measured from *true* north there).
 

@@ -3,8 +3,8 @@
 For each pixel the camera's own back-projection (:meth:`~.camera.CameraModel.pixel_rays`, the inverse
 of the distortion the labels later apply) gives the camera-frame ray, computed once per camera and
 reused for every frame. A frame's true pose (:class:`~.poses.FrameGeometry`) turns the rays into the
-local frame, the terrain (:mod:`.sim_terrain`) gives their ground points, and the field
-(:mod:`.sim_field`) their radiance. The camera then adds what a real one does: vignetting, exposure and
+local frame, the terrain (:mod:`.terrain`) gives their ground points, and the field
+(:mod:`.field`) their radiance. The camera then adds what a real one does: vignetting, exposure and
 white-balance drift, defocus and motion blur (kernels symmetric about the pixel, so a target's centre
 does not move), shot and read noise, a tone curve, and JPEG compression.
 

@@ -238,3 +238,27 @@ def test_fuzz_binary_content_never_crashes(tmp_path, data):
             read_geotags(path, fmt)
         except InputError:
             pass
+
+
+@pytest.mark.parametrize("content, kind", [
+    (b"\x89PNG\r\n\x1a\n" + bytes(range(256)) * 4, "a PNG image"),
+    (b"\xff\xd8\xff\xe0\x00\x10JFIF" + bytes(200), "a JPEG image"),
+    (b"PK\x03\x04" + bytes(100), "a ZIP archive"),
+    (b"SQLite format 3\x00" + bytes(100), "an SQLite database or GeoPackage"),
+    (bytes(range(1, 32)) * 20, "binary data"),
+])
+def test_a_file_that_is_not_text_is_refused_by_name_not_parsed(tmp_path, content, kind):
+    path = tmp_path / "survey.csv"
+    path.write_bytes(content)
+    with pytest.raises(InputError) as err:
+        read_geotags(path)
+    message = str(err.value)
+    assert "survey.csv" in message and f"is not a text CSV ({kind})" in message
+    assert "PNG\r" not in message and "\x00" not in message   # no bytes printed as a header
+
+
+def test_text_with_a_bom_and_a_stray_byte_is_still_text(tmp_path):
+    path = tmp_path / "survey.csv"
+    path.write_bytes(b"\xef\xbb\xbf-27.5,151.9,410.0,368.5,4,burrow\n-27.50001,151.9,410.0,368.5,4,bu\xffrrow\n")
+    tags = read_geotags(path)
+    assert len(tags) == 2

@@ -38,7 +38,7 @@ from birdseye.birdseye_qgis.core.plan.flight_plan import (
 )
 
 LAT0, LON0 = 52.2, 5.6
-# A nadir camera as the brief defines it: camera x = body right, y = −body forward, z = body down.
+# A nadir camera (docs/design.md#camera): camera x = body right, y = −body forward, z = body down.
 NADIR_MOUNT = np.array([[0, 1, 0, 0], [-1, 0, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]], dtype=float)
 
 
