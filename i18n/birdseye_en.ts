@@ -680,42 +680,42 @@ error</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/evaluatedetections.py" line="45"/>
+        <location filename="../processing/algorithms/evaluatedetections.py" line="46"/>
         <source>Sealed rule verified (seal {value}…, sealed {sealed_at}); arm '{name}': its operating point replaces the dialog's values: {value2}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="47"/>
+        <location filename="../processing/algorithms/writelabels.py" line="48"/>
         <source>{path}: not a sensorbound result (expected inputs.tolerance_px): {exc}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="52"/>
+        <location filename="../processing/algorithms/writelabels.py" line="53"/>
         <source>{path}: the pose-noise budget is rejected at {items}; labels of σ = {value:g} px would not contain the projection error there</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="217"/>
+        <location filename="../processing/algorithms/writelabels.py" line="218"/>
         <source>{n_labels} labels in {n_frames_with_labels} of {n_frames} frames (labels per labelled frame: mean {mean:g}, max {max}); {n_geotags_in_view} of {n_geotags} geotags in view (frames per geotag: mean {mean2:g}, max {max2})</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="226"/>
+        <location filename="../processing/algorithms/writelabels.py" line="227"/>
         <source>{n_occluded} projections were hidden behind terrain (not written)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="229"/>
+        <location filename="../processing/algorithms/writelabels.py" line="230"/>
         <source>{n_edge} projections fell within the edge buffer (not written)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="234"/>
+        <location filename="../processing/algorithms/writelabels.py" line="235"/>
         <source>{n_never} geotag(s) never in view of any frame: {shown}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="238"/>
+        <location filename="../processing/algorithms/writelabels.py" line="239"/>
         <source>{value} image(s) could not be read for tiles; first: {value2}</source>
         <translation type="unfinished"></translation>
     </message>
@@ -728,76 +728,111 @@ error</source>
 <context>
     <name>BirdsEyeAlgorithm</name>
     <message>
-        <location filename="../processing/algorithms/base.py" line="88"/>
+        <location filename="../processing/algorithms/base.py" line="89"/>
         <source>Cancelled by the user.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/base.py" line="12"/>
+        <source>1 · Field data</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/base.py" line="13"/>
+        <source>2 · Flight planning</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/base.py" line="14"/>
+        <source>3 · Training labels</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/base.py" line="15"/>
+        <source>4 · Detection and review</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/base.py" line="16"/>
+        <source>5 · Platform design</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/base.py" line="17"/>
+        <source>6 · Simulation</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
 <context>
     <name>ClusterDetections</name>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="45"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="46"/>
         <source>Detections (from Detect targets)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="48"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="49"/>
         <source>Geotags (optional: fills matched_geotag_ids and hit)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="51"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="52"/>
         <source>Frames of the flight (optional: only in-view geotags can match)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="55"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="56"/>
         <source>Clusters</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="57"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="58"/>
         <source>De-duplicated points</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="67"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="68"/>
         <source>DETECTIONS: the detection layer cannot be read.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="78"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="79"/>
         <source>The detection layer holds no detection with a position.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="132"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="133"/>
         <source>OUTPUT: the cluster layer cannot be created.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="154"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="155"/>
         <source>OUTPUT_POINTS: the point layer cannot be created.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="70"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="71"/>
         <source>{dropped} detection(s) without a position or score were left out</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="96"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="97"/>
         <source>No FRAMES given: every geotag is treated as in view.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="103"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="104"/>
         <source>{n_hit_clusters} of {n} clusters match an in-view geotag; {n_recovered} of {n_in_view} in-view geotags recovered.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="115"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="116"/>
         <source>{n_det} detections → {n_points} de-duplicated points → {n} clusters ({NOISE_POINTS} points are noise).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/clusterdetections.py" line="37"/>
+        <source>Cluster detections</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
@@ -938,977 +973,1047 @@ error</source>
 <context>
     <name>Detect</name>
     <message>
-        <location filename="../processing/algorithms/detect.py" line="42"/>
+        <location filename="../processing/algorithms/detect.py" line="43"/>
         <source>Frames (from Import flight log or Import DJI images)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/detect.py" line="45"/>
+        <location filename="../processing/algorithms/detect.py" line="46"/>
         <source>ONNX heatmap model (empty: the bundled demo model)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/detect.py" line="48"/>
+        <location filename="../processing/algorithms/detect.py" line="49"/>
         <source>Probability threshold (empty: the model&apos;s default)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/detect.py" line="51"/>
+        <location filename="../processing/algorithms/detect.py" line="52"/>
         <source>Edge buffer (px): detections closer to the image border are dropped</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/detect.py" line="55"/>
+        <location filename="../processing/algorithms/detect.py" line="56"/>
         <source>Detections</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/detect.py" line="57"/>
+        <location filename="../processing/algorithms/detect.py" line="58"/>
         <source>Heatmap folder (one PNG per frame)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/detect.py" line="63"/>
+        <location filename="../processing/algorithms/detect.py" line="64"/>
         <source>SHA-256 of the model</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/detect.py" line="85"/>
+        <location filename="../processing/algorithms/detect.py" line="86"/>
         <source>Model {name} (sha256 {value}…): {resolution_cm:g} cm/px, tiles {tile_size} px with {overlap_px} px overlap, threshold {used:g}{value2}.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/detect.py" line="102"/>
+        <location filename="../processing/algorithms/detect.py" line="103"/>
         <source>{detections} detections in {processed} frames ({value:.2f} per frame); {edge} dropped within {edge_buffer_px:g} px of the border, {no_ground} whose ray missed the ground; {skipped} frames skipped.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/detect.py" line="132"/>
+        <location filename="../processing/algorithms/detect.py" line="133"/>
         <source>Frame {frame_id}: {skipped}; skipped.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/detect.py" line="150"/>
+        <location filename="../processing/algorithms/detect.py" line="151"/>
         <source>{n_coarse} frame(s) (e.g. {items}) are coarser than 1.5× the model's resolution of {resolution_cm:g} cm/px: targets look smaller than in training, so expect fewer detections (fly lower or use a model trained at that resolution).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/detect.py" line="32"/>
+        <source>Detect targets (ONNX heatmap model)</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
 <context>
     <name>EvaluateDetections</name>
     <message>
-        <location filename="../processing/algorithms/evaluatedetections.py" line="66"/>
+        <location filename="../processing/algorithms/evaluatedetections.py" line="67"/>
         <source>Detection layers (one per flight)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/evaluatedetections.py" line="68"/>
+        <location filename="../processing/algorithms/evaluatedetections.py" line="69"/>
         <source>Geotags</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/evaluatedetections.py" line="70"/>
+        <location filename="../processing/algorithms/evaluatedetections.py" line="71"/>
         <source>Frame layers (one per flight, same order)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/evaluatedetections.py" line="73"/>
+        <location filename="../processing/algorithms/evaluatedetections.py" line="74"/>
         <source>Review verdicts (optional: adds the POST scores)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/evaluatedetections.py" line="76"/>
+        <location filename="../processing/algorithms/evaluatedetections.py" line="77"/>
         <source>Sealed selection rule (optional: verified, its operating point is used)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/evaluatedetections.py" line="79"/>
+        <location filename="../processing/algorithms/evaluatedetections.py" line="80"/>
         <source>Scores (JSON)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/evaluatedetections.py" line="81"/>
+        <location filename="../processing/algorithms/evaluatedetections.py" line="82"/>
         <source>Report (HTML)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/evaluatedetections.py" line="92"/>
+        <location filename="../processing/algorithms/evaluatedetections.py" line="93"/>
         <source>GEOTAGS: the geotag layer cannot be read.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/evaluatedetections.py" line="95"/>
+        <location filename="../processing/algorithms/evaluatedetections.py" line="96"/>
         <source>GEOTAGS: the layer holds no point with a position.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/evaluatedetections.py" line="114"/>
+        <location filename="../processing/algorithms/evaluatedetections.py" line="115"/>
         <source>{name}: {n_frames_without_ground} frame(s) without a ground height were not counted as processed</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/evaluatedetections.py" line="121"/>
+        <location filename="../processing/algorithms/evaluatedetections.py" line="122"/>
         <source>OUTPUT_JSON: cannot write {out_json} ({exc})</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/evaluatedetections.py" line="129"/>
+        <location filename="../processing/algorithms/evaluatedetections.py" line="130"/>
         <source>OUTPUT_REPORT: cannot write {out_report} ({exc})</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/evaluatedetections.py" line="56"/>
+        <source>Evaluate detections (recall, GMCF)</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
 <context>
     <name>ImportDjiImages</name>
     <message>
-        <location filename="../processing/algorithms/importdjiimages.py" line="31"/>
+        <location filename="../processing/algorithms/importdjiimages.py" line="32"/>
         <source>Folder of DJI images (JPEG)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importdjiimages.py" line="33"/>
+        <location filename="../processing/algorithms/importdjiimages.py" line="34"/>
         <source>Camera calibration (optional; Kalibr or OpenCV YAML)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importdjiimages.py" line="36"/>
+        <location filename="../processing/algorithms/importdjiimages.py" line="37"/>
         <source>Output CRS (empty: UTM zone of the site)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importdjiimages.py" line="39"/>
+        <location filename="../processing/algorithms/importdjiimages.py" line="40"/>
         <source>DJI frames</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importdjiimages.py" line="41"/>
+        <location filename="../processing/algorithms/importdjiimages.py" line="42"/>
         <source>Frames written</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importdjiimages.py" line="42"/>
+        <location filename="../processing/algorithms/importdjiimages.py" line="43"/>
         <source>Images that cannot be placed</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importdjiimages.py" line="56"/>
+        <location filename="../processing/algorithms/importdjiimages.py" line="57"/>
         <source>Not placed: {error}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importdjiimages.py" line="59"/>
+        <location filename="../processing/algorithms/importdjiimages.py" line="60"/>
         <source>Camera: {width}×{height} px, fx {fx:.1f}, fy {fy:.1f} ({source})</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importdjiimages.py" line="63"/>
+        <location filename="../processing/algorithms/importdjiimages.py" line="64"/>
         <source>Output CRS: {value}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/importdjiimages.py" line="22"/>
+        <source>Import DJI images</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
 <context>
     <name>ImportFlightLog</name>
     <message>
-        <location filename="../processing/algorithms/importflightlog.py" line="39"/>
+        <location filename="../processing/algorithms/importflightlog.py" line="40"/>
         <source>Pose log (BirdsEye CSV or flight_data.db)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importflightlog.py" line="42"/>
+        <location filename="../processing/algorithms/importflightlog.py" line="43"/>
         <source>Image folder (images.csv or &lt;sec&gt;.&lt;nsec&gt;.png|jpg files)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importflightlog.py" line="45"/>
+        <location filename="../processing/algorithms/importflightlog.py" line="46"/>
         <source>Camera calibration (Kalibr camchain or OpenCV YAML)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importflightlog.py" line="48"/>
+        <location filename="../processing/algorithms/importflightlog.py" line="49"/>
         <source>Camera frame rate (frames/s)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importflightlog.py" line="51"/>
+        <location filename="../processing/algorithms/importflightlog.py" line="52"/>
         <source>Minimum altimeter SNR (dB)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importflightlog.py" line="53"/>
+        <location filename="../processing/algorithms/importflightlog.py" line="54"/>
         <source>RTK filter</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importflightlog.py" line="55"/>
+        <location filename="../processing/algorithms/importflightlog.py" line="56"/>
         <source>UTM zone of flight_data.db x, y (only for flight_data.db)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importflightlog.py" line="57"/>
+        <location filename="../processing/algorithms/importflightlog.py" line="58"/>
         <source>Output CRS (empty: UTM zone of the site)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importflightlog.py" line="60"/>
+        <location filename="../processing/algorithms/importflightlog.py" line="61"/>
         <source>Frames</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importflightlog.py" line="62"/>
+        <location filename="../processing/algorithms/importflightlog.py" line="63"/>
         <source>Flight line</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importflightlog.py" line="77"/>
+        <location filename="../processing/algorithms/importflightlog.py" line="78"/>
         <source>Camera: {width}×{height} px, fx {fx:.1f}, fy {fy:.1f} ({source})</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importflightlog.py" line="94"/>
+        <location filename="../processing/algorithms/importflightlog.py" line="95"/>
         <source>Output CRS: {value}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/importflightlog.py" line="24"/>
+        <source>Import flight log</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
 <context>
     <name>ImportGeotags</name>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="53"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="54"/>
         <source>Geotag file (rover CSV, CSV with header, NMEA)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="56"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="57"/>
         <source>…or a point layer</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="58"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="59"/>
         <source>File format</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="62"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="63"/>
         <source>Fix filter</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="64"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="65"/>
         <source>Antenna pole height (m), subtracted from heights</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="67"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="68"/>
         <source>Output CRS (empty: UTM zone of the site)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="69"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="70"/>
         <source>Geotags</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="80"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="81"/>
         <source>Give either a geotag file (INPUT) or a point layer (INPUT_LAYER), not both and not neither.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="93"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="94"/>
         <source>The input holds no usable geotag.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="112"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="113"/>
         <source>No geotag is left to write (all were filtered out).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="96"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="97"/>
         <source>{n_problems} bad row(s) left out; first: {examples}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="105"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="106"/>
         <source>{dropped_not_fixed} geotag(s) without an RTK fixed solution were left out (fix filter: RTK fixed only)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="109"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="110"/>
         <source>{duplicates} geotag(s) lie within 2 cm of an earlier one (flag duplicate_2cm)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="114"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="115"/>
         <source>Output CRS: {value}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/importgeotags.py" line="33"/>
+        <source>Import geotags</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
 <context>
     <name>MonteCarloBoundAlgorithm</name>
     <message>
-        <location filename="../processing/algorithms/montecarlobound.py" line="48"/>
+        <location filename="../processing/algorithms/montecarlobound.py" line="49"/>
         <source>Monte Carlo samples</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/montecarlobound.py" line="50"/>
+        <location filename="../processing/algorithms/montecarlobound.py" line="51"/>
         <source>Random seed</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/montecarlobound.py" line="51"/>
+        <location filename="../processing/algorithms/montecarlobound.py" line="52"/>
         <source>Scaling study: smallest variance factor</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/montecarlobound.py" line="53"/>
+        <location filename="../processing/algorithms/montecarlobound.py" line="54"/>
         <source>Scaling study: largest variance factor</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/montecarlobound.py" line="55"/>
+        <location filename="../processing/algorithms/montecarlobound.py" line="56"/>
         <source>Scaling study: number of factors (log-spaced)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/montecarlobound.py" line="57"/>
+        <location filename="../processing/algorithms/montecarlobound.py" line="58"/>
         <source>Scaling study per axis as well (7× the work)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/montecarlobound.py" line="59"/>
+        <location filename="../processing/algorithms/montecarlobound.py" line="60"/>
         <source>Results (JSON)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/montecarlobound.py" line="61"/>
+        <location filename="../processing/algorithms/montecarlobound.py" line="62"/>
         <source>Scaling-study plot (PNG, one panel per altitude)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/montecarlobound.py" line="95"/>
+        <location filename="../processing/algorithms/montecarlobound.py" line="96"/>
         <source>{alt:g} m: max sKLD at the deployed budget {skld:.3g} nats over {n} test pixels (threshold {thr:g}) → the linearised bound {verdict}; exact κ* = {kappa:.3g}.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/montecarlobound.py" line="95"/>
+        <location filename="../processing/algorithms/montecarlobound.py" line="96"/>
         <source>holds</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/montecarlobound.py" line="95"/>
+        <location filename="../processing/algorithms/montecarlobound.py" line="96"/>
         <source>does NOT hold</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/montecarlobound.py" line="118"/>
+        <location filename="../processing/algorithms/montecarlobound.py" line="119"/>
         <source>{name}: the smallest variance factor must be greater than 0, got {value:g}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/montecarlobound.py" line="121"/>
+        <location filename="../processing/algorithms/montecarlobound.py" line="122"/>
         <source>{name}: the largest variance factor must exceed {other} ({low:g}), got {value:g}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/montecarlobound.py" line="31"/>
+        <source>Sensor bound: Monte Carlo check</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
 <context>
     <name>PlanFlight</name>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="91"/>
+        <location filename="../processing/algorithms/planflight.py" line="92"/>
         <source>Geotags (point layer)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="93"/>
+        <location filename="../processing/algorithms/planflight.py" line="94"/>
         <source>Selected geotags only</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="95"/>
+        <location filename="../processing/algorithms/planflight.py" line="96"/>
         <source>Geotag id field (empty: &apos;id&apos; if present, else the feature number)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="98"/>
+        <location filename="../processing/algorithms/planflight.py" line="99"/>
         <source>Home: take-off and landing point (optional)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="104"/>
+        <location filename="../processing/algorithms/planflight.py" line="105"/>
         <source>Camera calibration (Kalibr or OpenCV YAML; optional)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="110"/>
+        <location filename="../processing/algorithms/planflight.py" line="111"/>
         <source>Capture</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="120"/>
+        <location filename="../processing/algorithms/planflight.py" line="121"/>
         <source>Plan even if the points spread over more than 10 km</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="124"/>
+        <location filename="../processing/algorithms/planflight.py" line="125"/>
         <source>Output CRS (empty: UTM zone of the site)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="128"/>
+        <location filename="../processing/algorithms/planflight.py" line="129"/>
         <source>Waypoints</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="130"/>
+        <location filename="../processing/algorithms/planflight.py" line="131"/>
         <source>Route</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="139"/>
+        <location filename="../processing/algorithms/planflight.py" line="140"/>
         <source>Mission files written</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="161"/>
+        <location filename="../processing/algorithms/planflight.py" line="162"/>
         <source>GEOTAGS: the geotag layer could not be opened.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="165"/>
+        <location filename="../processing/algorithms/planflight.py" line="166"/>
         <source>SELECTED_ONLY is set but no geotag of layer &apos;{}&apos; is selected: select the geotags of the partition to fly, or clear SELECTED_ONLY.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="177"/>
+        <location filename="../processing/algorithms/planflight.py" line="178"/>
         <source>GEOTAGS: layer &apos;{}&apos; has no features: there is nothing to fly over.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="215"/>
+        <location filename="../processing/algorithms/planflight.py" line="216"/>
         <source>With this camera at {alt:g} m and {v:g} m/s, one photo every {s:.2f} s gives {o:g} % forward overlap.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="277"/>
+        <location filename="../processing/algorithms/planflight.py" line="278"/>
         <source>{fmt}: {files}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="284"/>
+        <location filename="../processing/algorithms/planflight.py" line="285"/>
         <source>{g} geotag(s) → {w} waypoint(s) in {m} mission(s); route {km:.2f} km; estimated flight time {t:.1f} min at {v:g} m/s and {alt:g} m.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="290"/>
+        <location filename="../processing/algorithms/planflight.py" line="291"/>
         <source>  mission {n}: {w} waypoint(s), {l:.0f} m, {t:.1f} min</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/planflight.py" line="59"/>
+        <source>Plan the survey flight</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
 <context>
     <name>ScreenCheckpoints</name>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="70"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="71"/>
         <source>ONNX checkpoints</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="72"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="73"/>
         <source>Validation flights (frame layers with their images)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="74"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="75"/>
         <source>Geotags</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="76"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="77"/>
         <source>Detection threshold (empty: each checkpoint&apos;s default)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="80"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="81"/>
         <source>Pixel F1: match radius (px)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="83"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="84"/>
         <source>Collapsed if the distinct-position fraction is below</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="86"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="87"/>
         <source>Too sparse if detections per frame on the worst flight are below</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="89"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="90"/>
         <source>Checkpoint table (CSV)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="91"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="92"/>
         <source>Checkpoint table (JSON)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="93"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="94"/>
         <source>Frontier plot (PNG)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="95"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="96"/>
         <source>Healthy checkpoints</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="101"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="102"/>
         <source>CHECKPOINTS: give at least one ONNX file.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="103"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="104"/>
         <source>FRAMES: give at least one validation flight.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="109"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="110"/>
         <source>GEOTAGS: the geotag layer cannot be read.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="196"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="197"/>
         <source>Cancelled by the user.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="169"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="170"/>
         <source>{checkpoint}: {state}; recall_pre {value}, gmcf_pre {value2}, pixel F1 {value3}, review load {value4}{value5}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="199"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="200"/>
         <source>{name} on {flight_name}: {skipped} frame(s) skipped (unreadable image or no ground height)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="56"/>
+        <source>Screen checkpoints</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
 <context>
     <name>SealPreregistration</name>
     <message>
-        <location filename="../processing/algorithms/sealpreregistration.py" line="53"/>
+        <location filename="../processing/algorithms/sealpreregistration.py" line="54"/>
         <source>ONNX checkpoints (one arm each)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sealpreregistration.py" line="55"/>
+        <location filename="../processing/algorithms/sealpreregistration.py" line="56"/>
         <source>Detection threshold of the arms</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sealpreregistration.py" line="59"/>
+        <location filename="../processing/algorithms/sealpreregistration.py" line="60"/>
         <source>Descriptive configurations (optional: a sweep or screen JSON, recorded only)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sealpreregistration.py" line="62"/>
+        <location filename="../processing/algorithms/sealpreregistration.py" line="63"/>
         <source>Note (what was chosen on which flights, what will be scored)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sealpreregistration.py" line="65"/>
+        <location filename="../processing/algorithms/sealpreregistration.py" line="66"/>
         <source>Sealed rule (JSON)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sealpreregistration.py" line="67"/>
+        <location filename="../processing/algorithms/sealpreregistration.py" line="68"/>
         <source>Seal (SHA-256)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sealpreregistration.py" line="72"/>
+        <location filename="../processing/algorithms/sealpreregistration.py" line="73"/>
         <source>CHECKPOINTS: give at least one ONNX file.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sealpreregistration.py" line="78"/>
+        <location filename="../processing/algorithms/sealpreregistration.py" line="79"/>
         <source>CHECKPOINTS: {path} is not a file</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sealpreregistration.py" line="80"/>
+        <location filename="../processing/algorithms/sealpreregistration.py" line="81"/>
         <source>Arm {name}: sha256 {model_digest}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sealpreregistration.py" line="91"/>
+        <location filename="../processing/algorithms/sealpreregistration.py" line="92"/>
         <source>OUTPUT: cannot write {out} ({exc})</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sealpreregistration.py" line="93"/>
+        <location filename="../processing/algorithms/sealpreregistration.py" line="94"/>
         <source>Sealed at {sealed_at}: {seal}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sealpreregistration.py" line="95"/>
+        <location filename="../processing/algorithms/sealpreregistration.py" line="96"/>
         <source>Record this seal somewhere you cannot edit later (an e-mail, a lab notebook, a commit): the seal proves the rule unchanged only against a copy kept elsewhere.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/sealpreregistration.py" line="44"/>
+        <source>Seal a preregistered selection rule</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
 <context>
     <name>SensorBoundAlgorithm</name>
     <message>
-        <location filename="../processing/algorithms/sensorbound.py" line="34"/>
+        <location filename="../processing/algorithms/sensorbound.py" line="35"/>
         <source>Grid stride [px] (1 = every pixel)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sensorbound.py" line="37"/>
+        <location filename="../processing/algorithms/sensorbound.py" line="38"/>
         <source>Results (JSON)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sensorbound.py" line="39"/>
+        <location filename="../processing/algorithms/sensorbound.py" line="40"/>
         <source>Report with plots (HTML)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sensorbound.py" line="42"/>
+        <location filename="../processing/algorithms/sensorbound.py" line="43"/>
         <source>λ_max field, one band per altitude (GeoTIFF in pixel coordinates)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sensorbound.py" line="96"/>
+        <location filename="../processing/algorithms/sensorbound.py" line="97"/>
         <source>{name}: the stride {stride} px does not divide the frame size, so the raster stops at the last multiple of the stride; the JSON suprema still include the frame edges.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sensorbound.py" line="105"/>
+        <location filename="../processing/algorithms/sensorbound.py" line="106"/>
         <source>{name}: cannot create the GeoTIFF {path}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/sensorbound.py" line="22"/>
+        <source>Sensor bound (pose-noise budget)</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
 <context>
     <name>SimulateCampaign</name>
     <message>
-        <location filename="../processing/algorithms/simulatecampaign.py" line="92"/>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="93"/>
         <source>Pose noise Σ0: x, y, z (m), roll, pitch, yaw (deg)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/simulatecampaign.py" line="95"/>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="96"/>
         <source>Noise off (ideal poses, altimeter and geotags)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/simulatecampaign.py" line="97"/>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="98"/>
         <source>Render frames (off: poses and geotags only)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/simulatecampaign.py" line="102"/>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="103"/>
         <source>Terrain</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/simulatecampaign.py" line="115"/>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="116"/>
         <source>Geoid undulation N for altMSL (m; empty: EGM96 at the site)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/simulatecampaign.py" line="119"/>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="120"/>
         <source>Output folder</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/simulatecampaign.py" line="123"/>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="124"/>
         <source>Terrain model (truth/dem.tif, ellipsoidal heights; none for flat terrain)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/simulatecampaign.py" line="126"/>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="127"/>
         <source>Frames</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/simulatecampaign.py" line="99"/>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="100"/>
         <source>Platform</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/simulatecampaign.py" line="109"/>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="110"/>
         <source>Side overlap of neighbouring lines (fraction; empty: {ins:g} for the payload, {dji:g} for a DJI drone)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/simulatecampaign.py" line="113"/>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="114"/>
         <source>DJI drone undistorts its JPEGs (DewarpFlag 1)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/simulatecampaign.py" line="125"/>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="126"/>
         <source>Frames folder</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/simulatecampaign.py" line="160"/>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="161"/>
         <source>Simulating seed {seed}: {n_targets} targets in a {field_width_m:g} × {field_length_m:g} m field, flown at {altitude_m:g} m, {speed_ms:g} m/s, {fps:g} frames/s.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/simulatecampaign.py" line="167"/>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="168"/>
         <source>TERRAIN is flat: SLOPE_DEG and RELIEF_M are ignored (choose plane or hills).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/simulatecampaign.py" line="170"/>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="171"/>
         <source>TERRAIN is a plane: RELIEF_M is ignored (choose hills).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/simulatecampaign.py" line="176"/>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="177"/>
         <source>A DJI drone: photos on the lines with {forward_overlap:.0%} forward and {effective_side_overlap:.0%} side overlap; the pose in each JPEG&apos;s metadata carries heading, tilt and height errors (truth/dji_metadata_errors.csv).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/simulatecampaign.py" line="186"/>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="187"/>
         <source>Wrote {n_frames} frames, {log}{n_geotags} geotags to {folder}.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="71"/>
+        <source>Simulate a campaign</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
 <context>
     <name>SweepOperatingPoints</name>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="75"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="76"/>
         <source>Detection layers (one per flight, detected at the lowest threshold)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="78"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="79"/>
         <source>Geotags</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="80"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="81"/>
         <source>Frame layers (one per flight, same order)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="84"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="85"/>
         <source>De-duplication grid cell (cm)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="87"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="88"/>
         <source>Edge buffer of the in-view test (px)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="90"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="91"/>
         <source>Credible: mean geotags per hit cluster at most</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="93"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="94"/>
         <source>Credible: mean median cluster extent at most (m)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="96"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="97"/>
         <source>Configurations (CSV)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="98"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="99"/>
         <source>Configurations and Pareto front (JSON)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="101"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="102"/>
         <source>Frontier plot (PNG)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="123"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="124"/>
         <source>GEOTAGS: the geotag layer cannot be read.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="116"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="117"/>
         <source>THRESHOLDS: {name} was detected at threshold {t}, above the sweep&apos;s lowest threshold {value}; detections below {t} were never made. Run Detect at the lowest threshold of the sweep, or raise THRESHOLDS.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="135"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="136"/>
         <source>{name}: {n_detections} detections, {value} geotags in view</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="137"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="138"/>
         <source>Sweeping {size} configurations ({items}: threshold × eps × min_samples × eps_pred)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="173"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="174"/>
         <source>Pareto: threshold {threshold}, eps {eps_m} m, min_samples {min_samples}, eps_pred {eps_pred_m} m → recall_pre {recall_pre:.3f}, gmcf_pre {gmcf_pre:.3f}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="179"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="180"/>
         <source>No configuration passed the credibility filter.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="62"/>
+        <source>Sweep operating points</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
 <context>
     <name>TerrainSlopeAlgorithm</name>
     <message>
-        <location filename="../processing/algorithms/terrainslope.py" line="38"/>
+        <location filename="../processing/algorithms/terrainslope.py" line="39"/>
         <source>Altitude above the ground [m]</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/terrainslope.py" line="42"/>
+        <location filename="../processing/algorithms/terrainslope.py" line="43"/>
         <source>Steepest slope studied [degrees]</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/terrainslope.py" line="45"/>
+        <location filename="../processing/algorithms/terrainslope.py" line="46"/>
         <source>Results (JSON)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/terrainslope.py" line="47"/>
+        <location filename="../processing/algorithms/terrainslope.py" line="48"/>
         <source>Contour plot (PNG)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/terrainslope.py" line="55"/>
+        <location filename="../processing/algorithms/terrainslope.py" line="56"/>
         <source>{name}: the altitude must be greater than 0 m, got {value:g}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/terrainslope.py" line="60"/>
+        <location filename="../processing/algorithms/terrainslope.py" line="61"/>
         <source>{name}: the steepest slope must lie between 0° and 90° (exclusive), got {value:g}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/terrainslope.py" line="76"/>
+        <location filename="../processing/algorithms/terrainslope.py" line="77"/>
         <source>{where}: {d:.2f} m from the nadir point at {alt:g} m (ρ = {rho:.3f}) — labels stay within {tol:g} px up to a {limit:.1f}° uphill slope.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/terrainslope.py" line="100"/>
+        <location filename="../processing/algorithms/terrainslope.py" line="101"/>
         <source>Farthest left/right edge midpoint</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/terrainslope.py" line="101"/>
+        <location filename="../processing/algorithms/terrainslope.py" line="102"/>
         <source>Farthest top/bottom edge midpoint</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/terrainslope.py" line="102"/>
+        <location filename="../processing/algorithms/terrainslope.py" line="103"/>
         <source>Farthest frame corner</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/terrainslope.py" line="29"/>
+        <source>Sensor bound: terrain-slope study</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
 <context>
     <name>WriteLabels</name>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="79"/>
+        <location filename="../processing/algorithms/writelabels.py" line="80"/>
         <source>Geotags (surveyed targets)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="81"/>
+        <location filename="../processing/algorithms/writelabels.py" line="82"/>
         <source>Frames (from Import flight log or Import DJI images)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="84"/>
+        <location filename="../processing/algorithms/writelabels.py" line="85"/>
         <source>Soft-label σ (px); empty: the sensor-bound dock's value, else 10</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="87"/>
+        <location filename="../processing/algorithms/writelabels.py" line="88"/>
         <source>…or σ from a sensorbound result (JSON): r / 3</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="90"/>
+        <location filename="../processing/algorithms/writelabels.py" line="91"/>
         <source>Edge buffer (px): geotags this close to the border are &apos;edge&apos;, not labels</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="94"/>
+        <location filename="../processing/algorithms/writelabels.py" line="95"/>
         <source>Write one soft-label raster per frame</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="96"/>
+        <location filename="../processing/algorithms/writelabels.py" line="97"/>
         <source>Write a tiled training set (image and label tiles)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="98"/>
+        <location filename="../processing/algorithms/writelabels.py" line="99"/>
         <source>Tile size (px)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="101"/>
+        <location filename="../processing/algorithms/writelabels.py" line="102"/>
         <source>Negative tiles kept per positive tile</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="104"/>
+        <location filename="../processing/algorithms/writelabels.py" line="105"/>
         <source>Random seed for the negative-tile sample</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="107"/>
+        <location filename="../processing/algorithms/writelabels.py" line="108"/>
         <source>Write COCO-keypoints JSON</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="109"/>
+        <location filename="../processing/algorithms/writelabels.py" line="110"/>
         <source>Label folder</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="110"/>
+        <location filename="../processing/algorithms/writelabels.py" line="111"/>
         <source>Frames with label counts</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="113"/>
+        <location filename="../processing/algorithms/writelabels.py" line="114"/>
         <source>Geotags with frames seen</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="140"/>
+        <location filename="../processing/algorithms/writelabels.py" line="141"/>
         <source>GEOTAGS and FRAMES are both required.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="124"/>
+        <location filename="../processing/algorithms/writelabels.py" line="125"/>
         <source>SIGMA_PX is given: SENSOR_BOUND_JSON is ignored</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="130"/>
+        <location filename="../processing/algorithms/writelabels.py" line="131"/>
         <source>σ = {value:g} px from the project (sensor-bound calculator)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="159"/>
+        <location filename="../processing/algorithms/writelabels.py" line="160"/>
         <source>{n_records} frames ({n_groups} camera(s)), {n_geotags} geotags, σ = {sigma:g} px, edge buffer {edge_buffer_px:g} px</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="167"/>
+        <location filename="../processing/algorithms/writelabels.py" line="168"/>
         <source>{n_steep} frame(s) lie on terrain steeper than the level plane's 10° envelope (flag steep_terrain; first: {items}): their labels drift off target — give the DEM (parameter DEM)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="173"/>
+        <location filename="../processing/algorithms/writelabels.py" line="174"/>
         <source>{n_no_ground} frame(s) have no ground height (no usable altimeter reading, flag no_ground_height) and get no labels; first: {items}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/writelabels.py" line="62"/>
+        <source>Write training labels</source>
         <translation type="unfinished"></translation>
     </message>
 </context>

@@ -2,24 +2,25 @@
 from __future__ import annotations
 
 from qgis.core import QgsProcessingAlgorithm, QgsProcessingException
-from qgis.PyQt.QtCore import QCoreApplication
+from qgis.PyQt.QtCore import QT_TRANSLATE_NOOP, QCoreApplication
 from qgis.PyQt.QtGui import QIcon
 
 from ...birdseye_qgis.__about__ import HELP_DIR, ICON_PATH
 from ...birdseye_qgis.core.errors import Cancelled, InputError
 
 GROUPS = {
-    "field": "1 · Field data",
-    "plan": "2 · Flight planning",
-    "labels": "3 · Training labels",
-    "detect": "4 · Detection and review",
-    "design": "5 · Platform design",
-    "simulate": "6 · Simulation",
+    "field": QT_TRANSLATE_NOOP("BirdsEyeAlgorithm", "1 · Field data"),
+    "plan": QT_TRANSLATE_NOOP("BirdsEyeAlgorithm", "2 · Flight planning"),
+    "labels": QT_TRANSLATE_NOOP("BirdsEyeAlgorithm", "3 · Training labels"),
+    "detect": QT_TRANSLATE_NOOP("BirdsEyeAlgorithm", "4 · Detection and review"),
+    "design": QT_TRANSLATE_NOOP("BirdsEyeAlgorithm", "5 · Platform design"),
+    "simulate": QT_TRANSLATE_NOOP("BirdsEyeAlgorithm", "6 · Simulation"),
 }
 
 
 class BirdsEyeAlgorithm(QgsProcessingAlgorithm):
-    """Subclasses set ``ALG_ID``, ``DISPLAY_NAME`` and ``GROUP`` (a key of :data:`GROUPS`).
+    """Subclasses set ``ALG_ID``, ``DISPLAY_NAME`` (in ``QT_TRANSLATE_NOOP`` with the class name as context,
+    so ``make translations`` finds it) and ``GROUP`` (a key of :data:`GROUPS`).
 
     Help text lives in ``resources/help/<ALG_ID>.md`` (Markdown-ish: blank-line paragraphs, ``- ``
     bullets, ``**bold**``), so it is easy to review and translate.
@@ -39,7 +40,7 @@ class BirdsEyeAlgorithm(QgsProcessingAlgorithm):
         return self.tr(self.DISPLAY_NAME)
 
     def group(self) -> str:
-        return self.tr(GROUPS[self.GROUP])
+        return QCoreApplication.translate("BirdsEyeAlgorithm", GROUPS[self.GROUP])
 
     def groupId(self) -> str:
         return self.GROUP

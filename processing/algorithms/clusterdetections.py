@@ -12,6 +12,7 @@ from qgis.core import (
     QgsProcessingParameterFeatureSource,
     QgsWkbTypes,
 )
+from qgis.PyQt.QtCore import QT_TRANSLATE_NOOP
 
 from ...birdseye_qgis.core.detect.clustering import HULL_BUFFER_M, cluster_detections, cluster_hulls
 from ...birdseye_qgis.core.geometry.geodesy import LocalFrame
@@ -33,7 +34,7 @@ from .base import BirdsEyeAlgorithm
 
 class ClusterDetections(ClusteringParametersMixin, BirdsEyeAlgorithm):
     ALG_ID = "clusterdetections"
-    DISPLAY_NAME = "Cluster detections"
+    DISPLAY_NAME = QT_TRANSLATE_NOOP("ClusterDetections", "Cluster detections")
     GROUP = "detect"
     DETECTIONS = "DETECTIONS"
     GEOTAGS = "GEOTAGS"

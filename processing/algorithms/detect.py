@@ -13,6 +13,7 @@ from qgis.core import (
     QgsProcessingParameterNumber,
     QgsWkbTypes,
 )
+from qgis.PyQt.QtCore import QT_TRANSLATE_NOOP
 
 from ...birdseye_qgis.__about__ import BUNDLED_MODEL
 from ...birdseye_qgis.core.detect.detector import DetectRequest, HeatmapModel, detect_frames
@@ -28,7 +29,7 @@ DEFAULT_MODEL = BUNDLED_MODEL
 
 class Detect(DemParametersMixin, BirdsEyeAlgorithm):
     ALG_ID = "detect"
-    DISPLAY_NAME = "Detect targets (ONNX heatmap model)"
+    DISPLAY_NAME = QT_TRANSLATE_NOOP("Detect", "Detect targets (ONNX heatmap model)")
     GROUP = "detect"
     FRAMES = "FRAMES"
     MODEL = "MODEL"

@@ -14,6 +14,7 @@ from qgis.core import (
     QgsProcessingParameterMultipleLayers,
     QgsProcessingParameterVectorLayer,
 )
+from qgis.PyQt.QtCore import QT_TRANSLATE_NOOP
 
 from ...birdseye_qgis.__about__ import tr
 from ...birdseye_qgis.core.scoring import preregistration
@@ -52,7 +53,7 @@ def operating_point_from_rule(path, flights, feedback) -> tuple[OperatingPoint, 
 
 class EvaluateDetections(ClusteringParametersMixin, BirdsEyeAlgorithm):
     ALG_ID = "evaluatedetections"
-    DISPLAY_NAME = "Evaluate detections (recall, GMCF)"
+    DISPLAY_NAME = QT_TRANSLATE_NOOP("EvaluateDetections", "Evaluate detections (recall, GMCF)")
     GROUP = "detect"
     DETECTIONS = "DETECTIONS"
     GEOTAGS = "GEOTAGS"

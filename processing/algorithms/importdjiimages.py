@@ -8,6 +8,7 @@ from qgis.core import (
     QgsProcessingParameterFeatureSink,
     QgsProcessingParameterFile,
 )
+from qgis.PyQt.QtCore import QT_TRANSLATE_NOOP
 
 from ...birdseye_qgis.core.field.dji import import_dji_images
 from ...birdseye_qgis.core.geometry.camera import load_calibration
@@ -18,7 +19,7 @@ from .base import BirdsEyeAlgorithm
 
 class ImportDjiImages(DemParametersMixin, BirdsEyeAlgorithm):
     ALG_ID = "importdjiimages"
-    DISPLAY_NAME = "Import DJI images"
+    DISPLAY_NAME = QT_TRANSLATE_NOOP("ImportDjiImages", "Import DJI images")
     GROUP = "field"
     IMAGES = "IMAGES"
     CALIBRATION = "CALIBRATION"

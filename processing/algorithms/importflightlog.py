@@ -10,6 +10,7 @@ from qgis.core import (
     QgsProcessingParameterFile,
     QgsProcessingParameterNumber,
 )
+from qgis.PyQt.QtCore import QT_TRANSLATE_NOOP
 
 from ...birdseye_qgis.core.field.flight_log import import_flight_log
 from ...birdseye_qgis.core.geometry.camera import load_calibration
@@ -20,7 +21,7 @@ from .base import BirdsEyeAlgorithm
 
 class ImportFlightLog(DemParametersMixin, BirdsEyeAlgorithm):
     ALG_ID = "importflightlog"
-    DISPLAY_NAME = "Import flight log"
+    DISPLAY_NAME = QT_TRANSLATE_NOOP("ImportFlightLog", "Import flight log")
     GROUP = "field"
     POSE_LOG = "POSE_LOG"
     IMAGES = "IMAGES"

@@ -14,6 +14,7 @@ from qgis.core import (
     QgsProcessingParameterString,
     QgsWkbTypes,
 )
+from qgis.PyQt.QtCore import QT_TRANSLATE_NOOP
 
 from ...birdseye_qgis.core.field.geotags import (
     FORMATS,
@@ -29,7 +30,7 @@ from .base import BirdsEyeAlgorithm
 
 class ImportGeotags(BirdsEyeAlgorithm):
     ALG_ID = "importgeotags"
-    DISPLAY_NAME = "Import geotags"
+    DISPLAY_NAME = QT_TRANSLATE_NOOP("ImportGeotags", "Import geotags")
     GROUP = "field"
     INPUT = "INPUT"
     INPUT_LAYER = "INPUT_LAYER"

@@ -13,6 +13,7 @@ from qgis.core import (
     QgsProcessingParameterFileDestination,
     QgsProcessingParameterNumber,
 )
+from qgis.PyQt.QtCore import QT_TRANSLATE_NOOP
 
 from ...birdseye_qgis.core.design.monte_carlo_bound import (
     SKLD_THRESHOLD,
@@ -27,7 +28,7 @@ from .base import BirdsEyeAlgorithm
 
 class MonteCarloBoundAlgorithm(DesignParametersMixin, BirdsEyeAlgorithm):
     ALG_ID = "montecarlobound"
-    DISPLAY_NAME = "Sensor bound: Monte Carlo check"
+    DISPLAY_NAME = QT_TRANSLATE_NOOP("MonteCarloBoundAlgorithm", "Sensor bound: Monte Carlo check")
     GROUP = "design"
 
     N_SAMPLES = "N_SAMPLES"

@@ -26,6 +26,7 @@ from qgis.core import (
     QgsProcessingParameterVectorLayer,
     QgsWkbTypes,
 )
+from qgis.PyQt.QtCore import QT_TRANSLATE_NOOP
 
 from ...birdseye_qgis.core.geometry.camera import load_calibration
 from ...birdseye_qgis.core.plan.flight_plan import (
@@ -55,7 +56,7 @@ from .base import BirdsEyeAlgorithm
 
 class PlanFlight(BirdsEyeAlgorithm):
     ALG_ID = "planflight"
-    DISPLAY_NAME = "Plan the survey flight"
+    DISPLAY_NAME = QT_TRANSLATE_NOOP("PlanFlight", "Plan the survey flight")
     GROUP = "plan"
     GEOTAGS = "GEOTAGS"
     SELECTED_ONLY = "SELECTED_ONLY"

@@ -15,6 +15,7 @@ from qgis.core import (
     QgsProcessingParameterMultipleLayers,
     QgsProcessingParameterNumber,
 )
+from qgis.PyQt.QtCore import QT_TRANSLATE_NOOP
 
 from ...birdseye_qgis.core.detect.detector import DetectRequest, HeatmapModel, detect_frames
 from ...birdseye_qgis.core.errors import Cancelled
@@ -52,7 +53,7 @@ def pixel_labels(poses, local, geotags, edge_buffer_px):
 
 class ScreenCheckpoints(ClusteringParametersMixin, BirdsEyeAlgorithm):
     ALG_ID = "screencheckpoints"
-    DISPLAY_NAME = "Screen checkpoints"
+    DISPLAY_NAME = QT_TRANSLATE_NOOP("ScreenCheckpoints", "Screen checkpoints")
     GROUP = "detect"
     CHECKPOINTS = "CHECKPOINTS"
     FRAMES = "FRAMES"

@@ -14,6 +14,7 @@ from qgis.core import (
     QgsProcessingParameterNumber,
     QgsProcessingParameterString,
 )
+from qgis.PyQt.QtCore import QT_TRANSLATE_NOOP
 
 from ...birdseye_qgis.core.detect.detector import file_digest
 from ...birdseye_qgis.core.errors import InputError
@@ -40,7 +41,7 @@ def read_descriptive(path) -> list:
 
 class SealPreregistration(ClusteringParametersMixin, BirdsEyeAlgorithm):
     ALG_ID = "sealpreregistration"
-    DISPLAY_NAME = "Seal a preregistered selection rule"
+    DISPLAY_NAME = QT_TRANSLATE_NOOP("SealPreregistration", "Seal a preregistered selection rule")
     GROUP = "detect"
     CHECKPOINTS = "CHECKPOINTS"
     THRESHOLD = "THRESHOLD"

@@ -9,6 +9,7 @@ from qgis.core import (
     QgsProcessingParameterFileDestination,
     QgsProcessingParameterNumber,
 )
+from qgis.PyQt.QtCore import QT_TRANSLATE_NOOP
 
 from ...birdseye_qgis.core.design.bound_report import altitude_summary, write_report
 from ...birdseye_qgis.core.design.sensor_bound import evaluate_bounds, frame_grid, lmax_field
@@ -18,7 +19,7 @@ from .base import BirdsEyeAlgorithm
 
 class SensorBoundAlgorithm(DesignParametersMixin, BirdsEyeAlgorithm):
     ALG_ID = "sensorbound"
-    DISPLAY_NAME = "Sensor bound (pose-noise budget)"
+    DISPLAY_NAME = QT_TRANSLATE_NOOP("SensorBoundAlgorithm", "Sensor bound (pose-noise budget)")
     GROUP = "design"
 
     STRIDE_PX = "STRIDE_PX"

@@ -13,6 +13,7 @@ from qgis.core import (
     QgsProcessingParameterNumber,
     QgsProcessingParameterString,
 )
+from qgis.PyQt.QtCore import QT_TRANSLATE_NOOP
 
 from ...birdseye_qgis.core.sim.campaign import (
     DEFAULT_SIDE_OVERLAP,
@@ -67,7 +68,7 @@ TERRAIN_NUMBERS = [
 
 class SimulateCampaign(BirdsEyeAlgorithm):
     ALG_ID = "simulatecampaign"
-    DISPLAY_NAME = "Simulate a campaign"
+    DISPLAY_NAME = QT_TRANSLATE_NOOP("SimulateCampaign", "Simulate a campaign")
     GROUP = "simulate"
     SIGMAS = "SIGMAS"
     NOISE_OFF = "NOISE_OFF"

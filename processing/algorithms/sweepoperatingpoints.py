@@ -15,6 +15,7 @@ from qgis.core import (
     QgsProcessingParameterNumber,
     QgsProcessingParameterString,
 )
+from qgis.PyQt.QtCore import QT_TRANSLATE_NOOP
 
 from ...birdseye_qgis.core.detect.clustering import DEFAULT_DEDUP_CM
 from ...birdseye_qgis.core.errors import InputError
@@ -58,7 +59,7 @@ def parse_list(text: str, name: str) -> list[float]:
 
 class SweepOperatingPoints(ClusteringParametersMixin, BirdsEyeAlgorithm):
     ALG_ID = "sweepoperatingpoints"
-    DISPLAY_NAME = "Sweep operating points"
+    DISPLAY_NAME = QT_TRANSLATE_NOOP("SweepOperatingPoints", "Sweep operating points")
     GROUP = "detect"
     DETECTIONS = "DETECTIONS"
     GEOTAGS = "GEOTAGS"

@@ -7,6 +7,7 @@ from pathlib import Path
 
 import numpy as np
 from qgis.core import QgsProcessingException, QgsProcessingParameterFileDestination, QgsProcessingParameterNumber
+from qgis.PyQt.QtCore import QT_TRANSLATE_NOOP
 
 from ...birdseye_qgis.core.design.terrain_slope import (
     frame_distance_ratios,
@@ -25,7 +26,7 @@ RATIO_MARGIN = 1.15
 
 class TerrainSlopeAlgorithm(DesignParametersMixin, BirdsEyeAlgorithm):
     ALG_ID = "terrainslope"
-    DISPLAY_NAME = "Sensor bound: terrain-slope study"
+    DISPLAY_NAME = QT_TRANSLATE_NOOP("TerrainSlopeAlgorithm", "Sensor bound: terrain-slope study")
     GROUP = "design"
 
     ALTITUDE_M = "ALTITUDE_M"

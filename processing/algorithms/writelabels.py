@@ -21,6 +21,7 @@ from qgis.core import (
     QgsProcessingParameterNumber,
     QgsProject,
 )
+from qgis.PyQt.QtCore import QT_TRANSLATE_NOOP
 
 from ...birdseye_qgis.__about__ import tr
 from ...birdseye_qgis.core.field.frame_records import poses_from_records
@@ -58,7 +59,7 @@ def sigma_from_bound_json(path: str) -> float:
 
 class WriteLabels(DemParametersMixin, BirdsEyeAlgorithm):
     ALG_ID = "writelabels"
-    DISPLAY_NAME = "Write training labels"
+    DISPLAY_NAME = QT_TRANSLATE_NOOP("WriteLabels", "Write training labels")
     GROUP = "labels"
     GEOTAGS = "GEOTAGS"
     FRAMES = "FRAMES"
