@@ -6,7 +6,6 @@ builds QGIS objects at import time.
 """
 from __future__ import annotations
 
-import os
 import sys
 from pathlib import Path
 
@@ -39,9 +38,35 @@ _let_qgis_processing_win()
 
 @pytest.fixture(scope="session")
 def qgis_app(qgis_app):
-    """pytest-qgis's application, with ``sys.path`` cleaned before anything imports ``processing``."""
+    """pytest-qgis's application, with ``sys.path`` cleaned before anything imports ``processing``, and
+    every map layer the tests left alive deleted before QGIS exits."""
     _let_qgis_processing_win()
-    return qgis_app
+    yield qgis_app
+    delete_surviving_layers()
+
+
+def delete_surviving_layers() -> int:
+    """Delete the C++ side of every Python-owned map layer still alive; returns how many there were.
+
+    A ``QgsMapLayer`` that outlives the ``QgsApplication`` crashes QGIS 3.22 at interpreter exit: Python's
+    finalisation destroys it after QGIS has shut down, and the layer's destructor touches registries
+    that are gone (gdb: ``QgsRasterPipe::~QgsRasterPipe`` ← ``QgsRasterLayer::~QgsRasterLayer`` ←
+    ``Py_FinalizeEx``, SIGSEGV after a green run). Layers handed to ``processing.run`` in a parameter
+    dict stay referenced after the test, so some always survive; deleting them while QGIS is still up
+    lets the process end normally, with pytest's own exit status.
+    """
+    import gc
+
+    from qgis.core import QgsMapLayer, QgsProject
+    from qgis.PyQt import sip
+
+    QgsProject.instance().clear()
+    gc.collect()
+    survivors = [obj for obj in gc.get_objects() if isinstance(obj, QgsMapLayer)]
+    for layer in survivors:
+        if not sip.isdeleted(layer) and sip.ispyowned(layer):
+            sip.delete(layer)
+    return len(survivors)
 
 
 @pytest.fixture(scope="session")
@@ -132,23 +157,3 @@ def _iface_acts_on_main_window(qgis_iface):
         for name in names:
             monkeypatch.setattr(qgis_iface, name, getattr(patches, name), raising=False)
         yield patches
-
-
-def pytest_sessionfinish(session, exitstatus):
-    session.config._birdseye_exitstatus = int(exitstatus)
-
-
-@pytest.hookimpl(tryfirst=True)
-def pytest_unconfigure(config):
-    """End the process once every report is written, before QGIS tears itself down.
-
-    QGIS 3.22's teardown of a session that loaded the desktop widgets, ONNX Runtime and GDAL can
-    segfault after the last test has passed (exit 139 with a green summary). The run's result is final
-    by now, so exit with it instead of letting the crash decide.
-    """
-    status = getattr(config, "_birdseye_exitstatus", None)
-    if status is None:
-        return
-    sys.stdout.flush()
-    sys.stderr.flush()
-    os._exit(status)
