@@ -41,8 +41,25 @@ def qgis_app(qgis_app):
     """pytest-qgis's application, with ``sys.path`` cleaned before anything imports ``processing``, and
     every map layer the tests left alive deleted before QGIS exits."""
     _let_qgis_processing_win()
+    give_the_canvas_a_crs()
     yield qgis_app
     delete_surviving_layers()
+
+
+def give_the_canvas_a_crs() -> None:
+    """Give the test iface's map canvas a CRS, as the desktop's always has.
+
+    ``processing.run`` builds its expression context from ``iface.mapCanvas().mapSettings()``
+    (processing/tools/dataobjects.py, ``createExpressionContext``); on pytest-qgis's canvas, which starts
+    with no CRS, that asks PROJ for the operation of an empty CRS and PROJ prints
+    "proj_create: unrecognized format / unknown name" (found with ``strace -k``:
+    ``QgsExpressionContextUtils::mapSettingsScope`` → ``QgsCoordinateReferenceSystem::operation``).
+    """
+    from qgis.core import QgsCoordinateReferenceSystem
+    from qgis.utils import iface
+
+    if iface is not None and not iface.mapCanvas().mapSettings().destinationCrs().isValid():
+        iface.mapCanvas().setDestinationCrs(QgsCoordinateReferenceSystem("EPSG:4326"))
 
 
 def delete_surviving_layers() -> int:

@@ -4,7 +4,8 @@ QGIS 3.22 segfaults at interpreter exit when a map layer that went through ``pro
 alive: Python's finalisation destroys it after QGIS has shut down (measured here with pytest-qgis alone:
 exit 139 after "1 passed"; gdb shows ``QgsRasterPipe::~QgsRasterPipe`` under ``Py_FinalizeEx``). The
 suites' ``qgis_app`` fixture (tests/qgis_fixtures.py) deletes such layers while QGIS is still up. These
-sessions run that exact situation in a subprocess, once passing and once failing.
+sessions run that exact situation in a subprocess, once passing and once failing. They also check the
+session prints no "proj_create: unrecognized format" (``processing.run`` on a canvas without a CRS did).
 """
 from __future__ import annotations
 
@@ -43,7 +44,8 @@ def test_the_session_exits_with_pytests_status(tmp_path, outcome, status):
                                           "pytest_plugins = ['qgis_fixtures']\n")
     (tmp_path / "test_leaky.py").write_text(LEAKY_TEST.format(outcome=outcome))
     pytest_script = Path(sys.executable).with_name("pytest")
-    result = subprocess.run([str(pytest_script), "-q", "-p", "no:cacheprovider", str(tmp_path)], cwd=tmp_path,
+    result = subprocess.run([str(pytest_script), "-q", "-s", "-p", "no:cacheprovider", str(tmp_path)], cwd=tmp_path,
                             env={**os.environ, "QT_QPA_PLATFORM": "offscreen"}, capture_output=True, text=True,
                             timeout=300)
     assert result.returncode == status, result.stdout[-2000:] + result.stderr[-2000:]
+    assert "proj_create" not in result.stdout + result.stderr
