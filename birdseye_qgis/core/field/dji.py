@@ -238,12 +238,6 @@ def _exif_time(original, subsec, offset) -> float:
 
 
 # ---------------------------------------------------------------------------------------- camera
-def _scaled(camera: CameraModel, sx: float, sy: float, width: int, height: int) -> CameraModel:
-    """Intrinsics of the same lens on an image resized by (sx, sy) to ``width × height``."""
-    return replace(camera, width=width, height=height, fx=camera.fx * sx, fy=camera.fy * sy,
-                   cx=(camera.cx + 0.5) * sx - 0.5, cy=(camera.cy + 0.5) * sy - 0.5)
-
-
 def dji_camera(meta: DjiMetadata, calibration: CameraModel | None = None) -> tuple[CameraModel, list]:
     """Camera model of a DJI image (mounted by :data:`T_CAM_GIMBAL`) and flags about its origin; an
     image the drone already undistorted (``DewarpFlag`` 1) gets zero distortion."""
@@ -256,13 +250,12 @@ def dji_camera(meta: DjiMetadata, calibration: CameraModel | None = None) -> tup
 def _lens_camera(meta: DjiMetadata, calibration: CameraModel | None) -> tuple[CameraModel, list]:
     w, h = meta.width, meta.height
     full_w, full_h = meta.exif_width or w, meta.exif_height or h
-    sx, sy = w / full_w, h / full_h
     flags = ["resized"] if (full_w, full_h) != (w, h) else []
     if calibration is not None:
         if (calibration.width, calibration.height) == (w, h):
             cam = calibration
         elif (calibration.width, calibration.height) == (full_w, full_h):
-            cam = _scaled(calibration, sx, sy, w, h)
+            cam = calibration.resized(w, h)
         else:
             raise InputError(f"is {w}×{h} px but the calibration ({calibration.source}) is for "
                              f"{calibration.width}×{calibration.height} px", source=meta.path)
@@ -275,7 +268,7 @@ def _lens_camera(meta: DjiMetadata, calibration: CameraModel | None) -> tuple[Ca
         except CalibrationError as exc:
             raise InputError(f"DewarpData cannot be used ({exc})", source=meta.path,
                              field="drone-dji:DewarpData") from exc
-        return _scaled(cam, sx, sy, w, h), flags
+        return cam.resized(w, h), flags
     focal_px = meta.tag("CalibratedFocalLength")
     if focal_px:
         ox = meta.tag("CalibratedOpticalCenterX")
@@ -285,12 +278,12 @@ def _lens_camera(meta: DjiMetadata, calibration: CameraModel | None) -> tuple[Ca
         cy = (full_h / 2.0 if oy is None else oy) - 0.5
         cam = CameraModel(full_w, full_h, focal_px, focal_px, cx, cy, T_cam_imu=T_CAM_GIMBAL,
                           source="dji:CalibratedFocalLength")
-        return _scaled(cam, sx, sy, w, h), flags
+        return cam.resized(w, h), flags
     if meta.focal_mm and meta.focal_plane_px_per_mm:
         f = meta.focal_mm * meta.focal_plane_px_per_mm
         cam = CameraModel(full_w, full_h, f, f, (full_w - 1) / 2.0, (full_h - 1) / 2.0, T_cam_imu=T_CAM_GIMBAL,
                           source="exif:FocalLength+FocalPlaneXResolution")
-        return _scaled(cam, sx, sy, w, h), flags + ["approx_intrinsics"]
+        return cam.resized(w, h), flags + ["approx_intrinsics"]
     if meta.focal_35mm:
         f = meta.focal_35mm * max(w, h) / FILM_LONG_SIDE_MM
         cam = CameraModel(w, h, f, f, (w - 1) / 2.0, (h - 1) / 2.0, T_cam_imu=T_CAM_GIMBAL,

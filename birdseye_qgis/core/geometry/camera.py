@@ -5,7 +5,11 @@ Conventions (docs/design.md#camera):
 * Camera frame = OpenCV optical frame: x right, y down, z forward (along the optical axis).
 * Pixel (0, 0) is the *centre* of the top-left pixel (OpenCV convention); u grows right, v down.
 * Distortion is OpenCV's radial–tangential model ``k1 k2 p1 p2 k3`` applied to normalised
-  coordinates; projection applies it, back-projection inverts it (Newton iterations).
+  coordinates, extended by ``k4``, the r⁸ radial term photogrammetry packages estimate (Metashape's K4;
+  *not* OpenCV's rational k4); projection applies it, back-projection inverts it (Newton iterations).
+* ``fisheye`` cameras use OpenCV's fisheye model instead (equidistant, ``θd = θ(1 + k1θ² + k2θ⁴ + k3θ⁶
+  + k4θ⁸)``, θ the angle from the optical axis); their ``dist`` holds ``k1 k2 k3 k4``.
+* ``skew`` (px) is the K-matrix element (0, 1): ``u = fx·xd + skew·yd + cx`` (Metashape's b2).
 * ``T_cam_imu`` (Kalibr) maps points in the IMU/body frame into the camera frame:
   ``X_cam = T_cam_imu @ X_imu``.
 * ``t_imu_rad`` is the radar altimeter's position in the IMU/body frame (metres), or None.
@@ -14,7 +18,7 @@ from __future__ import annotations
 
 import json
 import re
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
@@ -43,10 +47,16 @@ class CameraModel:
     T_cam_imu: np.ndarray = field(default_factory=lambda: np.eye(4))
     t_imu_rad: tuple | None = None
     source: str = ""
+    k4: float = 0.0
+    skew: float = 0.0
+    fisheye: bool = False
 
     def __post_init__(self):
         d = tuple(float(c) for c in self.dist) + (0.0,) * (5 - len(self.dist))
         object.__setattr__(self, "dist", d[:5])
+        object.__setattr__(self, "k4", float(self.k4))
+        object.__setattr__(self, "skew", float(self.skew))
+        object.__setattr__(self, "fisheye", bool(self.fisheye))
         object.__setattr__(self, "T_cam_imu", np.asarray(self.T_cam_imu, dtype=float).reshape(4, 4))
 
     def __eq__(self, other) -> bool:
@@ -58,28 +68,58 @@ class CameraModel:
     # ------------------------------------------------------------------ intrinsics
     @property
     def K(self) -> np.ndarray:
-        return np.array([[self.fx, 0.0, self.cx], [0.0, self.fy, self.cy], [0.0, 0.0, 1.0]])
+        return np.array([[self.fx, self.skew, self.cx], [0.0, self.fy, self.cy], [0.0, 0.0, 1.0]])
 
     @property
     def has_distortion(self) -> bool:
-        return any(c != 0.0 for c in self.dist)
+        return self.fisheye or any(c != 0.0 for c in self.dist) or self.k4 != 0.0
 
     def distort(self, xn: np.ndarray) -> np.ndarray:
         """Distorted normalised coordinates (..., 2) from ideal ones (..., 2)."""
+        if self.fisheye:
+            return xn * self._fisheye_scale(np.hypot(xn[..., 0], xn[..., 1]))[..., None]
         k1, k2, p1, p2, k3 = self.dist
         x, y = xn[..., 0], xn[..., 1]
         r2 = x * x + y * y
-        radial = 1.0 + r2 * (k1 + r2 * (k2 + r2 * k3))
+        radial = 1.0 + r2 * (k1 + r2 * (k2 + r2 * (k3 + r2 * self.k4)))
         xd = x * radial + 2.0 * p1 * x * y + p2 * (r2 + 2.0 * x * x)
         yd = y * radial + p1 * (r2 + 2.0 * y * y) + 2.0 * p2 * x * y
         return np.stack([xd, yd], axis=-1)
 
+    def _fisheye_theta_d(self, theta: np.ndarray) -> np.ndarray:
+        k1, k2, k3, k4 = self.dist[:4]
+        t2 = theta * theta
+        return theta * (1.0 + t2 * (k1 + t2 * (k2 + t2 * (k3 + t2 * k4))))
+
+    def _fisheye_scale(self, r: np.ndarray) -> np.ndarray:
+        """θd / r, the factor the fisheye model scales ideal normalised coordinates by (1 on the axis)."""
+        theta = np.arctan(r)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return np.where(r > 1e-12, self._fisheye_theta_d(theta) / r, 1.0)
+
+    def _fisheye_undistort(self, xd: np.ndarray, iterations: int, tol: float) -> np.ndarray:
+        """Invert θd(θ) by Newton's method along each ray, then r = tan θ."""
+        k1, k2, k3, k4 = self.dist[:4]
+        theta_d = np.hypot(xd[..., 0], xd[..., 1])
+        theta = theta_d.copy()
+        for _ in range(iterations):
+            residual = self._fisheye_theta_d(theta) - theta_d
+            if np.nanmax(np.abs(residual), initial=0.0) < tol:
+                break
+            t2 = theta * theta
+            slope = 1.0 + t2 * (3.0 * k1 + t2 * (5.0 * k2 + t2 * (7.0 * k3 + t2 * 9.0 * k4)))
+            theta = theta - residual / slope
+        with np.errstate(divide="ignore", invalid="ignore"):
+            scale = np.where(theta_d > 1e-12, np.tan(theta) / theta_d, 1.0)
+        return xd * scale[..., None]
+
     def _distort_jacobian(self, xn: np.ndarray) -> np.ndarray:
         k1, k2, p1, p2, k3 = self.dist
+        k4 = self.k4
         x, y = xn[..., 0], xn[..., 1]
         r2 = x * x + y * y
-        radial = 1.0 + r2 * (k1 + r2 * (k2 + r2 * k3))
-        dradial = k1 + r2 * (2.0 * k2 + 3.0 * k3 * r2)  # d radial / d r2
+        radial = 1.0 + r2 * (k1 + r2 * (k2 + r2 * (k3 + r2 * k4)))
+        dradial = k1 + r2 * (2.0 * k2 + r2 * (3.0 * k3 + 4.0 * k4 * r2))  # d radial / d r2
         j = np.empty(xn.shape[:-1] + (2, 2))
         j[..., 0, 0] = radial + 2 * x * x * dradial + 2 * p1 * y + 6 * p2 * x
         j[..., 0, 1] = 2 * x * y * dradial + 2 * p1 * x + 2 * p2 * y
@@ -96,6 +136,8 @@ class CameraModel:
         xd = np.asarray(xd, dtype=float)
         if not self.has_distortion:
             return xd.copy()
+        if self.fisheye:
+            return self._fisheye_undistort(xd, iterations, tol)
         x = xd.copy()
         for _ in range(iterations):
             residual = self.distort(x) - xd
@@ -112,12 +154,14 @@ class CameraModel:
     def pixel_to_normalized(self, uv: np.ndarray) -> np.ndarray:
         """Ideal normalised coordinates (x/z, y/z) of pixels (..., 2) in the distorted image."""
         uv = np.asarray(uv, dtype=float)
-        xd = np.stack([(uv[..., 0] - self.cx) / self.fx, (uv[..., 1] - self.cy) / self.fy], -1)
-        return self.undistort(xd)
+        yd = (uv[..., 1] - self.cy) / self.fy
+        xd = (uv[..., 0] - self.cx - self.skew * yd) / self.fx
+        return self.undistort(np.stack([xd, yd], -1))
 
     def normalized_to_pixel(self, xn: np.ndarray) -> np.ndarray:
         xd = self.distort(np.asarray(xn, dtype=float))
-        return np.stack([self.fx * xd[..., 0] + self.cx, self.fy * xd[..., 1] + self.cy], -1)
+        return np.stack([self.fx * xd[..., 0] + self.skew * xd[..., 1] + self.cx,
+                         self.fy * xd[..., 1] + self.cy], -1)
 
     def project(self, points_cam: np.ndarray) -> np.ndarray:
         """Pixels (..., 2) of camera-frame points (..., 3); points behind the camera give NaN."""
@@ -163,6 +207,12 @@ class CameraModel:
             pts.append(a + t * (b - a))
         return np.concatenate(pts)
 
+    def resized(self, width: int, height: int) -> "CameraModel":
+        """The same lens on the image resampled to ``width × height`` (pixel-centre convention kept)."""
+        sx, sy = width / self.width, height / self.height
+        return replace(self, width=int(width), height=int(height), fx=self.fx * sx, fy=self.fy * sy,
+                       skew=self.skew * sx, cx=(self.cx + 0.5) * sx - 0.5, cy=(self.cy + 0.5) * sy - 0.5)
+
     # ------------------------------------------------------------------ extrinsics
     @property
     def T_imu_cam(self) -> np.ndarray:
@@ -175,11 +225,15 @@ class CameraModel:
 
     # ------------------------------------------------------------------ (de)serialisation
     def to_dict(self) -> dict:
-        return {"width": self.width, "height": self.height, "fx": self.fx, "fy": self.fy,
-                "cx": self.cx, "cy": self.cy, "dist": list(self.dist),
-                "T_cam_imu": self.T_cam_imu.tolist(),
-                "t_imu_rad": None if self.t_imu_rad is None else list(self.t_imu_rad),
-                "source": self.source}
+        d = {"width": self.width, "height": self.height, "fx": self.fx, "fy": self.fy,
+             "cx": self.cx, "cy": self.cy, "dist": list(self.dist),
+             "T_cam_imu": self.T_cam_imu.tolist(),
+             "t_imu_rad": None if self.t_imu_rad is None else list(self.t_imu_rad),
+             "source": self.source}
+        # Written only when used, so frame layers of plain OpenCV cameras keep their JSON.
+        d.update({name: value for name, value in (("k4", self.k4), ("skew", self.skew), ("fisheye", self.fisheye))
+                  if value})
+        return d
 
     def to_json(self) -> str:
         return json.dumps(self.to_dict(), separators=(",", ":"))
@@ -192,7 +246,8 @@ class CameraModel:
                        dist=tuple(d.get("dist", (0.0,) * 5)),
                        T_cam_imu=np.asarray(d.get("T_cam_imu", np.eye(4)), dtype=float),
                        t_imu_rad=None if d.get("t_imu_rad") is None else tuple(d["t_imu_rad"]),
-                       source=d.get("source", ""))
+                       source=d.get("source", ""), k4=float(d.get("k4", 0.0)), skew=float(d.get("skew", 0.0)),
+                       fisheye=bool(d.get("fisheye", False)))
         except (KeyError, TypeError, ValueError) as exc:
             raise CalibrationError(f"{source}: camera model is incomplete or malformed ({exc})") from exc
 
@@ -277,9 +332,11 @@ def load_kalibr_yaml(path, text: str | None = None, camera: str = "cam0") -> Cam
     fx, fy, cx, cy = _numbers(cam["intrinsics"], path, f"{camera}.intrinsics", 4)
     width, height = (int(v) for v in _numbers(cam["resolution"], path, f"{camera}.resolution", 2))
     dist_model = cam.get("distortion_model", "radtan")
-    if dist_model not in ("radtan", "none"):
-        raise CalibrationError(f"{path}: field '{camera}.distortion_model' is '{dist_model}', expected 'radtan'")
-    dist = _numbers(cam.get("distortion_coeffs", [0, 0, 0, 0]), path, f"{camera}.distortion_coeffs", (4, 5))
+    if dist_model not in ("radtan", "equidistant", "none"):
+        raise CalibrationError(f"{path}: field '{camera}.distortion_model' is '{dist_model}', expected 'radtan' or"
+                               " 'equidistant'")
+    dist = _numbers(cam.get("distortion_coeffs", [0, 0, 0, 0]), path, f"{camera}.distortion_coeffs",
+                    4 if dist_model == "equidistant" else (4, 5))
     t_cam_imu = np.eye(4)
     if "T_cam_imu" in cam:
         t_cam_imu = _numbers(cam["T_cam_imu"], path, f"{camera}.T_cam_imu", 16).reshape(4, 4)
@@ -293,7 +350,7 @@ def load_kalibr_yaml(path, text: str | None = None, camera: str = "cam0") -> Cam
         t_imu_rad = tuple(-r.T @ t)
     _check_intrinsics(path, width, height, fx, fy, cx, cy)
     return CameraModel(width, height, fx, fy, cx, cy, tuple(dist), t_cam_imu, t_imu_rad,
-                       source=f"kalibr:{path.name}")
+                       source=f"kalibr:{path.name}", fisheye=dist_model == "equidistant")
 
 
 def load_opencv_yaml(path, text: str | None = None) -> CameraModel:
@@ -331,15 +388,13 @@ def load_opencv_yaml(path, text: str | None = None) -> CameraModel:
             raise CalibrationError(f"{path}: field '{key}' is missing")
     width, height = int(doc["image_width"]), int(doc["image_height"])
     fx, fy, cx, cy = k[0, 0], k[1, 1], k[0, 2], k[1, 2]
-    if abs(k[0, 1]) > 1e-9:
-        raise CalibrationError(f"{path}: field 'camera_matrix' has a skew term; skewed pixels are not supported")
     _check_intrinsics(path, width, height, fx, fy, cx, cy)
     t_cam_imu = np.eye(4)
     if "T_cam_imu" in doc:
         t_cam_imu = matrix("T_cam_imu", 16).reshape(4, 4)
         _check_rigid(path, "T_cam_imu", t_cam_imu)
     return CameraModel(width, height, fx, fy, cx, cy, tuple(dist[:5]), t_cam_imu,
-                       source=f"opencv:{path.name}")
+                       source=f"opencv:{path.name}", skew=k[0, 1])
 
 
 def camera_from_dji_dewarp(dewarp: str, width: int, height: int, source: str = "DewarpData",
@@ -370,10 +425,17 @@ def write_kalibr_yaml(camera: CameraModel, path) -> None:
     """Write a Kalibr camchain-imucam YAML that :func:`load_kalibr_yaml` reads back."""
     import yaml
 
+    if camera.k4 or camera.skew:
+        raise CalibrationError(f"{path}: a Kalibr camchain has no r⁸ radial term (k4) or skew; this camera has"
+                               f" k4 {camera.k4:g}, skew {camera.skew:g} px")
+    if camera.fisheye:
+        model, coeffs = "equidistant", list(camera.dist[:4])
+    else:
+        model, coeffs = "radtan", list(camera.dist[:4]) + ([camera.dist[4]] if camera.dist[4] else [])
     cam = {"camera_model": "pinhole",
            "intrinsics": [camera.fx, camera.fy, camera.cx, camera.cy],
-           "distortion_model": "radtan",
-           "distortion_coeffs": list(camera.dist[:4]) + ([camera.dist[4]] if camera.dist[4] else []),
+           "distortion_model": model,
+           "distortion_coeffs": coeffs,
            "resolution": [camera.width, camera.height],
            "T_cam_imu": camera.T_cam_imu.tolist()}
     doc = {"cam0": cam}

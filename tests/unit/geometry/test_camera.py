@@ -112,7 +112,7 @@ distortion_coefficients: !!opencv-matrix
     ("cam0:\n  resolution: [1920, 1200]\n", "cam0.intrinsics"),
     ("cam0:\n  intrinsics: [1, 2, 3]\n  resolution: [1920, 1200]\n", "cam0.intrinsics"),
     ("cam0:\n  intrinsics: [100, 100, 50, 50]\n  resolution: [1920, 1200]\n"
-     "  distortion_model: equidistant\n", "cam0.distortion_model"),
+     "  distortion_model: fov\n", "cam0.distortion_model"),
     ("cam0:\n  intrinsics: [100, 100, 50, 50]\n  resolution: [100, 100]\n"
      "  T_cam_imu: [[2,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]\n", "cam0.T_cam_imu"),
     ("cam0:\n  intrinsics: [100, abc, 50, 50]\n  resolution: [100, 100]\n", "cam0.intrinsics"),
@@ -152,3 +152,73 @@ def test_dji_dewarp_offsets_are_from_image_centre():
     assert cam.dist == (-0.27, 0.11, 0.0004, -0.0002, -0.03)
     with pytest.raises(CalibrationError, match="expected 9"):
         camera_from_dji_dewarp("2018;1,2,3", 100, 100)
+
+
+# ---------------------------------------------------------------- terms of photogrammetry packages
+def test_r8_radial_term_and_skew_project_as_written():
+    """k4 multiplies r⁸ and skew enters u only: checked against the formula evaluated by hand."""
+    cam = camera(dist=(0.01, -0.02, 1e-3, 2e-3, 0.03), k4=-0.05, skew=1.5, fx=1400.0, fy=1390.0)
+    x, y, z = 1.2, -0.7, 4.0
+    xn, yn = x / z, y / z
+    r2 = xn * xn + yn * yn
+    radial = 1 + 0.01 * r2 - 0.02 * r2 ** 2 + 0.03 * r2 ** 3 - 0.05 * r2 ** 4
+    xd = xn * radial + 2 * 1e-3 * xn * yn + 2e-3 * (r2 + 2 * xn * xn)
+    yd = yn * radial + 1e-3 * (r2 + 2 * yn * yn) + 2 * 2e-3 * xn * yn
+    expected = [1400.0 * xd + 1.5 * yd + cam.cx, 1390.0 * yd + cam.cy]
+    np.testing.assert_allclose(cam.project(np.array([x, y, z])), expected, rtol=0, atol=1e-9)
+
+
+def test_skewed_camera_adds_skew_times_distorted_y_to_opencv():
+    """cv2.projectPoints ignores K[0, 1]; the skewed pixel is OpenCV's plus skew · y_d, y_d = (v − cy)/fy."""
+    cv2 = pytest.importorskip("cv2")
+    cam = camera(fx=1400.0, fy=1390.0, skew=2.5)
+    rng = np.random.default_rng(5)
+    pts = np.column_stack([rng.uniform(-4, 4, 300), rng.uniform(-3, 3, 300), rng.uniform(6, 15, 300)])
+    unskewed, _ = cv2.projectPoints(pts, np.zeros(3), np.zeros(3), camera(fx=1400.0, fy=1390.0).K,
+                                    np.array(cam.dist))
+    expected = unskewed[:, 0, :].copy()
+    expected[:, 0] += 2.5 * (expected[:, 1] - cam.cy) / cam.fy
+    np.testing.assert_allclose(cam.project(pts), expected, atol=1e-6, rtol=0)
+
+
+def test_fisheye_matches_opencv_fisheye_project_points():
+    cv2 = pytest.importorskip("cv2")
+    cam = CameraModel(1280, 960, 520.0, 521.0, 641.2, 478.9, dist=(0.05, -0.012, 0.004, -0.0007), fisheye=True)
+    rng = np.random.default_rng(8)
+    pts = np.column_stack([rng.uniform(-4, 4, 400), rng.uniform(-3, 3, 400), rng.uniform(1, 8, 400)])
+    expected, _ = cv2.fisheye.projectPoints(pts[:, None, :], np.zeros(3), np.zeros(3), cam.K,
+                                           np.array(cam.dist[:4]))
+    np.testing.assert_allclose(cam.project(pts), expected[:, 0, :], atol=1e-6, rtol=0)
+
+
+@pytest.mark.parametrize("extra", [dict(k4=-0.02, skew=0.8), dict(dist=(0.05, -0.012, 0.004, -0.0007), fisheye=True)])
+def test_round_trip_over_the_frame_with_new_terms(extra):
+    cam = camera(**{"dist": STRONG, **extra, "fx": 1400.0, "fy": 1390.0})
+    u, v = np.meshgrid(np.arange(-0.5, cam.width, 11.0), np.arange(-0.5, cam.height, 11.0))
+    uv = np.column_stack([u.ravel(), v.ravel()])
+    back = cam.normalized_to_pixel(cam.pixel_to_normalized(uv))
+    assert np.max(np.abs(back - uv)) < 1e-6
+    again = CameraModel.from_json(cam.to_json())
+    assert again == cam and again.fisheye == cam.fisheye and again.k4 == cam.k4 and again.skew == cam.skew
+
+
+def test_plain_camera_json_carries_no_new_keys():
+    """Frame layers written before the photogrammetry terms existed keep their camera JSON byte for byte."""
+    assert not {"k4", "skew", "fisheye"} & set(camera().to_dict())
+
+
+def test_resized_camera_sees_the_same_rays():
+    cam = camera(skew=1.2, k4=0.01)
+    small = cam.resized(cam.width // 4, cam.height // 4)
+    pts = np.array([[0.3, -0.2, 10.0], [-0.9, 0.6, 12.0]])
+    # A pixel centre of the small image covers 4×4 full pixels: u_small = (u + 0.5)/4 - 0.5.
+    np.testing.assert_allclose(small.project(pts), (cam.project(pts) + 0.5) / 4.0 - 0.5, atol=1e-9)
+
+
+def test_kalibr_equidistant_round_trip_and_refusal_of_r8(tmp_path):
+    fish = CameraModel(1280, 960, 520.0, 521.0, 641.2, 478.9, dist=(0.05, -0.012, 0.004, -0.0007), fisheye=True)
+    write_kalibr_yaml(fish, tmp_path / "fish.yaml")
+    assert load_calibration(tmp_path / "fish.yaml").fisheye
+    np.testing.assert_allclose(load_calibration(tmp_path / "fish.yaml").dist, fish.dist)
+    with pytest.raises(CalibrationError, match="k4"):
+        write_kalibr_yaml(camera(k4=0.1), tmp_path / "r8.yaml")
