@@ -146,7 +146,13 @@ class EvaluateDetections(ClusteringParametersMixin, BirdsEyeAlgorithm):
                  f"gmcf_pre = {result['n_hit_clusters']}/{result['n_clusters']} = {fmt(result['gmcf_pre'])} "
                  "(a lower bound on precision, not precision)"]
         for conv, p in result.get("post", {}).items():
+            if p["recall_post"] is None:
+                recall = "undefined"
+            elif p["recall_post_kind"] == "lower_bound":
+                recall = p["recall_post"]
+            else:
+                recall = f"= {p['recall_post']} (a point value under the assumptions the help states)"
             lines.append(f"POST {conv}: c = {p['c']}, a = {p['a']}, gmcf_post = {fmt(p['gmcf_post'])}, "
-                         f"recall_post {p['recall_post'] or 'undefined'}")
+                         f"recall_post {recall}")
         return "\n".join(lines)
 

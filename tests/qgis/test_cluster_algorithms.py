@@ -198,9 +198,9 @@ def test_evaluatedetections_pre_and_post_by_hand(birdseye_provider, tmp_path):
     post = scores["post"]
     assert (post["positive_wins"]["c"], post["positive_wins"]["a"]) == (1, 1)
     assert post["positive_wins"]["gmcf_post"] == pytest.approx(1.0)
-    assert post["positive_wins"]["recall_post"] == "≥ 0.500"          # (1 + 1) / (2 + 1 + 1)
+    assert post["positive_wins"]["recall_post"] == "0.500"            # (1 + 1) / (2 + 1 + 1); a > 0: a point value
     assert post["majority_wins"]["c"] == 0 and post["hard_negative_wins"]["c"] == 0
-    assert post["majority_wins"]["recall_post_bound"] == pytest.approx(1 / 3)
+    assert post["majority_wins"]["recall_post_value"] == pytest.approx(1 / 3)
     html = out_html.read_text()
     assert "data:image/png;base64," in html and "lower bound on precision" in html and "≥" in html
 

@@ -17,10 +17,16 @@ clustered with DBSCAN (``eps_m``, ``min_samples``) in a local metric frame (:mod
   ``gmcf_pre = n_hit_clusters / n_clusters`` — the geotag-matched cluster fraction, a *lower bound on
   precision, not precision*: surveys are never exhaustive, so an unmatched cluster may be real.
 * After review (``c`` = clusters confirmed real and not hit, ``a`` = targets a reviewer added that
-  are in view): ``gmcf_post = (n_hit_clusters + c) / n_clusters`` and
-  ``recall_post ≥ (n_recovered + c) / (n_in_view + c + a)``, printed with "≥" as the method writes it;
-  real targets nobody surveyed, found or added are in no term, so the figure bounds the recall over
-  all real targets from above. Computed under each tie-break convention (:data:`CONVENTIONS`).
+  are in view where no cluster of the flight fired — no core point within ``eps_pred_m`` — and no
+  geotag lies within ``eps_pred_m``): ``gmcf_post = (n_hit_clusters + c) / n_clusters`` and
+  ``recall_post = (n_recovered + c) / (n_in_view + c + a)``. Only with ``a = 0`` is it printed "≥ x":
+  a lower bound on the recall over the known targets (geotags in view, confirmed clusters), since a
+  real cluster left unconfirmed would add one to numerator and denominator alike. With ``a > 0``
+  the reviewer searched beyond the detections, and the figure is a point value of the recall over
+  every real target in view under :data:`.post_review.POINT_VALUE_ASSUMPTIONS`. Either way real
+  targets nobody surveyed, found or added are in no term: where the search for missed targets was
+  not exhaustive the figure overstates the recall over all real targets. Computed under each
+  convention (:data:`CONVENTIONS`).
 * No F1 is reported in geospatial units (screening's pixel-space F1 is for choosing checkpoints only).
 * Several flights pool by **micro-averaging**: numerators and denominators are summed over flights,
   then divided once (:meth:`PreCounts.__add__`); ratios are never averaged. A geotag in view in two
@@ -43,21 +49,25 @@ Rules (:class:`VerdictLog`):
 
 1. Per (unit_key, provenance) the **latest** row wins: largest (time, sequence). An "unreviewed" row
    withdraws that provenance's vote (undo); an "added" row is undone the same way.
-2. A unit's **votes** are the latest verdicts of its provenances, "unreviewed" dropped. They resolve
-   under a convention (:func:`combine`):
-   ``positive_wins`` — confirmed_real if any vote says so, else hard_negative if any, else uncertain;
-   ``hard_negative_wins`` — hard_negative if any, else confirmed_real if any, else uncertain;
-   ``majority_wins`` — the verdict with the most votes; a tie between the leaders is "uncertain".
-   No vote at all → "unreviewed".
-3. A cluster of a detection layer takes the resolved verdicts of the units attached to it (the dock
-   knows them; headless, :func:`units_of_clusters` attaches every unit whose position lies within
-   ``eps_pred_m`` of the cluster's core points) and combines them under the same convention.
+2. A unit's **judgements** are the latest verdicts of its provenances. "uncertain" and "unreviewed"
+   are abstentions, not votes: only confirmed_real and hard_negative are counted. They resolve under
+   a convention (:func:`combine`):
+   ``positive_wins`` — confirmed_real if any vote says so, else hard_negative;
+   ``hard_negative_wins`` — hard_negative if any, else confirmed_real;
+   ``majority_wins`` — the side with more votes; a tie is "uncertain" (neither side has a majority).
+   So [confirmed_real, uncertain] → confirmed_real and [C, C, HN, U, U] → confirmed_real. Only
+   abstentions → "uncertain"; no judgement at all → "unreviewed".
+3. A cluster of a detection layer is resolved **once over all direct and propagated judgements** of
+   the units attached to it (:meth:`VerdictLog.resolve_cluster`; the dock knows the units; headless,
+   :func:`units_of_clusters` attaches every unit whose position lies within ``eps_pred_m`` of the
+   cluster's core points), under the same convention.
 4. ``c`` counts the clusters that are not hits and resolve to confirmed_real; ``a`` counts the added
-   targets in view of the flight (same in-view test as geotags).
+   targets of :func:`.post_review.countable_added_targets` (in view by the geotags' in-view test, no
+   cluster of the flight and no geotag within ``eps_pred_m``).
 
 Feeding it: ``log = VerdictLog.from_records(rows)`` (mappings with the fields above, e.g. GeoPackage
 features as dicts in fid order), then per flight a :class:`ReviewedFlight` (its :class:`PreCounts`,
-per-cluster hit flags and attached unit keys, and ``n_added``), and
+per-cluster hit flags and attached unit keys, and ``n_added`` = a), and
 ``post_scores(log, flights) -> {convention: PostScores}``. :func:`evaluate_flights` does all of it
 from geodetic inputs, exactly as ``birdseye:evaluatedetections`` does.
 """

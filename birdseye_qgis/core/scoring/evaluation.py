@@ -12,7 +12,7 @@ from ..geometry.geodesy import LocalFrame
 from ..geometry.poses import FramePoses
 from .matching import InView, in_view
 from .operating_point import OperatingPoint
-from .post_review import ReviewedFlight, post_scores
+from .post_review import ReviewedFlight, countable_added_targets, post_scores
 from .pre_review import FlightScore, PreCounts, pool, score_flight
 from .verdicts import VerdictLog, units_of_clusters
 
@@ -81,7 +81,7 @@ class FlightEvaluation:
     score: FlightScore
     in_view: InView
     n_detections: int
-    n_added_in_view: int = 0
+    n_added: int = 0
     cluster_units: list = field(default_factory=list)
 
 
@@ -169,7 +169,9 @@ def evaluate_flights(flights: Sequence[Flight], geotags: Geotags, op: OperatingP
         if log is not None:
             ev.cluster_units = units_of_clusters(clustering, unit_xy, unit_keys, op.eps_pred_m)
             if len(added_local):
-                ev.n_added_in_view = int(in_view(flight.pose_groups, local, added_local, op.edge_buffer_px).mask.sum())
+                seen = in_view(flight.pose_groups, local, added_local, op.edge_buffer_px).mask
+                ev.n_added = int(countable_added_targets(added_local[:, :2], seen, clustering, geotag_local[:, :2],
+                                                         op.eps_pred_m).sum())
         results.append(ev)
         if progress is not None:
             progress((i + 1) / n)
@@ -177,5 +179,5 @@ def evaluate_flights(flights: Sequence[Flight], geotags: Geotags, op: OperatingP
     post = None
     if log is not None:
         post = post_scores(log, [ReviewedFlight(r.score.counts, r.score.cluster_hit, r.cluster_units,
-                                                r.n_added_in_view) for r in results])
+                                                r.n_added) for r in results])
     return Evaluation(op, local, results, pooled, post, notes)

@@ -7,6 +7,7 @@ from typing import Iterable, Sequence
 import numpy as np
 
 from .evaluation import Evaluation
+from .post_review import POINT_VALUE_ASSUMPTIONS
 from .screening import CheckpointScreen
 from .sweep import SweepResult
 
@@ -79,12 +80,17 @@ def evaluation_report_html(evaluation: Evaluation) -> str:
     if evaluation.post is not None:
         post_rows = [[conv, p["c"], p["a"], p["gmcf_post"], p["recall_post"]] for conv, p in d["post"].items()]
         body += ["<h2>After review</h2>",
-                 html_table(["convention", "c (confirmed, not hit)", "a (added)", "gmcf_post", "recall_post"],
-                            post_rows),
-                 "<p class='note'>gmcf_post = (hit clusters + c) / clusters; recall_post ≥ (recovered + c) / "
-                 "(in view + c + a). Real targets nobody surveyed, found or added are in no term, so the "
-                 "recall figure is an upper bound on the recall over all real targets. The spread between "
-                 "the conventions is part of the result.</p>"]
+                 html_table(["convention", "c (confirmed, not hit)", "a (added where nothing fired)", "gmcf_post",
+                             "recall_post"], post_rows),
+                 "<p class='note'>gmcf_post = (hit clusters + c) / clusters; recall_post = (recovered + c) / "
+                 "(in view + c + a), with a = added targets in view where no cluster fired and no geotag "
+                 "lies within EPS_PRED. With a = 0 it is printed “≥ x”: a lower bound on the recall over "
+                 "the known targets, since a real cluster left unconfirmed would raise it. With a &gt; 0 it is "
+                 "a point value of the recall over every real target in view, assuming: "
+                 f"{html.escape(POINT_VALUE_ASSUMPTIONS)}. Real targets nobody surveyed, found or added are "
+                 "in no term, so where the search for missed targets was not exhaustive the figure overstates "
+                 "the recall over all real targets. Uncertain and unreviewed verdicts are abstentions; "
+                 "the spread between the conventions is part of the result.</p>"]
         for note in d["review_notes"]:
             body.append(f"<p class='note'>{html.escape(note)}</p>")
 

@@ -48,22 +48,28 @@ def _time_key(text: str, source: str, row: int) -> float:
 
 
 def combine(verdicts: Iterable[str], convention: str) -> str:
-    """Resolve votes (verdict strings) under a tie-break convention; "unreviewed" votes are ignored."""
-    votes = [v for v in verdicts if v != UNREVIEWED]
+    """Resolve judgements (verdict strings) under a convention.
+
+    "uncertain" and "unreviewed" are abstentions, not votes: only confirmed_real and hard_negative
+    count. Judgements that all abstain resolve to "uncertain" (someone looked) or, with no
+    confirmed_real, hard_negative or uncertain at all, to "unreviewed". ``majority_wins`` takes the
+    larger count; a tie is "uncertain" (neither side has a majority).
+    """
     if convention not in CONVENTIONS:
         raise ValueError(f"unknown convention {convention!r}; expected one of {CONVENTIONS}")
-    if not votes:
+    judged = [v for v in verdicts if v in (CONFIRMED, HARD_NEGATIVE, UNCERTAIN)]
+    if not judged:
         return UNREVIEWED
+    n_confirmed, n_hard_negative = judged.count(CONFIRMED), judged.count(HARD_NEGATIVE)
+    if n_confirmed == n_hard_negative == 0:
+        return UNCERTAIN
     if convention == "positive_wins":
-        order = (CONFIRMED, HARD_NEGATIVE, UNCERTAIN)
-    elif convention == "hard_negative_wins":
-        order = (HARD_NEGATIVE, CONFIRMED, UNCERTAIN)
-    else:
-        tally = {v: votes.count(v) for v in (CONFIRMED, HARD_NEGATIVE, UNCERTAIN)}
-        best = max(tally.values())
-        leaders = [v for v, n in tally.items() if n == best]
-        return leaders[0] if len(leaders) == 1 else UNCERTAIN
-    return next(v for v in order if v in votes)
+        return CONFIRMED if n_confirmed else HARD_NEGATIVE
+    if convention == "hard_negative_wins":
+        return HARD_NEGATIVE if n_hard_negative else CONFIRMED
+    if n_confirmed == n_hard_negative:
+        return UNCERTAIN
+    return CONFIRMED if n_confirmed > n_hard_negative else HARD_NEGATIVE
 
 
 class VerdictLog:
@@ -135,6 +141,11 @@ class VerdictLog:
 
     def resolve(self, unit_key: str, convention: str) -> str:
         return combine(self.votes(unit_key), convention)
+
+    def resolve_cluster(self, unit_keys: Iterable[str], convention: str) -> str:
+        """One resolution over every direct and propagated judgement of every unit attached to a
+        cluster (not a vote of the units' own resolutions)."""
+        return combine([v for unit in unit_keys for v in self.votes(unit)], convention)
 
     def unit_keys(self) -> list[str]:
         """Units with at least one vote."""

@@ -38,9 +38,10 @@ STATUS = {
     "u1": status(),
     "u2": status("unreviewed", {"propagated:x": "hard_negative"},     # a propagated vote only
                  {c: "hard_negative" for c in ALL_THREE}),
-    "u3": status("uncertain", {"direct": "uncertain", "propagated:y": "confirmed_real"},
+    "u3": status("uncertain", {"direct": "uncertain", "propagated:y": "confirmed_real",
+                               "propagated:z": "hard_negative"},
                  {"positive_wins": "confirmed_real", "majority_wins": "uncertain",
-                  "hard_negative_wins": "uncertain"}),
+                  "hard_negative_wins": "hard_negative"}),
 }
 
 

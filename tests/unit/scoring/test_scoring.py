@@ -227,28 +227,30 @@ def test_post_scores_differ_by_convention_as_computed_by_hand():
         p = ev.post[conv].pooled
         assert (p.c, p.a) == (expected_c[conv], 1), conv
         assert p.gmcf_post == pytest.approx((4 + p.c) / 7)
-        assert p.recall_post_bound == pytest.approx((3 + p.c) / (7 + p.c + 1))
+        assert p.recall_post == pytest.approx((3 + p.c) / (7 + p.c + 1))
         assert [f.a for f in ev.post[conv].flights] == [1, 0]
     d = ev.to_dict()
-    assert d["post"]["majority_wins"]["recall_post"] == "≥ 0.500"
+    assert d["post"]["majority_wins"]["recall_post"] == "0.500"           # a = 1: a point value
+    assert d["post"]["majority_wins"]["recall_post_kind"] == "point_value"
+    assert d["flights"][1]["post"]["majority_wins"]["recall_post"] == "≥ 0.667"   # a = 0: (1 + 1) / (2 + 1)
     assert d["post"]["positive_wins"]["gmcf_post"] == pytest.approx(1.0)
     assert d["flights"][1]["post"]["hard_negative_wins"]["c"] == 1
 
 
-def test_units_resolve_first_then_clusters_combine_their_units():
+def test_a_cluster_resolves_once_over_all_judgements_of_its_units():
     log = VerdictLog([Verdict("u1", "confirmed_real"), Verdict("u1", "confirmed_real", "propagated:r"),
                       Verdict("u1", "hard_negative", "propagated:s"), Verdict("u2", "uncertain")])
     assert log.resolve("u1", "majority_wins") == "confirmed_real"
     counts = PreCounts(n_in_view=4, n_recovered=2, n_clusters=3, n_hit_clusters=1)
     flight = ReviewedFlight(counts, [True, False, False], [("u2",), ("u1", "u2"), ("u1",)], n_added=2)
     post = post_scores(log, [flight])
-    # cluster 1: u1 → confirmed, u2 → uncertain: a tie under majority (uncertain); confirmed under
-    # positive-wins; u1 has a hard-negative vote, so hard-negative-wins says hard negative.
-    assert post["majority_wins"].pooled.c == 1
+    # cluster 1: judgements C, C, HN and u2's U (an abstention): 2 to 1, confirmed under majority and
+    # positive-wins; the hard-negative vote makes hard-negative-wins say hard negative. Cluster 2 the same.
+    assert post["majority_wins"].pooled.c == 2
     assert post["positive_wins"].pooled.c == 2
     assert post["hard_negative_wins"].pooled.c == 0
     p = post["positive_wins"].pooled
-    assert p.recall_post_bound == pytest.approx((2 + 2) / (4 + 2 + 2))
+    assert p.recall_post == pytest.approx((2 + 2) / (4 + 2 + 2))
 
 
 def test_combine_conventions_and_withdrawn_votes():
