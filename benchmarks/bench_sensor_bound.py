@@ -42,7 +42,7 @@ NAIVE_SAMPLE = 20000
 
 def naive_suprema(intr, depth, variances, us, vs):
     """Baseline: per pixel, J = ∂π/∂X_c · [I | −X_c^] as a 2×6 array, Σ = J diag(s) Jᵀ, eigvalsh."""
-    s = np.diag(variances[sb.INPUT_TO_XI])
+    s = np.diag(sb.METHOD_MOUNT.xi_variances(variances))
     best_tr = best_lm = 0.0
     for u, v in zip(us, vs):
         x, y = (u - intr.cx) / intr.fx * depth, (v - intr.cy) / intr.fy * depth

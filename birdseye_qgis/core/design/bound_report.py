@@ -14,7 +14,17 @@ import io
 import math
 from typing import Optional
 
-from .sensor_bound import AXES, SIGMA_UNITS, Intrinsics, frame_grid, lambda_target, lmax_field
+from .sensor_bound import (
+    AXES,
+    METHOD_MOUNT,
+    SIGMA_UNITS,
+    CameraMount,
+    Intrinsics,
+    camera_mount,
+    frame_grid,
+    lambda_target,
+    lmax_field,
+)
 
 # The field plots sample at most this many grid points: finer than the figure's own pixels.
 PLOT_MAX_POINTS = 200_000
@@ -70,12 +80,12 @@ class LmaxFieldPlot:
         self.legend = figure.legend(loc="outside lower center", ncol=3, fontsize=8, frameon=False)
 
     def update(self, intr, altitude_m: float, sigmas, tolerance_px: float, stride_px: Optional[int] = None,
-               worst_pixel=None) -> None:
-        """Show the field of ``sigmas`` (interface units) at ``altitude_m``, sampled every ``stride_px``
-        (default :func:`stride_for`)."""
+               worst_pixel=None, mount: CameraMount = METHOD_MOUNT) -> None:
+        """Show the field of ``sigmas`` (interface units, on ``mount``) at ``altitude_m``, sampled every
+        ``stride_px`` (default :func:`stride_for`)."""
         stride = stride_px or stride_for(intr)
         us, vs = frame_grid(intr, stride)
-        field = lmax_field(intr, altitude_m, sigmas, stride)
+        field = lmax_field(intr, altitude_m, sigmas, stride, mount=mount)
         lam = lambda_target(tolerance_px)
         top = float(field.max())
         du = (us[-1] - us[0]) / max(1, us.size - 1)
@@ -100,14 +110,14 @@ class LmaxFieldPlot:
 
 
 def lmax_field_png(intr, altitude_m: float, sigmas, tolerance_px: float, stride_px: Optional[int] = None,
-                   worst_pixel=None, size_in=(6.4, 4.3), dpi: int = 110) -> bytes:
+                   worst_pixel=None, size_in=(6.4, 4.3), dpi: int = 110, mount: CameraMount = METHOD_MOUNT) -> bytes:
     """The :class:`LmaxFieldPlot` as PNG bytes (Agg canvas: the host's backend is left alone)."""
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
 
     figure = Figure(figsize=size_in, dpi=dpi)
     FigureCanvasAgg(figure)
-    LmaxFieldPlot(figure).update(intr, altitude_m, sigmas, tolerance_px, stride_px, worst_pixel)
+    LmaxFieldPlot(figure).update(intr, altitude_m, sigmas, tolerance_px, stride_px, worst_pixel, mount)
     buffer = io.BytesIO()
     figure.savefig(buffer, format="png")
     return buffer.getvalue()
@@ -200,6 +210,7 @@ def build_report_html(result: dict, title: str = "Sensor bound", source: str = "
     inputs = result["inputs"]
     intr = Intrinsics(**inputs["intrinsics"])
     sigmas = inputs["sigmas"]
+    mount = camera_mount(inputs["mount"])
     entries = result["altitudes"]
     lam = inputs["lambda_target_px2"]
     esc = html.escape
@@ -212,7 +223,8 @@ def build_report_html(result: dict, title: str = "Sensor bound", source: str = "
         f"<h1>{esc(title)}</h1>",
         f'<p class="lead">Camera {camera}{" from " + esc(source) if source else ""}. '
         f"Label tolerance r = {inputs['tolerance_px']:g} px at 3σ → λ<sub>target</sub> = (r/3)² = {lam:.4g} px² "
-        f"(σ<sub>label</sub> = {math.sqrt(lam):.4g} px). Pose sigmas (1σ): {deployed}. "
+        f"(σ<sub>label</sub> = {math.sqrt(lam):.4g} px). Pose sigmas (1σ): {deployed}; camera mount: "
+        f"{esc(mount.name)}. "
         f"Grid stride {inputs['stride_px']} px over u = 0…{intr.width}, v = 0…{intr.height}.</p>",
         "<h2>Verdicts</h2>", _summary_table(entries),
         '<p class="note">The <b>trace bound</b> (sup tr Σ<sub>u</sub> ≤ λ<sub>target</sub>) is sufficient but '
@@ -227,7 +239,7 @@ def build_report_html(result: dict, title: str = "Sensor bound", source: str = "
     ]
     for entry in entries:
         png = lmax_field_png(intr, entry["altitude_m"], sigmas, inputs["tolerance_px"], plot_stride_px,
-                             entry["worst_pixel"])
+                             entry["worst_pixel"], mount=mount)
         parts += [
             f"<h2>{entry['altitude_m']:g} m above the ground</h2>",
             '<div class="altitude"><div>', _budget_table(entry, sigmas), "</div>",

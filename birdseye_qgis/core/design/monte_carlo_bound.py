@@ -13,8 +13,10 @@ Kullback–Leibler (Jeffreys) divergence
 
 which is 0 when the linearisation is exact and is dominated by sampling noise (≈ 3/n) when it holds.
 
-Sigmas follow ``sensor_bound``'s interface: (x, y, z in m; roll, pitch, yaw in degrees), with its axis
-convention (``sensor_bound.INPUT_TO_XI``). Scaling factors multiply the variances, like κ*.
+Sigmas follow ``sensor_bound``'s interface: (x, y, z in m; roll, pitch, yaw in degrees). The attitude
+draws are turned into the camera frame by the mount's rotation, ``φ_c = R_cam_body φ_b``
+(``sensor_bound.CameraMount``), not by the axis permutation the linear model uses, so the check also
+covers that the permutation describes the mount. Scaling factors multiply the variances, like κ*.
 All draws come from ``numpy.random.default_rng(seed)``; one set of standard normal draws is reused for
 every scale and axis (common random numbers), so curves are smooth and results reproducible.
 """
@@ -27,7 +29,15 @@ import numpy as np
 
 from ..errors import Cancelled, InputError
 from ..geometry.rotations import se3_exp
-from .sensor_bound import AXES, INPUT_TO_XI, _altitude, _camera, pixel_covariance, sigmas_to_variances
+from .sensor_bound import (
+    AXES,
+    METHOD_MOUNT,
+    CameraMount,
+    _altitude,
+    _camera,
+    pixel_covariance,
+    sigmas_to_variances,
+)
 
 SKLD_THRESHOLD = 1e-2
 
@@ -65,10 +75,14 @@ def _ground_points(intr, pixels: np.ndarray, depth: float) -> np.ndarray:
     return np.stack([x * depth, y * depth, np.full_like(x, depth)], axis=-1)
 
 
-def _second_moment(intr, pixels, points, std_normal, variances) -> np.ndarray:
-    """``E[δu δuᵀ]`` (N, 2, 2) over the draws, with ξ = std_normal · √s (camera order) exactly applied."""
+def _second_moment(intr, pixels, points, std_normal, variances, mount: CameraMount) -> np.ndarray:
+    """``E[δu δuᵀ]`` (N, 2, 2) over the draws ``std_normal · √s`` (interface order), exactly applied.
+
+    The translation draws are in the camera frame already; the attitude draws are rotated into it.
+    """
     fx, fy, cx, cy, _, _ = _camera(intr)
-    xi = std_normal * np.sqrt(variances[INPUT_TO_XI])
+    draws = std_normal * np.sqrt(variances)
+    xi = np.concatenate([draws[:, :3], draws[:, 3:] @ np.asarray(mount.R_cam_body, dtype=float).T], axis=1)
     t = se3_exp(xi)
     moved = np.einsum("sij,nj->sni", t[:, :3, :3], points) + t[:, None, :3, 3]
     du = np.stack([fx * moved[..., 0] / moved[..., 2] + cx - pixels[:, 0],
@@ -120,18 +134,18 @@ class MonteCarloResult:
 
 
 def monte_carlo_check(intr, altitude_m, sigmas, n_samples: int = 20000, pixels=None,
-                      seed: Optional[int] = 0) -> MonteCarloResult:
+                      seed: Optional[int] = 0, *, mount: CameraMount = METHOD_MOUNT) -> MonteCarloResult:
     """Sampled vs linearised label covariance at ``pixels`` (default ``default_pixels``).
 
-    ``sigmas``: pose sigmas (x, y, z in m; roll, pitch, yaw in degrees); ``altitude_m``: depth of the
-    level ground (m). Deterministic for a given ``seed``.
+    ``sigmas``: pose sigmas (x, y, z in m; roll, pitch, yaw in degrees) on ``mount``; ``altitude_m``:
+    depth of the level ground (m). Deterministic for a given ``seed``.
     """
     depth = _altitude(altitude_m)
     s = sigmas_to_variances(sigmas)
     px = _pixels(intr, pixels)
     z = _draws(n_samples, seed)
-    sample = _second_moment(intr, px, _ground_points(intr, px, depth), z, s)
-    model = pixel_covariance(intr, px[:, 0], px[:, 1], depth, s)
+    sample = _second_moment(intr, px, _ground_points(intr, px, depth), z, s, mount)
+    model = pixel_covariance(intr, px[:, 0], px[:, 1], depth, s, mount)
     return MonteCarloResult(depth, int(n_samples), seed, px, sample, model, symmetric_kl(sample, model))
 
 
@@ -161,7 +175,7 @@ class ScalingStudy:
 
 def scaling_study(intr, altitude_m, sigmas, scales=np.logspace(-1, 2, 25), per_axis: bool = False,
                   n_samples: int = 20000, pixels=None, seed: Optional[int] = 0,
-                  is_canceled=None) -> ScalingStudy:
+                  is_canceled=None, *, mount: CameraMount = METHOD_MOUNT) -> ScalingStudy:
     """sKLD vs variance scale, overall and (``per_axis=True``) per axis; see ``ScalingStudy``.
 
     ``is_canceled()`` is polled before each scale and a True answer raises ``errors.Cancelled``.
@@ -178,8 +192,9 @@ def scaling_study(intr, altitude_m, sigmas, scales=np.logspace(-1, 2, 25), per_a
     def max_skld(variances):
         if is_canceled is not None and is_canceled():
             raise Cancelled("Monte Carlo scaling study cancelled")
-        sample = _second_moment(intr, px, points, z, variances)
-        return float(np.max(symmetric_kl(sample, pixel_covariance(intr, px[:, 0], px[:, 1], depth, variances))))
+        sample = _second_moment(intr, px, points, z, variances, mount)
+        model = pixel_covariance(intr, px[:, 0], px[:, 1], depth, variances, mount)
+        return float(np.max(symmetric_kl(sample, model)))
 
     overall = np.array([max_skld(c * s) for c in scales])
     axes = None

@@ -1,11 +1,13 @@
 """Platform presets for the sensor bound: a camera and the 1σ noise of the poses labels are made from.
 
-Each preset is a camera (:class:`.sensor_bound.Intrinsics`, px) and pose sigmas in the sensor bound's
-interface order (x, y, z in metres; roll, pitch, yaw in degrees; see ``sensor_bound.AXIS_CONVENTION``),
-with the label tolerance and altitudes it is judged at, and where its numbers come from.
+Each preset is a camera (:class:`.sensor_bound.Intrinsics`, px), pose sigmas in the sensor bound's
+interface order (x, y, z in metres; roll, pitch, yaw in degrees) and the camera mount that says how
+roll, pitch and yaw turn the camera (:class:`.sensor_bound.CameraMount`), with the label tolerance and
+altitudes it is judged at, and where its numbers come from.
 
 * **Deployed platform** — the BirdsEye payload: its calibrated camera and the RTK INS + radar
-  altimeter budget the method was deployed with.
+  altimeter budget the method was deployed with, on the method's mount (attitude errors applied to
+  the camera-frame rotation vector), so the calculator gives the method's table.
 * **DJI RTK drone, poses from its image metadata** — what :mod:`..field.dji` reads from a DJI RTK
   drone's JPEGs, before any photogrammetric refinement:
 
@@ -21,24 +23,28 @@ with the label tolerance and altitudes it is judged at, and where its numbers co
     accuracy of the attitude the metadata reports, which is the aircraft's IMU and compass heading
     estimate the gimbal stabilises against. The sigmas are those we measured on a real DJI RTK flight
     against photogrammetry-refined poses (camera tilted 0.4–0.9° where the metadata said 0.1°,
-    heading off by up to 1.8°): 0.5° in roll and pitch, 1.0° in yaw.
+    heading off by up to 1.8°): 0.5° in roll and pitch, 1.0° in yaw;
+  - mount: the camera looks straight down with the image top towards the nose (gimbal at −90°
+    following the aircraft's heading). Roll and pitch share one sigma, so on the method's mount the
+    figures would be the same.
 """
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass
 
-from .sensor_bound import Intrinsics
+from .sensor_bound import METHOD_MOUNT, NADIR_MOUNT, CameraMount, Intrinsics
 
 
 @dataclass(frozen=True)
 class Platform:
-    """A camera and its pose-noise budget (1σ: x, y, z in m; roll, pitch, yaw in degrees)."""
+    """A camera, its pose-noise budget (1σ: x, y, z in m; roll, pitch, yaw in degrees) and its mount."""
 
     key: str
     name: str
     camera: Intrinsics
     sigmas: tuple
+    mount: CameraMount
     tolerance_px: float
     altitudes_m: tuple
     sources: str
@@ -47,7 +53,7 @@ class Platform:
 DEPLOYED = Platform(
     key="deployed", name="Deployed platform (BirdsEye method)",
     camera=Intrinsics(fx=4264.4945, fy=4262.8927, cx=958.4594, cy=592.5033, width=1920, height=1200),
-    sigmas=(0.010, 0.010, 0.060, 0.04, 0.04, 0.13), tolerance_px=30.0, altitudes_m=(10.0, 20.0),
+    sigmas=(0.010, 0.010, 0.060, 0.04, 0.04, 0.13), mount=METHOD_MOUNT, tolerance_px=30.0, altitudes_m=(10.0, 20.0),
     sources="calibrated payload camera; RTK INS and radar altimeter budget of the deployed method")
 
 # Mavic 3 Enterprise wide camera: 5280 × 3956 px, 84° diagonal field of view.
@@ -67,7 +73,7 @@ DJI_METADATA = Platform(
             DJI_RTK_HORIZONTAL[0] + DJI_RTK_HORIZONTAL[1] * RTK_BASELINE_M,
             DJI_RTK_VERTICAL[0] + DJI_RTK_VERTICAL[1] * RTK_BASELINE_M,
             0.5, 0.5, 1.0),
-    tolerance_px=30.0, altitudes_m=(10.0, 20.0),
+    mount=NADIR_MOUNT, tolerance_px=30.0, altitudes_m=(10.0, 20.0),
     sources="DJI specifications (Mavic 3 Enterprise camera; RTK 1 cm + 1 ppm H, 1.5 cm + 1 ppm V at a 1 km "
             "baseline); attitude as measured on a real DJI RTK flight (DJI states none)")
 

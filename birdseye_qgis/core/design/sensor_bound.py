@@ -47,14 +47,26 @@ Axis convention (interface order ``x, y, z, roll, pitch, yaw``; metres and degre
 * ``x, y, z`` are the translation ρ in the camera frame. For a nadir camera x = image right and
   y = image down are horizontal, z (the optical axis) is vertical. RTK horizontal noise is normally
   isotropic (σx = σy), which makes the heading irrelevant.
-* ``roll, pitch, yaw`` are the body attitude errors (forward-right-down body, docs/design.md#attitude). The camera
-  looks straight down with body forward = image up, so camera x = body right, camera y = −body forward,
-  camera z = body down. Hence roll (about body forward) is a rotation about −y_c → φ_y, pitch (about
-  body right) is a rotation about x_c → φ_x, yaw (about body down) is a rotation about the optical
-  axis z_c → φ_z. At level flight small Euler-angle errors equal body rotation-vector components, and
-  signs are irrelevant to a diagonal Σ0. Consequence (tested): at the principal point a roll error
-  moves the label along u by fx px/rad, pitch moves it along v by fy px/rad, yaw does not move it.
-  ``INPUT_TO_XI[i]`` is the index in ξ = [ρx, ρy, ρz, φx, φy, φz] of interface axis i.
+* ``roll, pitch, yaw`` are attitude errors about the three axes of the frame the attitude is given in;
+  a :class:`CameraMount` says how they turn the camera. A small rotation φ_b of those axes turns the
+  camera by ``φ_c = R_cam_body φ_b``, so ``Σ_φc = R_cam_body diag(s_roll, s_pitch, s_yaw) R_cam_bodyᵀ``.
+  Mounts are signed axis permutations, which keep that covariance diagonal (signs drop out of a
+  diagonal Σ0): ``mount.input_to_xi[i]`` is the index in ξ = [ρx, ρy, ρz, φx, φy, φz] of interface
+  axis i. Two mounts are offered (docs/design.md#pose-noise):
+
+  - ``METHOD_MOUNT`` (the default): the method applies roll, pitch and yaw directly to the camera-frame
+    rotation vector, roll → φ_x, pitch → φ_y, yaw → φ_z (``R_cam_body = I``). Physically this is a
+    nadir camera whose image right points to the nose (camera x = body forward, y = body right,
+    z = body down). With it the deployed budget's balanced allocation and shares are the method's
+    table to the printed digit (tested).
+  - ``NADIR_MOUNT``: a forward-right-down body (docs/design.md#attitude) carrying a nadir camera with
+    the image top towards the nose: camera x = body right, camera y = −body forward, camera z = body
+    down. Roll (about body forward) turns the camera about −y_c → φ_y, pitch (about body right) about
+    x_c → φ_x, yaw (about body down) about the optical axis → φ_z. At level flight small Euler-angle
+    errors equal body rotation-vector components. Consequence (tested): at the principal point a roll
+    error moves the label along u by fx px/rad, pitch along v by fy px/rad, yaw not at all.
+
+  The two differ only by swapping roll and pitch: with σ_roll = σ_pitch they give the same numbers.
 
 Frame grid
 ----------
@@ -76,12 +88,67 @@ from ..geometry.rotations import hat
 
 AXES = ("x", "y", "z", "roll", "pitch", "yaw")
 SIGMA_UNITS = ("m", "m", "m", "deg", "deg", "deg")
-INPUT_TO_XI = np.array([0, 1, 2, 4, 3, 5])
-AXIS_CONVENTION = (
-    "x, y, z: translation in the camera frame (x image right, y image down, z optical axis = vertical "
-    "for a nadir camera); roll -> rotation about camera y (body forward = image up), "
-    "pitch -> rotation about camera x, yaw -> rotation about the optical axis z"
-)
+TRANSLATION_CONVENTION = ("x, y, z: translation in the camera frame (x image right, y image down, z optical axis = "
+                          "vertical for a nadir camera)")
+
+
+@dataclass(frozen=True)
+class CameraMount:
+    """How attitude errors (roll, pitch, yaw) turn the camera: ``φ_cam = R_cam_body φ_body``.
+
+    ``R_cam_body`` (3×3, rows = camera axes in body coordinates) must be a signed axis permutation,
+    so that a diagonal Σ0 stays diagonal in the camera frame (see the module's axis convention).
+    ``name`` is what a user picks from; ``convention`` spells the axes out for reports and JSON.
+    """
+
+    key: str
+    name: str
+    R_cam_body: tuple
+    convention: str
+
+    def __post_init__(self):
+        r = np.asarray(self.R_cam_body, dtype=float)
+        if r.shape != (3, 3) or not np.array_equal(np.abs(r) @ np.abs(r).T, np.eye(3)) or not np.all(
+                np.isin(r, (-1.0, 0.0, 1.0))):
+            raise InputError(f"camera mount {self.key!r}: R_cam_body must be a signed permutation of the axes, "
+                             f"got {r.tolist()}")
+
+    @property
+    def input_to_xi(self) -> np.ndarray:
+        """Index in ξ = [ρx, ρy, ρz, φx, φy, φz] of each interface axis (x, y, z, roll, pitch, yaw)."""
+        camera_axis = np.argmax(np.abs(np.asarray(self.R_cam_body, dtype=float)), axis=0)
+        return np.concatenate([[0, 1, 2], 3 + camera_axis])
+
+    def xi_variances(self, variances) -> np.ndarray:
+        """Pose variances (6,) in interface order, rearranged into ξ order."""
+        s_xi = np.empty(6)
+        s_xi[self.input_to_xi] = np.asarray(variances, dtype=float).reshape(6)
+        return s_xi
+
+
+METHOD_MOUNT = CameraMount(
+    key="method", name="As the method: roll, pitch, yaw turn the camera about its x, y and optical axes",
+    R_cam_body=((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0)),
+    convention=TRANSLATION_CONVENTION + "; roll, pitch, yaw -> rotations about camera x (image right), y (image "
+               "down) and z (optical axis), applied to the camera-frame rotation vector as the method does")
+NADIR_MOUNT = CameraMount(
+    key="nadir_top_forward",
+    name="Nadir camera, image top towards the nose (roll about the flight direction, pitch about the wings)",
+    R_cam_body=((0.0, 1.0, 0.0), (-1.0, 0.0, 0.0), (0.0, 0.0, 1.0)),
+    convention=TRANSLATION_CONVENTION + "; roll, pitch, yaw: forward-right-down body attitude errors of a nadir "
+               "camera with the image top towards the nose: roll -> rotation about camera y, pitch -> about "
+               "camera x, yaw -> about the optical axis z")
+MOUNTS = (METHOD_MOUNT, NADIR_MOUNT)
+
+
+def camera_mount(key: str) -> CameraMount:
+    """The mount called ``key``; InputError naming the known ones otherwise."""
+    for mount in MOUNTS:
+        if mount.key == key:
+            return mount
+    raise InputError(f"no camera mount {key!r}; known: {', '.join(m.key for m in MOUNTS)}")
+
+
 EXACT_TOLERANCE = 1e-6
 EXACT_MAX_ITERATIONS = 200
 # Grid points evaluated at once: 64k float64 values (512 kB) keep every temporary array in cache.
@@ -173,7 +240,7 @@ def pixel_jacobian(intr, u, v, depth) -> np.ndarray:
     ``u, v`` (px) and ``depth`` (m) broadcast together and are flattened to N points. Evaluated as the
     product ``∂π/∂X_c · [I | −X_c^]`` at the back-projected point ``X_c = depth · (x, y, 1)``; the module
     docstring gives the closed form that the grid sweep uses. Columns are in ξ order: use
-    ``J[..., INPUT_TO_XI]`` for the interface order (x, y, z, roll, pitch, yaw).
+    ``J[..., mount.input_to_xi]`` for the interface order (x, y, z, roll, pitch, yaw).
     """
     fx, fy, cx, cy, _, _ = _camera(intr)
     u, v, z = (np.ravel(a) for a in np.broadcast_arrays(*(np.asarray(a, dtype=float) for a in (u, v, depth))))
@@ -188,19 +255,19 @@ def pixel_jacobian(intr, u, v, depth) -> np.ndarray:
     return dpi @ lift
 
 
-def gains(intr, u, v, depth) -> np.ndarray:
+def gains(intr, u, v, depth, mount: CameraMount = METHOD_MOUNT) -> np.ndarray:
     """Gain vectors ``g_i = ‖j_i‖²`` (N, 6), interface order, in px²/m² and px²/rad²."""
-    j = pixel_jacobian(intr, u, v, depth)[..., INPUT_TO_XI]
+    j = pixel_jacobian(intr, u, v, depth)[..., mount.input_to_xi]
     return np.sum(j * j, axis=-2)
 
 
-def pixel_covariance(intr, u, v, depth, variances) -> np.ndarray:
+def pixel_covariance(intr, u, v, depth, variances, mount: CameraMount = METHOD_MOUNT) -> np.ndarray:
     """Linearised label covariance ``Σ_u = J diag(s) Jᵀ`` (N, 2, 2) px².
 
     ``variances`` are the six pose variances in interface order (m², rad²), e.g. from
-    ``sigmas_to_variances``.
+    ``sigmas_to_variances``; ``mount`` says how roll, pitch and yaw turn the camera.
     """
-    j = pixel_jacobian(intr, u, v, depth)[..., INPUT_TO_XI]
+    j = pixel_jacobian(intr, u, v, depth)[..., mount.input_to_xi]
     s = np.asarray(variances, dtype=float).reshape(6)
     return (j * s) @ np.swapaxes(j, -1, -2)
 
@@ -294,22 +361,23 @@ class FrameSuprema:
     worst_pixel: tuple
 
 
-def frame_suprema(intr, altitude_m, sigmas, stride_px: int = 1) -> FrameSuprema:
+def frame_suprema(intr, altitude_m, sigmas, stride_px: int = 1, *,
+                  mount: CameraMount = METHOD_MOUNT) -> FrameSuprema:
     """``sup_u tr Σ_u`` and ``sup_u λ_max(Σ_u)`` over the frame grid, without the allocations.
 
-    ``sigmas``: pose sigmas (x, y, z in m; roll, pitch, yaw in degrees). Cheap enough (tens of ms at
-    full resolution) to re-run on every edit in a dock.
+    ``sigmas``: pose sigmas (x, y, z in m; roll, pitch, yaw in degrees) on ``mount``. Cheap enough
+    (tens of ms at full resolution) to re-run on every edit in a dock.
     """
-    s_xi = sigmas_to_variances(sigmas)[INPUT_TO_XI]
+    s_xi = mount.xi_variances(sigmas_to_variances(sigmas))
     us, vs = frame_grid(intr, stride_px)
     (sup_tr, px_tr), (sup_lm, px_lm) = _sweep(_camera(intr), us, vs, _altitude(altitude_m), s_xi)
     return FrameSuprema(sup_tr, px_tr, sup_lm, px_lm)
 
 
-def _fields(intr, altitude_m, sigmas, stride_px):
+def _fields(intr, altitude_m, sigmas, stride_px, mount):
     cam = _camera(intr)
     depth = _altitude(altitude_m)
-    s_xi = sigmas_to_variances(sigmas)[INPUT_TO_XI]
+    s_xi = mount.xi_variances(sigmas_to_variances(sigmas))
     us, vs = frame_grid(intr, stride_px)
     grid = _GridCovariance(cam, us, vs, depth, s_xi)
     trace = np.empty((vs.size, us.size))
@@ -322,17 +390,17 @@ def _fields(intr, altitude_m, sigmas, stride_px):
     return trace, lmax
 
 
-def lmax_field(intr, altitude_m, sigmas, stride_px: int = 1) -> np.ndarray:
+def lmax_field(intr, altitude_m, sigmas, stride_px: int = 1, *, mount: CameraMount = METHOD_MOUNT) -> np.ndarray:
     """``λ_max(Σ_u)`` px² on the frame grid: rows follow ``v``, columns ``u`` (see ``frame_grid``).
 
-    ``sigmas`` are the six pose sigmas (x, y, z in m; roll, pitch, yaw in degrees).
+    ``sigmas`` are the six pose sigmas (x, y, z in m; roll, pitch, yaw in degrees) on ``mount``.
     """
-    return _fields(intr, altitude_m, sigmas, stride_px)[1]
+    return _fields(intr, altitude_m, sigmas, stride_px, mount)[1]
 
 
-def trace_field(intr, altitude_m, sigmas, stride_px: int = 1) -> np.ndarray:
+def trace_field(intr, altitude_m, sigmas, stride_px: int = 1, *, mount: CameraMount = METHOD_MOUNT) -> np.ndarray:
     """``tr Σ_u = sᵀ g(u)`` px² on the frame grid, laid out like ``lmax_field``."""
-    return _fields(intr, altitude_m, sigmas, stride_px)[0]
+    return _fields(intr, altitude_m, sigmas, stride_px, mount)[0]
 
 
 def trace_binding_corner(intr) -> tuple[float, float]:
@@ -341,14 +409,14 @@ def trace_binding_corner(intr) -> tuple[float, float]:
     return (float(width) if width - cx >= cx else 0.0, float(height) if height - cy >= cy else 0.0)
 
 
-def balanced_trace_variances(intr, altitude_m, tolerance_px) -> np.ndarray:
+def balanced_trace_variances(intr, altitude_m, tolerance_px, *, mount: CameraMount = METHOD_MOUNT) -> np.ndarray:
     """Balanced budget under the trace bound: ``s_i = λ_target / (6 g*_i)`` (6,) m², rad².
 
     ``g*`` is the gain vector at ``trace_binding_corner``, where the trace of every budget peaks, so
     this budget has ``sup_u tr Σ_u = λ_target`` exactly, each axis contributing a sixth.
     """
     lam = lambda_target(tolerance_px)
-    g = gains(intr, *trace_binding_corner(intr), _altitude(altitude_m))[0]
+    g = gains(intr, *trace_binding_corner(intr), _altitude(altitude_m), mount)[0]
     return lam / (6.0 * g)
 
 
@@ -356,9 +424,9 @@ def _top_eigenvector(cov: np.ndarray) -> np.ndarray:
     return np.linalg.eigh(cov)[1][:, -1]
 
 
-def _cut(intr, pixel, depth, s_input) -> np.ndarray:
+def _cut(intr, pixel, depth, s_input, mount) -> np.ndarray:
     """Tangent plane of λ_max(Σ_u(s)) at ``s_input``: coefficients ``(wᵀ j_i)²`` (interface order)."""
-    j = pixel_jacobian(intr, pixel[0], pixel[1], depth)[0][:, INPUT_TO_XI]
+    j = pixel_jacobian(intr, pixel[0], pixel[1], depth)[0][:, mount.input_to_xi]
     w = _top_eigenvector((j * s_input) @ j.T)
     return (w @ j) ** 2
 
@@ -382,8 +450,8 @@ def _max_log_under_cuts(cuts: np.ndarray, t0: np.ndarray) -> np.ndarray:
     return t - math.log(worst) if worst > 1.0 else t
 
 
-def balanced_exact_variances(intr, altitude_m, tolerance_px, stride_px: int = 1,
-                             tol: float = EXACT_TOLERANCE) -> tuple[np.ndarray, int]:
+def balanced_exact_variances(intr, altitude_m, tolerance_px, stride_px: int = 1, tol: float = EXACT_TOLERANCE, *,
+                             mount: CameraMount = METHOD_MOUNT) -> tuple[np.ndarray, int]:
     """Balanced budget under the exact bound: ``max Σ log s_i`` s.t. ``λ_max(Σ_u(s)) ≤ λ_target`` ∀u.
 
     Returns ``(variances (6,) m², rad², iterations)``. Kelley's cutting planes over the frame grid,
@@ -395,10 +463,10 @@ def balanced_exact_variances(intr, altitude_m, tolerance_px, stride_px: int = 1,
     depth = _altitude(altitude_m)
     lam = lambda_target(tolerance_px)
     us, vs = frame_grid(intr, stride_px)
-    base = balanced_trace_variances(intr, depth, tolerance_px)
+    base = balanced_trace_variances(intr, depth, tolerance_px, mount=mount)
     cuts = []
     for corner in ((0.0, 0.0), (cam[4], 0.0), (0.0, cam[5]), (cam[4], cam[5])):
-        j = pixel_jacobian(intr, corner[0], corner[1], depth)[0][:, INPUT_TO_XI]
+        j = pixel_jacobian(intr, corner[0], corner[1], depth)[0][:, mount.input_to_xi]
         for w in ((1.0, 0.0), (0.0, 1.0), (math.sqrt(0.5), math.sqrt(0.5)), (math.sqrt(0.5), -math.sqrt(0.5))):
             cuts.append((np.asarray(w) @ j) ** 2)
     t = np.zeros(6)
@@ -407,10 +475,10 @@ def balanced_exact_variances(intr, altitude_m, tolerance_px, stride_px: int = 1,
         # (wᵀj_i)² ≤ ‖j_i‖² ≤ g*_i on the grid.
         t = _max_log_under_cuts(np.asarray(cuts) * base / lam, t)
         s = base * np.exp(t)
-        _, (sup, pixel) = _sweep(cam, us, vs, depth, s[INPUT_TO_XI], with_trace=False)
+        _, (sup, pixel) = _sweep(cam, us, vs, depth, mount.xi_variances(s), with_trace=False)
         if sup <= lam * (1.0 + tol):
             break
-        cuts.append(_cut(intr, pixel, depth, s))
+        cuts.append(_cut(intr, pixel, depth, s, mount))
     return s * (lam / sup), iteration
 
 
@@ -465,31 +533,34 @@ class AltitudeBound:
         }
 
 
-def evaluate_bound(intr, altitude_m, sigmas, tolerance_px: float = 30.0, stride_px: int = 1) -> AltitudeBound:
+def evaluate_bound(intr, altitude_m, sigmas, tolerance_px: float = 30.0, stride_px: int = 1, *,
+                   mount: CameraMount = METHOD_MOUNT) -> AltitudeBound:
     """Trace and exact bounds, κ*, verdicts and balanced budgets at one altitude.
 
     ``intr``: intrinsics (px); ``altitude_m``: depth of the level ground (m); ``sigmas``: deployed pose
     sigmas (x, y, z in m; roll, pitch, yaw in degrees, see the module's axis convention);
-    ``tolerance_px``: label radius r at 3σ; ``stride_px``: grid stride (1 = every pixel).
+    ``tolerance_px``: label radius r at 3σ; ``stride_px``: grid stride (1 = every pixel); ``mount``:
+    how roll, pitch and yaw turn the camera.
     """
     depth = _altitude(altitude_m)
     lam = lambda_target(tolerance_px)
     s = sigmas_to_variances(sigmas)
-    sup = frame_suprema(intr, depth, sigmas, stride_px)
+    sup = frame_suprema(intr, depth, sigmas, stride_px, mount=mount)
     sup_tr, px_tr, sup_lm, px_lm = sup.sup_trace_px2, sup.worst_pixel_trace, sup.sup_lmax_px2, sup.worst_pixel
     kappa_tr = lam / sup_tr if sup_tr > 0 else math.inf
     kappa_lm = lam / sup_lm if sup_lm > 0 else math.inf
-    g = gains(intr, px_lm[0], px_lm[1], depth)[0]
+    g = gains(intr, px_lm[0], px_lm[1], depth, mount)[0]
     contrib = g * s
     share = contrib / contrib.sum() if contrib.sum() > 0 else np.zeros(6)
-    exact, iterations = balanced_exact_variances(intr, depth, tolerance_px, stride_px)
+    exact, iterations = balanced_exact_variances(intr, depth, tolerance_px, stride_px, mount=mount)
     return AltitudeBound(
         altitude_m=depth, lambda_target_px2=lam,
         sup_trace_px2=sup_tr, sup_lmax_px2=sup_lm, kappa_trace=kappa_tr, kappa_exact=kappa_lm,
         verdict_trace="accept" if kappa_tr >= 1.0 else "reject",
         verdict_exact="accept" if kappa_lm >= 1.0 else "reject",
         worst_pixel_trace=px_tr, worst_pixel=px_lm,
-        balanced_trace_sigma=variances_to_sigmas(balanced_trace_variances(intr, depth, tolerance_px)).tolist(),
+        balanced_trace_sigma=variances_to_sigmas(balanced_trace_variances(intr, depth, tolerance_px,
+                                                                          mount=mount)).tolist(),
         balanced_exact_sigma=variances_to_sigmas(exact).tolist(),
         budget_share=share.tolist(), stride_px=_stride(stride_px), exact_iterations=iterations,
     )
@@ -497,7 +568,8 @@ def evaluate_bound(intr, altitude_m, sigmas, tolerance_px: float = 30.0, stride_
 
 def evaluate_bounds(intr, altitudes: Sequence[float], sigmas, tolerance_px: float = 30.0, stride_px: int = 1,
                     progress: Optional[Callable[[float], None]] = None,
-                    is_canceled: Optional[Callable[[], bool]] = None) -> dict:
+                    is_canceled: Optional[Callable[[], bool]] = None, *,
+                    mount: CameraMount = METHOD_MOUNT) -> dict:
     """``evaluate_bound`` at each altitude: ``{"altitudes": [to_json_dict, …], "inputs": {…}}``.
 
     ``progress(fraction)`` is called after each altitude; ``is_canceled()`` is polled before each one
@@ -512,7 +584,7 @@ def evaluate_bounds(intr, altitudes: Sequence[float], sigmas, tolerance_px: floa
     for k, altitude in enumerate(altitudes):
         if is_canceled is not None and is_canceled():
             raise Cancelled("sensor bound cancelled")
-        results.append(evaluate_bound(intr, altitude, sigmas, tolerance_px, stride_px).to_json_dict())
+        results.append(evaluate_bound(intr, altitude, sigmas, tolerance_px, stride_px, mount=mount).to_json_dict())
         if progress is not None:
             progress((k + 1) / len(altitudes))
     return {
@@ -522,7 +594,8 @@ def evaluate_bounds(intr, altitudes: Sequence[float], sigmas, tolerance_px: floa
             "sigmas": variances_to_sigmas(sig).tolist(),
             "axes": list(AXES),
             "sigma_units": list(SIGMA_UNITS),
-            "axis_convention": AXIS_CONVENTION,
+            "mount": mount.key,
+            "axis_convention": mount.convention,
             "tolerance_px": float(tolerance_px),
             "lambda_target_px2": lambda_target(tolerance_px),
             "stride_px": _stride(stride_px),

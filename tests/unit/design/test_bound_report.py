@@ -5,6 +5,7 @@ criterion per altitude with the right class, the budgets in their units and one 
 altitude; the plot's image is exactly ``lmax_field``, its colour scale and contour follow λ_target.
 """
 import base64
+import html
 import io
 import math
 import re
@@ -143,3 +144,21 @@ def test_altitude_summary_reads_well(result):
     assert "x 0.0136 m" in line and "yaw 0.301°" in line
     zero = sb.evaluate_bounds(DEPLOYED, [10.0], [0.0] * 6, 30.0, stride_px=64)["altitudes"][0]
     assert "trace κ* = ∞ ACCEPT" in br.altitude_summary(zero)
+
+
+def test_report_and_plot_follow_the_camera_mount():
+    sigmas = [0.01, 0.01, 0.06, 0.30, 0.05, 0.13]   # roll ≠ pitch: the mount matters
+    nadir = sb.evaluate_bounds(DEPLOYED, [10.0], sigmas, 30.0, stride_px=16, mount=sb.NADIR_MOUNT)
+    method = sb.evaluate_bounds(DEPLOYED, [10.0], sigmas, 30.0, stride_px=16)
+    assert (nadir["inputs"]["mount"], method["inputs"]["mount"]) == ("nadir_top_forward", "method")
+    text = br.build_report_html(nadir, plot_stride_px=32)
+    assert html.escape(sb.NADIR_MOUNT.name) in text and html.escape(sb.NADIR_MOUNT.convention) in text
+    figure = Figure(figsize=(5, 4))
+    FigureCanvasAgg(figure)
+    plot = br.LmaxFieldPlot(figure)
+    fields = {}
+    for mount in sb.MOUNTS:
+        plot.update(DEPLOYED, 10.0, sigmas, 30.0, stride_px=16, mount=mount)
+        fields[mount.key] = np.asarray(plot.image.get_array())
+        np.testing.assert_array_equal(fields[mount.key], sb.lmax_field(DEPLOYED, 10.0, sigmas, 16, mount=mount))
+    assert not np.allclose(fields["method"], fields["nadir_top_forward"], rtol=0.01)

@@ -42,7 +42,7 @@ def displacement_px(cam, altitude, u, v, axis, sigma):
 
 def test_the_dji_metadata_preset_fails_the_default_tolerance_at_10_m_because_of_its_attitude():
     cam, sigmas = DJI_METADATA.camera, DJI_METADATA.sigmas
-    bound = sb.evaluate_bound(cam, 10.0, sigmas, DJI_METADATA.tolerance_px, stride_px=8)
+    bound = sb.evaluate_bound(cam, 10.0, sigmas, DJI_METADATA.tolerance_px, stride_px=8, mount=DJI_METADATA.mount)
     sigma_label = DJI_METADATA.tolerance_px / 3.0
     assert bound.verdict_exact == "reject" and bound.kappa_exact < 0.05
     # Why: at the worst pixel (a frame corner) one σ of each axis alone moves the label by …
@@ -59,12 +59,18 @@ def test_the_dji_metadata_preset_fails_the_default_tolerance_at_10_m_because_of_
     share = bound.budget_share
     assert int(np.argmax(share)) == 5 and sum(share[3:]) > 0.95
     # The RTK position alone passes; any one attitude axis alone fails.
-    position_only = sb.evaluate_bound(cam, 10.0, list(sigmas[:3]) + [0.0] * 3, 30.0, stride_px=8)
+    position_only = sb.evaluate_bound(cam, 10.0, list(sigmas[:3]) + [0.0] * 3, 30.0, stride_px=8,
+                                      mount=DJI_METADATA.mount)
     assert position_only.verdict_exact == "accept"
     for axis in (3, 4, 5):
         alone = [0.0] * 6
         alone[axis] = sigmas[axis]
-        assert sb.evaluate_bound(cam, 10.0, alone, 30.0, stride_px=8).verdict_exact == "reject"
+        alone_bound = sb.evaluate_bound(cam, 10.0, alone, 30.0, stride_px=8, mount=DJI_METADATA.mount)
+        assert alone_bound.verdict_exact == "reject"
+    # Roll and pitch share one sigma, so the method's mount (roll and pitch swapped) gives the same bound.
+    assert DJI_METADATA.mount is sb.NADIR_MOUNT
+    on_method_mount = sb.evaluate_bound(cam, 10.0, sigmas, 30.0, stride_px=8, mount=sb.METHOD_MOUNT)
+    assert on_method_mount.sup_lmax_px2 == pytest.approx(bound.sup_lmax_px2, rel=1e-12)
 
 
 def test_displacement_agrees_with_the_bound_jacobian():
@@ -74,5 +80,5 @@ def test_displacement_agrees_with_the_bound_jacobian():
         step = [0.0] * 6
         step[axis] = s
         for u, v in ((0.0, 0.0), (cam.width, cam.height), (1200.0, 3100.0)):
-            linear = math.sqrt(float(sb.gains(cam, u, v, 10.0)[0] @ sb.sigmas_to_variances(step)))
+            linear = math.sqrt(float(sb.gains(cam, u, v, 10.0, DJI_METADATA.mount)[0] @ sb.sigmas_to_variances(step)))
             assert displacement_px(cam, 10.0, u, v, axis, s) == pytest.approx(linear, rel=0.03)

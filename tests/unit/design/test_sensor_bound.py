@@ -45,7 +45,8 @@ def test_jacobian_matches_central_differences_of_the_full_projection(depth):
         np.testing.assert_allclose(jac, fd, rtol=1e-6, atol=1e-4)
 
 
-def test_closed_forms_at_the_principal_point():
+@pytest.mark.parametrize("mount, roll_gain, pitch_gain", [(sb.METHOD_MOUNT, "fy", "fx"), (sb.NADIR_MOUNT, "fx", "fy")])
+def test_closed_forms_at_the_principal_point(mount, roll_gain, pitch_gain):
     z = 12.0
     jac = sb.pixel_jacobian(DEPLOYED, DEPLOYED.cx, DEPLOYED.cy, z)[0]
     # Translation across the optical axis moves the centre by f/Z px per metre, along it not at all.
@@ -57,21 +58,33 @@ def test_closed_forms_at_the_principal_point():
     np.testing.assert_allclose(jac[:, 3], [0.0, -DEPLOYED.fy], atol=1e-9)
     np.testing.assert_allclose(jac[:, 4], [DEPLOYED.fx, 0.0], atol=1e-9)
     np.testing.assert_allclose(jac[:, 5], [0.0, 0.0], atol=1e-9)
-    # In interface order: roll moves the centre along u, pitch along v, yaw not at all.
-    g = sb.gains(DEPLOYED, DEPLOYED.cx, DEPLOYED.cy, z)[0]
-    np.testing.assert_allclose(g, [(DEPLOYED.fx / z) ** 2, (DEPLOYED.fy / z) ** 2, 0, DEPLOYED.fx ** 2,
-                                   DEPLOYED.fy ** 2, 0], atol=1e-6)
+    # In interface order. The method's mount: roll turns the camera about x, so it moves the centre
+    # along v; pitch along u. The nadir mount (image top = nose): roll along u, pitch along v. Yaw
+    # turns about the optical axis and leaves the centre in place on both.
+    g = sb.gains(DEPLOYED, DEPLOYED.cx, DEPLOYED.cy, z, mount)[0]
+    focal = {"fx": DEPLOYED.fx, "fy": DEPLOYED.fy}
+    np.testing.assert_allclose(g, [(DEPLOYED.fx / z) ** 2, (DEPLOYED.fy / z) ** 2, 0, focal[roll_gain] ** 2,
+                                   focal[pitch_gain] ** 2, 0], atol=1e-6)
 
 
-def test_roll_pitch_yaw_map_to_camera_rotations_as_documented():
-    """Perturb body Euler angles (FRD body, nadir camera with body forward = image up) and re-project."""
-    r_body_cam = np.array([[0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]])  # camera axes in body
+# Camera axes in the FRD body (columns: camera x, y, z) and the sign with which a body Euler error
+# δ (roll, pitch, yaw) appears in the camera rotation φ: a body-frame right perturbation seen as a
+# left perturbation of T_cam_world. Method: camera x = body forward (image right to the nose), so
+# roll δ → φ_x = −δ, pitch δ → φ_y = −δ, yaw δ → φ_z = −δ. Nadir, image top = nose: camera x = body
+# right, y = −body forward, so roll δ → φ_y = +δ, pitch δ → φ_x = −δ, yaw δ → φ_z = −δ.
+PHYSICAL_MOUNTS = [
+    (sb.METHOD_MOUNT, np.eye(3), (-1.0, -1.0, -1.0)),
+    (sb.NADIR_MOUNT, np.array([[0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]]), (1.0, -1.0, -1.0)),
+]
+
+
+@pytest.mark.parametrize("mount, r_body_cam, signs", PHYSICAL_MOUNTS, ids=lambda m: getattr(m, "key", ""))
+def test_roll_pitch_yaw_map_to_camera_rotations_as_documented(mount, r_body_cam, signs):
+    """Perturb body Euler angles (FRD body, the mount's nadir camera) and re-project."""
     yaw0, z, h = math.radians(35.0), 15.0, 1e-7
     pixels = [(0, 0), (1920, 1200), (DEPLOYED.cx, DEPLOYED.cy), (1500, 200)]
-    jac = sb.pixel_jacobian(DEPLOYED, [p[0] for p in pixels], [p[1] for p in pixels], z)[..., sb.INPUT_TO_XI]
-    # Derived signs: roll δ → φ_y = +δ, pitch δ → φ_x = −δ, yaw δ → φ_z = −δ (body-frame right
-    # perturbation seen as a left perturbation of T_cam_world).
-    for axis, sign in ((3, 1.0), (4, -1.0), (5, -1.0)):
+    jac = sb.pixel_jacobian(DEPLOYED, [p[0] for p in pixels], [p[1] for p in pixels], z)[..., mount.input_to_xi]
+    for axis, sign in zip((3, 4, 5), signs):
         for k, (u, v) in enumerate(pixels):
             x_ned = euler_zyx_to_rotmat(0.0, 0.0, yaw0) @ r_body_cam @ _back_project(DEPLOYED, u, v, z)
 
@@ -171,7 +184,7 @@ def _independent_exact_allocation(intr, z, lam, stride, n_dirs=90):
     """max Σ log s under λ_max ≤ λ imposed along many fixed directions at every grid pixel (a relaxation)."""
     us, vs = sb.frame_grid(intr, stride)
     uu, vv = np.meshgrid(us, vs)
-    jac = sb.pixel_jacobian(intr, uu.ravel(), vv.ravel(), z)[..., sb.INPUT_TO_XI]
+    jac = sb.pixel_jacobian(intr, uu.ravel(), vv.ravel(), z)[..., sb.METHOD_MOUNT.input_to_xi]
     theta = np.linspace(0, np.pi, n_dirs, endpoint=False)
     dirs = np.stack([np.cos(theta), np.sin(theta)], 1)
     cuts = (np.einsum("kd,ndi->nki", dirs, jac) ** 2).reshape(-1, 6)
@@ -271,3 +284,35 @@ def test_units_and_input_validation():
         sb.frame_grid(DEPLOYED, 2.5)
     with pytest.raises(InputError):
         sb.evaluate_bounds(DEPLOYED, [], DEPLOYED_SIGMAS)
+
+
+def test_the_deployed_preset_gives_the_methods_table_to_the_printed_digit():
+    """The method's table at 10 m (r = 30 px): the balanced exact budget and the shares of the deployed
+    budget, as the method prints them. Its mount applies roll to camera x and pitch to camera y; on
+    the nadir mount (image top = nose) the two trade places, roll and pitch swapped."""
+    from birdseye.birdseye_qgis.core.design.platforms import DEPLOYED as PRESET
+
+    assert PRESET.mount is sb.METHOD_MOUNT
+    table = {"budget": ["13.64 mm", "13.45 mm", "49.12 mm", "0.0753°", "0.0741°", "0.3013°"],
+             "share": ["16.7 %", "16.7 %", "42.9 %", "8.5 %", "9.0 %", "6.1 %"]}
+    swapped = {key: column[:3] + [column[4], column[3], column[5]] for key, column in table.items()}
+    for mount, expected in ((PRESET.mount, table), (sb.NADIR_MOUNT, swapped)):
+        budget, _ = sb.balanced_exact_variances(PRESET.camera, 10.0, PRESET.tolerance_px, mount=mount)
+        sigmas = sb.variances_to_sigmas(budget)
+        shares = sb.evaluate_bound(PRESET.camera, 10.0, PRESET.sigmas, PRESET.tolerance_px, mount=mount).budget_share
+        assert ([f"{1000 * s:.2f} mm" for s in sigmas[:3]] + [f"{s:.4f}°" for s in sigmas[3:]]) == expected["budget"]
+        assert [f"{100 * s:.1f} %" for s in shares] == expected["share"]
+
+
+def test_mounts_are_signed_axis_permutations():
+    assert sb.METHOD_MOUNT.input_to_xi.tolist() == [0, 1, 2, 3, 4, 5]
+    assert sb.NADIR_MOUNT.input_to_xi.tolist() == [0, 1, 2, 4, 3, 5]
+    np.testing.assert_array_equal(sb.NADIR_MOUNT.xi_variances([1, 2, 3, 4, 5, 6]), [1, 2, 3, 5, 4, 6])
+    assert sb.camera_mount("nadir_top_forward") is sb.NADIR_MOUNT
+    with pytest.raises(InputError, match="method, nadir_top_forward"):
+        sb.camera_mount("sideways")
+    tilted = ((1.0, 0.0, 0.0), (0.0, math.cos(0.3), -math.sin(0.3)), (0.0, math.sin(0.3), math.cos(0.3)))
+    with pytest.raises(InputError, match="signed permutation"):
+        sb.CameraMount("tilted", "tilted", tilted, "")
+    with pytest.raises(InputError, match="signed permutation"):
+        sb.CameraMount("doubled", "doubled", ((1.0, 0.0, 0.0), (1.0, 0.0, 0.0), (0.0, 0.0, 1.0)), "")
