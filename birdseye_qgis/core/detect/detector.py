@@ -18,8 +18,11 @@ Per frame (a generator, so memory does not grow with the number of frames):
 5. **Peaks** (:func:`find_peaks`): a small Gaussian blur, a threshold, one detection per
    8-connected blob, located at the blob's intensity-weighted centroid (weights = smoothed value −
    threshold, so the blob's rim weighs nothing and the centroid is sub-pixel and unbiased for a
-   symmetric hump); its score is the blob's maximum smoothed value, so keeping the detections with
-   ``score ≥ t'`` approximates a run at a higher threshold ``t'``.
+   symmetric hump); its score is the blob's maximum smoothed value. Keeping the detections with
+   ``score ≥ t'`` only approximates a run at a higher threshold ``t'``: a blob whose humps meet above
+   ``t`` but below ``t'`` is one detection at ``t`` and two at ``t'``, and the centroid weights change
+   with the threshold; :func:`detect_frames_at_thresholds` runs the extraction at several thresholds
+   on one heatmap.
 6. **Back-project** each detection through its frame's pose onto the level ground
    (:func:`~.projection.pixel_to_ground` with :class:`~.ground.LevelPlaneGround`).
 
@@ -360,10 +363,26 @@ def detect_frames(model: HeatmapModel, poses: FramePoses, images, request: Detec
     Progress is reported after each frame; cancel is checked before each.
     """
     request = request or DetectRequest()
+    threshold = model.metadata.default_threshold if request.threshold is None else request.threshold
+    for found in detect_frames_at_thresholds(model, poses, images, [threshold], request, local, read_image,
+                                             progress, is_canceled, ground):
+        yield found[0]
+
+
+def detect_frames_at_thresholds(model: HeatmapModel, poses: FramePoses, images, thresholds,
+                                request: DetectRequest | None = None, local: LocalFrame | None = None,
+                                read_image: Callable[[str, int], np.ndarray | None] = read_bgr,
+                                progress=None, is_canceled=None, ground=None) -> Iterator[list[FrameDetections]]:
+    """:func:`detect_frames` with the peak extraction run at each of ``thresholds`` on every frame's
+    heatmap, which is computed once: yields per frame one :class:`FrameDetections` per threshold, in
+    the order given, each exactly what a run at that threshold alone gives (a blob that splits above a
+    higher threshold gives its parts there). ``request.threshold`` is not used."""
+    request = request or DetectRequest()
     meta = model.metadata
-    threshold = meta.default_threshold if request.threshold is None else float(request.threshold)
-    if not 0.0 < threshold < 1.0:
-        raise InputError(f"the threshold must be a probability between 0 and 1 (got {threshold})")
+    thresholds = [float(t) for t in thresholds]
+    for threshold in thresholds:
+        if not 0.0 < threshold < 1.0:
+            raise InputError(f"the threshold must be a probability between 0 and 1 (got {threshold})")
     local = local or LocalFrame.around(poses.lat, poses.lon, poses.height)
     has_ground = np.isfinite(poses.ground_height) | (ground is not None)
     geom = FrameGeometry(poses.subset(has_ground), local)
@@ -380,22 +399,25 @@ def detect_frames(model: HeatmapModel, poses: FramePoses, images, request: Detec
         if is_canceled is not None and is_canceled():
             raise Cancelled()
         image_path = str(images[k])
-        found = _empty(k, poses.frame_id[k], image_path, gsd_cm[k])
+        skipped = None
         if not has_ground[k]:
-            found.skipped = "the frame has no ground height (no altimeter reading), so nothing can be placed"
+            skipped = "the frame has no ground height (no altimeter reading), so nothing can be placed"
         else:
             size = model_size(cam.width, cam.height, gsd_cm[k], meta.resolution_cm)
             r = read_reduction(cam.width, cam.height, size)
             img = read_image(image_path, r)
             if img is None:
-                found.skipped = f"image '{image_path}' cannot be read"
+                skipped = f"image '{image_path}' cannot be read"
             elif img.shape[:2] != (cam.height // r, cam.width // r):
-                found.skipped = (f"image '{image_path}' is {'about ' if r > 1 else ''}{img.shape[1] * r}×"
-                                 f"{img.shape[0] * r} px but the frame's camera model is {cam.width}×{cam.height} px")
-            else:
-                found = _detect_one(model, resample(img, size), k, int(geom_index[k]), poses.frame_id[k],
-                                    image_path, gsd_cm[k], threshold, request, geom, ground, local, heat_dir)
-        yield found
+                skipped = (f"image '{image_path}' is {'about ' if r > 1 else ''}{img.shape[1] * r}×"
+                           f"{img.shape[0] * r} px but the frame's camera model is {cam.width}×{cam.height} px")
+        if skipped is None:
+            yield _detect_one(model, resample(img, size), k, int(geom_index[k]), poses.frame_id[k], image_path,
+                              gsd_cm[k], thresholds, request, geom, ground, local, heat_dir)
+        else:
+            found = _empty(k, poses.frame_id[k], image_path, gsd_cm[k])
+            found.skipped = skipped
+            yield [found] * len(thresholds)
         if progress is not None:
             progress((k + 1) / n)
 
@@ -405,27 +427,29 @@ def _empty(k, frame_id, image, gsd_cm) -> FrameDetections:
     return FrameDetections(k, frame_id, image, e2, e1, np.empty((0, 3)), e1, e1, e1, float(gsd_cm))
 
 
-def _detect_one(model, img_model_res, k, g, frame_id, image_path, gsd_cm, threshold, request, geom, ground,
-                local, heat_dir) -> FrameDetections:
-    """Detections of frame k (index g in ``geom``, which holds the frames with a ground height)."""
+def _detect_one(model, img_model_res, k, g, frame_id, image_path, gsd_cm, thresholds, request, geom, ground,
+                local, heat_dir) -> list[FrameDetections]:
+    """Detections of frame k (index g in ``geom``, which holds the frames with a ground height), one
+    :class:`FrameDetections` per threshold, from one heatmap."""
     meta = model.metadata
     cam = geom.camera
     size = img_model_res.shape[1], img_model_res.shape[0]
     heat = frame_heatmap(model, img_model_res)
-    uv_model, score = find_peaks(heat, threshold, meta.peak_blur_sigma_px)
-    uv = to_frame_pixels(uv_model, (cam.width, cam.height), size)
-    keep = cam.in_frame(uv, request.edge_buffer_px)
-    n_edge = int((~keep).sum())
-    uv, score = uv[keep], score[keep]
-    pts, valid = pixel_to_ground(geom, ground, np.full(len(uv), g), uv)
-    n_no_ground = int((~valid).sum())
-    uv, score, pts = uv[valid], score[valid], pts[valid]
-    lat, lon, h = local.to_geodetic(pts) if len(pts) else (np.empty(0),) * 3
-    found = FrameDetections(k, frame_id, image_path, uv, score, pts, np.asarray(lat), np.asarray(lon),
-                            np.asarray(h), float(gsd_cm), n_edge, n_no_ground)
-    if heat_dir is not None:
-        found.heatmap_path = _write_heatmap(heat_dir, frame_id, heat, (cam.width, cam.height))
-    return found
+    heatmap_path = None if heat_dir is None else _write_heatmap(heat_dir, frame_id, heat, (cam.width, cam.height))
+    out = []
+    for threshold in thresholds:
+        uv_model, score = find_peaks(heat, threshold, meta.peak_blur_sigma_px)
+        uv = to_frame_pixels(uv_model, (cam.width, cam.height), size)
+        keep = cam.in_frame(uv, request.edge_buffer_px)
+        n_edge = int((~keep).sum())
+        uv, score = uv[keep], score[keep]
+        pts, valid = pixel_to_ground(geom, ground, np.full(len(uv), g), uv)
+        n_no_ground = int((~valid).sum())
+        uv, score, pts = uv[valid], score[valid], pts[valid]
+        lat, lon, h = local.to_geodetic(pts) if len(pts) else (np.empty(0),) * 3
+        out.append(FrameDetections(k, frame_id, image_path, uv, score, pts, np.asarray(lat), np.asarray(lon),
+                                   np.asarray(h), float(gsd_cm), n_edge, n_no_ground, heatmap_path=heatmap_path))
+    return out
 
 
 def _write_heatmap(folder: Path, frame_id, heat: np.ndarray, frame_size) -> str:
