@@ -1,0 +1,230 @@
+"""Camera solutions of photogrammetry packages → frames (docs/design.md#camera-solutions).
+
+A camera solution is what a bundle adjustment knows about each aligned image: the calibrated camera and
+its exact pose in a georeferenced frame. Each format's reader (:mod:`.metashape`, :mod:`.opensfm`,
+:mod:`.colmap`) converts its package's conventions — which way a transform points, where the principal
+point is measured from, the order of the tangential terms — into one :class:`CameraSolution`: OpenCV
+cameras (pixel-centre origin, ``k1 k2 p1 p2 k3`` plus ``k4``/skew/fisheye where the package has them)
+and camera → ECEF poses. :func:`import_camera_solution` turns that into a frame layer with the same
+contract as the other importers.
+
+Heights (docs/design.md#camera-solutions). There is no altimeter. Where the solution's heights are
+ellipsoidal for certain — Metashape's geocentric export, a COLMAP model in ECEF or a stated ENU frame —
+labels use the geotags' own surveyed heights (flag ``geotag_heights``;
+:func:`..labels.training_set.project_labels`). Where they are whatever the images' GPS tags said (an
+OpenSfM/ODM reference, a COLMAP model aligned to the images' GPS: usually above mean sea level, and
+biased as the drone's GNSS is), the geotags are placed on the ground the solution itself saw: the median
+height of its tie points in each frame's view, a datum-free reference. Frames without tie points in view
+take the DEM, else ``ground_height`` (a level plane).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from ...errors import Cancelled, InputError
+from ...geometry.camera import CameraModel
+from ...geometry.dem import DemGround, DemRaster, check_vertical_datum
+from ...geometry.geodesy import LocalFrame, ProjectedCRS, ecef_to_geodetic, rotation_ecef_enu
+from ...geometry.poses import FramePoses
+from ...geometry.rotations import R_ENU_NED, rotmat_to_quat
+from ..dji import T_CAM_GIMBAL
+from ..frames import Frames, compute_footprints
+from ..import_report import FlightImport, ImportReport
+from ..pose_log import RTK_NONE
+
+#: The flag every frame of a camera solution carries.
+SOLUTION_FLAG = "camera_solution"
+#: The flag of frames whose heights are ellipsoidal for certain: labels use the geotags' surveyed heights.
+GEOTAG_HEIGHTS_FLAG = "geotag_heights"
+#: Image files a solution's camera names are matched with (case-insensitive).
+IMAGE_SUFFIXES = (".jpg", ".jpeg", ".tif", ".tiff", ".png", ".dng")
+#: Tie points in view that make a frame's ground height (fewer: the frame takes the DEM or level plane).
+MIN_GROUND_POINTS = 5
+
+
+@dataclass
+class SolvedCamera:
+    """One aligned image: its name in the solution, OpenCV camera, and camera → ECEF pose."""
+
+    name: str
+    camera: CameraModel
+    R_ecef_cam: np.ndarray
+    centre_ecef: np.ndarray
+
+
+@dataclass
+class CameraSolution:
+    """Every image of a solution file; ``unaligned`` holds (name, reason) of images without a pose."""
+
+    format: str
+    source: str
+    cameras: list
+    unaligned: list = field(default_factory=list)
+    points_ecef: np.ndarray | None = None
+    notes: list = field(default_factory=list)
+    ellipsoidal: bool = False
+
+    @property
+    def height_datum(self) -> str:
+        """The vertical reference of the solution's heights, for the DEM check."""
+        return "ellipsoidal" if self.ellipsoidal else "msl"
+
+
+def read_camera_solution(path, images_folder=None, colmap_reference: str = "gps") -> CameraSolution:
+    """Read a Metashape camera XML, an OpenSfM/OpenDroneMap reconstruction or a COLMAP model.
+
+    ``path`` is the file, or a folder holding one (an ODM project's ``opensfm/``, a COLMAP ``sparse/0``).
+    ``colmap_reference`` tells where a COLMAP model's frame is (:func:`.colmap.read_colmap`).
+    """
+    from . import colmap, metashape, opensfm
+
+    path = Path(path)
+    if not path.exists():
+        raise InputError("camera solution not found", source=str(path))
+    if path.is_dir():
+        found = opensfm.find_reconstruction(path) or colmap.find_model(path) or metashape.find_xml(path)
+        if found is None:
+            raise InputError("holds no camera solution: expected a Metashape cameras XML, an OpenSfM/ODM "
+                             "reconstruction.json, or a COLMAP model (cameras.bin/images.bin or .txt)",
+                             source=str(path))
+        path = found
+    if path.is_dir() or path.name in colmap.MODEL_FILES:
+        return colmap.read_colmap(path if path.is_dir() else path.parent, images_folder, colmap_reference)
+    if path.suffix.lower() == ".xml":
+        return metashape.read_metashape_xml(path)
+    if path.suffix.lower() == ".json":
+        return opensfm.read_reconstruction(path)
+    raise InputError("is not a camera solution this plugin reads (Metashape .xml, OpenSfM/ODM .json, COLMAP "
+                     "cameras/images .bin or .txt)", source=str(path))
+
+
+def match_images(names, folder) -> dict:
+    """Solution image name → file in ``folder``: same file name, else same stem (case-insensitive)."""
+    if not folder:
+        return {}
+    folder = Path(folder)
+    if not folder.is_dir():
+        raise InputError("image folder not found", source=str(folder))
+    files = [p for p in folder.rglob("*") if p.is_file() and p.suffix.lower() in IMAGE_SUFFIXES]
+    by_name = {p.name.lower(): p for p in files}
+    by_stem = {p.stem.lower(): p for p in files}
+    matched = {}
+    for name in names:
+        key = Path(name).name.lower()
+        hit = by_name.get(key) or by_stem.get(Path(key).stem) or by_stem.get(key)
+        if hit is not None:
+            matched[name] = hit
+    return matched
+
+
+def solution_frames(solution: CameraSolution, images: dict, ground_height: float | None = None) -> Frames:
+    """Frames (body = the camera's gimbal frame, as for DJI images) of every aligned camera."""
+    cams = solution.cameras
+    n = len(cams)
+    centres = np.array([c.centre_ecef for c in cams], dtype=float).reshape(n, 3)
+    lat, lon, h = ecef_to_geodetic(centres)
+    lat, lon, h = (np.atleast_1d(np.asarray(a, dtype=float)) for a in (lat, lon, h))
+    r_ecef_ned = rotation_ecef_enu(lat, lon) @ R_ENU_NED
+    r_ecef_cam = np.array([c.R_ecef_cam for c in cams], dtype=float).reshape(n, 3, 3)
+    # body (gimbal: forward-right-down) → NED; the camera sits in the body by T_CAM_GIMBAL.
+    r_ned_body = np.einsum("nji,njk->nik", r_ecef_ned, r_ecef_cam) @ T_CAM_GIMBAL[:3, :3]
+    mounted: dict[str, CameraModel] = {}
+    cameras = []
+    for c in cams:
+        cam = CameraModel.from_dict({**c.camera.to_dict(), "T_cam_imu": T_CAM_GIMBAL.tolist()})
+        cameras.append(mounted.setdefault(cam.to_json(), cam))
+    ground = _tie_point_ground(solution, lat, lon, h, r_ned_body, cameras)
+    flags = [[SOLUTION_FLAG] + ([GEOTAG_HEIGHTS_FLAG] if solution.ellipsoidal else []) for _ in range(n)]
+    if ground_height is not None:
+        ground = np.where(np.isfinite(ground), ground, float(ground_height))
+    return Frames(
+        frame_id=np.arange(n, dtype=np.int64),
+        image=[str(images[c.name].resolve()) if c.name in images else c.name for c in cams],
+        time_s=np.full(n, np.nan), lat=lat, lon=lon, height=h, quat=rotmat_to_quat(r_ned_body),
+        ground_h=ground, rtk_status=np.full(n, RTK_NONE), sync_offset_s=np.full(n, np.nan),
+        cameras=cameras, flags=flags)
+
+
+def _tie_point_ground(solution, lat, lon, h, r_ned_body, cameras) -> np.ndarray:
+    """Per frame, the median ellipsoidal height of the solution's tie points inside its image."""
+    from scipy.spatial import cKDTree
+
+    from ...geometry.poses import FrameGeometry
+
+    ground = np.full(len(lat), np.nan)
+    pts = solution.points_ecef
+    if pts is None or len(pts) < MIN_GROUND_POINTS:
+        return ground
+    local = LocalFrame.around(lat, lon, h)
+    p_lat, p_lon, p_h = ecef_to_geodetic(pts)
+    local_pts = local.from_geodetic(p_lat, p_lon, p_h)
+    tree = cKDTree(local_pts[:, :2])
+    typical_depth = np.maximum(h - np.median(p_h), 1.0)
+    for cam_json in {c.to_json() for c in cameras}:
+        idx = np.array([i for i, c in enumerate(cameras) if c.to_json() == cam_json])
+        cam = cameras[idx[0]]
+        geometry = FrameGeometry(FramePoses(idx, lat[idx], lon[idx], h[idx], rotmat_to_quat(r_ned_body[idx]),
+                                            np.full(len(idx), np.nan), cam), local)
+        half_diagonal = 0.5 * np.hypot(cam.width, cam.height) / min(cam.fx, cam.fy)
+        for k, f in enumerate(idx):
+            near = tree.query_ball_point(geometry.C[k, :2], typical_depth[f] * half_diagonal * 1.5 + 1.0)
+            if len(near) < MIN_GROUND_POINTS:
+                continue
+            near = np.asarray(near)
+            p_cam = geometry.to_camera(np.full(len(near), k), local_pts[near])
+            uv = cam.project(p_cam)
+            seen = near[(p_cam[:, 2] > 0) & cam.in_frame(uv)]
+            if len(seen) >= MIN_GROUND_POINTS:
+                ground[f] = float(np.median(p_h[seen]))
+    return ground
+
+
+def import_camera_solution(path, images_folder=None, crs: ProjectedCRS | None = None, dem: DemRaster | None = None,
+                           ground_height: float | None = None, colmap_reference: str = "gps", progress=None,
+                           is_canceled=None) -> FlightImport:
+    """Frames with footprints from a camera solution; what cannot be placed is reported, not guessed."""
+    solution = read_camera_solution(path, images_folder, colmap_reference)
+    if is_canceled is not None and is_canceled():
+        raise Cancelled()
+    report = ImportReport(solution.source)
+    report.notes.extend(solution.notes)
+    if not solution.cameras:
+        raise InputError(f"has no aligned camera ({len(solution.unaligned)} not aligned)", source=solution.source)
+    images = match_images([c.name for c in solution.cameras], images_folder)
+    frames = solution_frames(solution, images, ground_height)
+    report.counts.update({"format": solution.format, "aligned": len(solution.cameras),
+                          "not_aligned": len(solution.unaligned)})
+    if solution.unaligned:
+        report.notes.append(f"{len(solution.unaligned)} camera(s) are not aligned in the solution and are left "
+                            "out: " + "; ".join(f"{name} ({why})" for name, why in solution.unaligned[:5]))
+    if images_folder:
+        missing = [c.name for c in solution.cameras if c.name not in images]
+        report.counts["images_matched"] = len(solution.cameras) - len(missing)
+        if missing:
+            report.notes.append(f"{len(missing)} aligned camera(s) have no image in {images_folder} (matched by "
+                                f"file name or stem): {', '.join(missing[:5])}; their frames keep the name only")
+    n_ground = int(np.count_nonzero(np.isfinite(frames.ground_h)))
+    report.counts["frames_with_ground"] = n_ground
+    if n_ground < len(frames) and dem is None:
+        report.notes.append(f"{len(frames) - n_ground} frame(s) have no ground height: the solution has no tie "
+                            "points in their view and neither DEM nor GROUND_HEIGHT was given; their footprints "
+                            "are missing (labels still use the geotags' own heights)")
+    if progress is not None:
+        progress(0.3)
+    crs = crs or ProjectedCRS.for_site(frames.lat, frames.lon)
+    sub = None if progress is None else (lambda f: progress(0.3 + 0.7 * f))
+    ground = _dem_ground(frames, dem, solution.height_datum)
+    fp = compute_footprints(frames, crs, progress=sub, is_canceled=is_canceled, ground=ground)
+    return FlightImport(frames, fp, [], report)
+
+
+def _dem_ground(frames: Frames, dem: DemRaster | None, datum: str):
+    if dem is None:
+        return None
+    flight = FramePoses(frames.frame_id, frames.lat, frames.lon, frames.height, frames.quat, frames.ground_h,
+                        frames.cameras[0])
+    offset = check_vertical_datum(dem, datum, flight, ground_reference="altimeter")
+    return lambda geometry: DemGround.from_dem(geometry, dem, datum, vertical_offset_m=offset)
