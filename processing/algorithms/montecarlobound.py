@@ -67,6 +67,7 @@ class MonteCarloBoundAlgorithm(DesignParametersMixin, BirdsEyeAlgorithm):
         camera = self.camera_from_parameters(parameters, context, feedback)
         altitudes = self.altitudes_from_parameters(parameters, context)
         sigmas = self.sigmas_from_parameters(parameters, context)
+        mount = self.mount_from_parameters(parameters, context)
         tolerance = self.tolerance_from_parameters(parameters, context)
         n_samples = self.parameterAsInt(parameters, self.N_SAMPLES, context)
         seed = self.parameterAsInt(parameters, self.SEED, context)
@@ -79,10 +80,10 @@ class MonteCarloBoundAlgorithm(DesignParametersMixin, BirdsEyeAlgorithm):
         entries, panels = [], []
         with tempfile.TemporaryDirectory(prefix="birdseye_mc_") as scratch:
             for k, altitude in enumerate(altitudes):
-                bound = self.run_core(evaluate_bound, camera, altitude, sigmas, tolerance)
-                check = self.run_core(monte_carlo_check, camera, altitude, sigmas, n_samples, seed=seed)
+                bound = self.run_core(evaluate_bound, camera, altitude, sigmas, tolerance, mount=mount)
+                check = self.run_core(monte_carlo_check, camera, altitude, sigmas, n_samples, seed=seed, mount=mount)
                 study = self.run_core(scaling_study, camera, altitude, sigmas, scales, per_axis, n_samples,
-                                      seed=seed, is_canceled=is_canceled)
+                                      seed=seed, is_canceled=is_canceled, mount=mount)
                 kappa = bound.kappa_exact
                 entries.append({
                     "altitude_m": altitude,
@@ -106,7 +107,7 @@ class MonteCarloBoundAlgorithm(DesignParametersMixin, BirdsEyeAlgorithm):
 
         Path(json_path).parent.mkdir(parents=True, exist_ok=True)
         with open(json_path, "w", encoding="utf-8") as handle:
-            json.dump({"altitudes": entries, "inputs": self._inputs(camera, sigmas, tolerance, n_samples, seed,
+            json.dump({"altitudes": entries, "inputs": self._inputs(camera, sigmas, mount, tolerance, n_samples, seed,
                                                                      scales, per_axis, parameters, context)},
                       handle, indent=2)
         return {self.OUTPUT_JSON: json_path, self.OUTPUT_PNG: png_path or None}
@@ -124,11 +125,13 @@ class MonteCarloBoundAlgorithm(DesignParametersMixin, BirdsEyeAlgorithm):
                 name=self.SCALE_MAX, other=self.SCALE_MIN, low=low, value=high))
         return np.logspace(math.log10(low), math.log10(high), steps)
 
-    def _inputs(self, camera, sigmas, tolerance, n_samples, seed, scales, per_axis, parameters, context) -> dict:
+    def _inputs(self, camera, sigmas, mount, tolerance, n_samples, seed, scales, per_axis, parameters,
+                context) -> dict:
         return {
             "intrinsics": {k: getattr(camera, k) for k in ("fx", "fy", "cx", "cy", "width", "height")},
             "calibration": self.parameterAsFile(parameters, self.CALIBRATION, context) or None,
-            "sigmas": list(sigmas), "axes": list(AXES), "tolerance_px": tolerance, "n_samples": n_samples,
+            "sigmas": list(sigmas), "axes": list(AXES), "mount": mount.key, "axis_convention": mount.convention,
+            "tolerance_px": tolerance, "n_samples": n_samples,
             "seed": seed, "scales": scales.tolist(), "per_axis": per_axis,
         }
 

@@ -48,6 +48,7 @@ class SensorBoundAlgorithm(DesignParametersMixin, BirdsEyeAlgorithm):
         camera = self.camera_from_parameters(parameters, context, feedback)
         altitudes = self.altitudes_from_parameters(parameters, context)
         sigmas = self.sigmas_from_parameters(parameters, context)
+        mount = self.mount_from_parameters(parameters, context)
         tolerance = self.tolerance_from_parameters(parameters, context)
         stride = self.parameterAsInt(parameters, self.STRIDE_PX, context)
         json_path = self.parameterAsFileOutput(parameters, self.OUTPUT_JSON, context)
@@ -57,7 +58,7 @@ class SensorBoundAlgorithm(DesignParametersMixin, BirdsEyeAlgorithm):
 
         progress, is_canceled = self.progress_callbacks(feedback, 0, 70 if (report_path or raster_path) else 100)
         result = self.run_core(evaluate_bounds, camera, altitudes, sigmas, tolerance, stride,
-                               progress=progress, is_canceled=is_canceled)
+                               progress=progress, is_canceled=is_canceled, mount=mount)
         result["inputs"]["calibration"] = calibration or None
         preset = self.platform_from_parameters(parameters, context)
         result["inputs"]["platform"] = None if preset is None else preset.key
@@ -76,13 +77,13 @@ class SensorBoundAlgorithm(DesignParametersMixin, BirdsEyeAlgorithm):
                                                         title="BirdsEye sensor bound", source=source)
             feedback.setProgress(90 if raster_path else 100)
         if raster_path:
-            outputs[self.OUTPUT_RASTER] = self._write_lmax_raster(raster_path, camera, altitudes, sigmas, tolerance,
-                                                                  stride, feedback)
+            outputs[self.OUTPUT_RASTER] = self._write_lmax_raster(raster_path, camera, altitudes, sigmas, mount,
+                                                                  tolerance, stride, feedback)
             feedback.setProgress(100)
         return outputs
 
 
-    def _write_lmax_raster(self, path, camera, altitudes, sigmas, tolerance, stride, feedback) -> str:
+    def _write_lmax_raster(self, path, camera, altitudes, sigmas, mount, tolerance, stride, feedback) -> str:
         """One Float32 band of λ_max (px²) per altitude on the regular part of the frame grid.
 
         Pixel coordinates, no CRS: map x = u + 0.5 and y = −(v + 0.5), the way QGIS places an image
@@ -108,11 +109,11 @@ class SensorBoundAlgorithm(DesignParametersMixin, BirdsEyeAlgorithm):
         dataset.SetGeoTransform((0.5 - stride / 2.0, float(stride), 0.0, stride / 2.0 - 0.5, 0.0, -float(stride)))
         dataset.SetMetadata({"QUANTITY": "lambda_max of the linearised label covariance", "UNITS": "px^2",
                              "TOLERANCE_PX": f"{tolerance:g}", "STRIDE_PX": str(stride),
-                             "SIGMAS": ",".join(f"{s:g}" for s in sigmas),
+                             "SIGMAS": ",".join(f"{s:g}" for s in sigmas), "MOUNT": mount.key,
                              "COORDINATES": "x = u + 0.5, y = -(v + 0.5); pixel (0,0) = centre of the top-left pixel"})
         for band_index, altitude in enumerate(altitudes, start=1):
             self.check_canceled(feedback)
-            field = self.run_core(lmax_field, camera, altitude, sigmas, stride)[:n_v, :n_u]
+            field = self.run_core(lmax_field, camera, altitude, sigmas, stride, mount=mount)[:n_v, :n_u]
             band = dataset.GetRasterBand(band_index)
             band.SetDescription(f"lambda_max_px2 at {altitude:g} m")
             band.WriteArray(field.astype("float32"))

@@ -1,8 +1,9 @@
 """Parameters shared by the platform-design algorithms (``sensorbound``, ``montecarlobound``,
-``terrainslope``): the camera, the pose sigmas, altitudes and the tolerance.
+``terrainslope``): the camera, the pose sigmas and the camera mount, altitudes and the tolerance.
 
 Units at this interface: intrinsics in px, altitudes in metres above the ground, sigmas x, y, z in
-metres and roll, pitch, yaw in degrees (``core.design.sensor_bound.AXIS_CONVENTION``), tolerance r in px at 3σ.
+metres and roll, pitch, yaw in degrees (turned into camera rotations by the mount,
+``core.design.sensor_bound.CameraMount``), tolerance r in px at 3σ.
 """
 from __future__ import annotations
 
@@ -19,7 +20,7 @@ from qgis.core import (
 
 from ...birdseye_qgis.core.design.number_lists import SIGMAS_HINT, format_number_list, parse_altitudes, parse_sigmas
 from ...birdseye_qgis.core.design.platforms import DEPLOYED, PLATFORMS
-from ...birdseye_qgis.core.design.sensor_bound import Intrinsics
+from ...birdseye_qgis.core.design.sensor_bound import MOUNTS, Intrinsics
 from ...birdseye_qgis.core.errors import InputError
 from ...birdseye_qgis.core.geometry.camera import CALIBRATION_FILE_FILTER, load_calibration
 
@@ -42,6 +43,7 @@ class DesignParametersMixin:
     FX, FY, CX, CY, WIDTH, HEIGHT = "FX", "FY", "CX", "CY", "WIDTH", "HEIGHT"
     ALTITUDES = "ALTITUDES"
     SIGMAS = "SIGMAS"
+    MOUNT = "MOUNT"
     TOLERANCE_PX = "TOLERANCE_PX"
 
     # ------------------------------------------------------------------ definitions
@@ -49,7 +51,7 @@ class DesignParametersMixin:
         """PLATFORM (a preset: camera and pose sigmas), CALIBRATION (optional file, overrides the camera)
         and FX, FY, CX, CY, WIDTH, HEIGHT (px)."""
         self.addParameter(QgsProcessingParameterEnum(
-            self.PLATFORM, self.tr("Platform preset (sets the camera and the pose sigmas; Custom: the values below)"),
+            self.PLATFORM, self.tr("Platform preset (camera, pose sigmas and mount; Custom: the values below)"),
             options=[self.tr("Custom")] + [self.tr(p.name) for p in PLATFORMS], defaultValue=0))
         self.addParameter(QgsProcessingParameterFile(
             self.CALIBRATION, self.tr("Camera calibration (Kalibr or OpenCV YAML; overrides the intrinsics below)"),
@@ -66,9 +68,13 @@ class DesignParametersMixin:
                 name, self.tr(label), QgsProcessingParameterNumber.Integer, defaultValue=default, minValue=1))
 
     def add_sigmas_parameter(self) -> None:
+        """SIGMAS and MOUNT, which says how the roll, pitch and yaw sigmas turn the camera."""
         self.addParameter(QgsProcessingParameterString(
             self.SIGMAS, self.tr("Pose sigmas, 1σ (x, y, z in metres; roll, pitch, yaw in degrees)"),
             defaultValue=format_number_list(DEPLOYED_SIGMAS)))
+        self.addParameter(QgsProcessingParameterEnum(
+            self.MOUNT, self.tr("Camera mount (how roll, pitch and yaw turn the camera)"),
+            options=[self.tr(m.name) for m in MOUNTS], defaultValue=MOUNTS.index(DEPLOYED.mount)))
 
     def add_altitudes_parameter(self, name: str = "ALTITUDES") -> None:
         self.addParameter(QgsProcessingParameterString(
@@ -93,8 +99,9 @@ class DesignParametersMixin:
                                                                                   sources=preset.sources))
             if self.parameterDefinition(self.SIGMAS) is not None:
                 feedback.pushInfo(self.tr("Pose sigmas of the platform: {sigmas} ({hint}; the typed SIGMAS are "
-                                          "ignored).").format(sigmas=format_number_list(preset.sigmas),
-                                                              hint=SIGMAS_HINT))
+                                          "ignored), camera mount: {mount} (the chosen {MOUNT} is ignored).").format(
+                    sigmas=format_number_list(preset.sigmas), hint=SIGMAS_HINT, mount=self.tr(preset.mount.name),
+                    MOUNT=self.MOUNT))
         if path:
             try:
                 camera = load_calibration(path)
@@ -136,6 +143,13 @@ class DesignParametersMixin:
         if preset is not None:
             return list(preset.sigmas)
         return self._parsed(parse_sigmas, parameters, self.SIGMAS, context)
+
+    def mount_from_parameters(self, parameters, context):
+        """The platform's camera mount when a preset is chosen, else the one picked in MOUNT."""
+        preset = self.platform_from_parameters(parameters, context)
+        if preset is not None:
+            return preset.mount
+        return MOUNTS[self.parameterAsEnum(parameters, self.MOUNT, context)]
 
     def altitudes_from_parameters(self, parameters, context, name: str = "ALTITUDES") -> list[float]:
         return self._parsed(parse_altitudes, parameters, name, context)

@@ -75,6 +75,7 @@ def test_defaults_are_the_deployed_platform_and_match_the_core(deployed_run):
     assert written["inputs"]["intrinsics"] == direct["inputs"]["intrinsics"]
     assert written["inputs"]["sigmas"] == pytest.approx(DEPLOYED_SIGMAS)
     assert written["inputs"]["calibration"] is None
+    assert written["inputs"]["mount"] == "method" and written["inputs"]["axis_convention"] == sb.METHOD_MOUNT.convention
 
 
 def test_deployed_platform_at_10_m_fails_the_trace_bound_but_passes_the_exact_one(deployed_run):
@@ -140,6 +141,26 @@ def test_raster_with_a_stride_that_does_not_divide_the_frame_warns_and_stops_sho
     expected = sb.lmax_field(DEPLOYED, 15.0, DEPLOYED_SIGMAS, 7)[:1200 // 7 + 1, :1920 // 7 + 1]
     np.testing.assert_allclose(dataset.GetRasterBand(1).ReadAsArray(), expected, rtol=1e-6)
     assert result["OUTPUT_REPORT"] is None
+
+
+def test_the_chosen_mount_reaches_the_json_and_the_raster(birdseye_provider, tmp_path):
+    """Roll six times pitch: the nadir mount (roll and pitch swapped against the method's) must show."""
+    from osgeo import gdal
+
+    sigmas = [0.01, 0.01, 0.06, 0.3, 0.05, 0.13]
+    result = run("sensorbound", {"MOUNT": sb.MOUNTS.index(sb.NADIR_MOUNT), "SIGMAS": "0.01,0.01,0.06,0.3,0.05,0.13",
+                                 "ALTITUDES": "10", "STRIDE_PX": 8, "OUTPUT_JSON": str(tmp_path / "b.json"),
+                                 "OUTPUT_REPORT": None, "OUTPUT_RASTER": str(tmp_path / "f.tif")})
+    written = read_json(result["OUTPUT_JSON"])
+    nadir = sb.evaluate_bounds(DEPLOYED, [10.0], sigmas, 30.0, 8, mount=sb.NADIR_MOUNT)
+    method = sb.evaluate_bounds(DEPLOYED, [10.0], sigmas, 30.0, 8)
+    assert written["inputs"]["mount"] == "nadir_top_forward"
+    assert written["altitudes"][0] == pytest.approx(nadir["altitudes"][0], rel=1e-12)
+    assert written["altitudes"][0]["sup_lmax_px2"] != pytest.approx(method["altitudes"][0]["sup_lmax_px2"], rel=0.01)
+    dataset = gdal.Open(result["OUTPUT_RASTER"])
+    assert dataset.GetMetadata()["MOUNT"] == "nadir_top_forward"
+    np.testing.assert_allclose(dataset.GetRasterBand(1).ReadAsArray(),
+                               sb.lmax_field(DEPLOYED, 10.0, sigmas, 8, mount=sb.NADIR_MOUNT), rtol=1e-6)
 
 
 def test_calibration_file_overrides_the_typed_intrinsics(birdseye_provider, tmp_path):
@@ -237,6 +258,19 @@ def test_montecarlobound_bad_input_names_the_parameter(birdseye_provider, tmp_pa
         run("montecarlobound", dict(bad, N_SAMPLES=100, OUTPUT_JSON=str(tmp_path / "mc.json")))
 
 
+def test_montecarlobound_draws_through_the_chosen_mount(birdseye_provider, tmp_path):
+    sigmas = [0.01, 0.01, 0.06, 0.3, 0.05, 0.13]
+    result = run("montecarlobound", {"MOUNT": sb.MOUNTS.index(sb.NADIR_MOUNT), "SIGMAS": "0.01,0.01,0.06,0.3,0.05,0.13",
+                                     "ALTITUDES": "10", "N_SAMPLES": 2000, "SEED": 4, "SCALE_STEPS": 2,
+                                     "OUTPUT_JSON": str(tmp_path / "mc.json"), "OUTPUT_PNG": None})
+    written = read_json(result["OUTPUT_JSON"])
+    check = mc.monte_carlo_check(DEPLOYED, 10.0, sigmas, 2000, seed=4, mount=sb.NADIR_MOUNT)
+    assert written["inputs"]["mount"] == "nadir_top_forward"
+    assert written["altitudes"][0]["check"] == json.loads(json.dumps(check.to_json_dict()))
+    bound = sb.evaluate_bound(DEPLOYED, 10.0, sigmas, mount=sb.NADIR_MOUNT)
+    assert written["altitudes"][0]["kappa_exact"] == pytest.approx(bound.kappa_exact)
+
+
 # ---------------------------------------------------------------------------------------- terrainslope
 def test_terrainslope_grid_and_frame_limits(birdseye_provider, tmp_path):
     feedback = RecordingFeedback()
@@ -285,11 +319,12 @@ def test_the_dji_metadata_preset_sets_camera_and_sigmas_and_fails_at_10_m(birdse
 
     feedback = RecordingFeedback()
     index = 1 + PLATFORMS.index(DJI_METADATA)
-    out = run("sensorbound", {"PLATFORM": index, "FX": 100.0, "SIGMAS": "9,9,9,9,9,9", "ALTITUDES": "10",
+    out = run("sensorbound", {"PLATFORM": index, "FX": 100.0, "SIGMAS": "9,9,9,9,9,9", "MOUNT": 0, "ALTITUDES": "10",
                               "STRIDE_PX": 8, "OUTPUT_JSON": str(tmp_path / "dji.json"), "OUTPUT_REPORT": None},
               feedback)
     result = read_json(out["OUTPUT_JSON"])
     assert result["inputs"]["platform"] == "dji_metadata"
+    assert result["inputs"]["mount"] == DJI_METADATA.mount.key == "nadir_top_forward"
     assert result["inputs"]["sigmas"] == pytest.approx(list(DJI_METADATA.sigmas))
     assert result["inputs"]["intrinsics"]["fx"] == pytest.approx(DJI_METADATA.camera.fx)
     direct = sb.evaluate_bound(DJI_METADATA.camera, 10.0, DJI_METADATA.sigmas, 30.0, 8).to_json_dict()
