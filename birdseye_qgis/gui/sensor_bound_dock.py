@@ -6,8 +6,9 @@ algorithm's HTML report. While the user types, the bound is re-evaluated (deboun
 (``PREVIEW_MAX_POINTS``; the frame edges, where the worst pixel lies, are always on it); "Evaluate every
 pixel" runs the full-resolution grid, as the algorithm does by default.
 
-Units: intrinsics in px; sigmas x, y, z in metres and roll, pitch, yaw in degrees
-(``sensor_bound.AXIS_CONVENTION``); tolerance r in px at 3σ; altitudes in metres above the ground.
+Units: intrinsics in px; sigmas x, y, z in metres and roll, pitch, yaw in degrees, turned into camera
+rotations by the chosen mount (``sensor_bound.CameraMount``); tolerance r in px at 3σ; altitudes in
+metres above the ground.
 """
 from __future__ import annotations
 
@@ -49,7 +50,16 @@ from ..core.design.bound_report import (
 )
 from ..core.design.number_lists import format_number_list, parse_altitudes
 from ..core.design.platforms import DEPLOYED, PLATFORMS
-from ..core.design.sensor_bound import AXES, AXIS_CONVENTION, SIGMA_UNITS, Intrinsics, evaluate_bounds, lambda_target
+from ..core.design.sensor_bound import (
+    AXES,
+    MOUNTS,
+    SIGMA_UNITS,
+    TRANSLATION_CONVENTION,
+    Intrinsics,
+    camera_mount,
+    evaluate_bounds,
+    lambda_target,
+)
 from ..core.errors import InputError
 from ..core.geometry.camera import CALIBRATION_FILE_FILTER, load_calibration
 from ..qgis_io.project_settings import store_sigma_label_px
@@ -64,8 +74,8 @@ AXIS_TIPS = {
     "x": "Horizontal position error across the flight direction (image right), metres.",
     "y": "Horizontal position error along the flight direction (image down), metres.",
     "z": "Vertical position / altimeter error (along the optical axis), metres.",
-    "roll": "Roll attitude error (about the flight direction), degrees.",
-    "pitch": "Pitch attitude error (about the wing axis), degrees.",
+    "roll": "Roll attitude error, degrees; the camera mount says which way it turns the camera.",
+    "pitch": "Pitch attitude error, degrees; the camera mount says which way it turns the camera.",
     "yaw": "Heading error (about the vertical / optical axis), degrees.",
 }
 
@@ -205,7 +215,7 @@ class SensorBoundDock(QgsDockWidget):
 
     def _noise_group(self) -> QGroupBox:
         group = QGroupBox(tr("Pose noise (1σ)"))
-        group.setToolTip(AXIS_CONVENTION)
+        group.setToolTip(TRANSLATION_CONVENTION)
         grid = QGridLayout(group)
         grid.setHorizontalSpacing(6)
         self.sigma_spins = []
@@ -219,6 +229,18 @@ class SensorBoundDock(QgsDockWidget):
             grid.addWidget(label, row, column)
             grid.addWidget(spin, row, column + 1)
             self.sigma_spins.append(spin)
+        self.mount_combo = QComboBox()
+        self.mount_combo.setSizeAdjustPolicy(QComboBox.SizeAdjustPolicy.AdjustToMinimumContentsLengthWithIcon)
+        self.mount_combo.setMinimumContentsLength(12)
+        for index, mount in enumerate(MOUNTS):
+            self.mount_combo.addItem(tr(mount.name))
+            self.mount_combo.setItemData(index, mount.convention, Qt.ItemDataRole.ToolTipRole)
+        self.mount_combo.setToolTip(tr("How roll, pitch and yaw turn the camera. As the method: about the camera's "
+                                       "x, y and optical axes; nadir, image top towards the nose: roll and pitch "
+                                       "trade places."))
+        self.mount_combo.currentIndexChanged.connect(self._platform_edited)
+        grid.addWidget(QLabel(tr("Mount")), 3, 0)
+        grid.addWidget(self.mount_combo, 3, 1, 1, 3)
         grid.setColumnStretch(1, 1)
         grid.setColumnStretch(3, 1)
         return group
@@ -341,6 +363,10 @@ class SensorBoundDock(QgsDockWidget):
     def sigmas(self) -> list[float]:
         return [spin.value() for spin in self.sigma_spins]
 
+    def mount(self):
+        """The chosen ``CameraMount``."""
+        return MOUNTS[self.mount_combo.currentIndex()]
+
     def tolerance_px(self) -> float:
         return self.tolerance_spin.value()
 
@@ -353,10 +379,10 @@ class SensorBoundDock(QgsDockWidget):
         return math.sqrt(lambda_target(self.tolerance_px()))
 
     def apply_preset(self, name: str) -> None:
-        """Set the inputs to a platform preset: camera, pose sigmas, tolerance r and altitudes."""
+        """Set the inputs to a platform preset: camera, pose sigmas, mount, tolerance r and altitudes."""
         for preset in PLATFORMS:
             if preset.name == name:
-                self._set_values(preset.camera, preset.sigmas, preset.tolerance_px, preset.altitudes_m)
+                self._set_values(preset.camera, preset.sigmas, preset.tolerance_px, preset.altitudes_m, preset.mount)
                 self._calibration = None
         self._sync_preset()
         self.schedule()
@@ -377,7 +403,7 @@ class SensorBoundDock(QgsDockWidget):
         self.schedule()
         return True
 
-    def _set_values(self, camera, sigmas=None, tolerance=None, altitudes=None) -> None:
+    def _set_values(self, camera, sigmas=None, tolerance=None, altitudes=None, mount=None) -> None:
         self._updating = True
         try:
             for spin, value in ((self.fx_spin, camera.fx), (self.fy_spin, camera.fy), (self.cx_spin, camera.cx),
@@ -391,6 +417,8 @@ class SensorBoundDock(QgsDockWidget):
                 self.tolerance_spin.setValue(tolerance)
             if altitudes is not None:
                 self.altitudes_edit.setText(", ".join(f"{a:g}" for a in altitudes))
+            if mount is not None:
+                self.mount_combo.setCurrentIndex(MOUNTS.index(mount))
         finally:
             self._updating = False
         self._update_sigma_label()
@@ -401,9 +429,9 @@ class SensorBoundDock(QgsDockWidget):
                    for k in ("fx", "fy", "cx", "cy", "width", "height"))
 
     def _sync_preset(self) -> None:
-        """Show the platform the inputs match (camera and sigmas), else Custom."""
+        """Show the platform the inputs match (camera, sigmas and mount), else Custom."""
         matching = [k for k, preset in enumerate(PLATFORMS) if self._matches(preset.camera) and all(
-            abs(a - b) < 1e-9 for a, b in zip(self.sigmas(), preset.sigmas))]
+            abs(a - b) < 1e-9 for a, b in zip(self.sigmas(), preset.sigmas)) and self.mount() is preset.mount]
         self.preset_combo.setCurrentIndex(matching[0] if matching else PRESETS.index(PRESET_CUSTOM))
         if self._calibration is not None and not self._matches(self._calibration[1]):
             self._calibration = None
@@ -413,7 +441,7 @@ class SensorBoundDock(QgsDockWidget):
             self.calibration_widget.blockSignals(False)
 
     def _platform_edited(self, *_):
-        """A camera or sigma value typed by the user (not set by a preset or a calibration file)."""
+        """A camera, sigma or mount value set by the user (not by a preset or a calibration file)."""
         if not self._updating:
             self._sync_preset()
             self.schedule()
@@ -443,7 +471,8 @@ class SensorBoundDock(QgsDockWidget):
             stride = 1 if full_resolution else stride_for(camera, PREVIEW_MAX_POINTS)
             QGuiApplication.setOverrideCursor(Qt.CursorShape.WaitCursor)
             try:
-                result = evaluate_bounds(camera, altitudes, self.sigmas(), self.tolerance_px(), stride)
+                result = evaluate_bounds(camera, altitudes, self.sigmas(), self.tolerance_px(), stride,
+                                         mount=self.mount())
             finally:
                 QGuiApplication.restoreOverrideCursor()
         except InputError as exc:
@@ -512,7 +541,8 @@ class SensorBoundDock(QgsDockWidget):
     def _draw_plot(self, entry: dict) -> None:
         inputs = self.result["inputs"]
         self.field_plot.update(Intrinsics(**inputs["intrinsics"]), entry["altitude_m"], inputs["sigmas"],
-                               inputs["tolerance_px"], worst_pixel=entry["worst_pixel"])
+                               inputs["tolerance_px"], worst_pixel=entry["worst_pixel"],
+                               mount=camera_mount(inputs["mount"]))
         self.canvas.draw_idle()
 
     # ================================================================== hand-over
@@ -534,6 +564,7 @@ class SensorBoundDock(QgsDockWidget):
             "FX": camera.fx, "FY": camera.fy, "CX": camera.cx, "CY": camera.cy,
             "WIDTH": camera.width, "HEIGHT": camera.height,
             "ALTITUDES": self.altitudes_edit.text().strip(), "SIGMAS": format_number_list(self.sigmas()),
+            "MOUNT": MOUNTS.index(self.mount()),
             "TOLERANCE_PX": self.tolerance_px(), "STRIDE_PX": 1,
         }
         if self._calibration is not None:

@@ -140,6 +140,44 @@ def test_platform_preset_restores_every_value(dock, qtbot):
     assert dock.result == sb.evaluate_bounds(DEPLOYED, [10.0, 20.0], DEPLOYED_SIGMAS, 30.0, PREVIEW_STRIDE)
 
 
+def test_every_platform_preset_is_offered():
+    from birdseye.birdseye_qgis.core.design.platforms import PLATFORMS
+
+    assert dock_module.PRESETS == tuple(p.name for p in PLATFORMS) + (dock_module.PRESET_CUSTOM,)
+    assert {"deployed", "dji_metadata"} <= {p.key for p in PLATFORMS}
+
+
+def test_every_preset_in_the_combo_box(dock):
+    from birdseye.birdseye_qgis.core.design.platforms import PLATFORMS
+
+    shown = [dock.preset_combo.itemText(i) for i in range(dock.preset_combo.count())]
+    assert shown == [p.name for p in PLATFORMS] + [dock_module.PRESET_CUSTOM]
+
+
+def test_the_mount_changes_the_numbers_and_travels_with_the_preset(dock, qtbot):
+    assert dock.mount() is sb.METHOD_MOUNT and dock.result["inputs"]["mount"] == "method"
+    sigmas = DEPLOYED_SIGMAS[:3] + [0.3] + DEPLOYED_SIGMAS[4:]    # roll ≠ pitch: the mount matters
+    type_into(qtbot, dock.sigma_spins[3], "0.3")
+    before = dock.result
+    dock.mount_combo.setCurrentIndex(sb.MOUNTS.index(sb.NADIR_MOUNT))
+    wait_for_update(qtbot, dock, before)
+    expected = sb.evaluate_bounds(DEPLOYED, [10.0, 20.0], sigmas, 30.0, PREVIEW_STRIDE, mount=sb.NADIR_MOUNT)
+    assert dock.result == expected
+    method = sb.evaluate_bounds(DEPLOYED, [10.0, 20.0], sigmas, 30.0, PREVIEW_STRIDE)
+    assert expected["altitudes"][0]["kappa_exact"] != pytest.approx(method["altitudes"][0]["kappa_exact"], rel=0.01)
+    image = dock.figure.axes[0].images[0]
+    np.testing.assert_allclose(np.asarray(image.get_array()),
+                               sb.lmax_field(DEPLOYED, 10.0, sigmas, stride_for(DEPLOYED), mount=sb.NADIR_MOUNT))
+    assert dock.processing_parameters()["MOUNT"] == sb.MOUNTS.index(sb.NADIR_MOUNT)
+    assert dock.preset_combo.currentText() == dock_module.PRESET_CUSTOM
+    # the deployed sigmas on the nadir mount are not the deployed platform either
+    dock._set_values(DEPLOYED, DEPLOYED_SIGMAS)
+    dock._sync_preset()
+    assert dock.preset_combo.currentText() == dock_module.PRESET_CUSTOM
+    dock.apply_preset(dock_module.PRESET_DEPLOYED)
+    assert dock.mount() is sb.METHOD_MOUNT and dock.preset_combo.currentText() == dock_module.PRESET_DEPLOYED
+
+
 def test_calibration_file_sets_the_intrinsics(dock, qtbot, tmp_path):
     camera = CameraModel(width=1600, height=1300, fx=1500.0, fy=1480.0, cx=790.0, cy=660.0)
     path = tmp_path / "camchain.yaml"
@@ -252,6 +290,7 @@ def test_the_dji_metadata_preset_is_offered_and_rejected_at_10_m(dock, qtbot):
     dock.preset_combo.setCurrentIndex(index)
     dock.preset_combo.activated.emit(index)
     assert dock.camera() == DJI_METADATA.camera and dock.sigmas() == pytest.approx(list(DJI_METADATA.sigmas))
+    assert dock.mount() is DJI_METADATA.mount
     assert dock.preset_combo.currentText() == DJI_METADATA.name   # recognised after the spins rounded it
     wait_for_update(qtbot, dock, before)
     assert dock.result["altitudes"][0]["verdict_exact"] == "reject"

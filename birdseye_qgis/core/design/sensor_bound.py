@@ -127,13 +127,12 @@ class CameraMount:
 
 
 METHOD_MOUNT = CameraMount(
-    key="method", name="As the method: roll, pitch, yaw turn the camera about its x, y and optical axes",
+    key="method", name="As the method: roll, pitch, yaw about camera x, y, z",
     R_cam_body=((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0)),
     convention=TRANSLATION_CONVENTION + "; roll, pitch, yaw -> rotations about camera x (image right), y (image "
                "down) and z (optical axis), applied to the camera-frame rotation vector as the method does")
 NADIR_MOUNT = CameraMount(
-    key="nadir_top_forward",
-    name="Nadir camera, image top towards the nose (roll about the flight direction, pitch about the wings)",
+    key="nadir_top_forward", name="Nadir camera, image top towards the nose",
     R_cam_body=((0.0, 1.0, 0.0), (-1.0, 0.0, 0.0), (0.0, 0.0, 1.0)),
     convention=TRANSLATION_CONVENTION + "; roll, pitch, yaw: forward-right-down body attitude errors of a nadir "
                "camera with the image top towards the nose: roll -> rotation about camera y, pitch -> about "
