@@ -24,7 +24,7 @@ from qgis.core import (
 from qgis.PyQt.QtCore import QT_TRANSLATE_NOOP
 
 from ...birdseye_qgis.__about__ import tr
-from ...birdseye_qgis.core.field.frame_records import poses_from_records
+from ...birdseye_qgis.core.field.frame_records import poses_from_records, uses_geotag_heights
 from ...birdseye_qgis.core.geometry.geodesy import LocalFrame
 from ...birdseye_qgis.core.labels.training_set import (
     Geotags,
@@ -162,7 +162,8 @@ class WriteLabels(DemParametersMixin, BirdsEyeAlgorithm):
                               n_records=len(records), n_groups=len(groups), n_geotags=len(geotags), sigma=sigma,
                               edge_buffer_px=request.edge_buffer_px))
 
-        no_ground = [poses.frame_id[i] for poses, _ in groups for i in np.flatnonzero(frames_without_ground(poses))]
+        no_ground = [poses.frame_id[i] for poses, idx in groups if not uses_geotag_heights(records, idx)
+                     for i in np.flatnonzero(frames_without_ground(poses))]
         steep = [r["frame_id"] for r in records if "steep_terrain" in (r.get("flags") or "")]
         if steep and dem is None:
             feedback.pushWarning(self.tr("{n_steep} frame(s) lie on terrain steeper than the "
@@ -178,7 +179,7 @@ class WriteLabels(DemParametersMixin, BirdsEyeAlgorithm):
         label_counts = np.zeros(len(records), dtype=np.int64)
         steps.setCurrentStep(0)
         projected = [self.run_core(project_labels, poses, geotags, request.edge_buffer_px, local,
-                                   self.dem_ground(dem)) for poses, _ in groups]
+                                   self.dem_ground(dem), uses_geotag_heights(records, idx)) for poses, idx in groups]
         steps.setCurrentStep(1)
         done = 0
         with LabelWriter(out_dir, geotags, request) as writer:
@@ -208,9 +209,9 @@ class WriteLabels(DemParametersMixin, BirdsEyeAlgorithm):
         ids = np.asarray(cols["attributes"]["id"] if "id" in attrs else cols["row"], dtype=object)
         labels = np.asarray([v if v else "target" for v in cols["attributes"]["label"]] if "label" in attrs
                             else ["target"] * len(ok), dtype=object)
-        # Heights do not move labels (each frame places geotags on its own ground); NaN → 0 keeps them finite.
-        height = np.nan_to_num(cols["z"], nan=0.0)
-        return Geotags(ids[ok], labels[ok], cols["lat"][ok], cols["lon"][ok], height[ok])
+        # Heights move labels only on frames of an ellipsoidal camera solution (flag geotag_heights);
+        # elsewhere each frame places geotags on its own ground. NaN: no surveyed height.
+        return Geotags(ids[ok], labels[ok], cols["lat"][ok], cols["lon"][ok], np.asarray(cols["z"], float)[ok])
 
     @staticmethod
     def _log_summary(feedback, summary) -> None:

@@ -45,6 +45,15 @@ def euler_degrees(quat) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return np.degrees(roll), np.degrees(pitch), np.degrees(yaw) % 360.0
 
 
+#: Frames of a camera solution whose heights are ellipsoidal: labels use the geotags' surveyed heights.
+GEOTAG_HEIGHTS_FLAG = "geotag_heights"
+
+
+def uses_geotag_heights(records, indices) -> bool:
+    """Whether the frames ``records[indices]`` all carry :data:`GEOTAG_HEIGHTS_FLAG`."""
+    return all(GEOTAG_HEIGHTS_FLAG in (records[i].get("flags") or "").split(",") for i in indices)
+
+
 def poses_from_records(records, source: str = "frame layer") -> list[tuple[FramePoses, np.ndarray]]:
     """Frame poses from frame-layer records (mappings with :data:`FRAME_FIELD_NAMES`).
 

@@ -33,13 +33,14 @@ class Projection:
     in_front: np.ndarray
     in_frame: np.ndarray
 
+    FIELDS = ("frame_idx", "point_idx", "uv", "depth", "margin_px", "in_front", "in_frame")
+
     @property
     def in_view(self) -> np.ndarray:
         return self.in_front & self.in_frame
 
     def select(self, mask) -> "Projection":
-        return Projection(*(getattr(self, f)[mask] for f in
-                            ("frame_idx", "point_idx", "uv", "depth", "margin_px", "in_front", "in_frame")))
+        return Projection(*(getattr(self, f)[mask] for f in self.FIELDS))
 
 
 def project_pairs(geometry: FrameGeometry, frame_idx, points, ground: GroundModel | None = None,

@@ -30,7 +30,7 @@ from ..errors import Cancelled
 from ..geometry.geodesy import LocalFrame
 from ..geometry.ground import LevelPlaneGround
 from ..geometry.poses import FrameGeometry, FramePoses
-from ..geometry.projection import project_in_view
+from ..geometry.projection import Projection, project_in_view
 from .sparse_png import encode_gray_png
 
 LABELS_CSV_FIELDS = ["frame_id", "image", "geotag_id", "label", "u", "v", "sigma_px", "margin_px"]
@@ -91,7 +91,7 @@ class LabelRequest:
 
 def project_labels(poses: FramePoses, geotags: Geotags, edge_buffer_px: float = 0.0,
                    local: LocalFrame | None = None,
-                   ground=None) -> list[FrameLabels]:
+                   ground=None, geotag_heights: bool = False) -> list[FrameLabels]:
     """Labels of every frame (in frame order; frames with nothing in view get an empty entry).
 
     Geotags are placed on the ground each frame sees, so a rover antenna height never shifts a label.
@@ -100,22 +100,43 @@ def project_labels(poses: FramePoses, geotags: Geotags, edge_buffer_px: float = 
     ground height (no usable altimeter reading) get no labels: :func:`frames_without_ground` tells
     which, so callers can report them. A ground model that can tell occlusion (a DEM) drops geotags
     hidden behind terrain and counts them in ``n_occluded``.
+
+    ``geotag_heights`` (frames of a camera solution whose heights are ellipsoidal, flag
+    ``geotag_heights``): there is no altimeter, and the geotags' own surveyed heights are the truth, so
+    a geotag with a height is projected where it is; one without a height goes onto the ground model,
+    whose level plane lies, for frames without a ground height, at the median surveyed geotag height
+    (the flight's ground).
     """
     local = local or LocalFrame.around(np.append(poses.lat, geotags.lat), np.append(poses.lon, geotags.lon),
                                        poses.height)
     empty = [FrameLabels(f, np.empty(0, np.int64), np.empty((0, 2)), np.empty(0), np.empty(0, bool))
              for f in range(len(poses))]
+    own_height = np.isfinite(geotags.height) if geotag_heights else np.zeros(len(geotags), dtype=bool)
+    if geotag_heights and own_height.any():
+        flight_ground = float(np.median(geotags.height[own_height]))
+        poses = FramePoses(poses.frame_id, poses.lat, poses.lon, poses.height, poses.quat,
+                           np.where(np.isfinite(poses.ground_height), poses.ground_height, flight_ground),
+                           poses.camera)
     usable = np.flatnonzero(~frames_without_ground(poses)) if ground is None else np.arange(len(poses))
     if len(usable) == 0 or len(geotags) == 0:
         return empty
     geom = FrameGeometry(poses.subset(usable), local)
     ground_model = (ground or LevelPlaneGround)(geom)
-    pts = local.from_geodetic(geotags.lat, geotags.lon, geotags.height)
-    proj = project_in_view(geom, pts, ground_model, edge_buffer_px, keep_edge=True)
+    pts = local.from_geodetic(geotags.lat, geotags.lon, np.nan_to_num(geotags.height, nan=0.0))
+    parts = []
+    for own in (True, False):
+        which = np.flatnonzero(own_height == own)
+        if len(which) == 0:
+            continue
+        proj = project_in_view(geom, pts[which], None if own else ground_model, edge_buffer_px,
+                               prefilter_ground=ground_model, keep_edge=True)
+        proj.point_idx = which[proj.point_idx]
+        placed = pts[proj.point_idx] if own else ground_model.place(proj.frame_idx, pts[proj.point_idx])
+        parts.append((proj, placed))
+    proj = Projection(*(np.concatenate([getattr(p, name) for p, _ in parts]) for name in Projection.FIELDS))
     occluded = np.zeros(len(proj.frame_idx), dtype=bool)
     if hasattr(ground_model, "occluded") and len(proj.frame_idx):
-        placed = ground_model.place(proj.frame_idx, pts[proj.point_idx])
-        occluded = ground_model.occluded(proj.frame_idx, placed)
+        occluded = ground_model.occluded(proj.frame_idx, np.concatenate([placed for _, placed in parts]))
     n_occluded = np.bincount(proj.frame_idx[occluded], minlength=len(usable))
     proj = proj.select(~occluded)
     order = np.lexsort((proj.point_idx, proj.frame_idx))

@@ -169,3 +169,32 @@ def test_frames_without_a_ground_height_get_no_labels():
     poses.ground_height[0] = np.nan  # frame 101 had no usable altimeter reading
     labels = project_labels(poses, geotags, local=local)
     assert [fl.geotag_index.tolist() for fl in labels] == [[], [0], []]
+
+
+def test_camera_solution_frames_project_geotags_at_their_surveyed_heights():
+    """With ``geotag_heights`` a geotag 1.5 m above the ground (a marker on a post) is projected where it
+    is, closed form for a nadir frame: u − cx = f·east/depth, v − cy = −f·north/depth with depth = 10 − 1.5;
+    the wrong ground height the frame carries plays no part."""
+    poses, geotags, local = small_campaign()
+    geotags.height -= 400.0  # small_campaign's heights are relative to the 400 m site: make them absolute
+    poses.ground_height[:] = 395.0  # 5 m off: must not matter
+    no_distortion = FramePoses(poses.frame_id, poses.lat, poses.lon, poses.height, poses.quat, poses.ground_height,
+                               CameraModel(640, 400, 1400.0, 1400.0, 319.5, 199.5, T_cam_imu=poses.camera.T_cam_imu))
+    labels = project_labels(no_distortion, geotags, local=local, geotag_heights=True)
+    uv = labels[0].uv[labels[0].geotag_index.tolist().index(0)]
+    np.testing.assert_allclose(uv, [319.5 + 1400 * 0.3 / 8.5, 199.5 - 1400 * 0.2 / 8.5], atol=0.02)
+
+
+def test_geotags_without_height_go_onto_the_flight_ground_of_the_surveyed_ones():
+    """A geotag without height on a frame without ground height lands on the level plane at the median
+    surveyed height (400 m here, from the other geotags): depth 10 m."""
+    poses, geotags, local = small_campaign()
+    geotags.height -= 400.0
+    poses.ground_height[:] = np.nan
+    geotags.height[1] = np.nan  # the 'gap' at (−1, −0.5) has no height
+    geotags.height[0] = geotags.height[2]  # both surveyed ones at ground level: median 400 m
+    no_distortion = FramePoses(poses.frame_id, poses.lat, poses.lon, poses.height, poses.quat, poses.ground_height,
+                               CameraModel(640, 400, 1400.0, 1400.0, 319.5, 199.5, T_cam_imu=poses.camera.T_cam_imu))
+    labels = project_labels(no_distortion, geotags, local=local, geotag_heights=True)
+    k = labels[0].geotag_index.tolist().index(1)
+    np.testing.assert_allclose(labels[0].uv[k], [319.5 - 1400 * 1.0 / 10, 199.5 + 1400 * 0.5 / 10], atol=0.05)

@@ -31,14 +31,13 @@ from ...geometry.geodesy import LocalFrame, ProjectedCRS, ecef_to_geodetic, rota
 from ...geometry.poses import FramePoses
 from ...geometry.rotations import R_ENU_NED, rotmat_to_quat
 from ..dji import T_CAM_GIMBAL
+from ..frame_records import GEOTAG_HEIGHTS_FLAG
 from ..frames import Frames, compute_footprints
 from ..import_report import FlightImport, ImportReport
 from ..pose_log import RTK_NONE
 
 #: The flag every frame of a camera solution carries.
 SOLUTION_FLAG = "camera_solution"
-#: The flag of frames whose heights are ellipsoidal for certain: labels use the geotags' surveyed heights.
-GEOTAG_HEIGHTS_FLAG = "geotag_heights"
 #: Image files a solution's camera names are matched with (case-insensitive).
 IMAGE_SUFFIXES = (".jpg", ".jpeg", ".tif", ".tiff", ".png", ".dng")
 #: Tie points in view that make a frame's ground height (fewer: the frame takes the DEM or level plane).
