@@ -322,13 +322,18 @@ def test_a_whole_review_by_keyboard(campaign, clean_project, make_dock, qtbot, q
         run("evaluatedetections", {"DETECTIONS": [layer], "GEOTAGS": layers.geotags, "FRAMES": [layers.frames],
                                    "REVIEW": review, "OUTPUT_JSON": str(out), "OUTPUT_REPORT": None})
         assert json.loads(json.dumps(dock.scores[layer.name()])) == json.loads(out.read_text())
-    # … and they are what the verdicts say: c = confirmed units a layer fired at with no geotag near.
+    # … and they are what the verdicts say: c = confirmed units a layer fired at with no geotag near;
+    # a = 0, since the target the reviewer added was surveyed (n_in_view counts it already): a counts
+    # only added targets where no cluster fired and no geotag lies within EPS_PRED.
+    missed = min(read_truth(campaign.folder)[0],
+                 key=lambda t: nearest([campaign.missed], float(t["lat"]), float(t["lon"]))[1])
+    assert missed["surveyed"] == "1"
     for name in ("model_a", "model_b"):
         c = sum(1 for k in units.keys if decided[k] == "confirmed_real" and not units.matched[units.index[k]]
                 and name in units.layers_fired[units.index[k]])
         for convention in ("positive_wins", "majority_wins", "hard_negative_wins"):
             post = dock.scores[name]["post"][convention]
-            assert (post["c"], post["a"]) == (c, 1)
+            assert (post["c"], post["a"]) == (c, 0)
     assert dock.scores_table.item(0, 0).text() == "model_a" and "≥" in dock.scores_table.item(1, 2).text()
     assert dock.scores["model_a"]["post"]["positive_wins"]["gmcf_post"] > before["model_a"]["gmcf_pre"]
 
@@ -444,3 +449,27 @@ def test_a_layer_that_cannot_be_reviewed_is_reported_by_name(campaign, clean_pro
     assert "geotags" in dock.banner.text() and "not a BirdsEye frame layer" in dock.banner.text()
     assert dock.session is None and not dock.panel.isEnabled()
     assert not (tmp_path / "detections.gpkg-journal").exists()
+
+
+def test_the_methods_units_can_be_chosen_and_come_back_with_the_project(campaign, clean_project, make_dock,
+                                                                       qtbot, tmp_path):
+    layers = copy_campaign(campaign, tmp_path)
+    dock = make_dock()
+    dock.units_combo.setCurrentIndex(dock.units_combo.findData("method"))
+    start(dock, layers)
+    units = dock.units
+    # Detections near a geotag are set aside; the rest form one unit per frame: the three look-alikes
+    # (each seen by at least four frames) give at least twelve units, none matched, each of one frame.
+    assert dock.params.units == "method" and not units.matched.any() and set(units.n_frames.tolist()) == {1}
+    assert len(units) >= 4 * len(campaign.fakes)
+    for k, key in enumerate(units.keys):
+        assert key.rsplit("@", 1)[1] == str(units.detection_frame[units.detection_unit == k][0])
+    qtbot.keyClick(dock.panel, Qt.Key_1)
+    project_file = tmp_path / "review.qgz"
+    assert QgsProject.instance().write(str(project_file))
+    QgsProject.instance().clear()
+    dock.units_combo.setCurrentIndex(dock.units_combo.findData("consensus"))
+    assert QgsProject.instance().read(str(project_file))
+    qtbot.waitUntil(lambda: dock.session is not None, timeout=10000)
+    assert dock.units_combo.currentData() == "method" and dock.units.keys == units.keys
+    assert sum(1 for k in dock.units.keys if dock.status(k).direct == "confirmed_real") == 1

@@ -24,6 +24,21 @@ physical spot is judged once whichever model fired there:
   test of :func:`.scoring.score_flight`). Order: unmatched units first (they need a person), then by
   frames that saw the unit (most first), highest score, key.
 
+These consensus units are the default (one verdict per spot suits several layers best). The
+**method's units** (``ReviewParameters(units="method")``, :func:`.units.build_method_units`) are
+built as the method builds them, for reproducing its review:
+
+* every detection (all layers pooled) is matched on its own: it is set aside, in no unit, when an
+  in-view geotag lies within ``eps_pred_m`` (horizontal) of its ground position;
+* per frame, the detections that stay unmatched are grouped by complete linkage on their pixel
+  positions, cut at ``group_px`` (30 px): every two detections of a group are at most 30 px apart
+  (:func:`.units.complete_linkage_groups`). Each group is one unit, seen in one frame; so one spot is
+  judged once per frame that saw it, and a cluster of a layer resolves once over all those
+  judgements (:meth:`.scoring.verdicts.VerdictLog.resolve_cluster`);
+* a unit's position is its detection nearest the group's mean ground position; its key is the
+  position key followed by ``@<frame id>`` (``u-27.5500131+151.9500099@101``), since the same spot
+  sits at the same position in every frame; no unit is matched; the order rule is the one above.
+
 Verdict actions (the log is append-only)
 ----------------------------------------
 Rows follow :mod:`.scoring`'s verdict-log API (unit_key, verdict, provenance, time, reviewer, lat, lon,

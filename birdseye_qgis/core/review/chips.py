@@ -1,7 +1,6 @@
 """Image chips: which frames show a unit, the crop window, and the chip drawn with detections and geotags."""
 from __future__ import annotations
 
-import math
 import threading
 from collections import OrderedDict
 from dataclasses import dataclass
@@ -14,7 +13,7 @@ from ..geometry.ground import LevelPlaneGround
 from ..geometry.poses import FrameGeometry, FramePoses
 from ..geometry.projection import project_in_view, project_pairs
 from ..scoring.evaluation import Geotags, local_frame_for
-from .units import ReviewUnits
+from .units import ReviewUnits, frame_key
 
 DEFAULT_WINDOW_PX = 128
 DEFAULT_MAX_CHIPS = 4
@@ -38,15 +37,6 @@ class FrameIndex:
 
     def __contains__(self, frame_id) -> bool:
         return frame_key(frame_id) in self.lookup
-
-
-def frame_key(value):
-    """Frame ids compare as integers when they are whole numbers (providers return 3 or 3.0 or '3')."""
-    try:
-        f = float(value)
-    except (TypeError, ValueError):
-        return str(value)
-    return int(f) if math.isfinite(f) and f == int(f) else str(value)
 
 
 @dataclass

@@ -36,7 +36,8 @@ Verdict log API (for the review dock)
 ----------------------------------------------
 The dock stores an append-only table; this module needs from each row only::
 
-    unit_key    str   the review unit (a consensus cluster) or an added target
+    unit_key    str   the review unit (a consensus cluster, or a per-frame group of the method's
+                      construction) or an added target
     verdict     str   "confirmed_real" | "hard_negative" | "uncertain" | "unreviewed" | "added"
     provenance  str   "direct", or "propagated:<rule>" (e.g. "propagated:dbscan_0.20m")
     time        str   ISO 8601 (naive = UTC); informational order key, see below

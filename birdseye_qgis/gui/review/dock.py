@@ -36,7 +36,7 @@ from ...core.review.actions import REVIEW_VERDICTS, UnitStatus, resume_key, unit
 from ...core.review.chips import FrameIndex, plan_point_chips, plan_unit_chips
 from ...core.review.digests import InputCheck, check_inputs
 from ...core.review.navigation import Entries, display_verdict
-from ...core.review.units import ADDED_PREFIX, ReviewParameters, ReviewUnits, build_units
+from ...core.review.units import ADDED_PREFIX, CONSENSUS_UNITS, ReviewParameters, ReviewUnits, build_units
 from ...core.scoring.evaluation import Flight
 from ...core.scoring.operating_point import OperatingPoint
 from ...qgis_io.review_project import save_propagate, save_review, saved_review
@@ -160,7 +160,7 @@ class ReviewDock(QgsDockWidget):
 
     def _read_params(self) -> ReviewParameters:
         return ReviewParameters(self.dedup_spin.value(), self.eps_spin.value(), self.min_samples_spin.value(),
-                                   self.eps_pred_spin.value(), self.edge_spin.value())
+                                   self.eps_pred_spin.value(), self.edge_spin.value(), self.units_combo.currentData())
 
     # ------------------------------------------------------------------ start / resume
     def start_review(self) -> bool:
@@ -282,6 +282,7 @@ class ReviewDock(QgsDockWidget):
                            (self.scale_spin, "scale")):
             if name in saved.parameters:
                 spin.setValue(saved.parameters[name])
+        self._set_combo(self.units_combo, saved.parameters.get("units", CONSENSUS_UNITS))
         self.propagate_check.setChecked(saved.propagate)
         self.set_inputs(saved.detection_layers, saved.frame_layer, saved.geotag_layer, saved.store_path)
         self.start_review()

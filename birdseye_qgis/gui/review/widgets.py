@@ -37,7 +37,7 @@ from qgis.PyQt.QtWidgets import (
 from ...__about__ import tr
 from ...core.detect.clustering import DEFAULT_DEDUP_CM
 from ...core.review.chips import DEFAULT_WINDOW_PX, GEOTAG_COLOUR, LAYER_COLOURS
-from ...core.review.units import PROPAGATION_EPS_M, PROPAGATION_RULE
+from ...core.review.units import CONSENSUS_UNITS, METHOD_UNITS, PROPAGATION_EPS_M, PROPAGATION_RULE
 from ...core.scoring.verdicts import CONVENTIONS
 from .model import CONVENTION_TEXT, VERDICT_COLOURS, VERDICT_TEXT, UnitTableModel
 
@@ -230,6 +230,16 @@ def build_setup_box(dock):
     params = QgsCollapsibleGroupBox(tr("Clustering and matching"))
     params.setCollapsed(True)
     pform = QFormLayout(params)
+    dock.units_combo = QComboBox()
+    dock.units_combo.addItem(tr("Consensus clusters (one per spot, all layers)"), CONSENSUS_UNITS)
+    dock.units_combo.addItem(tr("The method's (per frame, complete linkage at {px:.0f} px)").format(
+        px=dock.params.group_px), METHOD_UNITS)
+    dock.units_combo.setToolTip(tr("How detections become review units. Consensus clusters (the default) pool "
+                                   "the layers and judge each spot once. The method's: detections within "
+                                   "EPS_PRED of an in-view geotag are set aside one by one; per frame, the rest "
+                                   "are grouped so that every two detections of a group are at most {px:.0f} px "
+                                   "apart; each group is a unit, so a spot is judged once per frame.").format(
+                                       px=dock.params.group_px))
     dock.dedup_spin = spin_box(0.1, 100.0, DEFAULT_DEDUP_CM, 1, " cm",
                                    "De-duplication grid cell, as in Cluster detections.")
     dock.eps_spin = spin_box(0.001, 50.0, dock.params.eps_m, 3, " m", "DBSCAN radius EPS of the units.")
@@ -256,7 +266,8 @@ def build_setup_box(dock):
     dock.scale_spin.setClearValue(DEFAULT_SCALE)
     dock.scale_spin.setPrefix("1:")
     dock.scale_spin.setToolTip(tr("Map scale the canvas zooms to around each unit."))
-    for label, widget in ((tr("Grid cell"), dock.dedup_spin), (tr("EPS"), dock.eps_spin),
+    for label, widget in ((tr("Review units"), dock.units_combo), (tr("Grid cell"), dock.dedup_spin),
+                          (tr("EPS"), dock.eps_spin),
                           (tr("Min. points"), dock.min_samples_spin), (tr("EPS_PRED"), dock.eps_pred_spin),
                           (tr("Edge buffer"), dock.edge_spin), (tr("Chip window"), dock.window_spin),
                           (tr("Map scale"), dock.scale_spin)):

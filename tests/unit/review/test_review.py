@@ -12,6 +12,7 @@ import json
 import numpy as np
 import pytest
 
+from birdseye.birdseye_qgis.core.errors import InputError
 from birdseye.birdseye_qgis.core.geometry.camera import CameraModel
 from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame
 from birdseye.birdseye_qgis.core.geometry.ground import LevelPlaneGround
@@ -37,6 +38,7 @@ from birdseye.birdseye_qgis.core.review.units import (
     UnitRef,
     added_key,
     build_units,
+    complete_linkage_groups,
     position_key,
     propagation_groups,
 )
@@ -168,6 +170,91 @@ def test_propagation_groups_chain_units_within_20_cm():
     assert g[0] == g[1] == g[2] and len({g[0], g[3], g[4]}) == 3
     wider = propagation_groups(xy, 0.32)
     assert wider[3] == wider[0] != wider[4]
+
+
+# ---------------------------------------------------------------------------------------------- the method's units
+def partition(labels, names):
+    groups: dict = {}
+    for name, label in zip(names, labels.tolist()):
+        groups.setdefault(label, set()).add(name)
+    return sorted(sorted(g) for g in groups.values())
+
+
+def test_complete_linkage_groups_by_hand():
+    # Frame 7: A–B 18 px, B–C 22 px, A–C 40 px: A and B join first, then {A, B}–C is 40 px > 30, so C
+    # stays alone (single linkage at 30 px would chain all three). D–E 24, D–F 25, E–F 34.7: D and E
+    # join, F stays alone. G–H exactly 30 px: together. Frame 8 repeats A and B: its own group.
+    # Frame "x" has one detection.
+    points = {"A": (7, 0, 0), "B": (7, 18, 0), "C": (7, 40, 0), "D": (7, 100, 100), "E": (7, 100, 124),
+              "F": (7, 125, 100), "G": (7, 200, 0), "H": (7, 230, 0), "A8": (8.0, 0, 0), "B8": ("8", 18, 0),
+              "X": ("x", 5, 5)}
+    names = list(points)
+    frame = np.array([v[0] for v in points.values()], dtype=object)
+    uv = np.array([v[1:] for v in points.values()], dtype=float)
+    labels = complete_linkage_groups(uv, frame, 30.0)
+    assert partition(labels, names) == [["A", "B"], ["A8", "B8"], ["C"], ["D", "E"], ["F"], ["G", "H"], ["X"]]
+    assert sorted(set(labels.tolist())) == list(range(7))
+    # Numbering follows frames and pixel positions, not the input order.
+    perm = np.random.default_rng(3).permutation(len(names))
+    np.testing.assert_array_equal(complete_linkage_groups(uv[perm], frame[perm], 30.0), labels[perm])
+    # A smaller radius splits G from H and A from B.
+    assert ["G", "H"] not in partition(complete_linkage_groups(uv, frame, 17.0), names)
+
+
+def test_method_units_are_per_frame_groups_of_the_detections_no_geotag_matches(two_layers):
+    method = ReviewParameters(units="method")
+    units = build(two_layers, geotags_at([S2]), units="method")
+    # S2 (both layers) is matched detection by detection and set aside; S1 (A) and S3 (B) are seen by
+    # all four frames: one unit per spot and frame.
+    assert len(units) == 8 and not units.matched.any()
+    assert sorted(k.rsplit("@", 1)[1] for k in units.keys) == sorted(["100", "101", "102", "103"] * 2)
+    s1, s2 = (SITE.from_geodetic(*ground_points(spot))[0, :2] for spot in (S1, S2))
+    xy = np.concatenate([layer.detections.local_xy(SITE) for layer in two_layers])
+    np.testing.assert_array_equal(units.detection_unit == -1, np.hypot(*(xy - s2).T) < 0.1)
+    at_s1 = np.hypot(*(units.xy - s1).T) < 0.05
+    assert at_s1.sum() == 4
+    for k in range(len(units)):
+        mine = units.detection_unit == k
+        assert units.n_frames[k] == 1 and len(set(units.detection_frame[mine].tolist())) == 1
+        assert units.n_detections[k] == mine.sum() == 9
+        assert units.layers_fired[k] == (["model A"] if at_s1[k] else ["model B"])
+    # The same spot in four frames: one propagation group per spot.
+    assert len(set(units.propagation_group[at_s1].tolist())) == 1
+    assert set(units.propagation_group[at_s1].tolist()).isdisjoint(units.propagation_group[~at_s1].tolist())
+    assert units.clustering is None and method.postprocessing()["units"] == "method"
+    assert method.postprocessing()["group_px"] == 30.0 and "group_px" not in ReviewParameters().postprocessing()
+
+
+def test_method_matching_is_per_detection_and_the_rest_of_a_spot_is_one_unit_per_frame(two_layers):
+    # A geotag 0.215 m east of S2: of each layer's 3 × 3 blob (3 cm steps) only the east column is
+    # within 0.20 m (0.185–0.188 m); the six others (0.215–0.247 m) stay, both layers' together.
+    units = build(two_layers, geotags_at([(S2[0] + 0.215, S2[1])]), units="method")
+    s2 = SITE.from_geodetic(*ground_points(S2))[0, :2]
+    at_s2 = np.flatnonzero(np.hypot(*(units.xy - s2).T) < 0.05)
+    assert len(at_s2) == 4 and len(units) == 12
+    for k in at_s2.tolist():
+        assert units.layers_fired[k] == ["model A", "model B"] and units.n_detections[k] == 12
+    set_aside = units.detection_unit == -1
+    assert set_aside.sum() == 2 * 3 * 4
+    east = SITE.from_geodetic(*ground_points([(S2[0] + 0.215, S2[1])]))[0, :2]
+    xy = np.concatenate([layer.detections.local_xy(SITE) for layer in two_layers])
+    np.testing.assert_array_equal(set_aside, np.hypot(*(xy - east).T) <= 0.20)
+
+
+def test_method_unit_keys_are_stable_and_the_construction_is_checked(two_layers):
+    units = build(two_layers, units="method")
+    a, b = two_layers
+    perm = np.random.default_rng(2).permutation(len(a.detections))
+    shuffled = ReviewLayer(Detections(a.detections.lat[perm], a.detections.lon[perm], a.detections.height[perm],
+                                      a.detections.frame_id[perm], a.detections.score[perm], name="model A"),
+                           a.u[perm], a.v[perm])
+    assert sorted(build([b, shuffled], units="method").keys) == sorted(units.keys)
+    for k, key in enumerate(units.keys):
+        assert key.startswith(position_key("u", units.lat[k], units.lon[k]) + "@")
+    with pytest.raises(InputError, match="field 'units'.*'clusters' is not a way to build review units"):
+        ReviewParameters(units="clusters")
+    with pytest.raises(InputError, match="field 'group_px'"):
+        ReviewParameters(units="method", group_px=0.0)
 
 
 # ---------------------------------------------------------------------------------------------- ledger
