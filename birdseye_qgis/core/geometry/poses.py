@@ -58,10 +58,26 @@ def ground_height_from_altimeter(height, quat, radalt, t_imu_rad=None) -> np.nda
     (metres); its vertical offset in NED is applied to the IMU height first.
     """
     r = quat_to_rotmat(quat)
+    return _altimeter_height(height, r, t_imu_rad) - np.asarray(radalt, dtype=float) * r[..., 2, 2]
+
+
+def altimeter_range(height, quat, ground_height, t_imu_rad=None) -> np.ndarray:
+    """The altimeter's raw range along body z to the level ground: ``ground_height_from_altimeter`` undone.
+
+    ``(h_rad − ground_h) / cos(roll)·cos(pitch)``; infinite or negative where body z is horizontal or
+    points up (no radar looks there).
+    """
+    r = quat_to_rotmat(quat)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return (_altimeter_height(height, r, t_imu_rad) - np.asarray(ground_height, dtype=float)) / r[..., 2, 2]
+
+
+def _altimeter_height(height, r_ned_body, t_imu_rad) -> np.ndarray:
+    """Ellipsoidal height of the altimeter: the IMU height moved by the lever arm ``t_imu_rad`` (body, m)."""
     h_rad = np.asarray(height, dtype=float)
     if t_imu_rad is not None:
-        h_rad = h_rad - (r @ np.asarray(t_imu_rad, dtype=float))[..., 2]
-    return h_rad - np.asarray(radalt, dtype=float) * r[..., 2, 2]
+        h_rad = h_rad - (r_ned_body @ np.asarray(t_imu_rad, dtype=float))[..., 2]
+    return h_rad
 
 
 class FrameGeometry:
@@ -103,3 +119,16 @@ class FrameGeometry:
     def gsd_m(self) -> np.ndarray:
         """Ground sample distance (m/px) at the image centre over the level ground."""
         return self.depth_below() / np.sqrt(self.camera.fx * self.camera.fy)
+
+
+def body_pose_from_camera(local: LocalFrame, centre: np.ndarray, r_local_cam: np.ndarray, camera: CameraModel):
+    """The frame-layer pose (lat, lon, h of the IMU/body, body → NED quaternion) of cameras whose centres
+    (F, 3) and camera → local rotations (F, 3, 3) are known: :class:`FrameGeometry` run backwards."""
+    from .rotations import rotmat_to_quat
+
+    t_imu_cam = camera.T_imu_cam
+    r_local_body = np.asarray(r_local_cam, dtype=float) @ t_imu_cam[:3, :3].T
+    imu = np.asarray(centre, dtype=float) - r_local_body @ t_imu_cam[:3, 3]
+    lat, lon, h = (np.atleast_1d(np.asarray(a, dtype=float)) for a in local.to_geodetic(imu))
+    r_ned_body = np.swapaxes(local.rotation_from_ned(lat, lon), -1, -2) @ r_local_body
+    return lat, lon, h, rotmat_to_quat(r_ned_body)
