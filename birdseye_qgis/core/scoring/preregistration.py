@@ -1,8 +1,11 @@
 """Preregistered selection rules: canonical JSON sealed with SHA-256, verified before scoring.
 
 A *rule* says, before a held-out flight is scored, which detector and operating point will be
-judged: its **arms** (checkpoint file digest + the full operating point) and, for the record, the
-**descriptive** configurations looked at while choosing (reported, never used to decide).
+judged: its **arms** (checkpoint file digest + the full operating point of that arm; several arms may
+share a checkpoint at different operating points, as the method's three arms often do) and, for the
+record, the **descriptive** configurations looked at while choosing (reported, never used to decide).
+Arms come from an arms file of ``selectarms`` (:func:`arms_from_selection`), from typed lines
+(:func:`parse_arm_lines`), or one per checkpoint at one operating point (:func:`make_arm`).
 
 The sealed document (one JSON file)::
 
@@ -32,6 +35,7 @@ import json
 import math
 from datetime import datetime, timezone
 from pathlib import Path
+from typing import Mapping
 
 from ..errors import InputError
 from .operating_point import OperatingPoint
@@ -84,6 +88,62 @@ def make_arm(checkpoint: str, model_digest: str, op: OperatingPoint, name: str |
             "model_digest": model_digest, "operating_point": op.to_dict()}
 
 
+def arms_from_selection(selected: list[dict], checkpoint_digests: Mapping[str, str] | None = None) -> list[dict]:
+    """Arms from an arms file's entries (:func:`.arms.read_arms`), each with its own operating point.
+
+    ``checkpoint_digests`` (file name → SHA-256 of the checkpoint files at hand), when given, must hold
+    every arm's digest: the seal then names files that exist, not only what the sweep recorded.
+    """
+    known = set((checkpoint_digests or {}).values())
+    arms = []
+    for entry in selected:
+        if checkpoint_digests is not None and entry["model_digest"] not in known:
+            raise SealError(f"arm '{entry['name']}' is checkpoint {entry['checkpoint']} "
+                            f"({entry['model_digest'][:12] or 'no digest'}…), which none of the checkpoint files "
+                            f"is ({', '.join(sorted(checkpoint_digests))})", field="CHECKPOINTS")
+        arms.append(make_arm(entry["checkpoint"], entry["model_digest"],
+                             OperatingPoint.from_dict(entry["operating_point"], source=f"arm {entry['name']}"),
+                             entry["name"]))
+    return arms
+
+
+#: The fields of a typed arm line, after "name:".
+ARM_LINE_FIELDS = ("checkpoint", "threshold", "eps_m", "min_samples", "eps_pred_m")
+
+
+def parse_arm_lines(text: str, checkpoint_digests: Mapping[str, str], dedup_cm: float,
+                    edge_buffer_px: float) -> list[dict]:
+    """Arms typed one per line, ``name: checkpoint, threshold, eps_m, min_samples, eps_pred_m`` (the
+    checkpoint by file name among ``checkpoint_digests``; DEDUP_CM and EDGE_BUFFER_PX shared by every
+    arm). Blank lines and lines starting with # are skipped."""
+    arms = []
+    for row, line in enumerate((text or "").splitlines(), start=1):
+        line = line.strip()
+        if not line or line.startswith("#"):
+            continue
+        name, sep, rest = line.partition(":")
+        values = [v.strip() for v in rest.split(",")]
+        if not sep or not name.strip() or len(values) != len(ARM_LINE_FIELDS):
+            raise InputError(f"'{line}' is not 'name: {', '.join(ARM_LINE_FIELDS)}' "
+                             "(e.g. 'max_f1: model.onnx, 0.05, 0.20, 2, 0.20')", row=row, field="ARM_LINES")
+        checkpoint = Path(values[0]).name
+        if checkpoint not in checkpoint_digests:
+            raise InputError(f"names checkpoint '{values[0]}', which is not among CHECKPOINTS "
+                             f"({', '.join(sorted(checkpoint_digests))})", row=row, field="ARM_LINES")
+        try:
+            threshold, eps_m, min_samples, eps_pred_m = (float(v) for v in values[1:])
+        except ValueError as exc:
+            raise InputError(f"'{line}': threshold, eps_m, min_samples and eps_pred_m must be numbers",
+                             row=row, field="ARM_LINES") from exc
+        if min_samples != int(min_samples):
+            raise InputError(f"'{line}': min_samples must be a whole number", row=row, field="ARM_LINES")
+        op = OperatingPoint(threshold, dedup_cm, eps_m, int(min_samples), eps_pred_m, edge_buffer_px)
+        arms.append(make_arm(checkpoint, checkpoint_digests[checkpoint], op, name.strip()))
+    if not arms:
+        raise InputError("holds no arm line", field="ARM_LINES")
+    return arms
+
+
 def seal(rule: dict, sealed_at: str | None = None) -> dict:
     """A sealed document for ``rule`` (a dict with "arms", optional "descriptive" and "note")."""
     arms = rule.get("arms") or []
@@ -103,10 +163,15 @@ def seal(rule: dict, sealed_at: str | None = None) -> dict:
 def _check_rule(rule, source: str) -> None:
     if not isinstance(rule, dict) or not isinstance(rule.get("arms"), list) or not rule["arms"]:
         raise SealError("has no arms", source=source)
+    names = set()
     for i, arm in enumerate(rule["arms"], start=1):
         if not isinstance(arm, dict) or not _is_digest(arm.get("model_digest")):
             raise SealError(f"arm {i} has no valid model_digest", source=source)
         OperatingPoint.from_dict(arm.get("operating_point") or {}, source=f"{source}, arm {i}")
+        if arm.get("name") in names:
+            raise SealError(f"arm {i} has the name '{arm.get('name')}' of an earlier arm; arms need distinct names",
+                            source=source)
+        names.add(arm.get("name"))
 
 
 def write(document: dict, path) -> None:
@@ -152,14 +217,24 @@ def verify(document, source: str = "preregistration") -> dict:
     return document
 
 
-def arm_for(document: dict, model_digest: str, source: str = "preregistration") -> tuple[dict, OperatingPoint]:
-    """The arm sealed for a model digest, and its operating point; refuses a model the rule never named."""
-    for arm in document["rule"]["arms"]:
-        if arm["model_digest"] == model_digest:
-            return arm, OperatingPoint.from_dict(arm["operating_point"], source=source)
-    names = ", ".join(f"{a['name']} ({a['model_digest'][:12]}…)" for a in document["rule"]["arms"])
-    raise SealError(f"the detections come from model {model_digest[:12] or '(no digest)'}…, which the sealed "
-                    f"rule does not name (arms: {names}); refusing to score", source=source)
+def arm_for(document: dict, model_digest: str, source: str = "preregistration",
+            arm_name: str | None = None) -> tuple[dict, OperatingPoint]:
+    """The arm sealed for a model digest (and name, needed when several arms share the checkpoint), and
+    its operating point; refuses a model or an arm the rule never named."""
+    arms = document["rule"]["arms"]
+    names = ", ".join(f"{a['name']} ({a['model_digest'][:12]}…)" for a in arms)
+    mine = [a for a in arms if a["model_digest"] == model_digest]
+    if not mine:
+        raise SealError(f"the detections come from model {model_digest[:12] or '(no digest)'}…, which the sealed "
+                        f"rule does not name (arms: {names}); refusing to score", source=source)
+    if arm_name is not None:
+        mine = [a for a in mine if a["name"] == arm_name]
+        if not mine:
+            raise SealError(f"has no arm '{arm_name}' for model {model_digest[:12]}… (arms: {names})", source=source)
+    if len(mine) > 1:
+        raise SealError(f"seals {len(mine)} arms for model {model_digest[:12]}… "
+                        f"({', '.join(a['name'] for a in mine)}); say which arm to score", source=source)
+    return mine[0], OperatingPoint.from_dict(mine[0]["operating_point"], source=source)
 
 
 def check_checkpoint_files(document: dict, paths, digest_of) -> None:

@@ -1,9 +1,22 @@
-"""Operating-point sweeps: every threshold × clustering combination scored, credible points, Pareto front."""
+"""Operating-point sweeps: checkpoint × threshold × EPS × MIN_SAMPLES × EPS_PRED scored, credible points, Pareto front.
+
+**The threshold axis.** For each threshold t of the grid a flight brings the detections of a peak
+extraction *at t* (:func:`~..detect.detector.detect_frames_at_thresholds`, or a Detect run at t), never
+the detections of a lower threshold kept when their score is ≥ t: Detect makes one detection per blob
+of the smoothed heatmap above its threshold, so a blob whose humps meet between two thresholds is one
+detection at the lower and two at the higher, and each blob's centroid is weighted by (value − t).
+
+**The default grid** (:data:`METHOD_GRID`) holds every operating point the method reports — thresholds
+0.03 to 0.12, EPS 0.10, 0.15 and 0.20 m, MIN_SAMPLES 2, 5, 10 and 20, EPS_PRED 0.20 and 0.35 m — and has
+the method's size, 14,400 = 10 thresholds (0.03 … 0.12 in steps of 0.01) × 12 EPS (0.025 … 0.30 m in
+steps of 0.025 m) × 12 MIN_SAMPLES (1 … 10, 15, 20) × 10 EPS_PRED (0.05 … 0.50 m in steps of 0.05 m).
+The method names those values and the total; the axis values in between are ours, in equal steps.
+"""
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Sequence
+from typing import Mapping, Sequence
 
 import numpy as np
 
@@ -15,16 +28,51 @@ from .matching import match_to_clusters
 DEFAULT_MAX_GEOTAGS_PER_HIT = 1.5
 DEFAULT_MAX_MEAN_EXTENT_M = 1.0
 
+#: The default grid: axis name → values (see the module docstring).
+METHOD_GRID = {
+    "thresholds": tuple(round(0.03 + 0.01 * i, 2) for i in range(10)),
+    "eps_m": tuple(round(0.025 * i, 3) for i in range(1, 13)),
+    "min_samples": (1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 15, 20),
+    "eps_pred_m": tuple(round(0.05 * i, 2) for i in range(1, 11)),
+}
+#: Two thresholds closer than this are the same threshold (layers store them as doubles).
+THRESHOLD_TOLERANCE = 1e-9
+
+
+def f1_geo(recall, gmcf):
+    """F1 as the method tabulates it: the harmonic mean 2·r·g / (r + g) of pooled recall and pooled GMCF
+    (0 when both are 0, NaN where either is undefined). Works element-wise on arrays."""
+    r, g = np.asarray(recall, dtype=float), np.asarray(gmcf, dtype=float)
+    total = r + g
+    with np.errstate(invalid="ignore", divide="ignore"):
+        out = np.where(total > 0, 2.0 * r * g / np.where(total > 0, total, 1.0), 0.0)
+    return np.where(np.isfinite(r) & np.isfinite(g), out, np.nan)
+
 
 @dataclass
 class SweepFlight:
-    """One flight for a sweep: detections (N, 2) in a local metric frame, their scores, and the
-    in-view geotags (G, 2) in the same frame."""
+    """One flight seen by one checkpoint.
 
-    xy: np.ndarray
-    score: np.ndarray
+    ``detections[t]``: ground positions (N, 2) in a local metric frame of the detections a peak
+    extraction at threshold t gives, one entry per threshold of the grid; ``n_frames`` the frames
+    processed; ``geotag_xy`` (G, 2) the in-view geotags in the same frame.
+    """
+
+    detections: Mapping[float, np.ndarray]
     geotag_xy: np.ndarray
+    n_frames: int
     name: str = ""
+    checkpoint: str = ""
+    model_digest: str = ""
+
+    def at_threshold(self, threshold: float) -> np.ndarray:
+        for t, xy in self.detections.items():
+            if abs(float(t) - float(threshold)) <= THRESHOLD_TOLERANCE:
+                return np.asarray(xy, dtype=float).reshape(-1, 2)
+        have = ", ".join(f"{float(t):g}" for t in sorted(self.detections)) or "none"
+        raise InputError(f"{self.checkpoint or 'the checkpoint'} on {self.name or 'a flight'}: no detections "
+                         f"made at threshold {float(threshold):g} (thresholds detected at: {have})",
+                         field="THRESHOLDS")
 
 
 @dataclass
@@ -47,8 +95,8 @@ class SweepGrid:
             return arr.astype(np.int64) if integer else arr
 
         self.thresholds = clean(self.thresholds, "THRESHOLDS")
-        if self.thresholds.min() < 0 or self.thresholds.max() > 1:
-            raise InputError("must be probabilities in [0, 1]", field="THRESHOLDS")
+        if self.thresholds.min() <= 0 or self.thresholds.max() >= 1:
+            raise InputError("must be probabilities between 0 and 1", field="THRESHOLDS")
         self.eps_m = clean(self.eps_m, "EPS_M")
         self.min_samples = clean(self.min_samples, "MIN_SAMPLES", integer=True)
         self.eps_pred_m = clean(self.eps_pred_m, "EPS_PRED_M")
@@ -62,19 +110,32 @@ class SweepGrid:
         return int(np.prod(self.shape))
 
 
-#: Count arrays of a sweep; those without an eps_pred axis are broadcast over it.
-_SWEEP_COUNTS = ("n_in_view", "n_recovered", "n_clusters", "n_hit_clusters", "n_geotag_matches",
-                 "sum_median_extent_m")
+#: Count arrays of a sweep, each of shape (checkpoints,) + grid shape; those that do not depend on an
+#: axis are broadcast over it.
+_SWEEP_COUNTS = ("n_frames", "n_detections", "n_in_view", "n_recovered", "n_clusters", "n_hit_clusters",
+                 "n_geotag_matches", "sum_median_extent_m")
 
 
 @dataclass
 class SweepResult:
-    """Pooled (micro-averaged) counts over the grid, arrays of shape ``grid.shape``."""
+    """Pooled (micro-averaged) counts per checkpoint over the grid: arrays of shape :attr:`shape`.
+
+    ``checkpoints``: (name, model digest) of each checkpoint, in the order of the first axis.
+    """
 
     grid: SweepGrid
+    checkpoints: list
     counts: dict
     max_geotags_per_hit: float = DEFAULT_MAX_GEOTAGS_PER_HIT
     max_mean_extent_m: float = DEFAULT_MAX_MEAN_EXTENT_M
+
+    @property
+    def shape(self) -> tuple:
+        return (len(self.checkpoints),) + self.grid.shape
+
+    @property
+    def size(self) -> int:
+        return int(np.prod(self.shape))
 
     def _ratio(self, num, den):
         num, den = self.counts[num].astype(float), self.counts[den].astype(float)
@@ -88,6 +149,14 @@ class SweepResult:
     @property
     def gmcf_pre(self):
         return self._ratio("n_hit_clusters", "n_clusters")
+
+    @property
+    def f1_geo(self):
+        return f1_geo(self.recall_pre, self.gmcf_pre)
+
+    @property
+    def detections_per_frame(self):
+        return self._ratio("n_detections", "n_frames")
 
     @property
     def mean_geotags_per_hit_cluster(self):
@@ -106,24 +175,27 @@ class SweepResult:
 
     @property
     def pareto(self):
+        """Credible configurations of any checkpoint that no other credible one dominates."""
         r, g = self.recall_pre, self.gmcf_pre
         return pareto_front(r.ravel(), g.ravel(), (self.credible & np.isfinite(r) & np.isfinite(g)).ravel()
-                            ).reshape(self.grid.shape)
+                            ).reshape(self.shape)
 
     def rows(self) -> list[dict]:
-        """One dict per configuration (threshold-major order), JSON-ready (NaN → None)."""
-        t, e, m, p = np.meshgrid(self.grid.thresholds, self.grid.eps_m, self.grid.min_samples,
-                                 self.grid.eps_pred_m, indexing="ij")
+        """One dict per configuration (checkpoint-major, then threshold-major order), JSON-ready (NaN → None)."""
+        c, t, e, m, p = np.meshgrid(np.arange(len(self.checkpoints)), self.grid.thresholds, self.grid.eps_m,
+                                    self.grid.min_samples, self.grid.eps_pred_m, indexing="ij")
         cols = {"threshold": t, "eps_m": e, "min_samples": m, "eps_pred_m": p}
         cols.update({k: self.counts[k] for k in _SWEEP_COUNTS})
-        cols.update({"recall_pre": self.recall_pre, "gmcf_pre": self.gmcf_pre,
+        cols.update({"detections_per_frame": self.detections_per_frame, "recall_pre": self.recall_pre,
+                     "gmcf_pre": self.gmcf_pre, "f1_geo": self.f1_geo,
                      "mean_geotags_per_hit_cluster": self.mean_geotags_per_hit_cluster,
                      "mean_median_extent_m": self.mean_median_extent_m,
                      "credible": self.credible, "pareto": self.pareto})
-        flat = {k: np.broadcast_to(v, self.grid.shape).ravel().tolist() for k, v in cols.items()}
+        flat = {k: np.broadcast_to(v, self.shape).ravel().tolist() for k, v in cols.items()}
+        names = [self.checkpoints[i] for i in c.ravel().tolist()]
         out = []
-        for i in range(self.grid.size):
-            row = {}
+        for i in range(self.size):
+            row = {"checkpoint": names[i][0], "model_digest": names[i][1]}
             for k, v in flat.items():
                 x = v[i]
                 if isinstance(x, float) and not math.isfinite(x):
@@ -163,47 +235,115 @@ def pareto_front(recall, gmcf, eligible=None) -> np.ndarray:
     return front
 
 
+@dataclass
+class DetectionRun:
+    """Detections of one checkpoint on one flight from one peak extraction at ``threshold`` (a Detect
+    layer): ground positions (N, 2) in a local metric frame; ``source`` names the layer in messages."""
+
+    xy: np.ndarray
+    threshold: float | None
+    flight: str
+    checkpoint: str
+    model_digest: str
+    source: str
+
+
+def flights_from_runs(runs: Sequence[DetectionRun], geotag_xy: Mapping[str, np.ndarray],
+                      n_frames: Mapping[str, int]) -> tuple[list[SweepFlight], list[float]]:
+    """Sweep flights from detection runs (checkpoint × flight × threshold), and the thresholds they cover.
+
+    Each run is used at the threshold it was detected at; every (checkpoint, flight) needs a run at
+    every threshold any run was detected at. ``geotag_xy`` and ``n_frames`` are keyed by flight.
+    """
+    by_key, thresholds = {}, []
+    for run in runs:
+        if run.threshold is None:
+            raise InputError("has no detection threshold (field 'threshold'); the sweep uses each layer at the "
+                             "threshold it was detected at (make the layer with Detect targets)", source=run.source)
+        t = next((u for u in thresholds if abs(u - run.threshold) <= THRESHOLD_TOLERANCE), float(run.threshold))
+        if t not in thresholds:
+            thresholds.append(t)
+        key = (run.checkpoint, run.model_digest, run.flight)
+        other = by_key.setdefault(key, {}).get(t)
+        if other is not None:
+            raise InputError(f"{other.source} and {run.source} are both {run.checkpoint or 'one model'} on "
+                             f"{run.flight} at threshold {t:g}; give each once", field="DETECTIONS")
+        by_key[key][t] = run
+    thresholds.sort()
+    flights = []
+    for (checkpoint, digest, flight), per_threshold in by_key.items():
+        missing = [f"{t:g}" for t in thresholds if t not in per_threshold]
+        if missing:
+            raise InputError(f"{checkpoint or 'a model'} on {flight} has no layer detected at threshold(s) "
+                             f"{', '.join(missing)}, which other layers were detected at: give every checkpoint "
+                             "and flight a layer at every threshold, or give CHECKPOINTS to re-run the peak "
+                             "extraction at each threshold", field="DETECTIONS")
+        flights.append(SweepFlight({t: r.xy for t, r in per_threshold.items()}, geotag_xy[flight], n_frames[flight],
+                                   flight, checkpoint, digest))
+    return flights, thresholds
+
+
+def group_by_checkpoint(flights: Sequence[SweepFlight]) -> dict:
+    """(checkpoint, model digest) → its flights, in input order; every checkpoint must have been run on
+    the same flights, or their pooled scores would not be comparable."""
+    groups = {}
+    for f in flights:
+        groups.setdefault((f.checkpoint, f.model_digest), []).append(f)
+    seen = {key: sorted(f.name for f in fl) for key, fl in groups.items()}
+    first_key, first = next(iter(seen.items()), (None, []))
+    for key, names in seen.items():
+        if len(set(names)) != len(names):
+            raise InputError(f"{key[0] or 'a checkpoint'} is given twice on one flight ({', '.join(names)})")
+        if names != first:
+            raise InputError(f"every checkpoint must be scored on the same flights: {first_key[0] or '?'} on "
+                             f"{', '.join(first)}, but {key[0] or '?'} on {', '.join(names)}")
+    return groups
+
+
 def sweep(flights: Sequence[SweepFlight], grid: SweepGrid,
           max_geotags_per_hit: float = DEFAULT_MAX_GEOTAGS_PER_HIT,
           max_mean_extent_m: float = DEFAULT_MAX_MEAN_EXTENT_M, progress=None, is_canceled=None) -> SweepResult:
-    """Pooled PRE counts over threshold × eps × min_samples × eps_pred, reusing work.
+    """Pooled PRE counts per checkpoint over threshold × eps × min_samples × eps_pred, reusing work.
 
     Per flight and threshold the detections are de-duplicated once and one radius graph is built at
     the largest eps; per (eps, min_samples) DBSCAN runs once on that graph; every eps_pred is then
     scored from one k-d tree query at the largest eps_pred. Identical to running
     :func:`~.clustering.cluster_detections` + :func:`score_flight` per configuration.
     """
-    shape = grid.shape
+    groups = group_by_checkpoint(flights)
+    checkpoints = list(groups)
+    shape = (len(checkpoints),) + grid.shape
     counts = {k: np.zeros(shape, dtype=float if k == "sum_median_extent_m" else np.int64) for k in _SWEEP_COUNTS}
-    total_steps = max(1, len(flights) * shape[0] * shape[1] * shape[2])
+    total_steps = max(1, len(flights) * int(np.prod(grid.shape[:3])))
     step = 0
     eps_max, pred_max = float(grid.eps_m.max()), float(grid.eps_pred_m.max())
-    for flight in flights:
-        xy = np.asarray(flight.xy, dtype=float).reshape(-1, 2)
-        score = np.asarray(flight.score, dtype=float).reshape(-1)
-        geotags = np.asarray(flight.geotag_xy, dtype=float).reshape(-1, 2)
-        counts["n_in_view"] += len(geotags)
-        for ti, t in enumerate(grid.thresholds):
-            sel = xy[score >= t]
-            points = deduplicate(sel, grid.dedup_cm / 100.0)
-            graph = neighbour_graph(points.xy, eps_max)
-            for ei, eps in enumerate(grid.eps_m):
-                for mi, m in enumerate(grid.min_samples):
-                    if is_canceled is not None and is_canceled():
-                        raise Cancelled()
-                    result = dbscan(graph, eps, int(m))
-                    nc = result.n_clusters
-                    _, extent = cluster_centroids_and_extents(sel, result.labels[points.inverse], nc)
-                    counts["n_clusters"][ti, ei, mi, :] += nc
-                    counts["sum_median_extent_m"][ti, ei, mi, :] += float(np.sum(extent)) if nc else 0.0
-                    matches = match_to_clusters(points.xy[result.core], result.labels[result.core], geotags,
-                                                pred_max)
-                    for pi, pred in enumerate(grid.eps_pred_m):
-                        w = matches.within(pred)
-                        counts["n_recovered"][ti, ei, mi, pi] += len(np.unique(w.point))
-                        counts["n_hit_clusters"][ti, ei, mi, pi] += len(np.unique(w.cluster))
-                        counts["n_geotag_matches"][ti, ei, mi, pi] += len(w.point)
-                    step += 1
-                    if progress is not None:
-                        progress(step / total_steps)
-    return SweepResult(grid, counts, max_geotags_per_hit, max_mean_extent_m)
+    for ci, key in enumerate(checkpoints):
+        for flight in groups[key]:
+            geotags = np.asarray(flight.geotag_xy, dtype=float).reshape(-1, 2)
+            counts["n_in_view"][ci] += len(geotags)
+            counts["n_frames"][ci] += int(flight.n_frames)
+            for ti, t in enumerate(grid.thresholds):
+                xy = flight.at_threshold(t)
+                counts["n_detections"][ci, ti] += len(xy)
+                points = deduplicate(xy, grid.dedup_cm / 100.0)
+                graph = neighbour_graph(points.xy, eps_max)
+                for ei, eps in enumerate(grid.eps_m):
+                    for mi, m in enumerate(grid.min_samples):
+                        if is_canceled is not None and is_canceled():
+                            raise Cancelled()
+                        result = dbscan(graph, eps, int(m))
+                        nc = result.n_clusters
+                        _, extent = cluster_centroids_and_extents(xy, result.labels[points.inverse], nc)
+                        counts["n_clusters"][ci, ti, ei, mi, :] += nc
+                        counts["sum_median_extent_m"][ci, ti, ei, mi, :] += float(np.sum(extent)) if nc else 0.0
+                        matches = match_to_clusters(points.xy[result.core], result.labels[result.core], geotags,
+                                                    pred_max)
+                        for pi, pred in enumerate(grid.eps_pred_m):
+                            w = matches.within(pred)
+                            counts["n_recovered"][ci, ti, ei, mi, pi] += len(np.unique(w.point))
+                            counts["n_hit_clusters"][ci, ti, ei, mi, pi] += len(np.unique(w.cluster))
+                            counts["n_geotag_matches"][ci, ti, ei, mi, pi] += len(w.point)
+                        step += 1
+                        if progress is not None:
+                            progress(step / total_steps)
+    return SweepResult(grid, checkpoints, counts, max_geotags_per_hit, max_mean_extent_m)

@@ -4,6 +4,7 @@ import json
 
 import pytest
 
+from birdseye.birdseye_qgis.core.errors import InputError
 from birdseye.birdseye_qgis.core.scoring import preregistration as prereg
 from birdseye.birdseye_qgis.core.scoring.operating_point import OperatingPoint
 
@@ -118,3 +119,56 @@ def test_rules_without_arms_or_threshold_cannot_be_sealed(tmp_path):
     with pytest.raises(prereg.SealError, match="not valid JSON"):
         prereg.read(tmp_path / "x.json")
     assert prereg.seal(rule())["sealed_at"].endswith("Z")
+
+
+# -------------------------------------------------------------------- a different operating point per arm
+def selected_arms():
+    point = {"dedup_cm": 3.0, "edge_buffer_px": 0.0}
+    return [{"name": "max_f1", "checkpoint": "a.onnx", "model_digest": DIGEST_A,
+             "operating_point": {"threshold": 0.05, "eps_m": 0.2, "min_samples": 2, "eps_pred_m": 0.2, **point}},
+            {"name": "max_recall", "checkpoint": "a.onnx", "model_digest": DIGEST_A,
+             "operating_point": {"threshold": 0.03, "eps_m": 0.15, "min_samples": 5, "eps_pred_m": 0.35, **point}},
+            {"name": "lowest_review_burden", "checkpoint": "b.onnx", "model_digest": DIGEST_B,
+             "operating_point": {"threshold": 0.12, "eps_m": 0.1, "min_samples": 20, "eps_pred_m": 0.2, **point}}]
+
+
+def test_three_arms_each_sealed_with_its_own_operating_point():
+    arms = prereg.arms_from_selection(selected_arms(), {"a.onnx": DIGEST_A, "b.onnx": DIGEST_B})
+    doc = prereg.verify(json.loads(json.dumps(prereg.seal({"arms": arms}, sealed_at=SEALED_AT))))
+    assert doc["model_digests"] == sorted([DIGEST_A, DIGEST_B])
+    assert [a["operating_point"]["threshold"] for a in doc["rule"]["arms"]] == [0.05, 0.03, 0.12]
+    # two arms share checkpoint A: scoring its detections must say which arm
+    with pytest.raises(prereg.SealError, match="seals 2 arms for model .*max_f1, max_recall.*say which arm"):
+        prereg.arm_for(doc, DIGEST_A)
+    arm, op = prereg.arm_for(doc, DIGEST_A, arm_name="max_recall")
+    assert op == OperatingPoint(0.03, 3.0, 0.15, 5, 0.35, 0.0)
+    assert prereg.arm_for(doc, DIGEST_B)[1].min_samples == 20
+    with pytest.raises(prereg.SealError, match="no arm 'max_f1' for model"):
+        prereg.arm_for(doc, DIGEST_B, arm_name="max_f1")
+
+
+def test_arms_must_match_the_checkpoint_files_and_carry_distinct_names():
+    with pytest.raises(prereg.SealError, match="'lowest_review_burden' is checkpoint b.onnx.*none of the"):
+        prereg.arms_from_selection(selected_arms(), {"a.onnx": DIGEST_A})
+    arms = prereg.arms_from_selection(selected_arms())
+    arms[1]["name"] = "max_f1"
+    with pytest.raises(prereg.SealError, match="arm 2 has the name 'max_f1' of an earlier arm"):
+        prereg.seal({"arms": arms})
+
+
+def test_typed_arm_lines():
+    text = ("# chosen on flights 1-3\n"
+            "max_f1: a.onnx, 0.05, 0.20, 2, 0.20\n\n"
+            "max_recall: /models/a.onnx, 0.03, 0.15, 5, 0.35\n")
+    arms = prereg.parse_arm_lines(text, {"a.onnx": DIGEST_A}, dedup_cm=3.0, edge_buffer_px=4.0)
+    assert [a["name"] for a in arms] == ["max_f1", "max_recall"]
+    assert arms[1]["operating_point"] == {"threshold": 0.03, "dedup_cm": 3.0, "eps_m": 0.15, "min_samples": 5,
+                                          "eps_pred_m": 0.35, "edge_buffer_px": 4.0}
+    for bad, message in (("max_f1 a.onnx, 0.05, 0.2, 2, 0.2", "row 1.*is not 'name: checkpoint"),
+                         ("x: c.onnx, 0.05, 0.2, 2, 0.2", "row 1.*'c.onnx', which is not among CHECKPOINTS"),
+                         ("\nx: a.onnx, 0.05, wide, 2, 0.2", "row 2.*must be numbers"),
+                         ("x: a.onnx, 0.05, 0.2, 2.5, 0.2", "whole number"),
+                         ("x: a.onnx, 1.5, 0.2, 2, 0.2", "THRESHOLD"),
+                         ("# nothing", "holds no arm line")):
+        with pytest.raises(InputError, match=message):
+            prereg.parse_arm_lines(bad, {"a.onnx": DIGEST_A}, 3.0, 0.0)

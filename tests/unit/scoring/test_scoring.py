@@ -1,4 +1,4 @@
-"""Scores against hand-computed fixtures: in view, recovered, hit, recall/GMCF, pooling, POST, sweeps.
+"""Scores against hand-computed fixtures: in view, recovered, hit, recall/GMCF, pooling, POST.
 
 The fixture field (metres east/north of a site) is scored by one nadir frame 10 m above level ground
 with an undistorted 1920 × 1200 px camera, fx = fy = 1000 px, principal point at the image centre:
@@ -19,13 +19,6 @@ from birdseye.birdseye_qgis.core.scoring.matching import in_view, match_to_clust
 from birdseye.birdseye_qgis.core.scoring.operating_point import OperatingPoint
 from birdseye.birdseye_qgis.core.scoring.post_review import ReviewedFlight, post_scores
 from birdseye.birdseye_qgis.core.scoring.pre_review import PreCounts, pool, score_flight
-from birdseye.birdseye_qgis.core.scoring.screening import (
-    ScreenRun,
-    distinct_position_fraction,
-    pixel_matches,
-    screen_checkpoints,
-)
-from birdseye.birdseye_qgis.core.scoring.sweep import SweepFlight, SweepGrid, pareto_front, sweep
 from birdseye.birdseye_qgis.core.scoring.verdicts import CONVENTIONS, Verdict, VerdictLog, combine
 
 SITE = LocalFrame(-27.55, 151.95, 400.0)
@@ -288,122 +281,6 @@ def test_unplaced_units_are_reported_not_silently_dropped():
     ev = evaluate_flights(flights()[:1], all_geotags(), OP, log=log)
     assert any("u9" in n for n in ev.review_notes)
     assert all(ev.post[c].pooled.c == 0 for c in CONVENTIONS)
-
-
-# -------------------------------------------------------------------- sweeps
-def random_flight(seed, n_targets=25, spread=0.03):
-    rng = np.random.default_rng(seed)
-    targets = rng.uniform(0, 30, (n_targets, 2))
-    seen = rng.random(n_targets) < 0.8
-    det = [targets[i] + rng.normal(0, spread, (rng.integers(3, 15), 2)) for i in np.flatnonzero(seen)]
-    clutter_spots = rng.uniform(0, 30, (8, 2))
-    det += [c + rng.normal(0, spread, (rng.integers(2, 8), 2)) for c in clutter_spots]
-    det.append(rng.uniform(0, 30, (40, 2)))
-    xy = np.concatenate(det)
-    score = rng.uniform(0.2, 1.0, len(xy))
-    return SweepFlight(xy, score, targets[rng.random(n_targets) < 0.9], f"flight {seed}")
-
-
-def test_sweep_equals_one_fresh_run_per_configuration_pooled_over_flights():
-    fl = [random_flight(1), random_flight(2)]
-    grid = SweepGrid([0.3, 0.6, 1.0], [0.06, 0.12], [2, 4], [0.1, 0.25])   # 1.0 keeps no detection
-    result = sweep(fl, grid)
-    for ti, t in enumerate(grid.thresholds):
-        for ei, eps in enumerate(grid.eps_m):
-            for mi, m in enumerate(grid.min_samples):
-                for pi, pred in enumerate(grid.eps_pred_m):
-                    total = PreCounts()
-                    for f in fl:
-                        keep = f.score >= t
-                        c = cluster_detections(f.xy[keep], None, None, grid.dedup_cm, eps, int(m))
-                        total = total + score_flight(c, f.geotag_xy, np.ones(len(f.geotag_xy), bool), pred).counts
-                    for key in ("n_in_view", "n_recovered", "n_clusters", "n_hit_clusters", "n_geotag_matches"):
-                        assert result.counts[key][ti, ei, mi, pi] == getattr(total, key), key
-                    assert result.counts["sum_median_extent_m"][ti, ei, mi, pi] == pytest.approx(
-                        total.sum_median_extent_m, abs=1e-12)
-                    assert result.recall_pre[ti, ei, mi, pi] == pytest.approx(total.recall_pre)
-    rows = result.rows()
-    assert len(rows) == grid.size and {"threshold", "eps_m", "min_samples", "eps_pred_m", "credible",
-                                        "pareto", "recall_pre", "gmcf_pre"} <= set(rows[0])
-
-
-def test_credibility_filter_rejects_chained_and_greedy_configurations():
-    flight = random_flight(4)
-    grid = SweepGrid([0.2], [0.05, 8.0], [2], [0.2, 3.0])
-    r = sweep([flight], grid, max_geotags_per_hit=1.5, max_mean_extent_m=1.0)
-    # eps 8 m chains the field into a few huge clusters; eps_pred 3 m lets each hit swallow many geotags
-    assert r.credible[0, 0, 0, 0]
-    assert not r.credible[0, 1, 0, :].any()
-    assert r.mean_median_extent_m[0, 1, 0, 0] > 1.0
-    assert r.mean_geotags_per_hit_cluster[0, 0, 0, 1] > 1.5 and not r.credible[0, 0, 0, 1]
-    assert not (r.pareto & ~r.credible).any()
-
-
-def test_pareto_front_by_hand():
-    recall = np.array([0.9, 0.8, 0.8, 0.5, 0.95, 0.9, 0.7])
-    gmcf = np.array([0.5, 0.7, 0.6, 0.9, 0.4, 0.5, 0.95])
-    eligible = np.array([True, True, True, True, True, True, False])
-    # (0.9, 0.5) twice (ties stay), (0.8, 0.7), (0.5, 0.9), (0.95, 0.4); (0.8, 0.6) is dominated;
-    # (0.7, 0.95) would dominate (0.5, 0.9) but is not eligible.
-    np.testing.assert_array_equal(pareto_front(recall, gmcf, eligible),
-                                  [True, True, False, True, True, True, False])
-
-
-# -------------------------------------------------------------------- screening
-def test_pixel_matching_is_one_to_one_nearest_first_within_the_radius():
-    det_f = np.array([1, 1, 1, 2, 2])
-    det_uv = np.array([[100, 100], [104, 100], [300, 300], [100, 100], [500, 500]], float)
-    lab_f = np.array([1, 1, 2, 3])
-    lab_uv = np.array([[103, 100], [200, 200], [100, 108], [100, 100]], float)
-    # frame 1: the label at 103 takes the detection at 104 (1 px) not 100 (3 px); frame 2: 8 px ≤ 10;
-    # frame 3's label has no detection in its own frame.
-    assert pixel_matches(det_f, det_uv, lab_f, lab_uv, 10.0) == 2
-    assert pixel_matches(det_f, det_uv, lab_f, lab_uv, 5.0) == 1
-
-
-def screen_run(name, flight, n_frames, uv, frame_id, xy, geotag_xy, labels):
-    lf, luv = labels
-    return ScreenRun(name, flight, n_frames, np.asarray(frame_id), np.asarray(uv, float), np.asarray(xy, float),
-                     np.asarray(lf), np.asarray(luv, float), np.asarray(geotag_xy, float))
-
-
-def test_screening_health_guards_review_load_and_frontier():
-    rng = np.random.default_rng(5)
-    targets = np.array([[1.0, 1.0], [3.0, 1.0], [5.0, 1.0]])
-    frames = np.repeat(np.arange(10), 3)
-    good_xy = targets[np.tile([0, 1, 2], 10)] + rng.normal(0, 0.03, (30, 2))
-    good_uv = rng.uniform(0, 1000, (30, 2))
-    labels = (frames, good_uv + 2.0)
-    # "collapsed": the same two pixels in every frame, however the ground points spread
-    collapsed_uv = np.tile([[10.0, 10.0], [20.0, 20.0]], (15, 1))
-    # "sparse": a third of the detections (1 per frame) on the second flight
-    extra = rng.uniform(0, 30, (20, 2))
-    runs = [
-        screen_run("good", "A", 10, good_uv, frames, good_xy, targets, labels),
-        screen_run("good", "B", 10, good_uv, frames, good_xy, targets, labels),
-        screen_run("noisy", "A", 10, np.concatenate([good_uv, rng.uniform(0, 1000, (20, 2))]),
-                   np.concatenate([frames, np.arange(20) % 10]),
-                   np.concatenate([good_xy, extra]), targets, labels),
-        screen_run("noisy", "B", 10, good_uv, frames, good_xy, targets, labels),
-        screen_run("collapsed", "A", 10, collapsed_uv, frames, good_xy, targets, labels),
-        screen_run("collapsed", "B", 10, collapsed_uv, frames, good_xy, targets, labels),
-        screen_run("sparse", "A", 10, good_uv, frames, good_xy, targets, labels),
-        screen_run("sparse", "B", 10, good_uv[::3], frames[::3], good_xy[::3], targets, labels),
-    ]
-    out = {s.checkpoint: s for s in screen_checkpoints(runs, OperatingPoint(min_samples=2), radius_px=5)}
-    assert list(out) == ["good", "noisy", "collapsed", "sparse"]
-    assert out["collapsed"].collapsed and not out["collapsed"].too_sparse
-    assert out["collapsed"].distinct_position_fraction == pytest.approx(2 / 60)
-    assert out["sparse"].too_sparse and out["sparse"].worst_flight == "B"
-    assert out["sparse"].worst_detections_per_frame == pytest.approx(1.0)
-    assert out["good"].healthy and out["noisy"].healthy
-    g = out["good"]
-    assert (g.counts.n_in_view, g.counts.n_recovered) == (6, 6)
-    assert (g.pixel_tp, g.pixel_fp, g.pixel_fn) == (60, 0, 0) and g.pixel_f1 == pytest.approx(1.0)
-    assert out["noisy"].pixel_fp == 20 and out["noisy"].pixel_f1 == pytest.approx(120 / 140)
-    assert out["good"].unmatched_clusters == 0 and out["good"].relative_review_load == 0.0
-    assert out["good"].frontier and not out["collapsed"].frontier
-    assert distinct_position_fraction(np.empty((0, 2))) is None
 
 
 def test_operating_point_validation_names_the_parameter():
