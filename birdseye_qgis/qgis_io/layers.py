@@ -40,16 +40,18 @@ WGS84 = "EPSG:4326"
 if Qgis.QGIS_VERSION_INT >= 33800:
     from qgis.PyQt.QtCore import QMetaType
 
-    FIELD_TYPES = {"int": QMetaType.Type.Int, "double": QMetaType.Type.Double, "string": QMetaType.Type.QString}
+    FIELD_TYPES = {"int": QMetaType.Type.Int, "double": QMetaType.Type.Double, "string": QMetaType.Type.QString,
+                   "bool": QMetaType.Type.Bool}
 else:
     from qgis.PyQt.QtCore import QVariant
 
-    FIELD_TYPES = {"int": QVariant.Int, "double": QVariant.Double, "string": QVariant.String}  # noqa: QGS402
+    FIELD_TYPES = {"int": QVariant.Int, "double": QVariant.Double, "string": QVariant.String,  # noqa: QGS402
+                   "bool": QVariant.Bool}  # noqa: QGS402
 
 
 # ------------------------------------------------------------------------------------------ fields
 def qgs_fields(spec) -> QgsFields:
-    """QgsFields from a core schema: (name, type, description) with type "int"/"double"/"string"."""
+    """QgsFields from a core schema: (name, type, description) with type "int"/"double"/"string"/"bool"."""
     fields = QgsFields()
     for name, kind, description in spec:
         fields.append(qgs_field(name, kind, description))
@@ -271,19 +273,23 @@ def report_to_feedback(feedback, report) -> None:
 
 
 def write_frames(algorithm, parameters, context, feedback, result, crs: QgsCoordinateReferenceSystem,
-                 output: str = "OUTPUT", track_output: str | None = None, start: float = 80.0) -> dict:
+                 output: str = "OUTPUT", track_output: str | None = None, start: float = 80.0,
+                 extra_fields=(), extra_values=None) -> dict:
     """Write a core ``FlightImport`` (frames + footprints [+ flight line]) to the algorithm's sinks,
-    styled on load; returns the outputs dict entries."""
+    styled on load; returns the outputs dict entries. ``extra_fields`` (a core schema) follow the
+    frame-layer fields, one dict of their values per frame in ``extra_values``."""
     from ..core.field.flight_track import TRACK_FIELDS
     from ..core.field.frames import FRAME_LAYER_FIELDS, frame_records
 
-    fields = qgs_fields(FRAME_LAYER_FIELDS)
+    fields = qgs_fields(FRAME_LAYER_FIELDS + list(extra_fields))
+    records = frame_records(result.frames, result.footprints)
+    if extra_values is not None:
+        records = ({**rec, **more} for rec, more in zip(records, extra_values))
     sink, dest_id = algorithm.parameterAsSink(parameters, output, context, fields, QgsWkbTypes.PolygonZ, crs)
     if sink is None:
         raise InputError("the frame output cannot be created", field=output)
     geometries = (None if ring is None else polygon_z(ring) for ring in result.footprints.rings)
-    n = write_records(sink, fields, frame_records(result.frames, result.footprints), geometries, feedback,
-                      start, 99.0, total=len(result.frames))
+    n = write_records(sink, fields, records, geometries, feedback, start, 99.0, total=len(result.frames))
     style_on_load(context, dest_id, "frames.qml")
     outputs = {output: dest_id, "FRAME_COUNT": n}
     if track_output:

@@ -226,3 +226,30 @@ def _value(x):
 def rtk_flags(rtk_status: np.ndarray) -> list[list[str]]:
     return [["rtk_float"] if s == RTK_FLOAT else ([] if s == RTK_FIXED else ["rtk_none"])
             for s in np.asarray(rtk_status).tolist()]
+
+
+def frames_from_records(records, source: str = "frame layer") -> Frames:
+    """The :class:`Frames` of frame-layer records (as a frame layer was written), in record order."""
+    from .frame_records import poses_from_records
+
+    records = list(records)
+    n = len(records)
+    lat, lon, height, ground = (np.full(n, np.nan) for _ in range(4))
+    quat = np.zeros((n, 4))
+    cameras: list = [None] * n
+    frame_id = np.zeros(n, dtype=np.int64)
+    for poses, idx in poses_from_records(records, source):
+        lat[idx], lon[idx], height[idx], quat[idx], ground[idx] = (poses.lat, poses.lon, poses.height, poses.quat,
+                                                                   poses.ground_height)
+        frame_id[idx] = poses.frame_id
+        for i in idx:
+            cameras[i] = poses.camera
+
+    def column(name, default=np.nan):
+        return np.array([default if r.get(name) is None else float(r[name]) for r in records], dtype=float)
+
+    return Frames(frame_id, [r.get("image") or "" for r in records], column("time_s"), lat, lon, height, quat,
+                  ground, column("rtk_status", 1).astype(int), column("sync_offset_s"), cameras,
+                  [[f for f in (r.get("flags") or "").split(",") if f] for r in records],
+                  np.column_stack([column("roll_deg"), column("pitch_deg"), column("yaw_deg")]),
+                  {name: column(name) for name, _, _ in FRAME_EXTRA_FIELDS if name != "terrain_slope_deg"})

@@ -125,3 +125,19 @@ def test_unknown_files_say_what_is_expected(tmp_path):
     bad.write_text("<document><chunk><cameras/>")
     with pytest.raises(InputError, match="cams.xml: is not valid XML"):
         read_camera_solution(bad)
+
+
+@pytest.mark.parametrize("camera", [
+    dict(dist=(-0.1, 0.05, 1e-3, -2e-3, 0.0)),
+    dict(dist=(-0.1, 0.05, 1e-3, -2e-3, 0.02)),
+    dict(dist=(0.03, -0.01, 0.002, -0.0004), fisheye=True),
+])
+def test_colmap_camera_parameters_round_trip(camera):
+    from birdseye.birdseye_qgis.core.field.solutions.colmap import camera_from_colmap, colmap_camera
+    from birdseye.birdseye_qgis.core.geometry.camera import CameraModel
+
+    cam = CameraModel(1280, 960, 1000.0, 1001.0, 641.3, 478.2, **camera)
+    model, params = colmap_camera(cam)
+    back = camera_from_colmap(model, 1280, 960, params, "test")
+    assert back.dist == cam.dist and back.fisheye == cam.fisheye
+    assert (back.fx, back.fy, back.cx, back.cy) == pytest.approx((cam.fx, cam.fy, cam.cx, cam.cy), abs=1e-12)

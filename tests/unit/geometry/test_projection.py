@@ -4,6 +4,7 @@ import pytest
 
 from birdseye.birdseye_qgis.core.geometry import geodesy
 from birdseye.birdseye_qgis.core.geometry.camera import CameraModel
+from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame
 from birdseye.birdseye_qgis.core.geometry.ground import LevelPlaneGround
 from birdseye.birdseye_qgis.core.geometry.poses import FrameGeometry, FramePoses, ground_height_from_altimeter
 from birdseye.birdseye_qgis.core.geometry.projection import (
@@ -14,7 +15,7 @@ from birdseye.birdseye_qgis.core.geometry.projection import (
     project_in_view,
     project_pairs,
 )
-from birdseye.birdseye_qgis.core.geometry.rotations import euler_zyx_to_rotmat, rotmat_to_quat
+from birdseye.birdseye_qgis.core.geometry.rotations import euler_zyx_to_rotmat, rotmat_to_quat, so3_exp
 
 # Nadir mounting: camera x = body right, camera y = −body forward (image top = forward), z = body down.
 NADIR = np.array([[0.0, 1.0, 0.0], [-1.0, 0.0, 0.0], [0.0, 0.0, 1.0]])
@@ -192,3 +193,24 @@ def test_utm_zone_edge_true_north_versus_grid_north():
     expected_u = cam.cx + cam.fx * 3.0 * np.sin(gamma) / 10.0
     assert abs(u - cam.cx) > 40.0  # tens of pixels: what ignoring convergence would cost
     assert u == pytest.approx(expected_u, abs=0.5)
+
+
+def test_body_pose_from_camera_inverts_frame_geometry():
+    from birdseye.birdseye_qgis.core.geometry.poses import body_pose_from_camera
+
+    t = np.eye(4)
+    t[:3, :3] = so3_exp(np.array([1.2, -0.4, 0.3]))
+    t[:3, 3] = [0.05, -0.1, 0.2]  # a lever arm, so position and attitude both matter
+    cam = CameraModel(640, 480, 500.0, 500.0, 319.5, 239.5, T_cam_imu=t)
+    local = LocalFrame(47.0, 8.0, 400.0)
+    rng = np.random.default_rng(4)
+    lat, lon, h = 47.0 + rng.normal(scale=1e-3, size=5), 8.0 + rng.normal(scale=1e-3, size=5), 430 + rng.normal(size=5)
+    quat = np.stack([np.append(np.cos(a / 2), np.sin(a / 2) * np.array([0.3, -0.5, 0.81]) / 1.0)
+                     for a in rng.uniform(0, 3, 5)])
+    quat /= np.linalg.norm(quat, axis=1, keepdims=True)
+    geometry = FrameGeometry(FramePoses(np.arange(5), lat, lon, h, quat, np.full(5, 400.0), cam), local)
+    back = body_pose_from_camera(local, geometry.C, geometry.R_local_cam, cam)
+    np.testing.assert_allclose(back[0], lat, atol=1e-10)
+    np.testing.assert_allclose(back[1], lon, atol=1e-10)
+    np.testing.assert_allclose(back[2], h, atol=1e-6)
+    np.testing.assert_allclose(np.abs(np.einsum("ni,ni->n", back[3], quat)), 1.0, atol=1e-10)

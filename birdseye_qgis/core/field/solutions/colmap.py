@@ -64,6 +64,19 @@ def camera_from_colmap(model: str, width: int, height: int, params, label: str) 
     return CameraModel(dist=(radial[0], radial[1], 0.0, 0.0, 0.0), **common)
 
 
+def colmap_camera(camera: CameraModel) -> tuple[str, list]:
+    """The COLMAP model name and parameters of a :class:`CameraModel` (inverse of :func:`camera_from_colmap`)."""
+    if camera.k4 or camera.skew:
+        raise InputError(f"camera '{camera.source}' has an r⁸ term or skew, which no COLMAP camera model holds")
+    fx, fy, cx, cy = camera.fx, camera.fy, camera.cx + 0.5, camera.cy + 0.5
+    if camera.fisheye:
+        return "OPENCV_FISHEYE", [fx, fy, cx, cy, *camera.dist[:4]]
+    k1, k2, p1, p2, k3 = camera.dist
+    if k3:
+        return "FULL_OPENCV", [fx, fy, cx, cy, k1, k2, p1, p2, k3, 0.0, 0.0, 0.0]
+    return "OPENCV", [fx, fy, cx, cy, k1, k2, p1, p2]
+
+
 def _reference_transform(reference: str, source: str):
     """(rotation, origin) taking model coordinates to ECEF for ``ecef`` / ``enu:lat,lon,h`` references."""
     if reference == "ecef":

@@ -1,0 +1,452 @@
+"""Refining frame poses by structure from motion (pycolmap), aligned to the frames' GNSS positions.
+
+A drone's metadata places its frames to a few metres and degrees; photogrammetry places them to a
+fraction of a pixel, but only up to a similarity transform. So (docs/design.md#refinement):
+
+1. SIFT features on each image, downscaled for extraction to ``match_size_px`` on its longer side
+   (COLMAP scales the keypoints back to full resolution), at most ``max_features`` per image;
+2. matching: every pair for small blocks, else each image with its ``spatial_neighbours`` nearest
+   neighbours by the metadata positions (pose priors written into the database);
+3. incremental mapping with the intrinsics *fixed* to the frame layer's calibration (DewarpData, a
+   calibration file, an earlier solution): a flat nadir block cannot separate focal length from flying
+   height, and a wrong focal with GNSS-fixed camera heights scales every label. ``refine_intrinsics``
+   lets the block estimate focal length and distortion where relief, oblique views or ground control
+   determine them;
+4. a weighted similarity (1/σ² of each frame's GNSS accuracy) from the reconstruction onto the frames'
+   metadata camera centres; when those lie on one line, the metadata attitudes fix the rotation about
+   it. Frames whose position disagrees with the block by more than :data:`OUTLIER_FACTOR` times the
+   median residual (and more than 5 σ) are left out of the fit and reported.
+
+Frames the mapper cannot register keep their metadata pose; nothing is replaced silently.
+"""
+from __future__ import annotations
+
+import math
+import os
+import shutil
+import threading
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from ..errors import Cancelled, InputError
+from ..geometry.camera import CameraModel
+from ..geometry.similarity import Similarity, fit_similarity, is_collinear
+from .solutions.colmap import colmap_camera
+
+#: GNSS standard deviation (m) assumed per rtk_status when the frame states none (3 fixed, 2 float, 1 none).
+SIGMA_BY_RTK_STATUS = {3: 0.03, 2: 0.5, 1: 3.0}
+#: A frame whose aligned position is this many times the median residual away (and > 5 σ) is an outlier.
+OUTLIER_FACTOR = 5.0
+#: Tie points a frame must observe for its ground height to come from them.
+MIN_GROUND_POINTS = 20
+
+
+@dataclass
+class RefineOptions:
+    match_size_px: int = 2000
+    max_features: int = 8192
+    refine_intrinsics: bool = False
+    exhaustive_up_to: int = 60
+    spatial_neighbours: int = 20
+    num_threads: int = 2
+
+
+@dataclass
+class FrameInput:
+    """One frame as the metadata has it: camera centre and camera → local rotation, GNSS σ (m)."""
+
+    image: Path | None
+    camera: CameraModel
+    centre: np.ndarray
+    r_local_cam: np.ndarray
+    sigma_m: float
+
+
+@dataclass
+class RefinedFrame:
+    registered: bool
+    reason: str = ""
+    centre: np.ndarray | None = None
+    r_local_cam: np.ndarray | None = None
+    camera: CameraModel | None = None
+    reprojection_rms_px: float = math.nan
+    n_points: int = 0
+    ground_up_m: float = math.nan
+    alignment_residual_m: float = math.nan
+    used_in_alignment: bool = False
+    position_change_m: float = math.nan
+    rotation_change_deg: float = math.nan
+
+
+@dataclass
+class Refinement:
+    frames: list
+    similarity: Similarity | None = None
+    alignment_rms_m: float = math.nan
+    collinear: bool = False
+    intrinsics: str = ""
+    notes: list = field(default_factory=list)
+    seconds: dict = field(default_factory=dict)
+
+    @property
+    def n_registered(self) -> int:
+        return sum(f.registered for f in self.frames)
+
+    @property
+    def images_per_minute(self) -> float:
+        total = sum(self.seconds.values())
+        return 60.0 * len(self.frames) / total if total > 0 else math.nan
+
+
+class _CancelWatch:
+    """Polls the caller's cancel callback while pycolmap's C++ runs, and cancels its token."""
+
+    def __init__(self, token, is_canceled):
+        self.token, self.is_canceled = token, is_canceled
+        self._stop = threading.Event()
+        self._thread = threading.Thread(target=self._run, daemon=True)
+
+    def _run(self):
+        while not self._stop.wait(0.2):
+            if self.is_canceled():
+                self.token.cancel()
+                return
+
+    def __enter__(self):
+        if self.is_canceled is not None:
+            self._thread.start()
+        return self
+
+    def __exit__(self, *exc):
+        self._stop.set()
+        if self._thread.is_alive():
+            self._thread.join()
+        if self.is_canceled is not None and self.is_canceled():
+            raise Cancelled()
+
+
+def _stage_images(frames: list[FrameInput], folder: Path) -> list[str | None]:
+    """Link (or copy) each frame's image into one folder under a unique name; None where it is missing."""
+    folder.mkdir(parents=True, exist_ok=True)
+    names = []
+    for k, frame in enumerate(frames):
+        if frame.image is None or not Path(frame.image).is_file():
+            names.append(None)
+            continue
+        name = f"{k:06d}_{Path(frame.image).name}"
+        target = folder / name
+        try:
+            os.symlink(Path(frame.image).resolve(), target)
+        except OSError:  # no symlinks (Windows without the privilege): copy
+            shutil.copyfile(frame.image, target)
+        names.append(name)
+    return names
+
+
+def refine_poses(frames: list[FrameInput], workdir, options: RefineOptions | None = None, progress=None,
+                 is_canceled=None) -> Refinement:
+    """Structure from motion over ``frames``' images, aligned to their metadata centres (local frame)."""
+    import pycolmap
+
+    options = options or RefineOptions()
+    # COLMAP logs every image at INFO level to stderr; the report carries what a user needs.
+    pycolmap.logging.minloglevel = max(pycolmap.logging.minloglevel, 1)
+    workdir = Path(workdir)
+    names = _stage_images(frames, workdir / "images")
+    result = [RefinedFrame(False, "image file not found") if n is None else RefinedFrame(False) for n in names]
+    usable = [k for k, n in enumerate(names) if n is not None]
+    if len(usable) < 2:
+        raise InputError(f"only {len(usable)} of {len(frames)} frame(s) have their image file; structure from "
+                         "motion needs at least two overlapping images")
+    database = workdir / "database.db"
+    token = pycolmap.CancellationToken()
+    seconds = {}
+
+    def report(fraction):
+        if progress is not None:
+            progress(fraction)
+
+    start = time.perf_counter()
+    extraction = pycolmap.FeatureExtractionOptions()
+    extraction.max_image_size = int(options.match_size_px)
+    extraction.num_threads = options.num_threads
+    extraction.sift.max_num_features = int(options.max_features)
+    by_camera: dict[str, list[int]] = {}
+    for k in usable:
+        by_camera.setdefault(frames[k].camera.to_json(), []).append(k)
+    with _CancelWatch(token, is_canceled):
+        for members in by_camera.values():
+            model, params = colmap_camera(frames[members[0]].camera)
+            reader = pycolmap.ImageReaderOptions()
+            reader.camera_model = model
+            reader.camera_params = ",".join(repr(float(p)) for p in params)
+            pycolmap.extract_features(database, workdir / "images", image_names=[names[k] for k in members],
+                                      camera_mode=pycolmap.CameraMode.SINGLE, reader_options=reader,
+                                      extraction_options=extraction, device=pycolmap.Device.cpu,
+                                      cancellation_token=token)
+    seconds["features"] = time.perf_counter() - start
+    report(0.3)
+
+    start = time.perf_counter()
+    matching = pycolmap.FeatureMatchingOptions()
+    matching.num_threads = options.num_threads
+    with _CancelWatch(token, is_canceled):
+        if len(usable) <= options.exhaustive_up_to:
+            pycolmap.match_exhaustive(database, matching_options=matching, device=pycolmap.Device.cpu,
+                                      cancellation_token=token)
+        else:
+            _write_position_priors(database, {names[k]: frames[k].centre for k in usable})
+            pairing = pycolmap.SpatialPairingOptions()
+            pairing.max_num_neighbors = int(options.spatial_neighbours)
+            pairing.ignore_z = False
+            pycolmap.match_spatial(database, matching_options=matching, pairing_options=pairing,
+                                   device=pycolmap.Device.cpu, cancellation_token=token)
+    seconds["matching"] = time.perf_counter() - start
+    report(0.6)
+
+    start = time.perf_counter()
+    mapping = pycolmap.IncrementalPipelineOptions()
+    mapping.num_threads = options.num_threads
+    mapping.ba_refine_focal_length = options.refine_intrinsics
+    mapping.ba_refine_extra_params = options.refine_intrinsics
+    mapping.ba_refine_principal_point = False
+    registered = [0]
+
+    def next_image():
+        registered[0] += 1
+        report(0.6 + 0.35 * min(registered[0] / len(usable), 1.0))
+
+    (workdir / "sparse").mkdir(exist_ok=True)
+    with _CancelWatch(token, is_canceled):
+        models = pycolmap.incremental_mapping(database, workdir / "images", workdir / "sparse", options=mapping,
+                                              next_image_callback=next_image, cancellation_token=token)
+    seconds["mapping"] = time.perf_counter() - start
+    refinement = Refinement(result, seconds=seconds, intrinsics=(
+        "refined by the bundle adjustment (focal length and distortion; principal point fixed)"
+        if options.refine_intrinsics else
+        "fixed to the frame layer's calibration: a flat nadir block cannot separate focal length from flying "
+        "height, and a wrong focal length with GNSS-fixed camera heights would scale every label"))
+    if not models:
+        for k in usable:
+            result[k].reason = "the block could not be reconstructed (too few matches between the images)"
+        return refinement
+    largest = max(models.values(), key=lambda rec: rec.num_reg_images())
+    if len(models) > 1:
+        refinement.notes.append(f"the images formed {len(models)} separate blocks; the largest "
+                                f"({largest.num_reg_images()} images) was kept, the others do not overlap it")
+    _collect(largest, frames, names, result)
+    for k in usable:
+        if not result[k].registered and not result[k].reason:
+            result[k].reason = ("not registered: too few matches with the block (blurred, featureless or "
+                                "not overlapping)")
+    _align(refinement, frames, largest)
+    report(1.0)
+    return refinement
+
+
+def _write_position_priors(database: Path, centres: dict) -> None:
+    import pycolmap
+
+    db = pycolmap.Database(str(database))
+    try:
+        if db.num_pose_priors():
+            return
+        for image in db.read_all_images():
+            if image.name in centres:
+                prior = pycolmap.PosePrior(position=np.asarray(centres[image.name], dtype=float),
+                                           coordinate_system=pycolmap.PosePriorCoordinateSystem.CARTESIAN,
+                                           corr_data_id=image.data_id)
+                db.write_pose_prior(prior)
+    finally:
+        db.close()
+
+
+def _collect(rec, frames, names, result) -> None:
+    """Registered frames' SfM poses, reprojection RMS and observed points (still in the SfM frame)."""
+    index_of = {n: k for k, n in enumerate(names) if n is not None}
+    for image in rec.images.values():
+        k = index_of.get(image.name)
+        if k is None or not image.has_pose:
+            continue
+        pose = image.cam_from_world().matrix()
+        camera = rec.cameras[image.camera_id]
+        observed = [p for p in image.points2D if p.has_point3D()]
+        xyz = np.array([rec.points3D[p.point3D_id].xyz for p in observed]).reshape(-1, 3)
+        xy = np.array([p.xy for p in observed]).reshape(-1, 2)
+        in_cam = xyz @ pose[:, :3].T + pose[:, 3]
+        projected = np.asarray(camera.img_from_cam(np.ascontiguousarray(in_cam), False)).reshape(-1, 2)
+        rms = float(np.sqrt(np.mean(np.sum((projected - xy) ** 2, axis=1)))) if len(xy) else math.nan
+        frame = result[k]
+        frame.registered, frame.reason = True, ""
+        frame.r_local_cam = pose[:, :3].T  # SfM frame until _align
+        frame.centre = -pose[:, :3].T @ pose[:, 3]
+        frame.reprojection_rms_px = rms
+        frame.n_points = len(xyz)
+        frame.camera = _refined_camera(frames[k].camera, camera)
+        frame.ground_up_m = xyz  # observed points, replaced by their median height in _align
+
+
+def _refined_camera(original: CameraModel, colmap_cam) -> CameraModel:
+    from dataclasses import replace
+
+    from .solutions.colmap import camera_from_colmap
+
+    solved = camera_from_colmap(colmap_cam.model.name, colmap_cam.width, colmap_cam.height, colmap_cam.params,
+                                original.source)
+    if solved == replace(original, T_cam_imu=np.eye(4), t_imu_rad=None):
+        return original
+    return replace(solved, T_cam_imu=original.T_cam_imu, t_imu_rad=original.t_imu_rad,
+                   source=f"{original.source} (refined by structure from motion)")
+
+
+def _align(refinement: Refinement, frames, rec) -> None:
+    """Similarity from the SfM frame onto the metadata centres; refined poses, ground and changes."""
+    done = [k for k, f in enumerate(refinement.frames) if f.registered]
+    if len(done) < 2:
+        for k in done:
+            refinement.frames[k] = RefinedFrame(False, "the only registered image: nothing to align it with")
+        return
+    source = np.array([refinement.frames[k].centre for k in done])
+    target = np.array([frames[k].centre for k in done])
+    sigma = np.array([frames[k].sigma_m for k in done])
+    pairs = (np.array([refinement.frames[k].r_local_cam for k in done]),
+             np.array([frames[k].r_local_cam for k in done]))
+    refinement.collinear = is_collinear(source)
+    use = np.ones(len(done), dtype=bool)
+    for _ in range(2):
+        sim = fit_similarity(source[use], target[use], 1.0 / sigma[use] ** 2,
+                             rotation_pairs=(pairs[0][use], pairs[1][use]))
+        residual = np.linalg.norm(sim.apply(source) - target, axis=1)
+        limit = np.maximum(OUTLIER_FACTOR * np.median(residual[use]), 5.0 * sigma)
+        new_use = residual <= limit
+        if new_use.sum() < 3 or np.array_equal(new_use, use):
+            break
+        use = new_use
+    refinement.similarity = sim
+    refinement.alignment_rms_m = float(np.sqrt(np.mean(residual[use] ** 2)))
+    if (~use).any():
+        refinement.notes.append(f"{int((~use).sum())} frame(s) have a GNSS position that disagrees with the block by "
+                                f"more than {OUTLIER_FACTOR:g}× the median residual; they were left out of the "
+                                "alignment (field alignment_residual_m)")
+    for j, k in enumerate(done):
+        frame, meta = refinement.frames[k], frames[k]
+        frame.centre = sim.apply(frame.centre)
+        frame.r_local_cam = sim.rotation @ frame.r_local_cam
+        frame.alignment_residual_m = float(residual[j])
+        frame.used_in_alignment = bool(use[j])
+        points = sim.apply(frame.ground_up_m)
+        frame.ground_up_m = float(np.median(points[:, 2])) if len(points) >= MIN_GROUND_POINTS else math.nan
+        frame.position_change_m = float(np.linalg.norm(frame.centre - meta.centre))
+        change = meta.r_local_cam.T @ frame.r_local_cam
+        frame.rotation_change_deg = float(np.degrees(np.arccos(np.clip((np.trace(change) - 1) / 2, -1, 1))))
+
+
+#: Per-frame fields of a refined frame layer, after the frame-layer fields.
+REFINE_FIELDS = [
+    ("registered", "bool", "the structure from motion registered the image (else: the metadata pose, unchanged)"),
+    ("reprojection_rms_px", "double", "RMS reprojection error of the frame's tie points (px)"),
+    ("n_points", "int", "tie points the frame observes"),
+    ("position_change_m", "double", "camera centre moved from the metadata (m)"),
+    ("rotation_change_deg", "double", "camera orientation turned from the metadata (deg)"),
+    ("alignment_residual_m", "double", "GNSS position minus the aligned block (m)"),
+]
+#: Flags of a refined frame layer.
+REFINED_FLAG, NOT_REFINED_FLAG = "refined", "not_refined"
+
+
+def gnss_sigma_m(frames) -> np.ndarray:
+    """Per frame, the GNSS position σ (m): the DJI RtkStd fields where given, else by RTK status."""
+    stds = [frames.extra.get(name) for name in ("rtk_std_lon_m", "rtk_std_lat_m", "rtk_std_hgt_m")]
+    by_status = np.array([SIGMA_BY_RTK_STATUS.get(int(s), 3.0) for s in frames.rtk_status])
+    if any(s is None for s in stds):
+        return by_status
+    stated = np.sqrt(np.mean(np.square(np.column_stack(stds)), axis=1))
+    return np.where(np.isfinite(stated) & (stated > 0), np.maximum(stated, 0.01), by_status)
+
+
+def refine_frames(frames, workdir, options: RefineOptions | None = None, progress=None, is_canceled=None):
+    """Refined :class:`.frames.Frames` (registered frames moved, flagged ``refined``; the others unchanged,
+    flagged ``not_refined``), the :class:`Refinement`, and per-frame :data:`REFINE_FIELDS` values."""
+    from dataclasses import replace
+
+    from ..geometry.geodesy import LocalFrame
+    from ..geometry.poses import FrameGeometry, FramePoses, body_pose_from_camera
+
+    local = LocalFrame.around(frames.lat, frames.lon, frames.height)
+    centres, rotations = np.zeros((len(frames), 3)), np.zeros((len(frames), 3, 3))
+    for i in range(len(frames)):
+        poses = FramePoses([frames.frame_id[i]], frames.lat[[i]], frames.lon[[i]], frames.height[[i]],
+                           frames.quat[[i]], frames.ground_h[[i]], frames.cameras[i])
+        geometry = FrameGeometry(poses, local)
+        centres[i], rotations[i] = geometry.C[0], geometry.R_local_cam[0]
+    sigma = gnss_sigma_m(frames)
+    inputs = [FrameInput(Path(frames.image[i]) if frames.image[i] else None, frames.cameras[i], centres[i],
+                         rotations[i], float(sigma[i])) for i in range(len(frames))]
+    refinement = refine_poses(inputs, workdir, options, progress, is_canceled)
+    out = replace(frames, lat=frames.lat.copy(), lon=frames.lon.copy(), height=frames.height.copy(),
+                  quat=frames.quat.copy(), ground_h=frames.ground_h.copy(), cameras=list(frames.cameras),
+                  flags=[list(f) for f in frames.flags], euler_deg=None if frames.euler_deg is None
+                  else frames.euler_deg.copy())
+    values = []
+    for i, r in enumerate(refinement.frames):
+        values.append({"registered": r.registered, "reprojection_rms_px": _finite(r.reprojection_rms_px),
+                       "n_points": r.n_points, "position_change_m": _finite(r.position_change_m),
+                       "rotation_change_deg": _finite(r.rotation_change_deg),
+                       "alignment_residual_m": _finite(r.alignment_residual_m)})
+        if not r.registered:
+            out.flags[i].append(NOT_REFINED_FLAG)
+            continue
+        lat, lon, h, quat = body_pose_from_camera(local, r.centre[None], r.r_local_cam[None], r.camera)
+        out.lat[i], out.lon[i], out.height[i], out.quat[i] = lat[0], lon[0], h[0], quat[0]
+        out.cameras[i] = r.camera
+        if math.isfinite(r.ground_up_m):
+            # The tie points' median height: the ground the block saw, in the frames' own vertical reference.
+            out.ground_h[i] = float(local.to_geodetic(np.array([[*r.centre[:2], r.ground_up_m]]))[2][0])
+        if out.euler_deg is not None:
+            out.euler_deg[i] = np.nan  # derived again from the refined quaternion
+        out.flags[i].append(REFINED_FLAG)
+    if out.euler_deg is not None and np.isnan(out.euler_deg).any():
+        from .frame_records import euler_degrees
+
+        redo = np.flatnonzero(np.isnan(out.euler_deg).any(axis=1))
+        out.euler_deg[redo] = np.column_stack(euler_degrees(out.quat[redo]))
+    return out, refinement, values
+
+
+def _finite(x):
+    return None if x is None or not math.isfinite(float(x)) else float(x)
+
+
+def refinement_report_html(refinement: Refinement, frames, values, source: str = "") -> str:
+    """The run's report: what was registered and why not, residuals, the alignment, the intrinsics rule."""
+    import html
+
+    from ..scoring.reports import html_page, html_table
+
+    reg = [v for v in values if v["registered"]]
+    rms = [v["reprojection_rms_px"] for v in reg if v["reprojection_rms_px"] is not None]
+    sim = refinement.similarity
+    body = [f"<p>{html.escape(source)}</p>",
+            f"<p><b>{refinement.n_registered} of {len(values)}</b> frames registered"
+            + (f"; mean reprojection error {np.mean(rms):.2f} px (max {np.max(rms):.2f} px)" if rms else "")
+            + f". {refinement.images_per_minute:.1f} images per minute "
+            + "(" + ", ".join(f"{k} {v:.1f} s" for k, v in refinement.seconds.items()) + ").</p>",
+            f"<p>Intrinsics: {html.escape(refinement.intrinsics)}.</p>"]
+    if sim is not None:
+        body.append(f"<p>Alignment to the frames' GNSS positions (weighted by their accuracy): scale "
+                    f"{sim.scale:.6f}, residual RMS {refinement.alignment_rms_m:.3f} m"
+                    + ("; the camera centres lie on one line, so the metadata attitudes fixed the rotation about "
+                       "it" if refinement.collinear else "") + ".</p>")
+    body += [f"<p class='note'>{html.escape(n)}</p>" for n in refinement.notes]
+    rows = []
+    for i, (r, v) in enumerate(zip(refinement.frames, values)):
+        rows.append([str(frames.image[i]).replace("\\", "/").rsplit("/", 1)[-1], "yes" if r.registered else "no",
+                     v["reprojection_rms_px"], v["n_points"], v["position_change_m"], v["rotation_change_deg"],
+                     v["alignment_residual_m"], r.reason or ("" if r.used_in_alignment or not r.registered
+                                                             else "left out of the alignment")])
+    body.append(html_table(["image", "registered", "reprojection RMS (px)", "tie points", "moved (m)",
+                            "turned (°)", "GNSS residual (m)", "reason / note"], rows))
+    return html_page("BirdsEye — pose refinement", "".join(body))

@@ -1,0 +1,107 @@
+"""birdseye:refineposes — structure from motion over a frame layer's images, aligned to its GNSS positions."""
+from __future__ import annotations
+
+import tempfile
+from pathlib import Path
+
+from qgis.core import (
+    QgsProcessing,
+    QgsProcessingException,
+    QgsProcessingOutputNumber,
+    QgsProcessingParameterBoolean,
+    QgsProcessingParameterFeatureSink,
+    QgsProcessingParameterFeatureSource,
+    QgsProcessingParameterFileDestination,
+    QgsProcessingParameterNumber,
+)
+from qgis.PyQt.QtCore import QT_TRANSLATE_NOOP
+
+from ...birdseye_qgis.core.field.frames import compute_footprints, frames_from_records
+from ...birdseye_qgis.core.field.import_report import FlightImport, ImportReport
+from ...birdseye_qgis.core.field.refinement import (
+    REFINE_FIELDS,
+    RefineOptions,
+    refine_frames,
+    refinement_report_html,
+)
+from ...birdseye_qgis.qgis_io import layers
+from .base import BirdsEyeAlgorithm
+
+
+class RefinePoses(BirdsEyeAlgorithm):
+    ALG_ID = "refineposes"
+    DISPLAY_NAME = QT_TRANSLATE_NOOP("RefinePoses", "Refine frame poses (structure from motion)")
+    GROUP = "field"
+    FRAMES = "FRAMES"
+    MATCH_SIZE_PX = "MATCH_SIZE_PX"
+    MAX_FEATURES = "MAX_FEATURES"
+    REFINE_INTRINSICS = "REFINE_INTRINSICS"
+    OUTPUT = "OUTPUT"
+    OUTPUT_REPORT = "OUTPUT_REPORT"
+    REGISTERED_COUNT = "REGISTERED_COUNT"
+
+    def initAlgorithm(self, config=None):
+        self.addParameter(QgsProcessingParameterFeatureSource(
+            self.FRAMES, self.tr("Frames (from Import DJI images, Import flight log or Import camera solution)"),
+            [QgsProcessing.TypeVectorPolygon]))
+        self.addParameter(QgsProcessingParameterNumber(
+            self.MATCH_SIZE_PX, self.tr("Image size for feature extraction (px, longer side)"),
+            QgsProcessingParameterNumber.Integer, 2000, minValue=400, maxValue=10000))
+        self.addParameter(QgsProcessingParameterNumber(
+            self.MAX_FEATURES, self.tr("Features per image (at most)"), QgsProcessingParameterNumber.Integer, 8192,
+            minValue=500, maxValue=65536))
+        self.addParameter(QgsProcessingParameterBoolean(
+            self.REFINE_INTRINSICS, self.tr("Refine focal length and distortion (only with relief, oblique views or "
+                                            "ground control)"), defaultValue=False))
+        self.addParameter(QgsProcessingParameterFeatureSink(
+            self.OUTPUT, self.tr("Refined frames"), QgsProcessing.TypeVectorPolygon))
+        self.addParameter(QgsProcessingParameterFileDestination(
+            self.OUTPUT_REPORT, self.tr("Report (HTML)"), "HTML (*.html)", optional=True, createByDefault=True))
+        self.addOutput(QgsProcessingOutputNumber(self.REGISTERED_COUNT, self.tr("Frames registered")))
+
+    def processAlgorithm(self, parameters, context, feedback):
+        source = self.parameterAsSource(parameters, self.FRAMES, context)
+        if source is None:
+            raise QgsProcessingException(self.tr("FRAMES is required."))
+        name = source.sourceName()
+        records = self.run_core(layers.read_frame_layer, source, name)
+        frames = self.run_core(frames_from_records, records, name)
+        options = RefineOptions(match_size_px=self.parameterAsInt(parameters, self.MATCH_SIZE_PX, context),
+                                max_features=self.parameterAsInt(parameters, self.MAX_FEATURES, context),
+                                refine_intrinsics=self.parameterAsBoolean(parameters, self.REFINE_INTRINSICS, context))
+        feedback.pushInfo(self.tr("{n} frames; SIFT features at {size} px, at most {features} per image").format(
+            n=len(frames), size=options.match_size_px, features=options.max_features))
+        progress, is_canceled = self.progress_callbacks(feedback, 0.0, 85.0)
+        with tempfile.TemporaryDirectory(prefix="birdseye-sfm-") as workdir:
+            refined, refinement, values = self.run_core(refine_frames, frames, workdir, options, progress, is_canceled)
+        feedback.pushInfo(self.tr("Registered {n} of {total} frames in {seconds:.0f} s ({rate:.1f} images per "
+                                  "minute); intrinsics {intrinsics}").format(
+                              n=refinement.n_registered, total=len(frames), seconds=sum(refinement.seconds.values()),
+                              rate=refinement.images_per_minute, intrinsics=refinement.intrinsics))
+        if refinement.similarity is not None:
+            feedback.pushInfo(self.tr("Aligned to the GNSS positions: residual RMS {rms:.3f} m").format(
+                rms=refinement.alignment_rms_m))
+        for note in refinement.notes:
+            feedback.pushWarning(note)
+        missing = [(frames.image[i], r.reason) for i, r in enumerate(refinement.frames) if not r.registered]
+        if missing:
+            feedback.reportError(self.tr("{n} frame(s) keep their metadata pose (flag not_refined); first: "
+                                         "{items}").format(n=len(missing), items="; ".join(
+                                             f"{Path(image).name}: {why}" for image, why in missing[:5])), False)
+        chosen = self.run_core(layers.chosen_projected_crs, source.sourceCrs(), self.FRAMES)
+        crs, qgs_crs = self.run_core(layers.output_crs, chosen, refined.lat, refined.lon)
+        fp = self.run_core(compute_footprints, refined, crs)
+        result = FlightImport(refined, fp, [], ImportReport(name))
+        outputs = self.run_core(layers.write_frames, self, parameters, context, feedback, result, qgs_crs,
+                                extra_fields=REFINE_FIELDS, extra_values=values)
+        outputs[self.REGISTERED_COUNT] = refinement.n_registered
+        report_path = self.parameterAsFileOutput(parameters, self.OUTPUT_REPORT, context)
+        if report_path:
+            try:
+                Path(report_path).write_text(refinement_report_html(refinement, frames, values, name),
+                                             encoding="utf-8")
+            except OSError as exc:
+                raise QgsProcessingException(self.tr("OUTPUT_REPORT: cannot write {path} ({error})").format(
+                    path=report_path, error=exc)) from exc
+            outputs[self.OUTPUT_REPORT] = report_path
+        return outputs
