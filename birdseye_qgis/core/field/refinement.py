@@ -74,7 +74,8 @@ class RefinedFrame:
     camera: CameraModel | None = None
     reprojection_rms_px: float = math.nan
     n_points: int = 0
-    ground_up_m: float = math.nan
+    tie_points: np.ndarray | None = None
+    ground_z_local: float = math.nan
     alignment_residual_m: float = math.nan
     used_in_alignment: bool = False
     position_change_m: float = math.nan
@@ -242,7 +243,7 @@ def refine_poses(frames: list[FrameInput], workdir, options: RefineOptions | Non
         if not result[k].registered and not result[k].reason:
             result[k].reason = ("not registered: too few matches with the block (blurred, featureless or "
                                 "not overlapping)")
-    _align(refinement, frames, largest)
+    align_to_gnss(refinement, frames)
     report(1.0)
     return refinement
 
@@ -286,7 +287,7 @@ def _collect(rec, frames, names, result) -> None:
         frame.reprojection_rms_px = rms
         frame.n_points = len(xyz)
         frame.camera = _refined_camera(frames[k].camera, camera)
-        frame.ground_up_m = xyz  # observed points, replaced by their median height in _align
+        frame.tie_points = xyz
 
 
 def _refined_camera(original: CameraModel, colmap_cam) -> CameraModel:
@@ -302,7 +303,7 @@ def _refined_camera(original: CameraModel, colmap_cam) -> CameraModel:
                    source=f"{original.source} (refined by structure from motion)")
 
 
-def _align(refinement: Refinement, frames, rec) -> None:
+def align_to_gnss(refinement: Refinement, frames) -> None:
     """Similarity from the SfM frame onto the metadata centres; refined poses, ground and changes."""
     done = [k for k, f in enumerate(refinement.frames) if f.registered]
     if len(done) < 2:
@@ -337,8 +338,9 @@ def _align(refinement: Refinement, frames, rec) -> None:
         frame.r_local_cam = sim.rotation @ frame.r_local_cam
         frame.alignment_residual_m = float(residual[j])
         frame.used_in_alignment = bool(use[j])
-        points = sim.apply(frame.ground_up_m)
-        frame.ground_up_m = float(np.median(points[:, 2])) if len(points) >= MIN_GROUND_POINTS else math.nan
+        frame.tie_points = sim.apply(frame.tie_points)
+        if len(frame.tie_points) >= MIN_GROUND_POINTS:
+            frame.ground_z_local = float(np.median(frame.tie_points[:, 2]))
         frame.position_change_m = float(np.linalg.norm(frame.centre - meta.centre))
         change = meta.r_local_cam.T @ frame.r_local_cam
         frame.rotation_change_deg = float(np.degrees(np.arccos(np.clip((np.trace(change) - 1) / 2, -1, 1))))
@@ -402,9 +404,9 @@ def refine_frames(frames, workdir, options: RefineOptions | None = None, progres
         lat, lon, h, quat = body_pose_from_camera(local, r.centre[None], r.r_local_cam[None], r.camera)
         out.lat[i], out.lon[i], out.height[i], out.quat[i] = lat[0], lon[0], h[0], quat[0]
         out.cameras[i] = r.camera
-        if math.isfinite(r.ground_up_m):
+        if math.isfinite(r.ground_z_local):
             # The tie points' median height: the ground the block saw, in the frames' own vertical reference.
-            out.ground_h[i] = float(local.to_geodetic(np.array([[*r.centre[:2], r.ground_up_m]]))[2][0])
+            out.ground_h[i] = float(local.to_geodetic(np.array([[*r.centre[:2], r.ground_z_local]]))[2][0])
         if out.euler_deg is not None:
             out.euler_deg[i] = np.nan  # derived again from the refined quaternion
         out.flags[i].append(REFINED_FLAG)

@@ -1,0 +1,127 @@
+"""Pose refinement without QGIS: the alignment onto GNSS positions (synthetic, closed form) and the
+pycolmap run on real DJI frames (cancel, missing images)."""
+from __future__ import annotations
+
+import math
+import shutil
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from birdseye.birdseye_qgis.core.errors import Cancelled
+from birdseye.birdseye_qgis.core.field.dji import import_dji_images
+from birdseye.birdseye_qgis.core.field.refinement import (
+    FrameInput,
+    RefinedFrame,
+    Refinement,
+    align_to_gnss,
+    gnss_sigma_m,
+    refine_poses,
+)
+from birdseye.birdseye_qgis.core.geometry.camera import CameraModel
+from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame
+from birdseye.birdseye_qgis.core.geometry.poses import FrameGeometry, FramePoses
+from birdseye.birdseye_qgis.core.geometry.rotations import so3_exp
+
+BRIGHTON = Path(__file__).resolve().parents[2] / "data" / "brighton_beach_960"
+CAMERA = CameraModel(960, 540, 530.0, 530.0, 479.5, 269.5)
+TRUE_ROTATION = so3_exp(np.array([0.02, -0.01, 1.3]))
+
+
+def block(n=8, seed=0, line=False):
+    """True camera centres/rotations (local frame) and the same block as SfM sees it (scaled, turned)."""
+    rng = np.random.default_rng(seed)
+    centres = np.column_stack([np.arange(n) * 8.0, np.zeros(n) if line else rng.uniform(-20, 20, n),
+                               40 + rng.normal(scale=0.3, size=n)])
+    rotations = np.stack([so3_exp(rng.normal(scale=0.05, size=3)) for _ in range(n)])
+    # SfM frame: x_sfm = R_true^T (x_local - t) / s
+    s, t = 4.0, np.array([100.0, -50.0, 3.0])
+    sfm_centres = (centres - t) @ TRUE_ROTATION / s
+    sfm_rotations = np.einsum("ji,njk->nik", TRUE_ROTATION, rotations)
+    return centres, rotations, sfm_centres, sfm_rotations
+
+
+def refinement_of(sfm_centres, sfm_rotations):
+    frames = [RefinedFrame(True, centre=c.copy(), r_local_cam=r.copy(), camera=CAMERA,
+                           tie_points=np.zeros((30, 3)) + c - [0, 0, 10.0])
+              for c, r in zip(sfm_centres, sfm_rotations)]
+    return Refinement(frames)
+
+
+@pytest.mark.parametrize("line", [False, True])
+def test_alignment_recovers_the_block_exactly(line):
+    centres, rotations, sfm_c, sfm_r = block(line=line)
+    # Metadata attitudes are off by a degree: the positions must still rule where they can.
+    meta_r = np.stack([so3_exp(np.array([0.0, 0.017, 0.0])) @ r for r in rotations]) if not line else rotations
+    inputs = [FrameInput(None, CAMERA, c, r, 0.03) for c, r in zip(centres, meta_r)]
+    refinement = refinement_of(sfm_c, sfm_r)
+    align_to_gnss(refinement, inputs)
+    assert refinement.collinear == line
+    for frame, c, r in zip(refinement.frames, centres, rotations):
+        np.testing.assert_allclose(frame.centre, c, atol=1e-6)
+        np.testing.assert_allclose(frame.r_local_cam, r, atol=1e-9)
+        assert frame.position_change_m < 1e-6
+    assert refinement.alignment_rms_m < 1e-6
+    # Tie points 10 units along −z of the SfM frame from each camera: 4 × that vector, turned, in metres.
+    below = 4.0 * TRUE_ROTATION @ np.array([0.0, 0.0, -10.0])
+    assert refinement.frames[0].ground_z_local == pytest.approx(centres[0, 2] + below[2], abs=1e-6)
+
+
+def test_a_gross_gnss_outlier_is_left_out_of_the_alignment():
+    centres, rotations, sfm_c, sfm_r = block(n=10, seed=3)
+    meta_c = centres.copy()
+    meta_c[4] += [6.0, -3.0, 2.0]  # a single-point fix among RTK-fixed frames
+    inputs = [FrameInput(None, CAMERA, c, r, 0.03) for c, r in zip(meta_c, rotations)]
+    refinement = refinement_of(sfm_c, sfm_r)
+    align_to_gnss(refinement, inputs)
+    assert not refinement.frames[4].used_in_alignment
+    assert refinement.frames[4].alignment_residual_m == pytest.approx(math.hypot(6, 3, 2), abs=1e-6)
+    np.testing.assert_allclose(refinement.frames[4].centre, centres[4], atol=1e-6)
+    assert "left out of the alignment" in " ".join(refinement.notes)
+
+
+def test_gnss_sigma_from_dji_std_else_from_rtk_status():
+    class FakeFrames:
+        rtk_status = np.array([3, 2, 1, 3])
+        extra = {"rtk_std_lon_m": np.array([0.02, np.nan, np.nan, 0.0]),
+                 "rtk_std_lat_m": np.array([0.02, np.nan, np.nan, 0.0]),
+                 "rtk_std_hgt_m": np.array([0.05, np.nan, np.nan, 0.0])}
+
+    sigma = gnss_sigma_m(FakeFrames())
+    assert sigma[0] == pytest.approx(math.sqrt((0.02 ** 2 * 2 + 0.05 ** 2) / 3))
+    assert sigma[1:].tolist() == [0.5, 3.0, 0.03]
+
+
+def brighton_inputs(tmp_path, drop=()):
+    """The six real frames as importdjiimages places them; ``drop`` images are removed afterwards."""
+    images = tmp_path / "images"
+    shutil.copytree(BRIGHTON, images, ignore=shutil.ignore_patterns("*.md", "LICENSE"))
+    frames = import_dji_images(images).frames
+    for name in drop:
+        (images / name).unlink()
+    local = LocalFrame.around(frames.lat, frames.lon, frames.height)
+    geometry = FrameGeometry(FramePoses(frames.frame_id, frames.lat, frames.lon, frames.height, frames.quat,
+                                        frames.ground_h, frames.cameras[0]), local)
+    return [FrameInput(Path(frames.image[i]), frames.cameras[i], geometry.C[i], geometry.R_local_cam[i], 3.0)
+            for i in range(len(frames))]
+
+
+def test_cancel_stops_the_structure_from_motion_promptly(tmp_path):
+    pytest.importorskip("pycolmap")
+    inputs = brighton_inputs(tmp_path)
+    asked = []
+    start = time.perf_counter()
+    with pytest.raises(Cancelled):
+        refine_poses(inputs, tmp_path / "work", is_canceled=lambda: asked.append(1) or len(asked) > 2)
+    assert time.perf_counter() - start < 10.0
+
+
+def test_frames_without_images_are_reported_not_guessed(tmp_path):
+    pytest.importorskip("pycolmap")
+    inputs = brighton_inputs(tmp_path, drop=("DJI_0023.JPG",))
+    refinement = refine_poses(inputs, tmp_path / "work")
+    assert [f.registered for f in refinement.frames] == [True, True, True, True, True, False]
+    assert refinement.frames[5].reason == "image file not found"
+    assert refinement.intrinsics.startswith("fixed to the frame layer's calibration")
