@@ -1,14 +1,20 @@
-"""The optional DEM ground model, shared by writelabels, detect and the importers.
+"""The ground model, shared by writelabels, detect and the importers: an optional DEM, or the method's plane.
 
 Parameters: ``DEM`` (raster layer, optional), ``DEM_VERTICAL_DATUM`` (what the DEM's heights are
-measured from) and ``GEOID_UNDULATION_M`` (N, ellipsoidal = MSL + N, needed for an MSL DEM). Without a
-DEM every algorithm keeps the level plane at the altimeter depth, unchanged.
+measured from), ``GEOID_UNDULATION_M`` (N, ellipsoidal = MSL + N, needed for an MSL DEM) and, in the
+algorithms that place labels and detections (groups ``labels`` and ``detect``), ``GROUND_MODEL``
+(advanced): without a DEM, the level plane at the tilt-corrected altimeter depth (default) or the
+method's plane, normal to the optical axis at the raw altimeter range
+(``core.geometry.ground.MethodPlaneGround``), to reproduce its figures. The importers (group ``field``)
+cast footprints for the map and keep the level plane: the frame layer's depth and terrain fields stay
+those of the level ground.
 """
 from __future__ import annotations
 
 import numpy as np
 from qgis.core import (
     QgsProcessingException,
+    QgsProcessingParameterDefinition,
     QgsProcessingParameterEnum,
     QgsProcessingParameterNumber,
     QgsProcessingParameterRasterLayer,
@@ -17,11 +23,16 @@ from qgis.core import (
 from ...birdseye_qgis.__about__ import tr
 from ...birdseye_qgis.core.errors import InputError
 from ...birdseye_qgis.core.geometry.dem import VERTICAL_DATUMS, DemGround, DemRaster
+from ...birdseye_qgis.core.geometry.ground import MethodPlaneGround
 from ...birdseye_qgis.qgis_io import layers
 
 DATUM_LABELS = ("Ellipsoidal (WGS84), like RTK and INS heights",
                 "Mean sea level (give the geoid undulation N)",
                 "Unknown: check it against the altimeter's ground")
+GROUND_MODEL_LABELS = ("Level ground at the tilt-corrected altimeter depth",
+                       "The method's plane: normal to the optical axis at the raw altimeter range")
+METHOD_PLANE = 1
+GROUND_MODEL_GROUPS = ("labels", "detect")
 
 
 class DemParametersMixin:
@@ -30,8 +41,13 @@ class DemParametersMixin:
     DEM = "DEM"
     DEM_VERTICAL_DATUM = "DEM_VERTICAL_DATUM"
     GEOID_UNDULATION_M = "GEOID_UNDULATION_M"
+    GROUND_MODEL = "GROUND_MODEL"
+    # Set by read_dem for this run (Processing runs a fresh instance each time); dem_ground reads it.
+    method_plane = False
 
     def add_dem_parameters(self) -> None:
+        """DEM, DEM_VERTICAL_DATUM, GEOID_UNDULATION_M and, where labels or detections are placed,
+        GROUND_MODEL."""
         self.addParameter(QgsProcessingParameterRasterLayer(
             self.DEM, self.tr("Terrain model (DEM/DSM raster, projected CRS in metres; empty: level ground)"),
             optional=True))
@@ -41,11 +57,25 @@ class DemParametersMixin:
         self.addParameter(QgsProcessingParameterNumber(
             self.GEOID_UNDULATION_M, self.tr("Geoid undulation N at the site (m; ellipsoidal = MSL + N)"),
             QgsProcessingParameterNumber.Double, None, optional=True, minValue=-120.0, maxValue=120.0))
+        if self.GROUP in GROUND_MODEL_GROUPS:
+            choice = QgsProcessingParameterEnum(
+                self.GROUND_MODEL, self.tr("Ground model without a DEM"),
+                options=[self.tr(label) for label in GROUND_MODEL_LABELS], defaultValue=0)
+            choice.setFlags(choice.flags() | QgsProcessingParameterDefinition.FlagAdvanced)
+            self.addParameter(choice)
 
     def read_dem(self, parameters, context) -> DemRaster | None:
+        """The DEM, or None for a plane; also reads GROUND_MODEL, which a DEM excludes."""
+        self.method_plane = (self.parameterDefinition(self.GROUND_MODEL) is not None
+                             and self.parameterAsEnum(parameters, self.GROUND_MODEL, context) == METHOD_PLANE)
         layer = self.parameterAsRasterLayer(parameters, self.DEM, context)
         if layer is None:
             return None
+        if self.method_plane:
+            raise QgsProcessingException(tr(
+                "{GROUND_MODEL}: the method's plane stands in for the level ground; with a terrain model "
+                "({DEM}) the terrain is the ground. Give one or the other.").format(
+                GROUND_MODEL=self.GROUND_MODEL, DEM=self.DEM))
         datum = VERTICAL_DATUMS[self.parameterAsEnum(parameters, self.DEM_VERTICAL_DATUM, context)]
         undulation = (self.parameterAsDouble(parameters, self.GEOID_UNDULATION_M, context)
                       if parameters.get(self.GEOID_UNDULATION_M) not in (None, "") else None)
@@ -54,15 +84,15 @@ class DemParametersMixin:
         except InputError as exc:
             raise QgsProcessingException(str(exc)) from exc
 
-    @staticmethod
-    def dem_ground(dem: DemRaster | None, pose_heights_datum: str = "ellipsoidal", tolerance_m: float = 5.0):
+    def dem_ground(self, dem: DemRaster | None, pose_heights_datum: str = "ellipsoidal", tolerance_m: float = 5.0):
         """A ground-model factory (``geometry -> GroundModel``) for core code, or None for the level plane.
 
-        RTK/INS poses are ellipsoidal; the DEM's datum is checked against them and, where the frames
-        have one, against their ground height (``tolerance_m``, median over the frames).
+        Without a DEM: the method's plane when GROUND_MODEL asked for it (``read_dem`` reads it). RTK/INS
+        poses are ellipsoidal; the DEM's datum is checked against them and, where the frames have one,
+        against their ground height (``tolerance_m``, median over the frames).
         """
         if dem is None:
-            return None
+            return MethodPlaneGround if self.method_plane else None
         return lambda geometry: DemGround.from_dem(geometry, dem, pose_heights_datum, tolerance_m)
 
     @staticmethod

@@ -84,19 +84,24 @@ def test_against_the_level_plane_at_3_degrees_of_tilt(roll, pitch):
     geom = frame(cam, roll=roll, pitch=pitch, yaw=30.0, radalt=10.0 / math.cos(math.radians(3.0)))
     level, method = LevelPlaneGround(geom), MethodPlaneGround(geom)
     edges = np.array([(0.0, CY), (1919.0, CY), (CX, 0.0), (CX, 1199.0)])
-    frames = np.zeros(len(edges), int)
-    targets, _ = pixel_to_ground(geom, level, frames, edges)  # the level plane is the true ground here
-    np.testing.assert_allclose(project_pairs(geom, frames, targets, level).uv, edges, atol=1e-6)
-    shift = project_pairs(geom, frames, targets, method).uv - edges
+    corners = np.array([(0.0, 0.0), (1919.0, 0.0), (0.0, 1199.0), (1919.0, 1199.0)])
+    frames = np.zeros(len(edges) + len(corners), int)
+    targets, _ = pixel_to_ground(geom, level, frames, np.vstack([edges, corners]))  # the true ground here
+    np.testing.assert_allclose(project_pairs(geom, frames, targets, level).uv, np.vstack([edges, corners]), atol=1e-6)
+    shift = project_pairs(geom, frames, targets, method).uv - np.vstack([edges, corners])
+    shift, corner_shift = shift[:4], np.hypot(*shift[4:].T)
     along_u = [method_shift_px(FX, (u - CX) / FX, -math.radians(roll)) for u in edges[:2, 0]]
     along_v = [method_shift_px(FY, (v - CY) / FY, -math.radians(pitch)) for v in edges[2:, 1]]
     np.testing.assert_allclose(shift[:2, 0], along_u, atol=1e-6)
     np.testing.assert_allclose(shift[2:, 1], along_v, atol=1e-6)
     np.testing.assert_allclose([shift[:2, 1], shift[2:, 0]], 0.0, atol=1e-6)
     # The figures the help states for the deployed camera (any altitude): 3° of roll moves the left and
-    # right edge labels by 14.1 and 8.6 px, 3° of pitch the top and bottom ones by 6.0 and 2.8 px.
+    # right edge labels by 14.1 and 8.6 px and the corner ones by 11–16 px, 3° of pitch the top and
+    # bottom ones by 6.0 and 2.8 px and the corner ones by 8–9 px.
     stated = {(3.0, 0.0): [14.1, 8.6, 0.0, 0.0], (-3.0, 0.0): [8.6, 14.1, 0.0, 0.0], (0.0, 3.0): [0.0, 0.0, 6.0, 2.8]}
     assert np.round(np.hypot(*shift.T), 1).tolist() == stated[(roll, pitch)]
+    corners_stated = {(3.0, 0.0): (11, 16), (-3.0, 0.0): (11, 16), (0.0, 3.0): (8, 9)}
+    assert (round(corner_shift.min()), round(corner_shift.max())) == corners_stated[(roll, pitch)]
 
 
 def test_frames_without_a_radar_range_are_refused_with_their_ids():
