@@ -98,7 +98,8 @@ class PlanFlight(BirdsEyeAlgorithm):
             parentLayerParameterName=self.GEOTAGS, optional=True))
         self.addParameter(QgsProcessingParameterPoint(
             self.HOME, self.tr("Home: take-off and landing point (optional)"), optional=True))
-        self._number(self.ALTITUDE_M, "Flight altitude above the ground, relative to take-off [m] (2–120)", 12.0)
+        self._number(self.ALTITUDE_M, "Flight altitude above the ground, relative to take-off [m] (2–120)",
+                     FlightSettings.altitude_m)
         self._number(self.SPEED_MS, "Flight speed [m/s]", 3.0, minimum=0.0)
         self._number(self.MERGE_RADIUS_M, "Merge radius: geotags within this ground distance share a waypoint [m]",
                      2.0, minimum=0.0)

@@ -67,9 +67,13 @@ _TSP_INT_MAX = 65535
 
 @dataclass(frozen=True)
 class FlightSettings:
-    """What the user chose. Metres, seconds, m/s; ``forward_overlap`` is a fraction (0–1)."""
+    """What the user chose. Metres, seconds, m/s; ``forward_overlap`` is a fraction (0–1).
 
-    altitude_m: float = 12.0
+    The altitude defaults to the method's flying height, 10 m, where the sensor bound accepts the
+    deployed platform's pose noise.
+    """
+
+    altitude_m: float = 10.0
     speed_ms: float = 3.0
     merge_radius_m: float = 2.0
     hover_s: float = 2.0

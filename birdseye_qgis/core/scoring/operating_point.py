@@ -7,6 +7,7 @@ from typing import Mapping
 from ..detect.clustering import DEFAULT_DEDUP_CM, DEFAULT_EPS_M, DEFAULT_MIN_SAMPLES
 from ..errors import InputError
 
+#: The method's match radius, with its clustering defaults (``detect.clustering``).
 DEFAULT_EPS_PRED_M = 0.20
 DEFAULT_EDGE_BUFFER_PX = 0.0
 
