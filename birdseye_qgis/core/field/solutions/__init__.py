@@ -40,8 +40,8 @@ from ..pose_log import RTK_NONE
 SOLUTION_FLAG = "camera_solution"
 #: Image files a solution's camera names are matched with (case-insensitive).
 IMAGE_SUFFIXES = (".jpg", ".jpeg", ".tif", ".tiff", ".png", ".dng")
-#: Tie points in view that make a frame's ground height (fewer: the frame takes the DEM or level plane).
-MIN_GROUND_POINTS = 5
+#: Tie points a solution needs, and a frame needs in view, for its ground height (else: DEM or level plane).
+MIN_GROUND_POINTS = MIN_GROUND_POINTS_IN_VIEW = 5
 
 
 @dataclass
@@ -130,11 +130,11 @@ def solution_frames(solution: CameraSolution, images: dict, ground_height: float
     r_ecef_cam = np.array([c.R_ecef_cam for c in cams], dtype=float).reshape(n, 3, 3)
     # body (gimbal: forward-right-down) → NED; the camera sits in the body by T_CAM_GIMBAL.
     r_ned_body = np.einsum("nji,njk->nik", r_ecef_ned, r_ecef_cam) @ T_CAM_GIMBAL[:3, :3]
-    mounted: dict[str, CameraModel] = {}
-    cameras = []
+    mounted: dict[int, CameraModel] = {}
     for c in cams:
-        cam = CameraModel.from_dict({**c.camera.to_dict(), "T_cam_imu": T_CAM_GIMBAL.tolist()})
-        cameras.append(mounted.setdefault(cam.to_json(), cam))
+        if id(c.camera) not in mounted:
+            mounted[id(c.camera)] = CameraModel.from_dict({**c.camera.to_dict(), "T_cam_imu": T_CAM_GIMBAL.tolist()})
+    cameras = [mounted[id(c.camera)] for c in cams]
     ground = _tie_point_ground(solution, lat, lon, h, r_ned_body, cameras)
     flags = [[SOLUTION_FLAG] + ([GEOTAG_HEIGHTS_FLAG] if solution.ellipsoidal else []) for _ in range(n)]
     if ground_height is not None:
@@ -161,23 +161,30 @@ def _tie_point_ground(solution, lat, lon, h, r_ned_body, cameras) -> np.ndarray:
     p_lat, p_lon, p_h = ecef_to_geodetic(pts)
     local_pts = local.from_geodetic(p_lat, p_lon, p_h)
     tree = cKDTree(local_pts[:, :2])
-    typical_depth = np.maximum(h - np.median(p_h), 1.0)
-    for cam_json in {c.to_json() for c in cameras}:
-        idx = np.array([i for i, c in enumerate(cameras) if c.to_json() == cam_json])
+    depth = np.maximum(h - np.median(p_h), 1.0)
+    groups: dict[int, list[int]] = {}
+    for i, c in enumerate(cameras):
+        groups.setdefault(id(c), []).append(i)
+    for members in groups.values():
+        idx = np.asarray(members)
         cam = cameras[idx[0]]
         geometry = FrameGeometry(FramePoses(idx, lat[idx], lon[idx], h[idx], rotmat_to_quat(r_ned_body[idx]),
                                             np.full(len(idx), np.nan), cam), local)
-        half_diagonal = 0.5 * np.hypot(cam.width, cam.height) / min(cam.fx, cam.fy)
-        for k, f in enumerate(idx):
-            near = tree.query_ball_point(geometry.C[k, :2], typical_depth[f] * half_diagonal * 1.5 + 1.0)
-            if len(near) < MIN_GROUND_POINTS:
-                continue
-            near = np.asarray(near)
-            p_cam = geometry.to_camera(np.full(len(near), k), local_pts[near])
-            uv = cam.project(p_cam)
-            seen = near[(p_cam[:, 2] > 0) & cam.in_frame(uv)]
-            if len(seen) >= MIN_GROUND_POINTS:
-                ground[f] = float(np.median(p_h[seen]))
+        # A disc around each camera that holds its whole view of the ground (half diagonal, 50 % margin).
+        radius = depth[idx] * 0.75 * np.hypot(cam.width, cam.height) / min(cam.fx, cam.fy) + 1.0
+        near = tree.query_ball_point(geometry.C[:, :2], radius)
+        counts = np.fromiter((len(n) for n in near), dtype=np.int64, count=len(near))
+        frame_of = np.repeat(np.arange(len(idx)), counts)
+        point_of = np.fromiter((j for n in near for j in n), dtype=np.int64, count=int(counts.sum()))
+        p_cam = geometry.to_camera(frame_of, local_pts[point_of])
+        seen = (p_cam[:, 2] > 0) & cam.in_frame(cam.project(p_cam))
+        frame_of, heights = frame_of[seen], p_h[point_of[seen]]
+        order = np.lexsort((heights, frame_of))
+        frame_of, heights = frame_of[order], heights[order]
+        bounds = np.searchsorted(frame_of, np.arange(len(idx) + 1))
+        for k, (a, b) in enumerate(zip(bounds[:-1], bounds[1:])):
+            if b - a >= MIN_GROUND_POINTS_IN_VIEW:
+                ground[idx[k]] = float(np.median(heights[a:b]))
     return ground
 
 

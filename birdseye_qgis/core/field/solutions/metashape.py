@@ -47,7 +47,7 @@ def _similarity(elem, source, what) -> np.ndarray:
     """A ``<transform>`` with rotation/translation/scale children (or 16 numbers) as a 4×4 matrix."""
     if elem is None:
         return np.eye(4)
-    if elem.find("rotation") is None and elem.find("translation") is None:
+    if all(elem.find(part) is None for part in ("rotation", "translation", "scale")):
         return _numbers(elem.text, 16, source, what).reshape(4, 4)
     t = np.eye(4)
     scale = float(elem.findtext("scale", "1") or 1)

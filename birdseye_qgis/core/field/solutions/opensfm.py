@@ -113,19 +113,26 @@ def read_reconstruction(path) -> CameraSolution:
     lat0, lon0, h0 = _reference(doc[0], path)
     origin = geodetic_to_ecef(lat0, lon0, h0).reshape(3)
     r_ecef_enu = rotation_ecef_enu(lat0, lon0)
-    cameras, points = [], []
+    names, rotvecs, translations, models_of, points = [], [], [], [], []
     for rec in doc:
         models = {key: _camera(key, spec, source) for key, spec in rec.get("cameras", {}).items()}
         for name, shot in rec["shots"].items():
             try:
-                r_cam_world = so3_exp(np.asarray(shot["rotation"], dtype=float))
-                t = np.asarray(shot["translation"], dtype=float)
-                model = models[shot["camera"]]
+                rotvecs.append(shot["rotation"])
+                translations.append(shot["translation"])
+                models_of.append(models[shot["camera"]])
             except KeyError as exc:
                 raise InputError(f"shot '{name}' lacks {exc} or names an unknown camera", source=source) from exc
-            centre_enu = -r_cam_world.T @ t
-            cameras.append(SolvedCamera(name, model, r_ecef_enu @ r_cam_world.T, origin + r_ecef_enu @ centre_enu))
-        for point in rec.get("points", {}).values():
-            points.append(point["coordinates"])
+            names.append(name)
+        points.extend(point["coordinates"] for point in rec.get("points", {}).values())
+    try:
+        r_cam_world = so3_exp(np.asarray(rotvecs, dtype=float).reshape(-1, 3))
+        t = np.asarray(translations, dtype=float).reshape(-1, 3)
+    except ValueError as exc:
+        raise InputError(f"a shot's rotation or translation is not three numbers ({exc})", source=source) from exc
+    r_world_cam = np.swapaxes(r_cam_world, 1, 2)
+    centres = origin + (-np.einsum("nij,nj->ni", r_world_cam, t)) @ r_ecef_enu.T
+    r_ecef_cam = np.einsum("ij,njk->nik", r_ecef_enu, r_world_cam)
+    cameras = [SolvedCamera(n, m, r, c) for n, m, r, c in zip(names, models_of, r_ecef_cam, centres)]
     pts = np.asarray(points, dtype=float).reshape(-1, 3) @ r_ecef_enu.T + origin if points else None
     return CameraSolution("opensfm", source, cameras, [], pts, notes)
