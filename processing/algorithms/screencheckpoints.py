@@ -8,8 +8,8 @@ import numpy as np
 from qgis.core import (
     QgsProcessing,
     QgsProcessingException,
-    QgsProcessingMultiStepFeedback,
     QgsProcessingOutputNumber,
+    QgsProcessingParameterEnum,
     QgsProcessingParameterFeatureSource,
     QgsProcessingParameterFileDestination,
     QgsProcessingParameterMultipleLayers,
@@ -17,8 +17,8 @@ from qgis.core import (
 )
 from qgis.PyQt.QtCore import QT_TRANSLATE_NOOP
 
-from ...birdseye_qgis.core.detect.detector import DetectRequest, HeatmapModel, detect_frames
-from ...birdseye_qgis.core.errors import Cancelled
+from ...birdseye_qgis.core.detect.detector import HeatmapModel
+from ...birdseye_qgis.core.detect.flight_detections import detect_flight
 from ...birdseye_qgis.core.labels.training_set import Geotags as LabelGeotags
 from ...birdseye_qgis.core.labels.training_set import project_labels
 from ...birdseye_qgis.core.scoring.evaluation import local_frame_for
@@ -28,7 +28,9 @@ from ...birdseye_qgis.core.scoring.screening import (
     DEFAULT_COLLAPSED_BELOW,
     DEFAULT_PIXEL_RADIUS_PX,
     DEFAULT_SPARSE_BELOW,
+    SCREEN_PRESETS,
     ScreenRun,
+    frame_blocks,
     screen_checkpoints,
 )
 from ...birdseye_qgis.qgis_io.detections import read_geotags, read_pose_groups
@@ -58,7 +60,9 @@ class ScreenCheckpoints(ClusteringParametersMixin, BirdsEyeAlgorithm):
     CHECKPOINTS = "CHECKPOINTS"
     FRAMES = "FRAMES"
     GEOTAGS = "GEOTAGS"
+    PRESET = "PRESET"
     THRESHOLD = "THRESHOLD"
+    BLOCK_FRAMES = "BLOCK_FRAMES"
     PIXEL_RADIUS_PX = "PIXEL_RADIUS_PX"
     COLLAPSED_BELOW = "COLLAPSED_BELOW"
     SPARSE_BELOW = "SPARSE_BELOW"
@@ -66,6 +70,8 @@ class ScreenCheckpoints(ClusteringParametersMixin, BirdsEyeAlgorithm):
     OUTPUT_JSON = "OUTPUT_JSON"
     OUTPUT_PLOT = "OUTPUT_PLOT"
     N_HEALTHY = "N_HEALTHY"
+    PRESET_NAMES = (QT_TRANSLATE_NOOP("ScreenCheckpoints", "Method: blocks of 500 frames, threshold 0.03"),
+                    QT_TRANSLATE_NOOP("ScreenCheckpoints", "BirdsEye: whole flights, each checkpoint's own threshold"))
 
     def initAlgorithm(self, config=None):
         self.addParameter(QgsProcessingParameterMultipleLayers(
@@ -74,9 +80,15 @@ class ScreenCheckpoints(ClusteringParametersMixin, BirdsEyeAlgorithm):
             self.FRAMES, self.tr("Validation flights (frame layers with their images)"), QgsProcessing.TypeVector))
         self.addParameter(QgsProcessingParameterFeatureSource(
             self.GEOTAGS, self.tr("Geotags"), [QgsProcessing.TypeVectorPoint]))
+        self.addParameter(QgsProcessingParameterEnum(
+            self.PRESET, self.tr("Preset (blocks and threshold; the two fields below override it)"),
+            options=[self.tr(name) for name in self.PRESET_NAMES], defaultValue=0))
         self.addParameter(QgsProcessingParameterNumber(
-            self.THRESHOLD, self.tr("Detection threshold (empty: each checkpoint's default)"),
+            self.THRESHOLD, self.tr("Detection threshold (empty: the preset's)"),
             QgsProcessingParameterNumber.Double, None, optional=True, minValue=0.001, maxValue=0.999))
+        self.addParameter(QgsProcessingParameterNumber(
+            self.BLOCK_FRAMES, self.tr("Frames per block (0: each flight whole; empty: the preset's)"),
+            QgsProcessingParameterNumber.Integer, None, optional=True, minValue=0))
         self.add_clustering_parameters()
         self.addParameter(QgsProcessingParameterNumber(
             self.PIXEL_RADIUS_PX, self.tr("Pixel F1: match radius (px)"), QgsProcessingParameterNumber.Double,
@@ -85,7 +97,7 @@ class ScreenCheckpoints(ClusteringParametersMixin, BirdsEyeAlgorithm):
             self.COLLAPSED_BELOW, self.tr("Collapsed if the distinct-position fraction is below"),
             QgsProcessingParameterNumber.Double, DEFAULT_COLLAPSED_BELOW, minValue=0.0, maxValue=1.0))
         self.addParameter(QgsProcessingParameterNumber(
-            self.SPARSE_BELOW, self.tr("Too sparse if detections per frame on the worst flight are below"),
+            self.SPARSE_BELOW, self.tr("Too sparse if detections per frame in the worst block are below"),
             QgsProcessingParameterNumber.Double, DEFAULT_SPARSE_BELOW, minValue=0.0))
         self.addParameter(QgsProcessingParameterFileDestination(
             self.OUTPUT_TABLE, self.tr("Checkpoint table (CSV)"), "CSV (*.csv)"))
@@ -96,14 +108,17 @@ class ScreenCheckpoints(ClusteringParametersMixin, BirdsEyeAlgorithm):
         self.addOutput(QgsProcessingOutputNumber(self.N_HEALTHY, self.tr("Healthy checkpoints")))
 
     def processAlgorithm(self, parameters, context, feedback):
-        checkpoints = self.parameterAsFileList(parameters, self.CHECKPOINTS, context)
+        checkpoints = [p for p in self.parameterAsFileList(parameters, self.CHECKPOINTS, context) if p]
         frame_layers = self.parameterAsLayerList(parameters, self.FRAMES, context)
         if not checkpoints:
             raise QgsProcessingException(self.tr("CHECKPOINTS: give at least one ONNX file."))
         if not frame_layers:
             raise QgsProcessingException(self.tr("FRAMES: give at least one validation flight."))
-        threshold = None if parameters.get(self.THRESHOLD) in (None, "") else \
+        preset = SCREEN_PRESETS[self.parameterAsEnum(parameters, self.PRESET, context)]
+        threshold = preset.threshold if parameters.get(self.THRESHOLD) in (None, "") else \
             self.parameterAsDouble(parameters, self.THRESHOLD, context)
+        block_frames = preset.block_frames if parameters.get(self.BLOCK_FRAMES) in (None, "") else \
+            self.parameterAsInt(parameters, self.BLOCK_FRAMES, context)
         op = self.read_operating_point(parameters, context, threshold)
         geotag_source = self.parameterAsSource(parameters, self.GEOTAGS, context)
         if geotag_source is None:
@@ -113,48 +128,51 @@ class ScreenCheckpoints(ClusteringParametersMixin, BirdsEyeAlgorithm):
         for layer in frame_layers:
             groups, records, grouped = self.run_core(read_pose_groups, layer, layer.name())
             images = [[records[i].get("image") or "" for i in idx] for _, idx in grouped]
-            flights.append((layer.name(), groups, images))
-        local = self.run_core(local_frame_for, [p for _, groups, _ in flights for p in groups], geotags)
+            flights.append((layer.name(), groups, images, [r["frame_id"] for r in records]))
+        local = self.run_core(local_frame_for, [p for _, groups, _, _ in flights for p in groups], geotags)
         h = np.where(np.isfinite(geotags.height), geotags.height, local.h0)
         g_local = local.from_geodetic(geotags.lat, geotags.lon, h)
-        truth = {}
-        for name, groups, _ in flights:
-            visible = self.run_core(in_view, groups, local, g_local, op.edge_buffer_px).mask
-            parts = [self.run_core(pixel_labels, p.subset(np.flatnonzero(np.isfinite(p.ground_height))), local,
-                                   geotags.subset(visible),
-                                   op.edge_buffer_px) for p in groups]
-            truth[name] = (g_local[visible, :2], np.concatenate([p[0] for p in parts]),
-                           np.concatenate([p[1] for p in parts]))
-        steps = len(checkpoints) * len(flights)
-        multi = QgsProcessingMultiStepFeedback(steps + 1, feedback)
-        runs, step = [], 0
+        blocks = {name: self._blocks(name, groups, order, block_frames, local, geotags, g_local, op)
+                  for name, groups, _, order in flights}
+        feedback.pushInfo(self.tr("{n_blocks} block(s) of {size} frames over {n_flights} flight(s); threshold "
+                                  "{threshold}").format(
+            n_blocks=sum(len(b) for b in blocks.values()), size=block_frames or self.tr("all"), n_flights=len(flights),
+            threshold=self.tr("of each checkpoint") if threshold is None else f"{threshold:g}"))
+        runs, used, step = [], {}, 0
         for path in checkpoints:
             model = self.run_core(HeatmapModel, path, feedback.pushInfo)
-            name = Path(path).name
-            for flight_name, groups, images in flights:
-                multi.setCurrentStep(step)
+            used[model.name] = model.metadata.default_threshold if threshold is None else threshold
+            for flight_name, groups, images, _ in flights:
+                progress, is_canceled = self.progress_callbacks(
+                    feedback, 95.0 * step / (len(checkpoints) * len(flights)),
+                    95.0 * (step + 1) / (len(checkpoints) * len(flights)))
                 step += 1
-                progress, is_canceled = self.progress_callbacks(multi)
-                run = self._detect(model, name, flight_name, groups, images, op, local, truth[flight_name],
-                                   progress, is_canceled, feedback)
-                runs.append(run)
-        multi.setCurrentStep(steps)
+                found = self.run_core(detect_flight, model, groups, images, [used[model.name]], op.edge_buffer_px,
+                                      local, progress, is_canceled)
+                if found.skipped:
+                    feedback.pushWarning(self.tr("{name} on {flight_name}: {skipped} frame(s) skipped "
+                                                 "(unreadable image or no ground height)").format(
+                                             name=model.name, flight_name=flight_name, skipped=len(found.skipped)))
+                runs += [self._block_run(model.name, found, block) for block in blocks[flight_name]]
         screens = self.run_core(screen_checkpoints, runs, op, self.parameterAsDouble(parameters, self.PIXEL_RADIUS_PX,
                                                                                    context),
                                 self.parameterAsDouble(parameters, self.COLLAPSED_BELOW, context),
                                 self.parameterAsDouble(parameters, self.SPARSE_BELOW, context))
-        rows = [s.to_dict() for s in screens]
-        for row in rows:
-            row["threshold"] = op.threshold
-        outputs = {"N_HEALTHY": sum(s.healthy for s in screens)}
+        rows = [{**s.to_dict(), "threshold": used[s.checkpoint]} for s in screens]
+        outputs = {self.N_HEALTHY: sum(s.healthy for s in screens)}
         table = self.parameterAsFileOutput(parameters, self.OUTPUT_TABLE, context)
         write_output(table, self.OUTPUT_TABLE, lambda p: write_rows_csv(p, rows))
         outputs[self.OUTPUT_TABLE] = table
         out_json = self.parameterAsFileOutput(parameters, self.OUTPUT_JSON, context)
         if out_json:
-            document = {"operating_point": op.to_dict(), "flights": [n for n, _, _ in flights],
-                        "pooling": "micro-average over flights (sums of counts, one division)",
-                        "pixel_f1_note": "pixel-space F1 is for choosing checkpoints only, never a field score",
+            document = {"operating_point": op.to_dict(), "preset": preset.key, "block_frames": block_frames,
+                        "flights": [n for n, _, _, _ in flights],
+                        "blocks": [b["label"] for n, _, _, _ in flights for b in blocks[n]],
+                        "pooling": "micro-average over blocks (sums of counts, one division)",
+                        "f1_geo": "harmonic mean of pooled recall_pre and pooled gmcf_pre",
+                        "review_load": "detections per frame / the lightest healthy checkpoint's",
+                        "f1_pixel": "pixel-space F1 within f1_pixel_radius_px of the projected labels; for choosing "
+                                    "checkpoints only, never a field score",
                         "checkpoints": rows}
             write_output(out_json, self.OUTPUT_JSON, lambda p: Path(p).write_text(
                 json.dumps(document, indent=1, ensure_ascii=False) + "\n", encoding="utf-8"))
@@ -165,45 +183,44 @@ class ScreenCheckpoints(ClusteringParametersMixin, BirdsEyeAlgorithm):
                 p, dpi=110, bbox_inches="tight"))
             outputs[self.OUTPUT_PLOT] = out_plot
         for s in screens:
-            state = "healthy" if s.healthy else ", ".join(
-                w for w, on in (("collapsed", s.collapsed), ("too sparse", s.too_sparse)) if on)
-            feedback.pushInfo(self.tr("{checkpoint}: {state}; recall_pre {value}, gmcf_pre "
-                                      "{value2}, pixel F1 {value3}, review load {value4}{value5}").format(
-                                  checkpoint=s.checkpoint, state=state, value=_fmt(s.counts.recall_pre),
-                                  value2=_fmt(s.counts.gmcf_pre), value3=_fmt(s.pixel_f1),
-                                  value4=_fmt(s.relative_review_load), value5=' (frontier)' if s.frontier else ''))
+            state = self.tr("healthy") if s.healthy else ", ".join(
+                w for w, on in ((self.tr("collapsed"), s.collapsed), (self.tr("too sparse"), s.too_sparse)) if on)
+            feedback.pushInfo(self.tr("{checkpoint}: {state}; recall_pre {recall}, gmcf_pre {gmcf}, F1 {f1_geo}, "
+                                      "{dpf} detections per frame, review load {load}, pixel F1 {f1_pixel} "
+                                      "(within {radius:g} px){frontier}").format(
+                                  checkpoint=s.checkpoint, state=state, recall=_fmt(s.counts.recall_pre),
+                                  gmcf=_fmt(s.counts.gmcf_pre), f1_geo=_fmt(s.f1_geo), dpf=_fmt(s.detections_per_frame),
+                                  load=_fmt(s.review_load), f1_pixel=_fmt(s.f1_pixel), radius=s.pixel_radius_px,
+                                  frontier=self.tr(" (frontier)") if s.frontier else ""))
         return outputs
 
-    def _detect(self, model, name, flight_name, groups, images, op, local, truth, progress, is_canceled, feedback):
-        request = DetectRequest(threshold=op.threshold, edge_buffer_px=op.edge_buffer_px)
-        frame_ids, uvs, xys, n_frames, skipped = [], [], [], 0, 0
-        total = sum(len(p) for p in groups)
-        done = 0
-        for poses, paths in zip(groups, images):
-            def group_progress(fraction, offset=done, size=len(poses)):
-                progress((offset + fraction * size) / max(total, 1))
+    def _blocks(self, flight_name, groups, order, block_frames, local, geotags, g_local, op) -> list[dict]:
+        """The flight's blocks: label, frame ids, in-view geotags and pixel labels of each."""
+        out = []
+        parts = self.run_core(frame_blocks, np.array(order, dtype=object), block_frames)
+        start = 0
+        for ids in parts:
+            label = flight_name if len(parts) == 1 else f"{flight_name}, frames {start + 1}–{start + len(ids)}"
+            start += len(ids)
+            wanted = set(ids.tolist())
+            mine = [p.subset(np.flatnonzero([f in wanted for f in p.frame_id])) for p in groups]
+            mine = [p for p in mine if len(p)]
+            visible = self.run_core(in_view, mine, local, g_local, op.edge_buffer_px).mask
+            labels = [self.run_core(pixel_labels, p.subset(np.flatnonzero(np.isfinite(p.ground_height))), local,
+                                    geotags.subset(visible), op.edge_buffer_px) for p in mine]
+            out.append({"label": label, "frames": wanted, "geotag_xy": g_local[visible, :2],
+                        "label_frame_id": _concat([lab[0] for lab in labels], np.empty(0, dtype=object)),
+                        "label_uv": _concat([lab[1] for lab in labels], np.empty((0, 2)))})
+        return out
 
-            try:
-                for found in detect_frames(model, poses, paths, request, local=local, progress=group_progress,
-                                           is_canceled=is_canceled):
-                    if found.skipped:
-                        skipped += 1
-                        continue
-                    n_frames += 1
-                    frame_ids.append(np.full(len(found), found.frame_id, dtype=object))
-                    uvs.append(found.uv)
-                    xys.append(found.ground_local[:, :2])
-            except Cancelled:
-                raise QgsProcessingException(self.tr("Cancelled by the user.")) from None
-            done += len(poses)
-        if skipped:
-            feedback.pushWarning(self.tr("{name} on {flight_name}: {skipped} frame(s) skipped "
-                                         "(unreadable image or no ground height)").format(
-                                     name=name, flight_name=flight_name, skipped=skipped))
-        geotag_xy, label_frames, label_uv = truth
-        return ScreenRun(name, flight_name, n_frames, _concat(frame_ids, np.empty(0, dtype=object)),
-                         _concat(uvs, np.empty((0, 2))), _concat(xys, np.empty((0, 2))), label_frames, label_uv,
-                         geotag_xy)
+    @staticmethod
+    def _block_run(checkpoint, found, block) -> ScreenRun:
+        """One checkpoint's detections on one block (the flight's detections at the screening threshold)."""
+        det = found.by_threshold[0]
+        inside = np.fromiter((f in block["frames"] for f in det.frame_id), dtype=bool, count=len(det))
+        n_frames = sum(f in block["frames"] for f in found.processed)
+        return ScreenRun(checkpoint, block["label"], n_frames, det.frame_id[inside], det.uv[inside], det.xy[inside],
+                         block["label_frame_id"], block["label_uv"], block["geotag_xy"])
 
 
 def _concat(parts, empty):

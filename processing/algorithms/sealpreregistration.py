@@ -19,6 +19,7 @@ from qgis.PyQt.QtCore import QT_TRANSLATE_NOOP
 from ...birdseye_qgis.core.detect.detector import file_digest
 from ...birdseye_qgis.core.errors import InputError
 from ...birdseye_qgis.core.scoring import preregistration
+from ...birdseye_qgis.core.scoring.arms import read_arms
 from ..parameters.clustering import ClusteringParametersMixin
 from .base import BirdsEyeAlgorithm
 
@@ -44,6 +45,8 @@ class SealPreregistration(ClusteringParametersMixin, BirdsEyeAlgorithm):
     DISPLAY_NAME = QT_TRANSLATE_NOOP("SealPreregistration", "Seal a preregistered selection rule")
     GROUP = "detect"
     CHECKPOINTS = "CHECKPOINTS"
+    ARMS = "ARMS"
+    ARM_LINES = "ARM_LINES"
     THRESHOLD = "THRESHOLD"
     DESCRIPTIVE = "DESCRIPTIVE"
     NOTE = "NOTE"
@@ -52,10 +55,17 @@ class SealPreregistration(ClusteringParametersMixin, BirdsEyeAlgorithm):
 
     def initAlgorithm(self, config=None):
         self.addParameter(QgsProcessingParameterMultipleLayers(
-            self.CHECKPOINTS, self.tr("ONNX checkpoints (one arm each)"), QgsProcessing.TypeFile))
+            self.CHECKPOINTS, self.tr("ONNX checkpoints (without ARMS or ARM_LINES: one arm each)"),
+            QgsProcessing.TypeFile, optional=True))
+        self.addParameter(QgsProcessingParameterFile(
+            self.ARMS, self.tr("Arms file (from Select arms: each arm with its own operating point)"),
+            optional=True, fileFilter="JSON (*.json)"))
+        self.addParameter(QgsProcessingParameterString(
+            self.ARM_LINES, self.tr("Or arms typed one per line: name: checkpoint file, threshold, eps_m, "
+                                    "min_samples, eps_pred_m"), "", multiLine=True, optional=True))
         self.addParameter(QgsProcessingParameterNumber(
-            self.THRESHOLD, self.tr("Detection threshold of the arms"), QgsProcessingParameterNumber.Double, 0.5,
-            minValue=0.001, maxValue=0.999))
+            self.THRESHOLD, self.tr("Detection threshold of the arms (without ARMS or ARM_LINES)"),
+            QgsProcessingParameterNumber.Double, 0.5, minValue=0.001, maxValue=0.999))
         self.add_clustering_parameters()
         self.addParameter(QgsProcessingParameterFile(
             self.DESCRIPTIVE, self.tr("Descriptive configurations (optional: a sweep or screen JSON, recorded only)"),
@@ -68,18 +78,35 @@ class SealPreregistration(ClusteringParametersMixin, BirdsEyeAlgorithm):
         self.addOutput(QgsProcessingOutputString(self.SEAL, self.tr("Seal (SHA-256)")))
 
     def processAlgorithm(self, parameters, context, feedback):
-        paths = self.parameterAsFileList(parameters, self.CHECKPOINTS, context)
-        if not paths:
-            raise QgsProcessingException(self.tr("CHECKPOINTS: give at least one ONNX file."))
-        op = self.read_operating_point(parameters, context,
-                                       self.parameterAsDouble(parameters, self.THRESHOLD, context))
-        arms = []
+        paths = [p for p in self.parameterAsFileList(parameters, self.CHECKPOINTS, context) if p]
+        arms_path = self.parameterAsFile(parameters, self.ARMS, context)
+        lines = self.parameterAsString(parameters, self.ARM_LINES, context).strip()
+        if arms_path and lines:
+            raise QgsProcessingException(self.tr("ARMS, ARM_LINES: give the arms file or typed arms, not both."))
         for path in paths:
             if not Path(path).is_file():
                 raise QgsProcessingException(self.tr("CHECKPOINTS: {path} is not a file").format(path=path))
-            arms.append(self.run_core(preregistration.make_arm, path, file_digest(path), op))
-            feedback.pushInfo(self.tr("Arm {name}: sha256 {model_digest}").format(
-                                  name=arms[-1]['name'], model_digest=arms[-1]['model_digest']))
+        digests = {Path(path).name: file_digest(path) for path in paths}
+        if len(digests) < len(paths):
+            raise QgsProcessingException(self.tr("CHECKPOINTS: two files share a file name; arms name their "
+                                                 "checkpoint by file name, so rename one."))
+        if arms_path:
+            arms = self.run_core(preregistration.arms_from_selection, self.run_core(read_arms, arms_path),
+                                 digests or None)
+        elif not paths:
+            raise QgsProcessingException(self.tr("CHECKPOINTS: give at least one ONNX file (or an ARMS file)."))
+        elif lines:
+            arms = self.run_core(preregistration.parse_arm_lines, lines, digests,
+                                 self.parameterAsDouble(parameters, self.DEDUP_CM, context),
+                                 self.parameterAsDouble(parameters, self.EDGE_BUFFER_PX, context))
+        else:
+            op = self.read_operating_point(parameters, context,
+                                           self.parameterAsDouble(parameters, self.THRESHOLD, context))
+            arms = [self.run_core(preregistration.make_arm, path, digests[Path(path).name], op) for path in paths]
+        for arm in arms:
+            feedback.pushInfo(self.tr("Arm {name}: {checkpoint} (sha256 {model_digest}) at {operating_point}").format(
+                name=arm["name"], checkpoint=arm["checkpoint"], model_digest=arm["model_digest"],
+                operating_point=arm["operating_point"]))
         descriptive_path = self.parameterAsFile(parameters, self.DESCRIPTIVE, context)
         descriptive = self.run_core(read_descriptive, descriptive_path) if descriptive_path else []
         rule = {"arms": arms, "descriptive": descriptive,

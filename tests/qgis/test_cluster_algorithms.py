@@ -239,12 +239,14 @@ def test_sweep_agrees_with_evaluate_and_keeps_a_credible_front(birdseye_provider
     det, geo, frames = detection_layer(DETECTIONS), geotag_layer(), frame_layer()
     table, doc, plot = tmp_path / "sweep.csv", tmp_path / "sweep.json", tmp_path / "sweep.png"
     result = run("sweepoperatingpoints", {
-        "DETECTIONS": [det], "GEOTAGS": geo, "FRAMES": [frames], "THRESHOLDS": "0.3, 0.6",
+        "DETECTIONS": [det], "GEOTAGS": geo, "FRAMES": [frames],
         "EPS_M": "0.05,0.10,6", "MIN_SAMPLES": "2,3", "EPS_PRED_M": "0.05,0.20",
         "OUTPUT_TABLE": str(table), "OUTPUT_JSON": str(doc), "OUTPUT_PLOT": str(plot)})
     with open(table, newline="", encoding="utf-8") as f:
         rows = list(csv.DictReader(f))
-    assert result["N_CONFIGURATIONS"] == len(rows) == 2 * 3 * 2 * 2
+    # the layer is used at the threshold it was detected at (0.3), never filtered to another
+    assert result["N_CONFIGURATIONS"] == len(rows) == 1 * 3 * 2 * 2
+    assert {(r["checkpoint"], r["model_digest"], float(r["threshold"])) for r in rows} == {("demo.onnx", DIGEST, 0.3)}
     row = next(r for r in rows if (float(r["threshold"]), float(r["eps_m"]), int(r["min_samples"]),
                                    float(r["eps_pred_m"])) == (0.3, 0.1, 3, 0.2))
     assert (int(row["n_in_view"]), int(row["n_recovered"]), int(row["n_clusters"]), int(row["n_hit_clusters"])) \
@@ -258,10 +260,19 @@ def test_sweep_agrees_with_evaluate_and_keeps_a_credible_front(birdseye_provider
     assert plot.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 
 
-def test_sweep_refuses_thresholds_below_the_detect_threshold(birdseye_provider, tmp_path):
-    with pytest.raises(QgsProcessingException, match="lowest threshold"):
-        run("sweepoperatingpoints", {"DETECTIONS": [detection_layer(DETECTIONS, threshold=0.5)],
-                                     "GEOTAGS": geotag_layer(), "FRAMES": [frame_layer()], "THRESHOLDS": "0.3,0.6",
+def test_sweep_refuses_layers_that_miss_a_threshold_or_both_kinds_of_input(birdseye_provider, tmp_path):
+    other = hashlib.sha256(b"other model").hexdigest()
+    frames = frame_layer()
+    layers = [detection_layer(DETECTIONS, threshold=0.3), detection_layer(DETECTIONS, threshold=0.5),
+              detection_layer(DETECTIONS, threshold=0.3, digest=other)]
+    with pytest.raises(QgsProcessingException, match="has no layer detected at threshold\\(s\\) 0.5"):
+        run("sweepoperatingpoints", {"DETECTIONS": layers, "GEOTAGS": geotag_layer(), "FRAMES": [frames] * 3,
+                                     "OUTPUT_TABLE": str(tmp_path / "t.csv")})
+    checkpoint = tmp_path / "demo.onnx"
+    checkpoint.write_bytes(b"demo model")
+    with pytest.raises(QgsProcessingException, match="not both"):
+        run("sweepoperatingpoints", {"DETECTIONS": layers[:1], "CHECKPOINTS": [str(checkpoint)],
+                                     "GEOTAGS": geotag_layer(), "FRAMES": [frames],
                                      "OUTPUT_TABLE": str(tmp_path / "t.csv")})
     with pytest.raises(QgsProcessingException, match="EPS_M.*not a number"):
         run("sweepoperatingpoints", {"DETECTIONS": [detection_layer(DETECTIONS)], "GEOTAGS": geotag_layer(),
@@ -355,7 +366,8 @@ def test_screencheckpoints_flags_a_collapsed_sparse_model_and_keeps_the_good_one
     good, flat = onnx_model(tmp_path / "good.onnx"), onnx_model(tmp_path / "flat.onnx", bias=0.8)
     table = tmp_path / "screen.csv"
     result = run("screencheckpoints", {"CHECKPOINTS": [str(good), str(flat)], "FRAMES": [frames], "GEOTAGS": geo,
-                                       "MIN_SAMPLES": 1, "COLLAPSED_BELOW": 0.5, "OUTPUT_TABLE": str(table),
+                                       "PRESET": 1, "MIN_SAMPLES": 1, "COLLAPSED_BELOW": 0.5,
+                                       "OUTPUT_TABLE": str(table),
                                        "OUTPUT_JSON": str(tmp_path / "screen.json"),
                                        "OUTPUT_PLOT": str(tmp_path / "screen.png")})
     with open(table, newline="", encoding="utf-8") as f:
@@ -363,7 +375,13 @@ def test_screencheckpoints_flags_a_collapsed_sparse_model_and_keeps_the_good_one
     assert result["N_HEALTHY"] == 1
     g, c = rows["good.onnx"], rows["flat.onnx"]
     assert g["healthy"] == "True" and float(g["recall_pre"]) == 1.0 and float(g["gmcf_pre"]) == 1.0
-    assert float(g["pixel_f1"]) == 1.0 and int(g["pixel_tp"]) == 9 and g["frontier"] == "True"
+    assert float(g["f1_pixel"]) == 1.0 and int(g["pixel_tp"]) == 9 and g["frontier"] == "True"
+    assert float(g["f1_pixel_radius_px"]) == 10.0 and float(g["f1_geo"]) == 1.0
+    # the BirdsEye preset: whole flights at each checkpoint's own threshold (0.3 in its metadata)
+    assert float(g["threshold"]) == 0.3 and g["worst_block"] == "frames"
+    # 3 detections per frame; the flat model's 1 per frame is measured against it (it is not healthy)
+    assert float(g["detections_per_frame"]) == 3.0 and float(g["review_load"]) == 1.0
+    assert float(c["review_load"]) == pytest.approx(1 / 3)
     # the flat model fires once per frame, at the same (centre) pixel: collapsed (1/3 < 0.5) and sparse (1 < 1.7)
     assert c["collapsed"] == "True" and c["too_sparse"] == "True" and c["frontier"] == "False"
     assert float(c["distinct_position_fraction"]) == pytest.approx(1 / 3)
