@@ -165,6 +165,13 @@ class WriteLabels(DemParametersMixin, BirdsEyeAlgorithm):
         no_ground = [poses.frame_id[i] for poses, idx in groups if not uses_geotag_heights(records, idx)
                      for i in np.flatnonzero(frames_without_ground(poses))]
         steep = [r["frame_id"] for r in records if "steep_terrain" in (r.get("flags") or "")]
+        unrefined = [r["frame_id"] for r in records if "not_refined" in (r.get("flags") or "").split(",")]
+        if unrefined:
+            feedback.pushWarning(self.tr("{n} frame(s) could not be refined and keep their metadata pose (flag "
+                                         "not_refined; first: {items}): their labels are only as good as the drone's "
+                                         "metadata. Leave them out with a filter such as \"flags\" NOT LIKE "
+                                         "'%not_refined%'").format(
+                                     n=len(unrefined), items=', '.join(str(i) for i in unrefined[:5])))
         if steep and dem is None:
             feedback.pushWarning(self.tr("{n_steep} frame(s) lie on terrain steeper than the "
                                          "level plane's 10° envelope (flag steep_terrain; first: "

@@ -24,10 +24,7 @@ def summary(errors) -> str:
 @pytest.mark.slow
 @pytest.mark.timeout(3600)
 def test_refined_poses_bring_dji_labels_onto_the_rendered_holes(birdseye_provider, tmp_path):
-    from qgis.core import QgsApplication
-
-    if QgsApplication.processingRegistry().algorithmById("birdseye:refineposes") is None:
-        pytest.skip("birdseye:refineposes is not built yet; this is its acceptance test")
+    pytest.importorskip("pycolmap")
     folder = tmp_path / "dji"
     result = simulate(folder, **E2E_FLIGHT)
     assert result["FRAME_COUNT"] >= 45
@@ -38,8 +35,10 @@ def test_refined_poses_bring_dji_labels_onto_the_rendered_holes(birdseye_provide
     print(f"labels from the DJI metadata vs rendered holes: {summary(metadata)}")
     assert len(metadata) >= 100 and np.median(metadata) > 20.0
 
-    refined = run("refineposes", {"FRAMES": frames, "OUTPUT": "TEMPORARY_OUTPUT"})["OUTPUT"]
-    assert refined.featureCount() >= 0.9 * result["FRAME_COUNT"]
+    refinement = run("refineposes", {"FRAMES": frames, "OUTPUT": "TEMPORARY_OUTPUT"})
+    refined = refinement["OUTPUT"]
+    print(f"refineposes registered {refinement['REGISTERED_COUNT']} of {refined.featureCount()} frames")
+    assert refinement["REGISTERED_COUNT"] >= 0.9 * result["FRAME_COUNT"]
     after = label_errors(folder, write_labels(geotags, refined, tmp_path / "labels_refined"))
     print(f"labels from the refined poses vs rendered holes: {summary(after)}")
     assert len(after) >= 0.9 * len(metadata)
