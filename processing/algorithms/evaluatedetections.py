@@ -12,6 +12,7 @@ from qgis.core import (
     QgsProcessingParameterFile,
     QgsProcessingParameterFileDestination,
     QgsProcessingParameterMultipleLayers,
+    QgsProcessingParameterString,
     QgsProcessingParameterVectorLayer,
 )
 from qgis.PyQt.QtCore import QT_TRANSLATE_NOOP
@@ -26,23 +27,10 @@ from ..parameters.clustering import ClusteringParametersMixin
 from .base import BirdsEyeAlgorithm
 
 
-def operating_point_from_rule(path, flights, feedback) -> tuple[OperatingPoint, dict]:
-    """Verify a sealed rule and return the operating point of the arm the detections' model belongs to."""
+def operating_point_from_rule(path, flights, arm_name, feedback) -> tuple[OperatingPoint, dict]:
+    """Verify a sealed rule and return the operating point of the arm that scores the flights' detections."""
     doc = preregistration.read(path)
-    digests = {f.detections.model_digest for f in flights}
-    if "" in digests:
-        raise preregistration.SealError("a detection layer has no model_digest, so it cannot be checked "
-                                        "against the sealed rule", source=str(path))
-    if len(digests) != 1:
-        raise preregistration.SealError("the detection layers come from different models; a sealed rule "
-                                        "scores one arm at a time", source=str(path))
-    arm, op = preregistration.arm_for(doc, digests.pop(), source=str(path))
-    for f in flights:
-        t = f.detections.threshold
-        if t is not None and t > op.threshold + 1e-12:
-            raise preregistration.SealError(
-                f"{f.name} was detected at threshold {t}, above the sealed {op.threshold}: detections between "
-                "the two were never made; run Detect again at the sealed threshold", source=str(path))
+    arm, op = preregistration.arm_for_detections(doc, [f.detections for f in flights], str(path), arm_name)
     feedback.pushInfo(tr("Sealed rule verified (seal {value}…, sealed {sealed_at}); arm "
                          "'{name}': its operating point replaces the dialog's values: {value2}").format(
                           value=doc['seal'][:12], sealed_at=doc['sealed_at'], name=arm['name'],
@@ -60,6 +48,7 @@ class EvaluateDetections(ClusteringParametersMixin, BirdsEyeAlgorithm):
     FRAMES = "FRAMES"
     REVIEW = "REVIEW"
     PREREGISTRATION = "PREREGISTRATION"
+    ARM = "ARM"
     OUTPUT_JSON = "OUTPUT_JSON"
     OUTPUT_REPORT = "OUTPUT_REPORT"
 
@@ -77,6 +66,9 @@ class EvaluateDetections(ClusteringParametersMixin, BirdsEyeAlgorithm):
         self.addParameter(QgsProcessingParameterFile(
             self.PREREGISTRATION, self.tr("Sealed selection rule (optional: verified, its operating point is used)"),
             optional=True, fileFilter="Preregistration (*.json)"))
+        self.addParameter(QgsProcessingParameterString(
+            self.ARM, self.tr("Arm to score (its name in the sealed rule; needed when arms share the checkpoint)"),
+            optional=True))
         self.addParameter(QgsProcessingParameterFileDestination(
             self.OUTPUT_JSON, self.tr("Scores (JSON)"), "JSON (*.json)"))
         self.addParameter(QgsProcessingParameterFileDestination(
@@ -95,9 +87,13 @@ class EvaluateDetections(ClusteringParametersMixin, BirdsEyeAlgorithm):
         if len(geotags) == 0:
             raise QgsProcessingException(self.tr("GEOTAGS: the layer holds no point with a position."))
         rule_path = self.parameterAsFile(parameters, self.PREREGISTRATION, context)
+        arm_name = self.parameterAsString(parameters, self.ARM, context).strip() or None
         rule = None
         if rule_path:
-            op, rule = self.run_core(operating_point_from_rule, rule_path, flights, feedback)
+            op, rule = self.run_core(operating_point_from_rule, rule_path, flights, arm_name, feedback)
+        elif arm_name:
+            raise QgsProcessingException(self.tr("ARM: names an arm of a sealed selection rule; give the rule "
+                                                 "(PREREGISTRATION) too, or leave ARM empty."))
         else:
             op = self.read_operating_point(parameters, context)
         review = self.parameterAsVectorLayer(parameters, self.REVIEW, context)

@@ -292,8 +292,8 @@ def test_sealed_rule_is_verified_before_scoring_and_refused_when_tampered(birdse
     assert sealed["SEAL"] == doc["seal"] and doc["model_digests"] == [DIGEST]
     assert doc["rule"]["arms"][0]["operating_point"]["threshold"] == 0.5
     out = tmp_path / "scores.json"
-    params = {"DETECTIONS": [detection_layer(DETECTIONS)], "GEOTAGS": geotag_layer(), "FRAMES": [frame_layer()],
-              "PREREGISTRATION": str(rule), "OUTPUT_JSON": str(out), "OUTPUT_REPORT": None,
+    params = {"DETECTIONS": [detection_layer(DETECTIONS, threshold=0.5)], "GEOTAGS": geotag_layer(),
+              "FRAMES": [frame_layer()], "PREREGISTRATION": str(rule), "OUTPUT_JSON": str(out), "OUTPUT_REPORT": None,
               "MIN_SAMPLES": 1, "EPS_PRED_M": 5.0}           # the dialog's values are replaced by the rule's
     run("evaluatedetections", params)
     scores = json.loads(out.read_text())

@@ -7,6 +7,11 @@ record, the **descriptive** configurations looked at while choosing (reported, n
 Arms come from an arms file of ``selectarms`` (:func:`arms_from_selection`), from typed lines
 (:func:`parse_arm_lines`), or one per checkpoint at one operating point (:func:`make_arm`).
 
+An arm is scored on detection layers of its checkpoint *detected at its sealed threshold*
+(:func:`arm_for_detections`): a lower-threshold run filtered by score is not that run, since a blob
+of the heatmap splits above a higher threshold and every centroid moves with it
+(:func:`~..detect.detector.detect_frames_at_thresholds`).
+
 The sealed document (one JSON file)::
 
     {"schema": "birdseye-preregistration/1",
@@ -39,6 +44,7 @@ from typing import Mapping
 
 from ..errors import InputError
 from .operating_point import OperatingPoint
+from .sweep import THRESHOLD_TOLERANCE
 
 SCHEMA = "birdseye-preregistration/1"
 _SEALED_KEYS = ("schema", "rule", "model_digests", "sealed_at")
@@ -233,8 +239,39 @@ def arm_for(document: dict, model_digest: str, source: str = "preregistration",
             raise SealError(f"has no arm '{arm_name}' for model {model_digest[:12]}… (arms: {names})", source=source)
     if len(mine) > 1:
         raise SealError(f"seals {len(mine)} arms for model {model_digest[:12]}… "
-                        f"({', '.join(a['name'] for a in mine)}); say which arm to score", source=source)
+                        f"({', '.join(a['name'] for a in mine)}); say which arm to score (ARM)", source=source)
     return mine[0], OperatingPoint.from_dict(mine[0]["operating_point"], source=source)
+
+
+def arm_for_detections(document: dict, detections, source: str = "preregistration",
+                       arm_name: str | None = None) -> tuple[dict, OperatingPoint]:
+    """The sealed arm that scores these detection layers, and its operating point.
+
+    ``detections``: one per flight, each with ``name``, ``model_digest`` and ``threshold`` (the
+    threshold Detect ran at; :class:`.evaluation.Detections`). They must all come from one model the
+    rule names and each be detected at the arm's sealed threshold.
+    """
+    digests = {d.model_digest for d in detections}
+    if "" in digests:
+        raise SealError("a detection layer has no model_digest, so it cannot be checked against the sealed rule",
+                        source=source)
+    if len(digests) != 1:
+        raise SealError("the detection layers come from different models; a sealed rule scores one arm at a time",
+                        source=source)
+    arm, op = arm_for(document, digests.pop(), source, arm_name)
+    sealed = op.threshold
+    for d in detections:
+        if d.threshold is None:
+            raise SealError(f"records no detection threshold, so it cannot be shown to be a run at arm "
+                            f"'{arm['name']}''s sealed threshold {sealed:g}; run Detect with THRESHOLD {sealed:g} "
+                            "(it writes the threshold into every detection)", source=d.name, field="threshold")
+        if abs(d.threshold - sealed) > THRESHOLD_TOLERANCE:
+            raise SealError(f"was detected at threshold {d.threshold:g}, but arm '{arm['name']}' is sealed at "
+                            f"{sealed:g}. No score filter turns one run into the other (a blob above the lower "
+                            "threshold splits into several above a higher one, and every centroid moves): run "
+                            f"Detect on this flight with THRESHOLD {sealed:g} and score that layer",
+                            source=d.name, field="threshold")
+    return arm, op
 
 
 def check_checkpoint_files(document: dict, paths, digest_of) -> None:
