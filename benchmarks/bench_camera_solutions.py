@@ -3,7 +3,7 @@
 A Metashape export (one sensor, 5,000 aligned cameras, components and a chunk transform) and an
 OpenSfM reconstruction (5,000 shots and 50,000 tie points, which give each frame its ground height),
 both of a 5,000-frame block over 1 km² at 40 m. Timed: ``core.field.solutions.import_camera_solution``
-(parse, conversion to frames, tie-point ground, footprints). Baseline: parsing the file alone
+(parse, conversion to frames, tie-point ground or a stated ground height, footprints). Baseline: parsing the file alone
 (ElementTree / json), the floor any reader pays; the ratio says what the conversion costs on top.
 """
 from __future__ import annotations
@@ -92,11 +92,12 @@ def main():
                                    ("OpenSfM JSON", tmp / "reconstruction.json",
                                     lambda p: json.loads(Path(p).read_text()))):
             _, floor = timed(parse, path)
-            result, seconds = timed(import_camera_solution, path)
+            # The Metashape export has no tie points: its footprints stand on a stated level ground.
+            result, seconds = timed(lambda p: import_camera_solution(p, ground_height=SITE[2]), path)
             assert len(result.frames) == N_CAMERAS
             print(f"{label}: {N_CAMERAS} cameras in {seconds:.2f} s (goal < {GOAL_S:g} s: "
                   f"{'met' if seconds < GOAL_S else 'MISSED'}); parsing alone {floor:.2f} s, ratio "
-                  f"{seconds / floor:.1f}×; frames with a tie-point ground "
+                  f"{seconds / floor:.1f}×; frames with a ground height "
                   f"{int(np.isfinite(result.frames.ground_h).sum())}")
 
 
