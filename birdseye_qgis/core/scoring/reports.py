@@ -151,10 +151,14 @@ def frontier_figure(points, title: str):
 
 
 def sweep_figure(result: SweepResult):
+    """Every configuration of every checkpoint on one frontier plot, titled with their number."""
     credible, front = result.credible.ravel(), result.pareto.ravel()
     kinds = np.where(front, "front", np.where(credible, "eligible", "excluded"))
+    n_checkpoints = len(result.checkpoints)
+    title = (f"Operating points ({result.size:,} configurations: {n_checkpoints} checkpoints × "
+             f"{result.grid.size:,})" if n_checkpoints > 1 else f"Operating points ({result.size:,} configurations)")
     return frontier_figure(zip(result.gmcf_pre.ravel().tolist(), result.recall_pre.ravel().tolist(), kinds,
-                               [""] * len(kinds)), f"Operating points ({result.grid.size} configurations)")
+                               [""] * len(kinds)), title)
 
 
 def screen_figure(screens: Sequence[CheckpointScreen]):
