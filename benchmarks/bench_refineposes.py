@@ -2,12 +2,13 @@
 
 Uses ``../shared/data/brighton_beach`` when it is there (the original images), else the 960 × 540
 copies in ``tests/data/brighton_beach_960``, and says which. Reported: frames registered, mean
-reprojection error, images per minute. Baseline: pycolmap with its default options on the same
+reprojection error, images per minute, peak resident memory of the refinement. Baseline: pycolmap with its default options on the same
 images (SIFT at COLMAP's default 3,200 px, every intrinsic self-calibrated), as one would run it first;
 the ratio is refineposes' images per minute over the baseline's.
 """
 from __future__ import annotations
 
+import resource
 import shutil
 import tempfile
 import time
@@ -52,10 +53,11 @@ def main():
         _, refinement, values = refine_frames(frames, Path(tmp) / "ours")
         ours = time.perf_counter() - start
         rms = [v["reprojection_rms_px"] for v in values if v["registered"]]
+        peak_mb = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0  # Linux: KiB
         print(f"{len(frames)} frames of {size} px from {folder}")
         print(f"refineposes: {refinement.n_registered}/{len(frames)} registered, mean reprojection "
               f"{np.mean(rms):.2f} px, {ours:.1f} s = {60 * len(frames) / ours:.1f} images/min ("
-              + ", ".join(f"{k} {v:.1f} s" for k, v in refinement.seconds.items()) + ")")
+              + ", ".join(f"{k} {v:.1f} s" for k, v in refinement.seconds.items()) + f"), peak {peak_mb:.0f} MB RSS")
         (Path(tmp) / "base").mkdir()
         n_base, rms_base, base = baseline(images, Path(tmp) / "base")
         print(f"baseline (pycolmap defaults): {n_base}/{len(frames)} registered, mean reprojection {rms_base:.2f} px, "
