@@ -2,9 +2,10 @@
 
 Uses ``../shared/data/brighton_beach`` when it is there (the original images), else the 960 × 540
 copies in ``tests/data/brighton_beach_960``, and says which. Reported: frames registered, mean
-reprojection error, images per minute, peak resident memory of the refinement. Baseline: pycolmap with its default options on the same
-images (SIFT at COLMAP's default 3,200 px, every intrinsic self-calibrated), as one would run it first;
-the ratio is refineposes' images per minute over the baseline's.
+reprojection error, images per minute, peak resident memory of the refinement. Baseline: pycolmap
+with its default options on the same images (SIFT at COLMAP's default 3,200 px, every intrinsic
+self-calibrated), as one would run it first; the ratio is refineposes' images per minute over the
+baseline's.
 """
 from __future__ import annotations
 
