@@ -14,6 +14,8 @@ What it simulates (every random draw from the SEED; same seed → identical file
   exposures;
 * the frames (:mod:`.render`): every pixel's ray through the *true* pose and the lens onto the
   field's terrain, with a real camera's photometry, written as timestamped JPEGs.
+* the orthomosaic (:mod:`.orthomosaic`): the same field seen straight down, a map GeoTIFF to
+  draw the survey over.
 
 Two platforms (``platform``):
 
@@ -35,6 +37,8 @@ Written to the output folder::
     calibration.yaml     Kalibr camchain-imucam (+ T_rad_imu, the altimeter lever arm)
     truth/targets.csv, truth/distractors.csv, truth/frames_true.csv, truth/campaign.json
     truth/dem.tif        the terrain (GeoTIFF; not written for level ground)
+    orthomosaic.tif      the field seen straight down, a map GeoTIFF (RGBA, the site's UTM zone;
+                         only when frames are rendered)
 
 and with ``platform="dji"`` instead of the pose log, image list and calibration::
 
@@ -70,7 +74,8 @@ from ..geometry.rotations import quat_to_rotmat, rotmat_to_euler_zyx, rotmat_to_
 from .dji_images import DjiMetadataErrors, dji_camera_model, dji_frame_metadata, lens_for, write_frame
 from .field import FEATURE_NAMES, P_CONTRAST, P_OUTER, P_R, FieldScene
 from .flight import RUN_OUT_M, SimulatedFlight, correlated_noise, plan_survey
-from .render import FrameRenderer, Photometry, motion_blur_px
+from .orthomosaic import ORTHO_PIXEL_M, ortho_grid, render_orthomosaic
+from .render import FrameRenderer, Photometry, base_exposure_gain, motion_blur_px
 from .terrain import DemTerrain, FlatTerrain, Terrain, synthetic_terrain, write_dem_geotiff
 
 # The deployed payload camera (1920 × 1200) and its mounting; other image sizes scale the intrinsics.
@@ -105,6 +110,8 @@ DEM_CELL_M = 0.25                    # the written DEM's cell size, doubled whil
 DEM_MAX_CELLS = 2_000_000            # … this many cells
 MAX_TILT_DEG = 15.0                  # the aircraft's largest tilt, which the terrain's extent allows for
 DJI_ERRORS = DjiMetadataErrors()     # what a DJI drone's metadata gets wrong (see dji_images)
+ORTHO_PIXEL_RANGE_M = (0.005, 1.0)   # the orthomosaic's pixel: from finer than a burrow to a farm overview
+ORTHO_NAME = "orthomosaic.tif"
 
 POSE_HEADER = ["time_s", "lat_deg", "lon_deg", "height_m", "qw", "qx", "qy", "qz", "rtk_status",
                "radalt_m", "radalt_snr", "strobe"]
@@ -134,7 +141,10 @@ class CampaignConfig:
     Platform: ``platform`` is ``ins`` (pose log, altimeter, frames at ``fps``) or ``dji`` (DJI JPEGs
     with their own metadata, a photo every ``(1 − forward_overlap)`` footprint lengths on the lines;
     ``dji_dewarped``: the drone undistorts the JPEGs, ``DewarpFlag`` 1). ``side_overlap`` None: the
-    platform's default (:data:`DEFAULT_SIDE_OVERLAP`)."""
+    platform's default (:data:`DEFAULT_SIDE_OVERLAP`).
+
+    With ``render``, an orthomosaic of the field (:mod:`.orthomosaic`) is written too, with pixels of
+    ``ortho_pixel_m``."""
 
     seed: int = 1
     n_targets: int = 40
@@ -168,6 +178,7 @@ class CampaignConfig:
     platform: str = "ins"
     forward_overlap: float = 0.8
     dji_dewarped: bool = False
+    ortho_pixel_m: float = ORTHO_PIXEL_M
 
     def validated(self) -> "CampaignConfig":
         """This configuration, checked; raises :class:`InputError` naming the parameter."""
@@ -207,6 +218,8 @@ class CampaignConfig:
         need(0.0 <= self.relief_m <= 50.0, "RELIEF_M", f"must lie in 0…50 m, got {self.relief_m}")
         need(5.0 <= self.hill_wavelength_m <= 1000.0, "HILL_WAVELENGTH_M",
              f"must lie in 5…1000 m, got {self.hill_wavelength_m}")
+        need(ORTHO_PIXEL_RANGE_M[0] <= self.ortho_pixel_m <= ORTHO_PIXEL_RANGE_M[1], "ORTHO_PIXEL_M",
+             f"must lie in {ORTHO_PIXEL_RANGE_M[0]:g}…{ORTHO_PIXEL_RANGE_M[1]:g} m, got {self.ortho_pixel_m}")
         return self
 
     @property
@@ -378,6 +391,9 @@ def simulate_campaign(config: CampaignConfig, output_folder, progress: Callable[
                               flight, dem, fps)
     if dji:
         record["dji"] = _dji_record(cfg, camera, metadata, fps, plan, undulation)
+    grid = ortho_grid(scene, local, record["crs"], cfg.ortho_pixel_m) if cfg.render else None
+    if grid is not None:
+        record["orthomosaic"] = _ortho_record(grid, flight)
     files["campaign"].write_text(json.dumps(record, indent=2), encoding="utf-8")
 
     if cfg.render:
@@ -387,11 +403,34 @@ def simulate_campaign(config: CampaignConfig, output_folder, progress: Callable[
             files["images"] = _write_csv(out / "images.csv", ["time_s", "file"], image_rows)
         write = _dji_writer(lens_for(camera, cfg.dji_dewarped), metadata, image_ns) if dji else None
         renderer = FrameRenderer(camera, scene, terrain, int(seeds[7].generate_state(1)[0]), feature_xyz)
+        # Progress in proportion to the pixels rendered: the frames, then the map.
+        frames_share = n_frames * camera.width * camera.height / (
+            n_frames * camera.width * camera.height + grid.width * grid.height)
         _render_frames(renderer, geometry, t_frames, photometry, seeds[7].spawn(n_frames),
-                       [out / name for name in image_names], progress, is_canceled, write)
-    elif progress is not None:
-        progress(1.0)
+                       [out / name for name in image_names], _progress_part(progress, 0.0, frames_share),
+                       is_canceled, write)
+        files["orthomosaic"] = Path(render_orthomosaic(
+            out / ORTHO_NAME, scene, terrain, local, grid, (feature_lat, feature_lon), 0.5 * flight.duration_s,
+            _progress_part(progress, frames_share, 1.0), is_canceled))
+    else:
+        (out / ORTHO_NAME).unlink(missing_ok=True)  # an earlier run's map would not show this field
+        if progress is not None:
+            progress(1.0)
     return CampaignResult(out, n_frames, len(times_ns), len(geotags), files)
+
+
+def _progress_part(progress: Callable[[float], None] | None, start: float, end: float):
+    """``progress`` for one stage: the stage's fractions 0…1 reported as ``start``…``end``."""
+    if progress is None:
+        return None
+    return lambda fraction: progress(start + (end - start) * fraction)
+
+
+def _ortho_record(grid, flight) -> dict:
+    return {"file": ORTHO_NAME, **grid.to_dict(), "bands": "red, green, blue, alpha (0 off the simulated ground)",
+            "rendered": "the field model seen straight down at the pixel centres (no frames mosaicked), "
+                        "under the sky of the flight's middle moment",
+            "cloud_time_s": round(0.5 * flight.duration_s, 3)}
 
 
 def _terrain(cfg: CampaignConfig, local: LocalFrame, camera: CameraModel, plan, seed: int):
@@ -583,7 +622,7 @@ def _photometry(fps: float, scene: FieldScene, geometry: FrameGeometry, velocity
     nadir = geometry.ground_point
     cloud = scene.cloud_factor(nadir[:, 0], nadir[:, 1], t_frames)
     light = (1.0 - st.direct_fraction) + st.direct_fraction * cloud
-    base = 0.30 / float(np.mean(st.soil_rgb))
+    base = base_exposure_gain(scene)
     out = []
     for i in range(n):
         gain = base * light[i] ** -0.7 * math.exp(0.06 * drift[i, 0])

@@ -28,6 +28,7 @@ COARSE = 4            # the smooth layers are evaluated on a grid this many time
 FULL_WELL = 9000.0    # electrons at a linear value of 1.0 (shot noise)
 READ_NOISE = 0.0025   # linear units
 NOISE_PAD = 64        # the per-frame noise is a random window into a precomputed bank
+TONE_MAX_LINEAR = 1.6  # the tone curve's input range is 0…this linear value; brighter clips
 
 
 @dataclass
@@ -39,6 +40,12 @@ class Photometry:
     white_balance: tuple
     defocus_px: float
     motion_px: tuple
+
+
+def base_exposure_gain(scene: FieldScene) -> float:
+    """The camera's exposure before auto-exposure reacts to the clouds: the field's mean soil at a
+    linear value of 0.30 (about 150 of 255 through the tone curve)."""
+    return 0.30 / float(np.mean(scene.style.soil_rgb))
 
 
 def blur_kernels(defocus_px: float, motion_px):
@@ -61,7 +68,7 @@ def blur_kernels(defocus_px: float, motion_px):
     return out[0], out[1]
 
 
-def tone_curve(levels: int = 65536, max_linear: float = 1.6) -> np.ndarray:
+def tone_curve(levels: int = 65536, max_linear: float = TONE_MAX_LINEAR) -> np.ndarray:
     """8-bit output (uint8 lookup table) for linear values 0…max_linear: sRGB gamma with a soft
     highlight shoulder, as a camera's picture profile does."""
     x = np.linspace(0.0, max_linear, levels)
@@ -69,6 +76,14 @@ def tone_curve(levels: int = 65536, max_linear: float = 1.6) -> np.ndarray:
     y = np.where(x < knee, x, knee + (1.0 - knee) * np.tanh((x - knee) / (1.0 - knee)))
     srgb = np.where(y <= 0.0031308, 12.92 * y, 1.055 * np.power(np.maximum(y, 0.0031308), 1 / 2.4) - 0.055)
     return np.clip(np.round(srgb * 255.0), 0, 255).astype(np.uint8)
+
+
+def tone_map(linear: np.ndarray, lut: np.ndarray, factor: float = 1.0) -> np.ndarray:
+    """8-bit values (uint8) of linear values (float32; scaled by ``factor`` and clipped in place)
+    through a :func:`tone_curve` lookup table."""
+    linear *= np.float32(factor) * np.float32((len(lut) - 1) / TONE_MAX_LINEAR)
+    np.clip(linear, 0, len(lut) - 1, out=linear)
+    return lut[linear.astype(np.uint16)]
 
 
 class FrameRenderer:
@@ -100,7 +115,6 @@ class FrameRenderer:
         cos2 = 1.0 / (1.0 + rays[..., 0] ** 2 + rays[..., 1] ** 2)
         self.vignette = (cos2 ** 2.5).astype(np.float32)
         self.tone = tone_curve()
-        self._tone_scale = np.float32((len(self.tone) - 1) / 1.6)
         rng = np.random.default_rng(seed)
         self.noise_bank = rng.standard_normal((3, h + NOISE_PAD, w + NOISE_PAD), dtype=np.float32)
 
@@ -163,9 +177,7 @@ class FrameRenderer:
             sigma *= self.noise_bank[c, dv:dv + h, du:du + w]
             plane += sigma if sign > 0 else -sigma
             # Processing: white balance, then the tone curve to 8 bits.
-            plane *= f32(photometry.white_balance[c]) * self._tone_scale
-            np.clip(plane, 0, len(self.tone) - 1, out=plane)
-            planes.append(self.tone[plane.astype(np.uint16)])
+            planes.append(tone_map(plane, self.tone, photometry.white_balance[c]))
         return cv2.merge(planes)
 
 
