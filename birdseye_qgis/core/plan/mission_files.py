@@ -14,8 +14,10 @@ Formats (as documented by their owners):
   gimbal is pitched to −90° (nadir) at the first waypoint, and the camera either takes one photo at
   each waypoint (``reachPoint`` action group) or shoots at a fixed interval over the whole route
   (``multipleTiming`` action group from the first to the last waypoint). ``finishAction`` is
-  ``goHome``. ``wpml:index`` runs 0…65535, so a route holds at most 65 536 waypoints; Pilot 2
-  needs at least two.
+  ``goHome``. Speeds lie in 1–15 m/s. ``wpml:index`` and ``wpml:actionGroupId`` run 0…65535 and a
+  timed route with hovers has one group per waypoint plus the timed one, so a route holds at most
+  65 535 waypoints; Pilot 2 needs at least two. tests/unit/plan/test_dji_wpml_spec.py checks every
+  element and value against DJI's published WPML tables.
 * **QGroundControl plan** (JSON, file version 1, mission version 2): take-off (MAV_CMD 22), speed
   (178), gimbal pitch (205, mount control), waypoints (16) in frame 3 =
   MAV_FRAME_GLOBAL_RELATIVE_ALT with the hover time as hold time (param 1), camera trigger
@@ -58,9 +60,11 @@ DJI_PAYLOADS = {"Zenmuse H20": 42, "Zenmuse H20T": 43, "Zenmuse H20N": 61, "Zenm
                 "Zenmuse H30T": 83, "Zenmuse P1": 50, "Payload SDK camera": 65534}
 
 #: (fewest, most) waypoints one mission may hold, per format; None = no limit of the format.
-WAYPOINT_LIMITS = {"kmz": (2, 65536), "plan": (1, None), "litchi": (2, 99), "kml": (1, None)}
+WAYPOINT_LIMITS = {"kmz": (2, 65535), "plan": (1, None), "litchi": (2, 99), "kml": (1, None)}
 FORMAT_NAMES = {"kmz": "DJI Pilot 2 (WPML KMZ)", "plan": "QGroundControl", "litchi": "Litchi",
                 "kml": "KML"}
+#: WPML's autoFlightSpeed, waypointSpeed and globalTransitionalSpeed range [m/s].
+DJI_SPEED_LIMITS_MS = (1.0, 15.0)
 #: Litchi's "stay for" action holds at most 32 767 ms.
 LITCHI_MAX_STAY_MS = 32767
 
@@ -289,7 +293,6 @@ def dji_template_kml(spec: MissionSpec, drone_enum: int, payload_enum: int) -> b
     _sub(coord, _w("heightMode"), "relativeToStartPoint")
     _sub(folder, _w("autoFlightSpeed"), _num(spec.speed_ms))
     _sub(folder, _w("globalHeight"), _num(float(np.max(spec.altitude_m))))
-    _sub(folder, _w("caliFlightEnable"), 0)
     _sub(folder, _w("gimbalPitchMode"), "usePointSetting")
     _heading_param(folder, "globalWaypointHeadingParam")
     _sub(folder, _w("globalWaypointTurnMode"), "toPointAndStopWithDiscontinuityCurvature")
@@ -299,9 +302,9 @@ def dji_template_kml(spec: MissionSpec, drone_enum: int, payload_enum: int) -> b
         pm = _sub(folder, _k("Placemark"))
         _point(pm, spec.lat[i], spec.lon[i])
         _sub(pm, _w("index"), i)
-        # The template pairs an ellipsoid height with the relative one; the take-off point's
-        # ellipsoidal height is not known here, so the relative value stands in for both (the
-        # aircraft flies executeHeight of waylines.wpml, relative to take-off).
+        # The template pairs an ellipsoid height with the height in heightMode's reference; for
+        # heights relative to the take-off point WPML states the two are equal (the aircraft flies
+        # executeHeight of waylines.wpml, relative to take-off).
         _sub(pm, _w("ellipsoidHeight"), _num(spec.altitude_m[i]))
         _sub(pm, _w("height"), _num(spec.altitude_m[i]))
         _sub(pm, _w("useGlobalHeight"), 0)
@@ -345,6 +348,10 @@ def write_dji_kmz(path, spec: MissionSpec, drone_enum: int = DJI_DRONES["Matrice
                   payload_enum: int = DJI_PAYLOADS["Zenmuse H20"]) -> Path:
     """Write a DJI Pilot 2 route (WPML KMZ) for one mission."""
     check_waypoint_limits([spec], ["kmz"])
+    low, high = DJI_SPEED_LIMITS_MS
+    if not low <= spec.speed_ms <= high:
+        raise InputError(f"SPEED_MS = {spec.speed_ms:g} m/s but DJI routes (WPML) fly {low:g}–{high:g} m/s:"
+                         " set SPEED_MS in that range, or do not ask for the KMZ")
     path = Path(path)
     with zipfile.ZipFile(path, "w", zipfile.ZIP_DEFLATED) as kmz:
         kmz.writestr("wpmz/template.kml", dji_template_kml(spec, drone_enum, payload_enum))

@@ -177,7 +177,11 @@ def test_limits_are_refused_with_a_clear_message(tmp_path):
     with pytest.raises(InputError, match="100 waypoints but Litchi holds at most 99.*MAX_WAYPOINTS"):
         write_litchi_csv(tmp_path / "x.csv", spec)
     assert not (tmp_path / "x.csv").exists()
-    check_waypoint_limits([spec], ["kmz", "plan", "kml"])  # DJI holds 65 536, QGC and KML no limit
+    check_waypoint_limits([spec], ["kmz", "plan", "kml"])  # DJI holds 65 535, QGC and KML no limit
+    # One action group per waypoint plus the timed one must fit WPML's group ids 0…65535.
+    huge = MissionSpec("huge", np.full(65536, LAT0), np.full(65536, LON0), 12.0, 3.0, 1.0)
+    with pytest.raises(InputError, match="65536 waypoints but DJI Pilot 2 .* holds at most 65535"):
+        check_waypoint_limits([huge], ["kmz"])
     single = MissionSpec("one", [LAT0], [LON0], 12.0, 3.0, 1.0)
     for writer, name in ((write_dji_kmz, "DJI Pilot 2"), (write_litchi_csv, "Litchi")):
         with pytest.raises(InputError, match=f"1 waypoint\\(s\\) but {name}.* needs at least 2"):
