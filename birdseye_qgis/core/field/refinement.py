@@ -251,7 +251,7 @@ def refine_poses(frames: list[FrameInput], workdir, options: RefineOptions | Non
 def _write_position_priors(database: Path, centres: dict) -> None:
     import pycolmap
 
-    db = pycolmap.Database(str(database))
+    db = pycolmap.Database.open(str(database))
     try:
         if db.num_pose_priors():
             return

@@ -125,3 +125,27 @@ def test_frames_without_images_are_reported_not_guessed(tmp_path):
     assert [f.registered for f in refinement.frames] == [True, True, True, True, True, False]
     assert refinement.frames[5].reason == "image file not found"
     assert refinement.intrinsics.startswith("fixed to the frame layer's calibration")
+
+
+def test_large_blocks_match_spatially_on_the_metadata_positions(tmp_path):
+    """Beyond ``exhaustive_up_to`` frames, pairs come from the metadata positions: with images that carry
+    no GPS tags of their own (re-encoded without EXIF), BirdsEye writes the pose priors itself."""
+    pycolmap = pytest.importorskip("pycolmap")
+    import cv2
+
+    from birdseye.birdseye_qgis.core.field.refinement import RefineOptions
+
+    inputs = brighton_inputs(tmp_path)
+    bare = tmp_path / "bare"
+    bare.mkdir()
+    for frame in inputs:
+        cv2.imwrite(str(bare / frame.image.name), cv2.imread(str(frame.image)))
+        frame.image = bare / frame.image.name
+    refinement = refine_poses(inputs, tmp_path / "work", RefineOptions(exhaustive_up_to=2, spatial_neighbours=3))
+    database = pycolmap.Database.open(str(tmp_path / "work" / "database.db"))
+    try:
+        assert database.num_pose_priors() == 6
+        assert database.num_matched_image_pairs() < 15  # not every pair
+    finally:
+        database.close()
+    assert refinement.n_registered == 6
