@@ -216,8 +216,9 @@ def import_camera_solution(path, images_folder=None, crs: ProjectedCRS | None = 
     report.counts["frames_with_ground"] = n_ground
     if n_ground < len(frames) and dem is None:
         report.notes.append(f"{len(frames) - n_ground} frame(s) have no ground height: the solution has no tie "
-                            "points in their view and neither DEM nor GROUND_HEIGHT was given; their footprints "
-                            "are missing (labels still use the geotags' own heights)")
+                            "points in their view and neither DEM nor GROUND_HEIGHT_M was given: they get no footprint "
+                            "and Detect cannot place their detections on the ground (labels still use the geotags' "
+                            "own heights). Give a DEM or the ground height")
     if progress is not None:
         progress(0.3)
     crs = crs or ProjectedCRS.for_site(frames.lat, frames.lon)
