@@ -17,6 +17,7 @@ from qgis.PyQt.QtCore import QT_TRANSLATE_NOOP
 
 from ...birdseye_qgis.core.sim.campaign import (
     DEFAULT_SIDE_OVERLAP,
+    ORTHO_PIXEL_RANGE_M,
     PLATFORMS,
     TERRAIN_KINDS,
     CampaignConfig,
@@ -51,6 +52,7 @@ NUMBERS = [
     ("N_MISSED", "Targets not surveyed", INT, DEFAULTS.n_missed, 0, 5000, True),
     ("N_SPURIOUS", "Spurious geotags (no target)", INT, DEFAULTS.n_spurious, 0, 5000, True),
     ("RTK_FLOAT_EPISODES", "RTK-float episodes in the pose log", INT, DEFAULTS.rtk_float_episodes, 0, 100, True),
+    ("ORTHO_PIXEL_M", "Orthomosaic pixel size (m)", DOUBLE, DEFAULTS.ortho_pixel_m, *ORTHO_PIXEL_RANGE_M, True),
 ]
 PLATFORM_LABELS = ("RTK INS payload (pose log, radar altimeter)",
                    "DJI drone (the pose in each JPEG's own metadata, with its errors)")
@@ -80,6 +82,7 @@ class SimulateCampaign(BirdsEyeAlgorithm):
     GEOID_UNDULATION_M = "GEOID_UNDULATION_M"
     OUTPUT_FOLDER = "OUTPUT_FOLDER"
     DEM = "DEM"
+    ORTHOMOSAIC = "ORTHOMOSAIC"
     FRAMES_FOLDER = "FRAMES_FOLDER"
     FRAME_COUNT = "FRAME_COUNT"
 
@@ -96,7 +99,7 @@ class SimulateCampaign(BirdsEyeAlgorithm):
                 self.addParameter(QgsProcessingParameterBoolean(
                     self.NOISE_OFF, self.tr("Noise off (ideal poses, altimeter and geotags)"), False))
                 self.addParameter(QgsProcessingParameterBoolean(
-                    self.RENDER, self.tr("Render frames (off: poses and geotags only)"), True))
+                    self.RENDER, self.tr("Render frames and the orthomosaic (off: poses and geotags only)"), True))
                 self.addParameter(QgsProcessingParameterEnum(
                     self.PLATFORM, self.tr("Platform"), options=[self.tr(t) for t in PLATFORM_LABELS],
                     defaultValue=PLATFORMS.index(DEFAULTS.platform)))
@@ -123,6 +126,8 @@ class SimulateCampaign(BirdsEyeAlgorithm):
             self.addOutput(QgsProcessingOutputFile(name, self.tr(text)))
         self.addOutput(QgsProcessingOutputRasterLayer(
             self.DEM, self.tr("Terrain model (truth/dem.tif, ellipsoidal heights; none for flat terrain)")))
+        self.addOutput(QgsProcessingOutputRasterLayer(
+            self.ORTHOMOSAIC, self.tr("Orthomosaic of the field (orthomosaic.tif; none without rendering)")))
         self.addOutput(QgsProcessingOutputFolder(self.FRAMES_FOLDER, self.tr("Frames folder")))
         self.addOutput(QgsProcessingOutputNumber(self.FRAME_COUNT, self.tr("Frames")))
 
@@ -156,7 +161,8 @@ class SimulateCampaign(BirdsEyeAlgorithm):
             geoid_undulation_m=None if geoid in (None, "")
             else self.parameterAsDouble(parameters, self.GEOID_UNDULATION_M, context),
             terrain=terrain, slope_deg=values["SLOPE_DEG"], slope_aspect_deg=values["SLOPE_ASPECT_DEG"],
-            relief_m=values["RELIEF_M"], hill_wavelength_m=values["HILL_WAVELENGTH_M"])
+            relief_m=values["RELIEF_M"], hill_wavelength_m=values["HILL_WAVELENGTH_M"],
+            ortho_pixel_m=values["ORTHO_PIXEL_M"])
         folder = self.parameterAsString(parameters, self.OUTPUT_FOLDER, context)
         feedback.pushInfo(self.tr("Simulating seed {seed}: {n_targets} targets in a "
                                   "{field_width_m:g} × {field_length_m:g} m field, flown at "
@@ -189,5 +195,6 @@ class SimulateCampaign(BirdsEyeAlgorithm):
         return {"OUTPUT_FOLDER": str(result.folder), "GEOTAGS": str(result.files["geotags"]),
                 "POSES": str(result.files.get("poses", "")), "IMAGES": str(result.files.get("images", "")),
                 "CALIBRATION": str(result.files.get("calibration", "")), self.DEM: str(result.files.get("dem", "")),
+                self.ORTHOMOSAIC: str(result.files.get("orthomosaic", "")),
                 self.FRAMES_FOLDER: str(result.files.get("frames", "")),
                 self.FRAME_COUNT: result.n_frames}

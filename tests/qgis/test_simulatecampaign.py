@@ -28,7 +28,8 @@ def test_algorithm_is_registered_with_help(birdseye_provider):
     names = {p.name() for p in alg.parameterDefinitions()}
     for name in ("SEED", "OUTPUT_FOLDER", "N_TARGETS", "FIELD_WIDTH_M", "FIELD_LENGTH_M", "SITE_LAT", "SITE_LON",
                  "GROUND_HEIGHT_M", "ALTITUDE_M", "SPEED_MS", "FPS", "INS_RATE_HZ", "IMAGE_WIDTH", "IMAGE_HEIGHT",
-                 "SIGMAS", "RADALT_SIGMA_M", "RTK_SIGMA_M", "N_MISSED", "N_SPURIOUS", "RENDER", "NOISE_OFF"):
+                 "SIGMAS", "RADALT_SIGMA_M", "RTK_SIGMA_M", "N_MISSED", "N_SPURIOUS", "RENDER", "NOISE_OFF",
+                 "ORTHO_PIXEL_M"):
         assert name in names
         assert name in alg.shortHelpString()
 
@@ -45,6 +46,24 @@ def test_outputs_are_written_and_returned(campaign):
     with open(result["GEOTAGS"], encoding="utf-8") as fh:
         assert len(list(csv.reader(fh))) == SMALL["N_TARGETS"] - SMALL["N_MISSED"] + SMALL["N_SPURIOUS"]
     assert (folder / "truth" / "campaign.json").is_file()
+    assert Path(result["ORTHOMOSAIC"]) == folder / "orthomosaic.tif"
+
+
+def test_orthomosaic_loads_as_a_map_layer_under_the_geotags(campaign):
+    """QGIS opens the map in the site's UTM zone, and it holds every geotag the importer reads."""
+    import processing
+    from qgis.core import QgsCoordinateTransform, QgsProject, QgsRasterLayer
+
+    _, result = campaign
+    layer = QgsRasterLayer(result["ORTHOMOSAIC"], "orthomosaic")
+    assert layer.isValid() and layer.bandCount() == 4
+    assert layer.crs().authid() == "EPSG:32756"  # UTM 56 S at the default site
+    geotags = processing.run("birdseye:importgeotags", {"INPUT": result["GEOTAGS"], "OUTPUT": "memory:geotags"})
+    points = geotags["OUTPUT"]
+    to_map = QgsCoordinateTransform(points.crs(), layer.crs(), QgsProject.instance())
+    assert points.featureCount() > 0
+    for feature in points.getFeatures():
+        assert layer.extent().contains(to_map.transform(feature.geometry().asPoint()))
 
 
 def test_campaign_imports_through_the_importers(campaign):
