@@ -46,11 +46,10 @@ import numpy as np
 
 from ..errors import Cancelled, InputError
 from ..geometry.camera import CalibrationError, CameraModel, camera_from_dji_dewarp
-from ..geometry.dem import DemGround, DemRaster, check_vertical_datum
+from ..geometry.dem import DemRaster
 from ..geometry.geodesy import ProjectedCRS
-from ..geometry.poses import FramePoses
 from ..geometry.rotations import euler_zyx_to_rotmat, rotmat_to_quat
-from .frames import Frames, compute_footprints
+from .frames import Frames, compute_footprints, dem_ground_for
 from .import_report import FlightImport, ImportReport
 from .pose_log import RTK_FIXED, RTK_FLOAT, RTK_NONE
 
@@ -441,18 +440,9 @@ def import_dji_images(folder, calibration: CameraModel | None = None, crs: Proje
             report.notes.append(f"{n} frame(s) flagged {flag}: {text}")
     crs = crs or ProjectedCRS.for_site(frames.lat, frames.lon)
     sub = None if progress is None else (lambda f: progress(0.5 + 0.5 * f))
-    fp = compute_footprints(frames, crs, progress=sub, is_canceled=is_canceled, ground=_dem_ground(frames, dem))
+    ground = dem_ground_for(frames, dem, DJI_HEIGHT_DATUM, "takeoff")
+    fp = compute_footprints(frames, crs, progress=sub, is_canceled=is_canceled, ground=ground)
     n = sum("footprint_unbounded" in f for f in frames.flags)
     if n:
         report.notes.append(f"{n} frame(s) look above the horizon and have no footprint (flag footprint_unbounded)")
     return FlightImport(frames, fp, [], report)
-
-
-def _dem_ground(frames: Frames, dem: DemRaster | None):
-    """The DEM ground-model factory for the footprints, its datum checked once over every frame."""
-    if dem is None:
-        return None
-    flight = FramePoses(frames.frame_id, frames.lat, frames.lon, frames.height, frames.quat, frames.ground_h,
-                        frames.cameras[0])
-    offset = check_vertical_datum(dem, DJI_HEIGHT_DATUM, flight, ground_reference="takeoff")
-    return lambda geometry: DemGround.from_dem(geometry, dem, DJI_HEIGHT_DATUM, vertical_offset_m=offset)

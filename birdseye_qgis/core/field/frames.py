@@ -228,6 +228,19 @@ def rtk_flags(rtk_status: np.ndarray) -> list[list[str]]:
             for s in np.asarray(rtk_status).tolist()]
 
 
+def dem_ground_for(frames: Frames, dem, heights_datum: str, ground_reference: str):
+    """The DEM ground-model factory for ``frames``' footprints (None without a DEM), the DEM's vertical
+    reference checked once over the whole flight (:func:`..geometry.dem.check_vertical_datum`)."""
+    from ..geometry.dem import DemGround, check_vertical_datum
+
+    if dem is None:
+        return None
+    flight = FramePoses(frames.frame_id, frames.lat, frames.lon, frames.height, frames.quat, frames.ground_h,
+                        frames.cameras[0])
+    offset = check_vertical_datum(dem, heights_datum, flight, ground_reference=ground_reference)
+    return lambda geometry: DemGround.from_dem(geometry, dem, heights_datum, vertical_offset_m=offset)
+
+
 def frames_from_records(records, source: str = "frame layer") -> Frames:
     """The :class:`Frames` of frame-layer records (as a frame layer was written), in record order."""
     from .frame_records import poses_from_records

@@ -26,13 +26,13 @@ import numpy as np
 
 from ...errors import Cancelled, InputError
 from ...geometry.camera import CameraModel
-from ...geometry.dem import DemGround, DemRaster, check_vertical_datum
+from ...geometry.dem import DemRaster
 from ...geometry.geodesy import LocalFrame, ProjectedCRS, ecef_to_geodetic, rotation_ecef_enu
 from ...geometry.poses import FramePoses
 from ...geometry.rotations import R_ENU_NED, rotmat_to_quat
 from ..dji import T_CAM_GIMBAL
 from ..frame_records import GEOTAG_HEIGHTS_FLAG
-from ..frames import Frames, compute_footprints
+from ..frames import Frames, compute_footprints, dem_ground_for
 from ..import_report import FlightImport, ImportReport
 from ..pose_log import RTK_NONE
 
@@ -223,15 +223,6 @@ def import_camera_solution(path, images_folder=None, crs: ProjectedCRS | None = 
         progress(0.3)
     crs = crs or ProjectedCRS.for_site(frames.lat, frames.lon)
     sub = None if progress is None else (lambda f: progress(0.3 + 0.7 * f))
-    ground = _dem_ground(frames, dem, solution.height_datum)
+    ground = dem_ground_for(frames, dem, solution.height_datum, "altimeter")
     fp = compute_footprints(frames, crs, progress=sub, is_canceled=is_canceled, ground=ground)
     return FlightImport(frames, fp, [], report)
-
-
-def _dem_ground(frames: Frames, dem: DemRaster | None, datum: str):
-    if dem is None:
-        return None
-    flight = FramePoses(frames.frame_id, frames.lat, frames.lon, frames.height, frames.quat, frames.ground_h,
-                        frames.cameras[0])
-    offset = check_vertical_datum(dem, datum, flight, ground_reference="altimeter")
-    return lambda geometry: DemGround.from_dem(geometry, dem, datum, vertical_offset_m=offset)
