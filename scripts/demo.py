@@ -4,7 +4,8 @@ Runs in a standalone QGIS application (no desktop): initialises Processing, regi
 provider and runs the steps of :func:`build_steps` in order through the Processing registry — exactly
 what the toolbox, the Graphical Modeler and ``qgis_process`` run:
 
-1. simulate two training flights and one held-out flight over three fields (``simulatecampaign``);
+1. simulate two training flights and one held-out flight, each over its own field — three paddocks
+   side by side on one farm — with an orthomosaic of each field (``simulatecampaign``);
 2. import each flight's rover geotags and flight log (``importgeotags``, ``importflightlog``);
 3. write training labels, with tiles, for the training flights (``writelabels``);
 4. detect targets on the held-out flight with the bundled model (``detect``);
@@ -16,6 +17,9 @@ what the toolbox, the Graphical Modeler and ``qgis_process`` run:
 Every layer an algorithm writes is loaded into a project, styled by the algorithm's own post-processor
 (``layers.style_on_load``, which Processing calls when it loads an output), put in its group (survey,
 flight, labels, detections, clusters, plan) and saved with relative paths, so the folder can be moved.
+The fields' orthomosaics form the farm map under everything else, with an OpenStreetMap basemap below
+them that starts hidden (it needs the internet; the project draws without it). The project opens on
+the farm.
 The project is then read back and every layer checked valid. A step that fails stops the demo with a
 non-zero exit status; a missing algorithm or model is reported before anything runs.
 
@@ -25,6 +29,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
 import os
 import shutil
 import sys
@@ -39,7 +44,12 @@ QGIS_PYTHON_PLUGINS = "/usr/share/qgis/python/plugins"
 BUNDLED_MODEL = REPO_ROOT / "models" / "birdseye_demo_heatmap.onnx"
 PROJECT_NAME = "birdseye_demo.qgz"
 SUMMARY_NAME = "demo_summary.json"
-GROUP_ORDER = ["survey", "flight", "labels", "detections", "clusters", "plan"]
+GROUP_ORDER = ["survey", "flight", "labels", "detections", "clusters", "plan", "farm map"]
+FARM_MAP = "farm map"
+# OpenStreetMap's standard tiles as QGIS's own XYZ connection reads them; context when zoomed out.
+OSM_SOURCE = "type=xyz&url=https://tile.openstreetmap.org/{z}/{x}/{y}.png&zmin=0&zmax=19"
+OSM_NAME = "OpenStreetMap (online basemap)"
+OSM_RIGHTS = "© OpenStreetMap contributors, ODbL (https://www.openstreetmap.org/copyright)"
 
 SIGMAS = "0.01,0.01,0.06,0.04,0.04,0.13"  # the deployed platform's pose noise Σ0 (m, m, m, °, °, °)
 ALTITUDE_M = 10.0  # flying height of the simulated flights and of the sensor bound (m above ground)
@@ -53,7 +63,7 @@ class Flight:
     title: str
     seed: int
     training: bool
-    field_offset: int  # fields lie side by side, this many field spacings east of the first
+    field_offset: int  # fields lie side by side, this many field spacings east of the first (a farm's paddocks)
 
 
 @dataclass(frozen=True)
@@ -69,12 +79,15 @@ class DemoSize:
     training_fps: float
     held_out_fps: float
     tile_size: int
-    field_spacing_deg: float  # longitude between neighbouring fields (≈ 20 m at the site)
+    field_spacing_m: float  # between neighbouring fields' centres, east–west
 
 
+# Each field's simulated ground (every point its frames see: the field, the flight's run-outs and
+# turns) is 21.5 m east–west at full size and 13.3 m small; the spacings leave a 2.5 m and a 1.7 m
+# track between neighbouring paddocks, so no flight overlaps another's field.
 SIZES = {
-    "full": DemoSize(20, 8.0, 6.0, 1920, 1200, 5.0, 5.0, 448, 0.0002),
-    "small": DemoSize(6, 4.0, 3.0, 480, 300, 1.0, 2.0, 112, 0.0001),
+    "full": DemoSize(20, 8.0, 6.0, 1920, 1200, 5.0, 5.0, 448, 24.0),
+    "small": DemoSize(6, 4.0, 3.0, 480, 300, 1.0, 2.0, 112, 15.0),
 }
 FLIGHTS = [
     Flight("train1", "training flight 1", 11, True, 0),
@@ -84,6 +97,15 @@ FLIGHTS = [
 SITE_LAT, SITE_LON = -27.55, 151.95
 
 
+def field_longitude(offset_m: float) -> float:
+    """Longitude of the point ``offset_m`` east of the site on its parallel (WGS84: a degree of
+    longitude is (π/180)·N·cos φ, N the prime vertical radius of curvature)."""
+    a, e2 = 6378137.0, 6.69437999014e-3
+    phi = math.radians(SITE_LAT)
+    prime_vertical = a / math.sqrt(1.0 - e2 * math.sin(phi) ** 2)
+    return SITE_LON + math.degrees(offset_m / (prime_vertical * math.cos(phi)))
+
+
 @dataclass(frozen=True)
 class Step:
     """One algorithm run: ``birdseye:<alg_id>`` with ``params``; its layers go into ``group``.
@@ -91,6 +113,8 @@ class Step:
     ``name`` is how later steps refer to this step's outputs, e.g. ``"{campaign_heldout[CALIBRATION]}"``;
     ``{out}`` is the demo folder. Loaded layers are named "<output description> (<layer_suffix>)"; the
     outputs named in ``hidden`` start unticked in the Layers panel (they repeat what other layers show).
+    ``maps`` names outputs that are files rather than layer destinations, with their layer titles, to
+    load as rasters into ``map_group``.
     """
 
     name: str
@@ -100,6 +124,8 @@ class Step:
     group: str | None = None
     layer_suffix: str = ""
     hidden: tuple = ()
+    maps: tuple = ()
+    map_group: str | None = None
 
 
 def build_steps(size: DemoSize, model: Path | None) -> list[Step]:
@@ -112,8 +138,9 @@ def build_steps(size: DemoSize, model: Path | None) -> list[Step]:
             "FIELD_LENGTH_M": size.field_length_m, "ALTITUDE_M": ALTITUDE_M, "SPEED_MS": 2.5,
             "FPS": size.training_fps if flight.training else size.held_out_fps,
             "IMAGE_WIDTH": size.image_width, "IMAGE_HEIGHT": size.image_height, "SIGMAS": SIGMAS,
-            "SITE_LAT": SITE_LAT, "SITE_LON": SITE_LON + flight.field_offset * size.field_spacing_deg,
-            "OUTPUT_FOLDER": f"{{out}}/campaigns/{flight.key}"}))
+            "SITE_LAT": SITE_LAT, "SITE_LON": field_longitude(flight.field_offset * size.field_spacing_m),
+            "OUTPUT_FOLDER": f"{{out}}/campaigns/{flight.key}"},
+            layer_suffix=flight.title, maps=(("ORTHOMOSAIC", "Orthomosaic"),), map_group=FARM_MAP))
     for flight in FLIGHTS:
         campaign = f"campaign_{flight.key}"
         steps.append(Step(f"geotags_{flight.key}", "importgeotags", f"Import the geotags of the {flight.title}", {
@@ -347,12 +374,42 @@ def run_step(step: Step, values: dict, project) -> tuple[dict, list]:
     return dict(results), layers
 
 
+def load_maps(step: Step, results: dict) -> list:
+    """The rasters ``step.maps`` names, as (layer, hidden) pairs. Raises DemoError when one cannot be opened."""
+    from qgis.core import QgsRasterLayer
+
+    layers = []
+    for output, title in step.maps:
+        path = results.get(output) or ""
+        layer = QgsRasterLayer(path, f"{title} ({step.layer_suffix})" if step.layer_suffix else title)
+        if not layer.isValid():
+            raise DemoError(f"step '{step.title}': its output {output} ({path or 'not written'}) cannot be opened "
+                            "as a raster layer")
+        layers.append((layer, False))
+    return layers
+
+
+def osm_basemap():
+    """OpenStreetMap as an XYZ tile layer, hidden: the project must draw offline."""
+    from qgis.core import QgsRasterLayer
+
+    layer = QgsRasterLayer(OSM_SOURCE, OSM_NAME, "wms")
+    if not layer.isValid():
+        raise DemoError(f"QGIS cannot make an XYZ tile layer of {OSM_SOURCE}")
+    metadata = layer.metadata()
+    metadata.setRights([OSM_RIGHTS])
+    metadata.setAbstract("Online map tiles for context around the farm; not needed to draw the project.")
+    layer.setMetadata(metadata)
+    return layer, True
+
+
 def draw_rank(layer) -> int:
-    """Points over lines over polygons (then rasters), so nothing hides the survey points."""
+    """Points over lines over polygons over the farm's maps over an online basemap, so nothing hides the
+    survey points."""
     from qgis.core import QgsMapLayerType, QgsWkbTypes
 
     if layer.type() != QgsMapLayerType.VectorLayer:
-        return 3
+        return 4 if layer.providerType() == "wms" else 3
     return {QgsWkbTypes.PointGeometry: 0, QgsWkbTypes.LineGeometry: 1}.get(layer.geometryType(), 2)
 
 
@@ -372,9 +429,9 @@ def add_to_group(project, group_name: str | None, layers: list[tuple]) -> None:
         node.setItemVisibilityChecked(not hidden)
 
 
-def finish_project(project, held_out_layers: list) -> None:
-    """Drawing order points > lines > polygons whatever the group, later steps over earlier ones (clusters
-    over frames); open on the held-out field."""
+def finish_project(project, farm_layers: list) -> None:
+    """Drawing order points > lines > polygons > maps whatever the group, later steps over earlier ones
+    (clusters over frames); open on the farm (``farm_layers``: its fields' maps)."""
     from qgis.core import QgsRectangle, QgsReferencedRectangle
 
     root = project.layerTreeRoot()
@@ -385,7 +442,7 @@ def finish_project(project, held_out_layers: list) -> None:
     root.setCustomLayerOrder(ordered)
     extent = QgsRectangle()
     extent.setMinimal()
-    for layer in held_out_layers:
+    for layer in farm_layers:
         extent.combineExtentWith(layer.extent())
     if not extent.isEmpty():
         project.viewSettings().setDefaultViewExtent(QgsReferencedRectangle(extent.buffered(2.0), project.crs()))
@@ -410,8 +467,11 @@ def figures(values: dict, out: Path, project, model: Path | None) -> dict:
 
     bound = json.loads((out / "sensor_bound.json").read_text(encoding="utf-8"))
     held_out = next(f for f in FLIGHTS if not f.training)
+    maps = {f.key: json.loads((out / "campaigns" / f.key / "truth" / "campaign.json").read_text(encoding="utf-8"))
+            ["orthomosaic"] for f in FLIGHTS}
     return {
         "frames": {f.key: get(f"flight_{f.key}", "FRAME_COUNT") for f in FLIGHTS},
+        "orthomosaics": {key: {k: m[k] for k in ("pixel_m", "size_px", "extent")} for key, m in maps.items()},
         "geotags": {f.key: get(f"geotags_{f.key}", "GEOTAG_COUNT") for f in FLIGHTS},
         "labels": {f.key: get(f"labels_{f.key}", "LABEL_COUNT") for f in FLIGHTS if f.training},
         "frames_with_labels": {f.key: get(f"labels_{f.key}", "FRAMES_WITH_LABELS") for f in FLIGHTS if f.training},
@@ -459,6 +519,8 @@ def summary(shown_out: str, numbers: dict, timings: list, elapsed: float) -> str
         "-" * 78,
         *[f" {'Simulated' if k == 0 else '':11} {fl.title:<18} {f['frames'][fl.key]:>4} frames, "
           f"{f['geotags'][fl.key]:>3} geotags → campaigns/{fl.key}/" for k, fl in enumerate(FLIGHTS)],
+        f" Farm map    {len(f['orthomosaics'])} fields side by side, orthomosaics at "
+        f"{100 * min(m['pixel_m'] for m in f['orthomosaics'].values()):g} cm/px; OpenStreetMap below (hidden)",
         f" Labels      {sum(f['labels'].values())} labels in {sum(f['frames_with_labels'].values())} frames of the "
         "training flights, with tiles → labels/",
         f" Detections  {f['detections']} in {f['frames_detected']} held-out frames ({f['model']}, "
@@ -507,22 +569,24 @@ def run(out: Path, size: DemoSize, model: Path | None) -> int:
         project.clear()
         project.setTitle("BirdsEye demo")
         values = {"out": str(out)}
-        timings, held_out_layers = [], []
+        timings, farm_layers = [], []
         for number, step in enumerate(steps, 1):
             print(f"[{number}/{len(steps)}] {step.title} (birdseye:{step.alg_id})", flush=True)
             step_start = time.monotonic()
             results, layers = run_step(step, values, project)
+            maps = load_maps(step, results)
             seconds = time.monotonic() - step_start
             values[step.name] = results
             add_to_group(project, step.group, layers)
-            if layers and not project.crs().isValid():
-                project.setCrs(layers[0][0].crs())
-            if step.layer_suffix.startswith("held-out"):
-                held_out_layers += [layer for layer, _ in layers]
+            add_to_group(project, step.map_group, maps)
+            if (layers or maps) and not project.crs().isValid():
+                project.setCrs((layers or maps)[0][0].crs())
+            farm_layers += [layer for layer, _ in maps]
             timings.append((step.title, seconds))
             print(f"    done in {seconds:.1f} s", flush=True)
 
-        finish_project(project, held_out_layers)
+        add_to_group(project, FARM_MAP, [osm_basemap()])
+        finish_project(project, farm_layers)
         project_path = out / PROJECT_NAME
         if not project.write(str(project_path)):
             raise DemoError(f"could not write {project_path}: {project.error()}")

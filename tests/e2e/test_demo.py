@@ -1,17 +1,20 @@
 """`make demo`, reduced: scripts/demo.py --size small runs the whole chain (simulate → import → labels →
 detect with the bundled model → cluster → evaluate → plan → sensor bound) in seconds, and what it
 leaves must be what a user opens: a project whose layers are valid, styled, grouped and found again
-after the folder is moved, the reports beside it, and a summary whose figures agree with the files.
+after the folder is moved, drawn over a farm map of the three fields side by side, the reports beside
+it, and a summary whose figures agree with the files.
 
 The demo runs once for the module (a subprocess, as `make demo` runs it); the failure tests start it
 again with a broken input and check that it stops loudly.
 """
 from __future__ import annotations
 
+import importlib.util
 import json
 import os
 import shutil
 import subprocess
+import sys
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
@@ -21,7 +24,8 @@ REPO_ROOT = Path(__file__).resolve().parents[2]
 DEMO = REPO_ROOT / "scripts" / "demo.py"
 PYTHON = REPO_ROOT / ".venv" / "bin" / "python"
 STYLES = REPO_ROOT / "resources" / "styles"
-GROUPS = ["survey", "flight", "labels", "detections", "clusters", "plan"]
+GROUPS = ["survey", "flight", "labels", "detections", "clusters", "plan", "farm map"]
+FLIGHT_KEYS = {"train1": "training flight 1", "train2": "training flight 2", "heldout": "held-out flight"}
 # Each output file of the demo and the style its algorithm gives it.
 EXPECTED_STYLE = {
     "geotags_train1": "geotags.qml", "geotags_train2": "geotags.qml", "geotags_heldout": "geotags.qml",
@@ -62,6 +66,30 @@ def source_stem(layer) -> str:
     return Path(layer.source().split("|")[0]).stem
 
 
+def is_vector(layer) -> bool:
+    from qgis.core import QgsMapLayerType
+
+    return layer.type() == QgsMapLayerType.VectorLayer
+
+
+def is_web_basemap(layer) -> bool:
+    return layer.providerType() == "wms" and "type=xyz" in layer.source()
+
+
+def orthomosaics(project) -> dict:
+    """Flight key → its field's orthomosaic layer (read from campaigns/<key>/orthomosaic.tif)."""
+    return {Path(layer.source()).parent.name: layer for layer in project.mapLayers().values()
+            if not is_vector(layer) and Path(layer.source()).name == "orthomosaic.tif"}
+
+
+def load_demo_script():
+    spec = importlib.util.spec_from_file_location("birdseye_demo_script", DEMO)
+    module = importlib.util.module_from_spec(spec)
+    sys.modules[spec.name] = module  # its dataclasses look their module up there
+    spec.loader.exec_module(module)
+    return module
+
+
 def open_project(path: Path):
     from qgis.core import QgsProject
 
@@ -81,7 +109,7 @@ def renderer_signature(element) -> tuple:
 def test_summary_screen(demo):
     stdout = demo["stdout"]
     assert "BirdsEye demo finished" in stdout
-    for figure in ("frames", "labels in", "Detections", "Clusters", "recall_pre", "gmcf_pre", "route",
+    for figure in ("frames", "Farm map", "labels in", "Detections", "Clusters", "recall_pre", "gmcf_pre", "route",
                    "Sensor bound at 10 m", "birdseye_demo.qgz"):
         assert figure in stdout, figure
     screen = stdout[stdout.rindex("=" * 78, 0, stdout.rindex("=" * 78)):]
@@ -96,7 +124,7 @@ def test_project_layers_valid_grouped_and_styled(qgis_app, demo):
     project = open_project(demo["out"] / "birdseye_demo.qgz")
     root = project.layerTreeRoot()
     assert [g.name() for g in root.children()] == GROUPS
-    layers = list(project.mapLayers().values())
+    layers = [layer for layer in project.mapLayers().values() if is_vector(layer)]
     assert sorted(source_stem(layer) for layer in layers) == sorted(EXPECTED_STYLE)
     for layer in layers:
         stem = source_stem(layer)
@@ -109,9 +137,81 @@ def test_project_layers_valid_grouped_and_styled(qgis_app, demo):
         layer.exportNamedStyle(doc)
         applied = ET.fromstring(doc.toString()).find("renderer-v2")
         assert renderer_signature(applied) == renderer_signature(style), f"{stem} is not styled by {style}"
-    # Points are drawn over lines over polygons, whatever their group.
-    order = [layer.geometryType() for layer in root.customLayerOrder()]
-    assert root.hasCustomLayerOrder() and order == sorted(order)
+    # Points are drawn over lines over polygons, whatever their group; the maps under them all.
+    drawn = root.customLayerOrder()
+    vectors_first = [is_vector(layer) for layer in drawn]
+    assert root.hasCustomLayerOrder() and vectors_first == sorted(vectors_first, reverse=True)
+    order = [layer.geometryType() for layer in drawn if is_vector(layer)]
+    assert order == sorted(order)
+
+
+def test_the_orthomosaics_are_the_farm_map_under_the_survey(qgis_app, demo):
+    """Each field's orthomosaic, shown, in the farm map group at the bottom of the legend and drawn below
+    every vector layer; the online basemap below them, hidden, so the project draws offline."""
+    project = open_project(demo["out"] / "birdseye_demo.qgz")
+    root = project.layerTreeRoot()
+    maps = orthomosaics(project)
+    assert sorted(maps) == sorted(FLIGHT_KEYS)
+    farm = root.findGroup("farm map")
+    assert root.children()[-1] == farm, "the farm map is the legend's last group: drawn first"
+    for key, layer in maps.items():
+        node = root.findLayer(layer.id())
+        assert layer.isValid() and layer.bandCount() == 4, key
+        assert node.parent() == farm and node.isVisible(), key
+        assert layer.name() == f"Orthomosaic ({FLIGHT_KEYS[key]})"
+        assert layer.crs() == project.crs()
+    basemaps = [layer for layer in project.mapLayers().values() if is_web_basemap(layer)]
+    assert len(basemaps) == 1 and "openstreetmap.org" in basemaps[0].source()
+    assert root.findLayer(basemaps[0].id()).parent() == farm
+    assert not root.findLayer(basemaps[0].id()).isVisible(), "online tiles must not be needed to draw"
+    drawn = root.customLayerOrder()
+    assert drawn[-1] == basemaps[0]
+    survey = [layer for layer in drawn if root.findLayer(layer.id()).parent().name() == "survey"]
+    assert max(drawn.index(layer) for layer in survey) < min(drawn.index(layer) for layer in maps.values())
+    # The project opens on the whole farm.
+    view = project.viewSettings().defaultViewExtent()
+    for layer in maps.values():
+        assert view.contains(layer.extent()), layer.name()
+
+
+def test_the_three_flights_have_their_own_fields_side_by_side(qgis_app, demo):
+    """The fields' maps do not overlap, lie west to east in the flights' order, and each flight's frames
+    and flight line stay over its own field."""
+    project = open_project(demo["out"] / "birdseye_demo.qgz")
+    maps = orthomosaics(project)
+    by_stem = {source_stem(layer): layer for layer in project.mapLayers().values() if is_vector(layer)}
+    keys = list(FLIGHT_KEYS)
+    for i, a in enumerate(keys):
+        for b in keys[i + 1:]:
+            assert not maps[a].extent().intersects(maps[b].extent()), f"the fields of {a} and {b} overlap"
+    assert [maps[k].extent().xMinimum() for k in keys] == sorted(maps[k].extent().xMinimum() for k in keys)
+    for key in keys:
+        for stem in (f"frames_{key}", f"track_{key}"):
+            assert maps[key].extent().contains(by_stem[stem].extent()), f"{stem} leaves its field"
+
+
+@pytest.mark.parametrize("size", ["full", "small"])
+def test_the_demo_fields_are_apart_at_every_size(size, tmp_path):
+    """The layout itself, for the full demo too (its flights simulated without frames): each field's
+    simulated ground — everything its frames see, which its map covers — clear of its neighbours'."""
+    from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame, ProjectedCRS
+    from birdseye.birdseye_qgis.core.sim.campaign import CampaignConfig, parse_sigmas, simulate_campaign
+
+    script = load_demo_script()
+    boxes = []
+    for step in script.build_steps(script.SIZES[size], None)[:len(FLIGHT_KEYS)]:
+        params = {k.lower(): v for k, v in step.params.items() if k != "OUTPUT_FOLDER"}
+        params["sigmas"] = parse_sigmas(params["sigmas"])
+        folder = tmp_path / step.name
+        simulate_campaign(CampaignConfig(**params, render=False), folder)
+        record = json.loads((folder / "truth" / "campaign.json").read_text(encoding="utf-8"))
+        e0, e1, n0, n1 = record["field"]["domain_m"]
+        local = LocalFrame(*(record["local_frame"][k] for k in ("lat0", "lon0", "h0")))
+        lat, lon, _ = local.to_geodetic([[e0, n0, 0.0], [e1, n0, 0.0], [e1, n1, 0.0], [e0, n1, 0.0]])
+        x, _ = ProjectedCRS(record["crs"]).from_geodetic(lat, lon)
+        boxes.append((x.min(), x.max()))
+    for (_, west_end), (east_start, _) in zip(boxes, boxes[1:]):
+        assert east_start - west_end > 1.0, f"less than a metre of track between two {size} demo fields"
 
 
 def test_project_opens_after_the_folder_is_moved(qgis_app, demo, tmp_path):
@@ -121,7 +221,8 @@ def test_project_opens_after_the_folder_is_moved(qgis_app, demo, tmp_path):
     assert project.mapLayers()
     for layer in project.mapLayers().values():
         assert layer.isValid(), layer.name()
-        assert Path(layer.source().split("|")[0]).resolve().is_relative_to(moved.resolve()), layer.source()
+        if not is_web_basemap(layer):
+            assert Path(layer.source().split("|")[0]).resolve().is_relative_to(moved.resolve()), layer.source()
 
 
 def test_reports_and_files_beside_the_project(demo):
@@ -144,6 +245,8 @@ def test_summary_figures_agree_with_the_outputs(qgis_app, demo):
     by_stem = {source_stem(layer): layer for layer in project.mapLayers().values()}
     for key, count in figures["frames"].items():
         assert by_stem[f"frames_{key}"].featureCount() == count > 0
+    for key, layer in orthomosaics(project).items():
+        assert [layer.width(), layer.height()] == figures["orthomosaics"][key]["size_px"]
     for key, count in figures["geotags"].items():
         assert by_stem[f"geotags_{key}"].featureCount() == count > 0
     for key, count in figures["labels"].items():

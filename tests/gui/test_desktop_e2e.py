@@ -63,7 +63,7 @@ def test_demo_project_opens_with_every_layer_valid(session):
     report = session["report"]
     assert report["plugin_loaded"] and report["project_opened"]
     assert report["layers"] and all(report["layers"].values()), report["layers"]
-    assert report["groups"] == ["survey", "flight", "labels", "detections", "clusters", "plan"]
+    assert report["groups"] == ["survey", "flight", "labels", "detections", "clusters", "plan", "farm map"]
     assert report["canvas_shows_held_out_flight"], "the project must open on its fields, not on the whole world"
 
 
