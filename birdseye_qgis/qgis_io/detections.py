@@ -68,7 +68,11 @@ def read_detections(source, context, name: str | None = None) -> tuple[Detection
     if len(digests) > 1:
         raise InputError(f"mixes detections of {len(digests)} models (model_digest); score one model per "
                          "layer", source=name, field="model_digest")
-    thresholds = [float(v) for v in values.get("threshold", []) if v is not None]
+    thresholds = sorted({float(v) for v in values.get("threshold", []) if v is not None})
+    if len(thresholds) > 1 and thresholds[-1] - thresholds[0] > 1e-9:
+        listed = ", ".join(f"{t:g}" for t in thresholds)
+        raise InputError(f"mixes detections of {len(thresholds)} thresholds ({listed}); a threshold is a Detect "
+                         "run, not a score filter: score one run per layer", source=name, field="threshold")
     det = Detections(cols["lat"][ok], cols["lon"][ok], cols["z"][ok], frame_id[ok], score[ok], name=name,
                      model=", ".join(models), model_digest=digests[0] if digests else "",
                      threshold=max(thresholds) if thresholds else None)

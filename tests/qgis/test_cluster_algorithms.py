@@ -181,6 +181,17 @@ def test_clusterdetections_refuses_a_layer_that_is_not_detections(birdseye_provi
         run("clusterdetections", {"DETECTIONS": geotag_layer(), "OUTPUT": "TEMPORARY_OUTPUT"})
 
 
+def test_a_layer_merged_from_runs_at_two_thresholds_is_refused(birdseye_provider):
+    """Filtering a 0.3 run is not a 0.5 run (blobs split): a layer holding both cannot be scored as either."""
+    layer = detection_layer(grid9(0.0, 0.0), threshold=0.3)
+    layer.startEditing()
+    feature = next(layer.getFeatures())
+    layer.changeAttributeValue(feature.id(), layer.fields().indexOf("threshold"), 0.5)
+    layer.commitChanges()
+    with pytest.raises(QgsProcessingException, match="field 'threshold'.*mixes detections of 2 thresholds"):
+        run("clusterdetections", {"DETECTIONS": layer, "OUTPUT": "TEMPORARY_OUTPUT"})
+
+
 def test_evaluatedetections_pre_and_post_by_hand(birdseye_provider, tmp_path):
     verdicts = verdict_layer([
         ("u_b", "confirmed_real", "direct", (3.0, 1.0)),

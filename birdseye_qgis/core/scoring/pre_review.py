@@ -14,6 +14,16 @@ def ratio(num, den):
     return None if den == 0 else float(num) / float(den)
 
 
+def f1_geo(recall, gmcf):
+    """F1 as the method tabulates it: the harmonic mean 2·r·g / (r + g) of pooled recall and pooled GMCF
+    (0 when both are 0, NaN where either is undefined). Works element-wise on arrays."""
+    r, g = np.asarray(recall, dtype=float), np.asarray(gmcf, dtype=float)
+    total = r + g
+    with np.errstate(invalid="ignore", divide="ignore"):
+        out = np.where(total > 0, 2.0 * r * g / np.where(total > 0, total, 1.0), 0.0)
+    return np.where(np.isfinite(r) & np.isfinite(g), out, np.nan)
+
+
 @dataclass
 class PreCounts:
     """Counts of one flight or of pooled flights; ``+`` pools by micro-averaging (sums the counts)."""
@@ -39,6 +49,13 @@ class PreCounts:
         return ratio(self.n_hit_clusters, self.n_clusters)
 
     @property
+    def f1_geo(self):
+        """The harmonic mean of recall_pre and gmcf_pre, the F1 every table of the method prints."""
+        if self.recall_pre is None or self.gmcf_pre is None:
+            return None
+        return float(f1_geo(self.recall_pre, self.gmcf_pre))
+
+    @property
     def mean_geotags_per_hit_cluster(self):
         return ratio(self.n_geotag_matches, self.n_hit_clusters)
 
@@ -49,7 +66,7 @@ class PreCounts:
     def to_dict(self) -> dict:
         return {"n_in_view": int(self.n_in_view), "n_recovered": int(self.n_recovered),
                 "recall_pre": self.recall_pre, "n_clusters": int(self.n_clusters),
-                "n_hit_clusters": int(self.n_hit_clusters), "gmcf_pre": self.gmcf_pre,
+                "n_hit_clusters": int(self.n_hit_clusters), "gmcf_pre": self.gmcf_pre, "f1_geo": self.f1_geo,
                 "mean_geotags_per_hit_cluster": self.mean_geotags_per_hit_cluster,
                 "mean_median_extent_m": self.mean_median_extent_m}
 

@@ -23,6 +23,7 @@ import numpy as np
 from ..detect.clustering import DEFAULT_DEDUP_CM, cluster_centroids_and_extents, dbscan, deduplicate, neighbour_graph
 from ..errors import Cancelled, InputError
 from .matching import match_to_clusters
+from .pre_review import f1_geo
 
 #: Credibility filter of sweeps (both are parameters of sweepoperatingpoints).
 DEFAULT_MAX_GEOTAGS_PER_HIT = 1.5
@@ -37,16 +38,6 @@ METHOD_GRID = {
 }
 #: Two thresholds closer than this are the same threshold (layers store them as doubles).
 THRESHOLD_TOLERANCE = 1e-9
-
-
-def f1_geo(recall, gmcf):
-    """F1 as the method tabulates it: the harmonic mean 2·r·g / (r + g) of pooled recall and pooled GMCF
-    (0 when both are 0, NaN where either is undefined). Works element-wise on arrays."""
-    r, g = np.asarray(recall, dtype=float), np.asarray(gmcf, dtype=float)
-    total = r + g
-    with np.errstate(invalid="ignore", divide="ignore"):
-        out = np.where(total > 0, 2.0 * r * g / np.where(total > 0, total, 1.0), 0.0)
-    return np.where(np.isfinite(r) & np.isfinite(g), out, np.nan)
 
 
 @dataclass

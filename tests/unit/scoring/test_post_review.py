@@ -139,3 +139,10 @@ def test_evaluation_counts_in_a_only_the_added_targets_the_definition_admits():
         assert p.a == expected_a and p.c == 0
         # the geotag is missed (no cluster near it): recall_post = (0 + 0) / (1 + 0 + 4), a point value
         assert p.to_dict()["recall_post"] == "0.000"
+
+
+def test_pooled_counts_report_the_methods_f1():
+    """f1_geo = 2·r·g/(r + g): recall 8/10 and GMCF 6/10 give 0.6857…; undefined without clusters."""
+    counts = PreCounts(n_in_view=10, n_recovered=8, n_clusters=10, n_hit_clusters=6)
+    assert counts.to_dict()["f1_geo"] == pytest.approx(2 * 0.8 * 0.6 / 1.4)
+    assert PreCounts(n_in_view=3, n_recovered=0).to_dict()["f1_geo"] is None
