@@ -91,10 +91,17 @@ def metashape_pixel(x_cam, cal=MS_CAL, fisheye=False):
 
 
 def write_metashape(path, r_enu_cam, centres, cal=MS_CAL, kind="frame", unaligned=("IMG_9999",), components=True):
+    """The block at SITE (camera → ENU rotations, ENU centres) as a Metashape export."""
+    write_metashape_ecef(path, np.einsum("ij,njk->nik", R_ECEF_ENU, np.asarray(r_enu_cam)), to_ecef(centres),
+                         [f"IMG_{i:04d}" for i in range(len(centres))], cal, W, H, kind, unaligned, components)
+
+
+def write_metashape_ecef(path, r_ecef_cam, centres_ecef, labels, cal, width, height, kind="frame", unaligned=(),
+                         components=True):
     """Cameras in component coordinates, a component similarity, and a chunk similarity to ECEF."""
     rng = np.random.default_rng(5)
     chunk_s, chunk_r = 7.5, so3_exp(rng.normal(size=3))
-    chunk_t = ORIGIN + rng.normal(size=3) * 100
+    chunk_t = np.mean(centres_ecef, axis=0) + rng.normal(size=3) * 100
     comp_s, comp_r, comp_t = (0.6, so3_exp(rng.normal(size=3)), rng.normal(size=3)) if components else \
         (1.0, np.eye(3), np.zeros(3))
     chunk = np.eye(4)
@@ -106,11 +113,11 @@ def write_metashape(path, r_enu_cam, centres, cal=MS_CAL, kind="frame", unaligne
     ch = ET.SubElement(doc, "chunk", label="Chunk 1", enabled="true")
     sensors = ET.SubElement(ch, "sensors")
     sensor = ET.SubElement(sensors, "sensor", id="0", label="FC6310R (8.8mm)", type=kind)
-    ET.SubElement(sensor, "resolution", width=str(W), height=str(H))
+    ET.SubElement(sensor, "resolution", width=str(width), height=str(height))
     calib = ET.SubElement(sensor, "calibration", type=kind, **{"class": "adjusted"})
-    ET.SubElement(calib, "resolution", width=str(W), height=str(H))
+    ET.SubElement(calib, "resolution", width=str(width), height=str(height))
     for key, value in cal.items():
-        ET.SubElement(calib, key).text = repr(value)
+        ET.SubElement(calib, key).text = repr(float(value))
     if components:
         comps = ET.SubElement(ch, "components", active_id="0")
         c = ET.SubElement(comps, "component", id="0", label="Component 1")
@@ -119,12 +126,12 @@ def write_metashape(path, r_enu_cam, centres, cal=MS_CAL, kind="frame", unaligne
         ET.SubElement(t, "translation", locked="true").text = " ".join(map(repr, comp_t))
         ET.SubElement(t, "scale", locked="true").text = repr(comp_s)
         part = ET.SubElement(c, "partition")
-        ET.SubElement(part, "camera_ids").text = " ".join(str(i) for i in range(len(centres)))
+        ET.SubElement(part, "camera_ids").text = " ".join(str(i) for i in range(len(centres_ecef)))
     cams = ET.SubElement(ch, "cameras")
-    for i, (r, c) in enumerate(zip(r_enu_cam, centres)):
+    for i, (r, c, label) in enumerate(zip(r_ecef_cam, centres_ecef, labels)):
         cam_to_ecef = np.eye(4)
-        cam_to_ecef[:3, :3], cam_to_ecef[:3, 3] = R_ECEF_ENU @ r, to_ecef(c)
-        camera = ET.SubElement(cams, "camera", id=str(i), sensor_id="0", label=f"IMG_{i:04d}")
+        cam_to_ecef[:3, :3], cam_to_ecef[:3, 3] = r, c
+        camera = ET.SubElement(cams, "camera", id=str(i), sensor_id="0", label=label)
         ET.SubElement(camera, "transform").text = " ".join(map(repr, (to_internal @ cam_to_ecef).ravel()))
     for k, name in enumerate(unaligned):
         ET.SubElement(cams, "camera", id=str(100 + k), sensor_id="0", label=name)
@@ -134,6 +141,13 @@ def write_metashape(path, r_enu_cam, centres, cal=MS_CAL, kind="frame", unaligne
     ET.SubElement(t, "translation").text = " ".join(map(repr, chunk_t))
     ET.SubElement(t, "scale").text = repr(chunk_s)
     ET.ElementTree(doc).write(path)
+
+
+def metashape_calibration(camera):
+    """Metashape's calibration of an OpenCV camera, by its documented conventions (inverse of the reader)."""
+    k1, k2, p1, p2, k3 = camera.dist
+    return dict(f=camera.fy, b1=camera.fx - camera.fy, b2=camera.skew, cx=camera.cx + 0.5 - camera.width / 2.0,
+                cy=camera.cy + 0.5 - camera.height / 2.0, k1=k1, k2=k2, k3=k3, k4=camera.k4, p1=p2, p2=p1)
 
 
 def camera_coordinates(r_enu_cam, centre, ground):
