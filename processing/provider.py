@@ -29,7 +29,7 @@ def algorithm_classes() -> list[type[BirdsEyeAlgorithm]]:
             module = importlib.import_module(f"{algorithms.__name__}.{info.name}")
         except Exception as exc:  # noqa: BLE001 — reported, never fatal for QGIS
             QgsMessageLog.logMessage(f"{NAME}: algorithm module '{info.name}' failed to load: {exc}",
-                                     LOG_TAG, Qgis.Critical)
+                                     LOG_TAG, Qgis.MessageLevel.Critical)
             continue
         for _, cls in inspect.getmembers(module, inspect.isclass):
             if issubclass(cls, base.BirdsEyeAlgorithm) and cls.ALG_ID and cls.__module__ == module.__name__:

@@ -8,9 +8,12 @@ For every name imported from ``qgis.PyQt.<module>`` (``Qt``, ``QMessageBox``, �
 code spells (``Qt.AlignmentFlag.AlignLeft``, ``QMessageBox.StandardButton.Yes``,
 ``QCoreApplication.translate``) must resolve in ``PyQt6.<module>`` under that exact name: PyQt6 dropped
 the unscoped enum aliases (``Qt.AlignLeft``) and ``exec_()``. Also refused: importing PyQt5 or PyQt6
-directly (only ``qgis.PyQt`` picks the right one), any ``.exec_`` attribute, and importing a name from a
-``qgis.PyQt`` module whose PyQt6 counterpart lacks it (``QAction`` moved from QtWidgets to QtGui). Code for
-old releases is left alone where it says so: the ``else`` of ``if Qgis.QGIS_VERSION_INT >= N``, the body
+directly (only ``qgis.PyQt`` picks the right one), any ``.exec_`` attribute, importing a name from a
+``qgis.PyQt`` module whose PyQt6 counterpart lacks it (``QAction`` moved from QtWidgets to QtGui), and the
+QGIS enum names QGIS 3.30–3.36 deprecated when the enums moved into ``Qgis`` (``QgsProcessing.TypeVectorPoint``,
+``QgsWkbTypes.PointZ`` …; QGIS 4 keeps them only as aliases): those values come from
+``birdseye_qgis/qgis_enums.py``, or take the scoped spelling QGIS 3.22 already has. Code for old releases
+is left alone where it says so: the ``else`` of ``if Qgis.QGIS_VERSION_INT >= N``, the body
 of ``if … QGIS_VERSION_INT < N``, and the ``except ImportError`` fallback of a ``try`` import — that is
 where APIs that moved keep their QGIS 3.22 spelling.
 
@@ -22,6 +25,7 @@ from __future__ import annotations
 
 import ast
 import importlib
+import re
 import sys
 from pathlib import Path
 
@@ -30,6 +34,28 @@ DEFAULT_ROOTS = ("__init__.py", "birdseye_qgis", "processing")
 #: qgis.PyQt sub-modules that have a PyQt6 counterpart of the same name.
 QT_MODULES = {"QtCore", "QtGui", "QtWidgets", "QtSvg", "QtXml", "QtNetwork", "QtPrintSupport", "QtSql",
               "QtTest"}
+ENUM_MODULE = "birdseye_qgis/qgis_enums.py"
+#: Deprecated QGIS enum names, by class: the members (a regular expression) and what to use instead.
+DEPRECATED_QGIS_NAMES = {
+    "QgsProcessing": (r"Type\w*|SourceType", f"SOURCE_… of {ENUM_MODULE} (Qgis.ProcessingSourceType, QGIS 3.36)"),
+    "QgsProcessingParameterNumber": (r"Double|Integer|Type",
+                                     f"NUMBER_… of {ENUM_MODULE} (Qgis.ProcessingNumberParameterType, QGIS 3.36)"),
+    "QgsProcessingParameterFile": (r"File|Folder|Behavior",
+                                   f"FILE_BEHAVIOR_… of {ENUM_MODULE} (Qgis.ProcessingFileParameterBehavior, 3.36)"),
+    "QgsProcessingParameterDefinition": (r"Flag\w*", f"PARAMETER_… of {ENUM_MODULE} (Qgis.ProcessingParameterFlag)"),
+    "QgsFeatureRequest": (r"NoGeometry|SubsetOfAttributes|ExactIntersect|Flag",
+                          f"REQUEST_… of {ENUM_MODULE} (Qgis.FeatureRequestFlag, QGIS 3.36)"),
+    "QgsCoordinateReferenceSystem": (r"WKT\w*|WktVariant", f"CRS_WKT… of {ENUM_MODULE} (Qgis.CrsWktVariant, 3.36)"),
+    "QgsWkbTypes": (r"[A-Z]\w*", f"WKB_… or GEOMETRY_… of {ENUM_MODULE} (Qgis.WkbType, Qgis.GeometryType, 3.30)"),
+    "QgsUnitTypes": (r"[A-Z]\w*", f"DISTANCE_… of {ENUM_MODULE} (Qgis.DistanceUnit, QGIS 3.30)"),
+    "QgsMapLayerType": (r"[A-Z]\w*", f"LAYER_… of {ENUM_MODULE} (Qgis.LayerType, QGIS 3.30)"),
+    "QgsMapLayerProxyModel": (r"[A-Z]\w*", f"FILTER_… of {ENUM_MODULE} (Qgis.LayerFilter, QGIS 3.34)"),
+    "QgsFeatureSink": (r"FastInsert|RollBackOnErrors", "QgsFeatureSink.Flag.<name> (QGIS 3.22 has it too)"),
+    "QgsVertexMarker": (r"ICON_\w+", "QgsVertexMarker.IconType.<name> (QGIS 3.22 has it too)"),
+    "QgsFileWidget": (r"GetFile|GetDirectory|GetMultipleFiles|SaveFile",
+                      "QgsFileWidget.StorageMode.<name> (QGIS 3.22 has it too)"),
+    "Qgis": (r"Info|Warning|Critical|Success|NoLevel", "Qgis.MessageLevel.<name> (QGIS 3.22 has it too)"),
+}
 
 
 def python_files(paths) -> list[Path]:
@@ -75,6 +101,7 @@ class Checker(ast.NodeVisitor):
     def __init__(self, path: Path):
         self.path = path
         self.qt_names: dict[str, str] = {}  # local name -> "PyQt6.QtCore.Qt"-style dotted origin
+        self.qgis_names: dict[str, str] = {}  # local name -> class name in qgis.core / qgis.gui
         self.problems: list[str] = []
         self.fixes: list[tuple[ast.Attribute, str]] = []  # (node, scoped spelling of the whole chain)
 
@@ -90,6 +117,8 @@ class Checker(ast.NodeVisitor):
         module = node.module or ""
         if module.split(".")[0] in ("PyQt5", "PyQt6"):
             self.report(node, f"imports from {module} directly; import from qgis.PyQt")
+        if module in ("qgis.core", "qgis.gui"):
+            self.qgis_names.update({alias.asname or alias.name: alias.name for alias in node.names})
         parts = module.split(".")
         if parts[:2] == ["qgis", "PyQt"] and len(parts) == 3 and parts[2] in QT_MODULES:
             qt6_module = importlib.import_module(f"PyQt6.{parts[2]}")
@@ -126,6 +155,11 @@ class Checker(ast.NodeVisitor):
         if node.attr == "exec_":
             self.report(node, "exec_() is gone in PyQt6; call exec()")
         chain = attribute_chain(node)
+        if chain and len(chain) > 1 and chain[0] in self.qgis_names:
+            deprecated = DEPRECATED_QGIS_NAMES.get(self.qgis_names[chain[0]])
+            if deprecated and re.fullmatch(deprecated[0], chain[1]):
+                self.report(node, f"{'.'.join(chain)} is deprecated since the enum moved: use {deprecated[1]}")
+                return
         if chain and chain[0] in self.qt_names:
             self.check_chain(node, chain)
             return  # the whole chain is checked; its inner Attribute nodes are prefixes of it

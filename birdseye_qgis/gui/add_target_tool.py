@@ -42,7 +42,7 @@ class AddTargetTool(QgsMapToolEmitPoint):
         """A cross follows the pointer, so the user sees where the target will go."""
         if self._marker is None:
             self._marker = QgsVertexMarker(self.canvas())
-            self._marker.setIconType(QgsVertexMarker.ICON_CROSS)
+            self._marker.setIconType(QgsVertexMarker.IconType.ICON_CROSS)
             self._marker.setColor(QColor(40, 200, 90))
             self._marker.setIconSize(16)
             self._marker.setPenWidth(2)

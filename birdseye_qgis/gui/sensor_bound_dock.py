@@ -554,7 +554,7 @@ class SensorBoundDock(QgsDockWidget):
             self.iface.messageBar().pushMessage(
                 LOG_TAG, tr("σ_label = {s:.2f} px stored in the project: Write labels will use it as its label "
                                "sigma (project variable @birdseye_sigma_label_px).").format(s=sigma),
-                Qgis.Success, 6)
+                Qgis.MessageLevel.Success, 6)
         return sigma
 
     def processing_parameters(self) -> dict:

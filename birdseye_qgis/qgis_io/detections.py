@@ -10,6 +10,7 @@ from ..core.field.frame_records import poses_from_records
 from ..core.geometry.geodesy import LocalFrame, ProjectedCRS
 from ..core.scoring.evaluation import Detections, Geotags
 from ..core.scoring.verdicts import VerdictLog
+from ..qgis_enums import GEOMETRY_POINT, REQUEST_NO_GEOMETRY
 from . import layers
 
 #: (name, type, description) of the detection layer.
@@ -87,7 +88,7 @@ def read_geotags(source, context) -> Geotags:
     if has_id:
         ids = [row if v is None else v for v, row in zip(cols["attributes"]["id"], cols["row"].tolist())]
     else:
-        request = QgsFeatureRequest().setNoAttributes().setFlags(QgsFeatureRequest.NoGeometry)
+        request = QgsFeatureRequest().setNoAttributes().setFlags(REQUEST_NO_GEOMETRY)
         ids = [f.id() for f in source.getFeatures(request)]
     ok = np.isfinite(cols["lat"])
     return Geotags(np.asarray(ids, dtype=object)[ok], cols["lat"][ok], cols["lon"][ok], cols["z"][ok])
@@ -123,7 +124,7 @@ def read_verdicts(layer, context) -> VerdictLog:
     """
     names = layer.fields().names()
     use_geometry = ("lat" not in names or "lon" not in names) and layer.isSpatial() and \
-        QgsWkbTypes.geometryType(layer.wkbType()) == QgsWkbTypes.PointGeometry
+        QgsWkbTypes.geometryType(layer.wkbType()) == GEOMETRY_POINT
     transform = wgs84_of(layer, context) if use_geometry else None
     records = []
     for feature in sorted(layer.getFeatures(), key=lambda f: f.id()):

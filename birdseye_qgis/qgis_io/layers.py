@@ -25,7 +25,6 @@ from qgis.core import (
     QgsPolygon,
     QgsProcessingLayerPostProcessorInterface,
     QgsProject,
-    QgsUnitTypes,
     QgsWkbTypes,
 )
 
@@ -33,6 +32,7 @@ from ..__about__ import STYLE_DIR
 from ..core.errors import InputError
 from ..core.field.frame_records import FRAME_FIELD_NAMES
 from ..core.geometry.geodesy import ProjectedCRS, utm_epsg
+from ..qgis_enums import CRS_WKT2_2019, DISTANCE_METERS, GEOMETRY_POINT, WKB_LINE_STRING_Z, WKB_POLYGON_Z
 
 WGS84 = "EPSG:4326"
 
@@ -102,7 +102,7 @@ def write_records(sink, fields: QgsFields, records, geometries, feedback=None, s
         feature.setAttributes([record.get(n) for n in names])
         if geometry is not None:
             feature.setGeometry(geometry)
-        if not sink.addFeature(feature, QgsFeatureSink.FastInsert):
+        if not sink.addFeature(feature, QgsFeatureSink.Flag.FastInsert):
             raise InputError(f"could not write feature {count + 1} to the output")
         count += 1
     return count
@@ -147,7 +147,7 @@ def pyproj_crs(crs: QgsCoordinateReferenceSystem) -> str:
     authid = crs.authid()
     if authid.upper().startswith("EPSG:"):
         return authid
-    return crs.toWkt(QgsCoordinateReferenceSystem.WKT2_2019)
+    return crs.toWkt(CRS_WKT2_2019)
 
 
 def qgs_crs(crs: str) -> QgsCoordinateReferenceSystem:
@@ -170,7 +170,7 @@ def chosen_projected_crs(crs: QgsCoordinateReferenceSystem | None, parameter: st
         raise InputError(f"{crs.authid() or crs.description()} is a geographic CRS (degrees); choose a "
                          "projected CRS in metres, or leave it empty for the UTM zone of the site",
                          field=parameter)
-    if crs.mapUnits() != QgsUnitTypes.DistanceMeters:
+    if crs.mapUnits() != DISTANCE_METERS:
         raise InputError(f"{crs.authid() or crs.description()} is not in metres; choose a projected CRS in "
                          "metres, or leave it empty for the UTM zone of the site", field=parameter)
     return ProjectedCRS(pyproj_crs(crs))
@@ -210,7 +210,7 @@ def read_point_layer(source, transform_context=None, attributes=(), source_name:
     if not crs.isValid():
         raise InputError("has no valid CRS; set the layer's CRS (Layer Properties › Source) and run again",
                          source=name)
-    if QgsWkbTypes.geometryType(source.wkbType()) != QgsWkbTypes.PointGeometry:
+    if QgsWkbTypes.geometryType(source.wkbType()) != GEOMETRY_POINT:
         raise InputError("is not a point layer", source=name)
     names = source.fields().names()
     for a in attributes:
@@ -285,7 +285,7 @@ def write_frames(algorithm, parameters, context, feedback, result, crs: QgsCoord
     records = frame_records(result.frames, result.footprints)
     if extra_values is not None:
         records = ({**rec, **more} for rec, more in zip(records, extra_values))
-    sink, dest_id = algorithm.parameterAsSink(parameters, output, context, fields, QgsWkbTypes.PolygonZ, crs)
+    sink, dest_id = algorithm.parameterAsSink(parameters, output, context, fields, WKB_POLYGON_Z, crs)
     if sink is None:
         raise InputError("the frame output cannot be created", field=output)
     geometries = (None if ring is None else polygon_z(ring) for ring in result.footprints.rings)
@@ -295,7 +295,7 @@ def write_frames(algorithm, parameters, context, feedback, result, crs: QgsCoord
     if track_output:
         track_fields = qgs_fields(TRACK_FIELDS)
         track_sink, track_id = algorithm.parameterAsSink(parameters, track_output, context, track_fields,
-                                                         QgsWkbTypes.LineStringZ, crs)
+                                                         WKB_LINE_STRING_Z, crs)
         if track_sink is not None:
             write_records(track_sink, track_fields, (s.attributes for s in result.track),
                           (line_z(s.xyz) for s in result.track))

@@ -40,6 +40,7 @@ from ..core.review.actions import ACTION_ADD, ACTION_UNDO, ACTION_VERDICT, Ledge
 from ..core.review.digests import input_id
 from ..core.review.units import ADDED_PREFIX, ReviewParameters, ReviewUnits, UnitRef
 from ..core.scoring.verdicts import VerdictLog
+from ..qgis_enums import CRS_WKT2_2019
 
 VERDICT_TABLE = "birdseye_verdicts"
 STATE_TABLE = "birdseye_review_state"
@@ -349,9 +350,8 @@ def _plain(value):
 
 
 def _crs_text(crs) -> str:
-    from qgis.core import QgsCoordinateReferenceSystem
 
-    return crs.authid() or crs.toWkt(QgsCoordinateReferenceSystem.WKT2_2019)
+    return crs.authid() or crs.toWkt(CRS_WKT2_2019)
 
 
 def layer_digest(layer, role: str) -> str:

@@ -5,12 +5,10 @@ import numpy as np
 from qgis.core import (
     QgsGeometry,
     QgsPointXY,
-    QgsProcessing,
     QgsProcessingException,
     QgsProcessingOutputNumber,
     QgsProcessingParameterFeatureSink,
     QgsProcessingParameterFeatureSource,
-    QgsWkbTypes,
 )
 from qgis.PyQt.QtCore import QT_TRANSLATE_NOOP
 
@@ -19,6 +17,13 @@ from ...birdseye_qgis.core.geometry.geodesy import LocalFrame
 from ...birdseye_qgis.core.scoring.evaluation import Detections, local_frame_for
 from ...birdseye_qgis.core.scoring.matching import in_view
 from ...birdseye_qgis.core.scoring.pre_review import score_flight
+from ...birdseye_qgis.qgis_enums import (
+    SOURCE_VECTOR,
+    SOURCE_VECTOR_POINT,
+    SOURCE_VECTOR_POLYGON,
+    WKB_POINT,
+    WKB_POLYGON,
+)
 from ...birdseye_qgis.qgis_io import layers
 from ...birdseye_qgis.qgis_io.detections import (
     CLUSTER_FIELDS,
@@ -44,19 +49,19 @@ class ClusterDetections(ClusteringParametersMixin, BirdsEyeAlgorithm):
 
     def initAlgorithm(self, config=None):
         self.addParameter(QgsProcessingParameterFeatureSource(
-            self.DETECTIONS, self.tr("Detections (from Detect targets)"), [QgsProcessing.TypeVectorPoint]))
+            self.DETECTIONS, self.tr("Detections (from Detect targets)"), [SOURCE_VECTOR_POINT]))
         self.add_clustering_parameters(with_prediction=False)
         self.addParameter(QgsProcessingParameterFeatureSource(
             self.GEOTAGS, self.tr("Geotags (optional: fills matched_geotag_ids and hit)"),
-            [QgsProcessing.TypeVectorPoint], optional=True))
+            [SOURCE_VECTOR_POINT], optional=True))
         self.addParameter(QgsProcessingParameterFeatureSource(
             self.FRAMES, self.tr("Frames of the flight (optional: only in-view geotags can match)"),
-            [QgsProcessing.TypeVector], optional=True))
+            [SOURCE_VECTOR], optional=True))
         self.add_matching_parameters()
         self.addParameter(QgsProcessingParameterFeatureSink(
-            self.OUTPUT, self.tr("Clusters"), QgsProcessing.TypeVectorPolygon))
+            self.OUTPUT, self.tr("Clusters"), SOURCE_VECTOR_POLYGON))
         self.addParameter(QgsProcessingParameterFeatureSink(
-            self.OUTPUT_POINTS, self.tr("De-duplicated points"), QgsProcessing.TypeVectorPoint, optional=True,
+            self.OUTPUT_POINTS, self.tr("De-duplicated points"), SOURCE_VECTOR_POINT, optional=True,
             createByDefault=False))
         for name, text in (("CLUSTER_COUNT", "Clusters"), ("HIT_COUNT", "Hit clusters"),
                            ("NOISE_POINTS", "De-duplicated points left as noise")):
@@ -128,7 +133,7 @@ class ClusterDetections(ClusteringParametersMixin, BirdsEyeAlgorithm):
 
     def _write_clusters(self, parameters, context, feedback, clustering, xy, matched, hit, local, crs):
         fields = layers.qgs_fields(CLUSTER_FIELDS)
-        sink, dest_id = self.parameterAsSink(parameters, self.OUTPUT, context, fields, QgsWkbTypes.Polygon, crs)
+        sink, dest_id = self.parameterAsSink(parameters, self.OUTPUT, context, fields, WKB_POLYGON, crs)
         if sink is None:
             raise QgsProcessingException(self.tr("OUTPUT: the cluster layer cannot be created."))
         n = clustering.n_clusters
@@ -150,7 +155,7 @@ class ClusterDetections(ClusteringParametersMixin, BirdsEyeAlgorithm):
 
     def _write_points(self, parameters, context, feedback, clustering, det, local, crs):
         fields = layers.qgs_fields(POINT_FIELDS)
-        sink, dest_id = self.parameterAsSink(parameters, self.OUTPUT_POINTS, context, fields, QgsWkbTypes.Point, crs)
+        sink, dest_id = self.parameterAsSink(parameters, self.OUTPUT_POINTS, context, fields, WKB_POINT, crs)
         if sink is None:
             raise QgsProcessingException(self.tr("OUTPUT_POINTS: the point layer cannot be created."))
         pts = clustering.points

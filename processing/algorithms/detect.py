@@ -3,7 +3,6 @@ from __future__ import annotations
 
 import numpy as np
 from qgis.core import (
-    QgsProcessing,
     QgsProcessingOutputNumber,
     QgsProcessingOutputString,
     QgsProcessingParameterFeatureSink,
@@ -11,7 +10,6 @@ from qgis.core import (
     QgsProcessingParameterFile,
     QgsProcessingParameterFolderDestination,
     QgsProcessingParameterNumber,
-    QgsWkbTypes,
 )
 from qgis.PyQt.QtCore import QT_TRANSLATE_NOOP
 
@@ -20,6 +18,7 @@ from ...birdseye_qgis.core.detect.detector import DetectRequest, HeatmapModel, d
 from ...birdseye_qgis.core.errors import InputError
 from ...birdseye_qgis.core.field.frame_records import poses_from_records
 from ...birdseye_qgis.core.geometry.geodesy import LocalFrame, ProjectedCRS
+from ...birdseye_qgis.qgis_enums import NUMBER_DOUBLE, SOURCE_VECTOR_POINT, SOURCE_VECTOR_POLYGON, WKB_POINT_Z
 from ...birdseye_qgis.qgis_io import layers
 from ...birdseye_qgis.qgis_io.detections import DETECTION_FIELDS
 from ..parameters.dem import DemParametersMixin
@@ -42,19 +41,19 @@ class Detect(DemParametersMixin, BirdsEyeAlgorithm):
     def initAlgorithm(self, config=None):
         self.addParameter(QgsProcessingParameterFeatureSource(
             self.FRAMES, self.tr("Frames (from Import flight log or Import DJI images)"),
-            [QgsProcessing.TypeVectorPolygon, QgsProcessing.TypeVectorPoint]))
+            [SOURCE_VECTOR_POLYGON, SOURCE_VECTOR_POINT]))
         self.addParameter(QgsProcessingParameterFile(
             self.MODEL, self.tr("ONNX heatmap model (empty: the bundled demo model)"),
             fileFilter="ONNX models (*.onnx)", defaultValue=str(DEFAULT_MODEL), optional=True))
         self.addParameter(QgsProcessingParameterNumber(
             self.THRESHOLD, self.tr("Probability threshold (empty: the model's default)"),
-            QgsProcessingParameterNumber.Double, optional=True, minValue=0.0, maxValue=1.0))
+            NUMBER_DOUBLE, optional=True, minValue=0.0, maxValue=1.0))
         self.addParameter(QgsProcessingParameterNumber(
             self.EDGE_BUFFER_PX, self.tr("Edge buffer (px): detections closer to the image border are dropped"),
-            QgsProcessingParameterNumber.Double, 0.0, minValue=0.0))
+            NUMBER_DOUBLE, 0.0, minValue=0.0))
         self.add_dem_parameters()
         self.addParameter(QgsProcessingParameterFeatureSink(
-            self.OUTPUT, self.tr("Detections"), QgsProcessing.TypeVectorPoint))
+            self.OUTPUT, self.tr("Detections"), SOURCE_VECTOR_POINT))
         self.addParameter(QgsProcessingParameterFolderDestination(
             self.OUTPUT_HEATMAPS, self.tr("Heatmap folder (one PNG per frame)"), optional=True,
             createByDefault=False))
@@ -95,7 +94,7 @@ class Detect(DemParametersMixin, BirdsEyeAlgorithm):
         to_crs = ProjectedCRS(layers.pyproj_crs(crs))
 
         fields = layers.qgs_fields(DETECTION_FIELDS)
-        sink, dest_id = self.parameterAsSink(parameters, self.OUTPUT, context, fields, QgsWkbTypes.PointZ, crs)
+        sink, dest_id = self.parameterAsSink(parameters, self.OUTPUT, context, fields, WKB_POINT_Z, crs)
         if sink is None:
             raise self.user_error(InputError("the detection output cannot be created", field=self.OUTPUT))
         counts = self.run_core(self._detect, model, groups, records, request, to_crs, sink, fields, feedback)

@@ -5,7 +5,6 @@ import json
 from pathlib import Path
 
 from qgis.core import (
-    QgsProcessing,
     QgsProcessingException,
     QgsProcessingOutputNumber,
     QgsProcessingParameterFeatureSource,
@@ -22,6 +21,7 @@ from ...birdseye_qgis.core.scoring import preregistration
 from ...birdseye_qgis.core.scoring.evaluation import evaluate_flights
 from ...birdseye_qgis.core.scoring.operating_point import OperatingPoint
 from ...birdseye_qgis.core.scoring.reports import evaluation_report_html
+from ...birdseye_qgis.qgis_enums import SOURCE_VECTOR, SOURCE_VECTOR_POINT
 from ...birdseye_qgis.qgis_io.detections import read_geotags, read_verdicts
 from ..parameters.clustering import ClusteringParametersMixin
 from .base import BirdsEyeAlgorithm
@@ -54,14 +54,14 @@ class EvaluateDetections(ClusteringParametersMixin, BirdsEyeAlgorithm):
 
     def initAlgorithm(self, config=None):
         self.addParameter(QgsProcessingParameterMultipleLayers(
-            self.DETECTIONS, self.tr("Detection layers (one per flight)"), QgsProcessing.TypeVectorPoint))
+            self.DETECTIONS, self.tr("Detection layers (one per flight)"), SOURCE_VECTOR_POINT))
         self.addParameter(QgsProcessingParameterFeatureSource(
-            self.GEOTAGS, self.tr("Geotags"), [QgsProcessing.TypeVectorPoint]))
+            self.GEOTAGS, self.tr("Geotags"), [SOURCE_VECTOR_POINT]))
         self.addParameter(QgsProcessingParameterMultipleLayers(
-            self.FRAMES, self.tr("Frame layers (one per flight, same order)"), QgsProcessing.TypeVector))
+            self.FRAMES, self.tr("Frame layers (one per flight, same order)"), SOURCE_VECTOR))
         self.add_clustering_parameters()
         self.addParameter(QgsProcessingParameterVectorLayer(
-            self.REVIEW, self.tr("Review verdicts (optional: adds the POST scores)"), [QgsProcessing.TypeVector],
+            self.REVIEW, self.tr("Review verdicts (optional: adds the POST scores)"), [SOURCE_VECTOR],
             optional=True))
         self.addParameter(QgsProcessingParameterFile(
             self.PREREGISTRATION, self.tr("Sealed selection rule (optional: verified, its operating point is used)"),

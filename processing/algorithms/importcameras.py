@@ -2,7 +2,6 @@
 from __future__ import annotations
 
 from qgis.core import (
-    QgsProcessing,
     QgsProcessingOutputNumber,
     QgsProcessingParameterCrs,
     QgsProcessingParameterEnum,
@@ -14,6 +13,7 @@ from qgis.core import (
 from qgis.PyQt.QtCore import QT_TRANSLATE_NOOP
 
 from ...birdseye_qgis.core.field.solutions import import_camera_solution
+from ...birdseye_qgis.qgis_enums import FILE_BEHAVIOR_FILE, FILE_BEHAVIOR_FOLDER, NUMBER_DOUBLE, SOURCE_VECTOR_POLYGON
 from ...birdseye_qgis.qgis_io import layers
 from ..parameters.dem import DemParametersMixin
 from .base import BirdsEyeAlgorithm
@@ -45,15 +45,15 @@ class ImportCameras(DemParametersMixin, BirdsEyeAlgorithm):
         self.addParameter(QgsProcessingParameterFile(
             self.CAMERAS, self.tr("Camera solution (Metashape cameras .xml, OpenSfM/ODM reconstruction.json, or a "
                                   "COLMAP model folder)"),
-            behavior=QgsProcessingParameterFile.File,
+            behavior=FILE_BEHAVIOR_FILE,
             fileFilter="Camera solutions (*.xml *.json *.bin *.txt);;All files (*)"))
         self.addParameter(QgsProcessingParameterFile(
             self.IMAGES, self.tr("Folder of the images (optional; matched by file name)"),
-            behavior=QgsProcessingParameterFile.Folder, optional=True))
+            behavior=FILE_BEHAVIOR_FOLDER, optional=True))
         self.addParameter(QgsProcessingParameterNumber(
             self.GROUND_HEIGHT_M, self.tr("Ground height for frames without tie points (m, same reference as the "
                                           "solution; optional)"),
-            QgsProcessingParameterNumber.Double, None, optional=True, minValue=-1000.0, maxValue=9000.0))
+            NUMBER_DOUBLE, None, optional=True, minValue=-1000.0, maxValue=9000.0))
         self.addParameter(QgsProcessingParameterEnum(
             self.COLMAP_REFERENCE, self.tr("A COLMAP model's frame"),
             options=[self.tr(label) for label in COLMAP_REFERENCE_LABELS], defaultValue=0))
@@ -63,7 +63,7 @@ class ImportCameras(DemParametersMixin, BirdsEyeAlgorithm):
             self.OUTPUT_CRS, self.tr("Output CRS (empty: UTM zone of the site)"), optional=True))
         self.add_dem_parameters()
         self.addParameter(QgsProcessingParameterFeatureSink(
-            self.OUTPUT, self.tr("Solved frames"), QgsProcessing.TypeVectorPolygon))
+            self.OUTPUT, self.tr("Solved frames"), SOURCE_VECTOR_POLYGON))
         self.addOutput(QgsProcessingOutputNumber(self.FRAME_COUNT, self.tr("Frames written")))
         self.addOutput(QgsProcessingOutputNumber(self.NOT_ALIGNED_COUNT, self.tr("Cameras the solution did not "
                                                                                  "align")))

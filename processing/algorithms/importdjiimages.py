@@ -2,7 +2,6 @@
 from __future__ import annotations
 
 from qgis.core import (
-    QgsProcessing,
     QgsProcessingOutputNumber,
     QgsProcessingParameterCrs,
     QgsProcessingParameterFeatureSink,
@@ -12,6 +11,7 @@ from qgis.PyQt.QtCore import QT_TRANSLATE_NOOP
 
 from ...birdseye_qgis.core.field.dji import import_dji_images
 from ...birdseye_qgis.core.geometry.camera import load_calibration
+from ...birdseye_qgis.qgis_enums import FILE_BEHAVIOR_FOLDER, SOURCE_VECTOR_POLYGON
 from ...birdseye_qgis.qgis_io import layers
 from ..parameters.dem import DemParametersMixin
 from .base import BirdsEyeAlgorithm
@@ -30,7 +30,7 @@ class ImportDjiImages(DemParametersMixin, BirdsEyeAlgorithm):
 
     def initAlgorithm(self, config=None):
         self.addParameter(QgsProcessingParameterFile(
-            self.IMAGES, self.tr("Folder of DJI images (JPEG)"), behavior=QgsProcessingParameterFile.Folder))
+            self.IMAGES, self.tr("Folder of DJI images (JPEG)"), behavior=FILE_BEHAVIOR_FOLDER))
         self.addParameter(QgsProcessingParameterFile(
             self.CALIBRATION, self.tr("Camera calibration (optional; Kalibr or OpenCV YAML)"), optional=True,
             fileFilter="Calibration (*.yaml *.yml);;All files (*)"))
@@ -38,7 +38,7 @@ class ImportDjiImages(DemParametersMixin, BirdsEyeAlgorithm):
             self.OUTPUT_CRS, self.tr("Output CRS (empty: UTM zone of the site)"), optional=True))
         self.add_dem_parameters()
         self.addParameter(QgsProcessingParameterFeatureSink(
-            self.OUTPUT, self.tr("DJI frames"), QgsProcessing.TypeVectorPolygon))
+            self.OUTPUT, self.tr("DJI frames"), SOURCE_VECTOR_POLYGON))
         self.addOutput(QgsProcessingOutputNumber(self.FRAME_COUNT, self.tr("Frames written")))
         self.addOutput(QgsProcessingOutputNumber(self.UNPLACED_COUNT, self.tr("Images that cannot be placed")))
 

@@ -2,7 +2,6 @@
 from __future__ import annotations
 
 from qgis.core import (
-    QgsProcessing,
     QgsProcessingOutputNumber,
     QgsProcessingParameterCrs,
     QgsProcessingParameterEnum,
@@ -14,6 +13,7 @@ from qgis.PyQt.QtCore import QT_TRANSLATE_NOOP
 
 from ...birdseye_qgis.core.field.flight_log import import_flight_log
 from ...birdseye_qgis.core.geometry.camera import load_calibration
+from ...birdseye_qgis.qgis_enums import FILE_BEHAVIOR_FOLDER, NUMBER_DOUBLE, SOURCE_VECTOR_LINE, SOURCE_VECTOR_POLYGON
 from ...birdseye_qgis.qgis_io import layers
 from ..parameters.dem import DemParametersMixin
 from .base import BirdsEyeAlgorithm
@@ -42,15 +42,15 @@ class ImportFlightLog(DemParametersMixin, BirdsEyeAlgorithm):
             fileFilter="Pose logs (*.csv *.txt *.db *.sqlite);;All files (*)"))
         self.addParameter(QgsProcessingParameterFile(
             self.IMAGES, self.tr("Image folder (images.csv or <sec>.<nsec>.png|jpg files)"),
-            behavior=QgsProcessingParameterFile.Folder, optional=True))
+            behavior=FILE_BEHAVIOR_FOLDER, optional=True))
         self.addParameter(QgsProcessingParameterFile(
             self.CALIBRATION, self.tr("Camera calibration (Kalibr camchain or OpenCV YAML)"),
             fileFilter="Calibration (*.yaml *.yml);;All files (*)"))
         fps = QgsProcessingParameterNumber(self.FPS, self.tr("Camera frame rate (frames/s)"),
-                                           QgsProcessingParameterNumber.Double, 5.0, minValue=0.01)
+                                           NUMBER_DOUBLE, 5.0, minValue=0.01)
         self.addParameter(fps)
         self.addParameter(QgsProcessingParameterNumber(
-            self.RADALT_SNR_MIN, self.tr("Minimum altimeter SNR (dB)"), QgsProcessingParameterNumber.Double, 13.0))
+            self.RADALT_SNR_MIN, self.tr("Minimum altimeter SNR (dB)"), NUMBER_DOUBLE, 13.0))
         self.addParameter(QgsProcessingParameterEnum(
             self.RTK_FILTER, self.tr("RTK filter"), options=self.RTK_FILTERS, defaultValue=0))
         self.addParameter(QgsProcessingParameterCrs(
@@ -59,9 +59,9 @@ class ImportFlightLog(DemParametersMixin, BirdsEyeAlgorithm):
             self.OUTPUT_CRS, self.tr("Output CRS (empty: UTM zone of the site)"), optional=True))
         self.add_dem_parameters()
         self.addParameter(QgsProcessingParameterFeatureSink(
-            self.OUTPUT, self.tr("Frames"), QgsProcessing.TypeVectorPolygon))
+            self.OUTPUT, self.tr("Frames"), SOURCE_VECTOR_POLYGON))
         self.addParameter(QgsProcessingParameterFeatureSink(
-            self.OUTPUT_TRACK, self.tr("Flight line"), QgsProcessing.TypeVectorLine, optional=True,
+            self.OUTPUT_TRACK, self.tr("Flight line"), SOURCE_VECTOR_LINE, optional=True,
             createByDefault=True))
         for name, text in (("FRAME_COUNT", "Frames written"), ("UNMATCHED_STROBES", "Strobes without image"),
                            ("UNMATCHED_IMAGES", "Images without strobe"), ("BAD_ROWS", "Bad rows left out")):

@@ -2,7 +2,6 @@
 from __future__ import annotations
 
 from qgis.core import (
-    QgsProcessing,
     QgsProcessingException,
     QgsProcessingOutputNumber,
     QgsProcessingParameterCrs,
@@ -12,7 +11,6 @@ from qgis.core import (
     QgsProcessingParameterFile,
     QgsProcessingParameterNumber,
     QgsProcessingParameterString,
-    QgsWkbTypes,
 )
 from qgis.PyQt.QtCore import QT_TRANSLATE_NOOP
 
@@ -24,6 +22,7 @@ from ...birdseye_qgis.core.field.geotags import (
     prepare_geotags,
     read_geotags,
 )
+from ...birdseye_qgis.qgis_enums import NUMBER_DOUBLE, SOURCE_VECTOR_POINT, WKB_POINT_Z
 from ...birdseye_qgis.qgis_io import layers
 from .base import BirdsEyeAlgorithm
 
@@ -55,7 +54,7 @@ class ImportGeotags(BirdsEyeAlgorithm):
             self.INPUT, self.tr("Geotag file (rover CSV, CSV with header, NMEA)"), optional=True,
             fileFilter="Geotags (*.csv *.txt *.nmea *.log *.gga);;All files (*)"))
         self.addParameter(QgsProcessingParameterFeatureSource(
-            self.INPUT_LAYER, self.tr("…or a point layer"), [QgsProcessing.TypeVectorPoint], optional=True))
+            self.INPUT_LAYER, self.tr("…or a point layer"), [SOURCE_VECTOR_POINT], optional=True))
         self.addParameter(QgsProcessingParameterEnum(
             self.FORMAT, self.tr("File format"), options=self.FORMAT_NAMES, defaultValue=0))
         for name, _, text in self.MAPPING:
@@ -64,11 +63,11 @@ class ImportGeotags(BirdsEyeAlgorithm):
             self.FIX_FILTER, self.tr("Fix filter"), options=self.FIX_FILTERS, defaultValue=0))
         self.addParameter(QgsProcessingParameterNumber(
             self.POLE_HEIGHT_M, self.tr("Antenna pole height (m), subtracted from heights"),
-            QgsProcessingParameterNumber.Double, 0.0, minValue=0.0, maxValue=10.0))
+            NUMBER_DOUBLE, 0.0, minValue=0.0, maxValue=10.0))
         self.addParameter(QgsProcessingParameterCrs(
             self.OUTPUT_CRS, self.tr("Output CRS (empty: UTM zone of the site)"), optional=True))
         self.addParameter(QgsProcessingParameterFeatureSink(
-            self.OUTPUT, self.tr("Geotags"), QgsProcessing.TypeVectorPoint))
+            self.OUTPUT, self.tr("Geotags"), SOURCE_VECTOR_POINT))
         for name, text in (("GEOTAG_COUNT", "Geotags written"), ("BAD_ROWS", "Bad rows left out"),
                            ("NOT_FIXED_DROPPED", "Geotags dropped by the fix filter"),
                            ("DUPLICATES", "Geotags flagged duplicate_2cm")):
@@ -115,7 +114,7 @@ class ImportGeotags(BirdsEyeAlgorithm):
         feedback.pushInfo(self.tr("Output CRS: {value}").format(value=crs.authid() or crs.description()))
         x, y = crs_core.from_geodetic(out.lat, out.lon)
         fields = layers.qgs_fields(GEOTAG_FIELDS)
-        sink, dest_id = self.parameterAsSink(parameters, self.OUTPUT, context, fields, QgsWkbTypes.PointZ, crs)
+        sink, dest_id = self.parameterAsSink(parameters, self.OUTPUT, context, fields, WKB_POINT_Z, crs)
         z = [h if h == h else 0.0 for h in out.h_ellipsoid.tolist()]
         n = self.run_core(layers.write_records, sink, fields, out.records(),
                           (layers.point_z(*p) for p in zip(x.tolist(), y.tolist(), z)),

@@ -9,13 +9,11 @@ from qgis.core import (
     QgsFeatureRequest,
     QgsGeometry,
     QgsLineString,
-    QgsProcessing,
     QgsProcessingException,
     QgsProcessingOutputNumber,
     QgsProcessingOutputString,
     QgsProcessingParameterBoolean,
     QgsProcessingParameterCrs,
-    QgsProcessingParameterDefinition,
     QgsProcessingParameterEnum,
     QgsProcessingParameterFeatureSink,
     QgsProcessingParameterField,
@@ -24,7 +22,6 @@ from qgis.core import (
     QgsProcessingParameterNumber,
     QgsProcessingParameterPoint,
     QgsProcessingParameterVectorLayer,
-    QgsWkbTypes,
 )
 from qgis.PyQt.QtCore import QT_TRANSLATE_NOOP
 
@@ -49,6 +46,15 @@ from ...birdseye_qgis.core.plan.mission_files import (
     write_kml,
     write_litchi_csv,
     write_qgc_plan,
+)
+from ...birdseye_qgis.qgis_enums import (
+    NUMBER_DOUBLE,
+    NUMBER_INTEGER,
+    PARAMETER_ADVANCED,
+    SOURCE_VECTOR_LINE,
+    SOURCE_VECTOR_POINT,
+    WKB_LINE_STRING,
+    WKB_POINT_Z,
 )
 from ...birdseye_qgis.qgis_io import layers
 from .base import BirdsEyeAlgorithm
@@ -90,7 +96,7 @@ class PlanFlight(BirdsEyeAlgorithm):
 
     def initAlgorithm(self, config=None):
         self.addParameter(QgsProcessingParameterVectorLayer(
-            self.GEOTAGS, self.tr("Geotags (point layer)"), [QgsProcessing.TypeVectorPoint]))
+            self.GEOTAGS, self.tr("Geotags (point layer)"), [SOURCE_VECTOR_POINT]))
         self.addParameter(QgsProcessingParameterBoolean(
             self.SELECTED_ONLY, self.tr("Selected geotags only"), defaultValue=False))
         self.addParameter(QgsProcessingParameterField(
@@ -121,16 +127,16 @@ class PlanFlight(BirdsEyeAlgorithm):
         self._enum(self.PAYLOAD, "DJI camera (KMZ)", list(DJI_PAYLOADS))
         force = QgsProcessingParameterBoolean(
             self.FORCE, self.tr("Plan even if the points spread over more than 10 km"), defaultValue=False)
-        force.setFlags(force.flags() | QgsProcessingParameterDefinition.FlagAdvanced)
+        force.setFlags(force.flags() | PARAMETER_ADVANCED)
         self.addParameter(force)
         crs = QgsProcessingParameterCrs(self.OUTPUT_CRS, self.tr("Output CRS (empty: UTM zone of the site)"),
                                         optional=True)
-        crs.setFlags(crs.flags() | QgsProcessingParameterDefinition.FlagAdvanced)
+        crs.setFlags(crs.flags() | PARAMETER_ADVANCED)
         self.addParameter(crs)
         self.addParameter(QgsProcessingParameterFeatureSink(
-            self.OUTPUT_WAYPOINTS, self.tr("Waypoints"), QgsProcessing.TypeVectorPoint))
+            self.OUTPUT_WAYPOINTS, self.tr("Waypoints"), SOURCE_VECTOR_POINT))
         self.addParameter(QgsProcessingParameterFeatureSink(
-            self.OUTPUT_ROUTE, self.tr("Route"), QgsProcessing.TypeVectorLine))
+            self.OUTPUT_ROUTE, self.tr("Route"), SOURCE_VECTOR_LINE))
         for name, _, label, file_filter in self.FILE_OUTPUTS:
             self.addParameter(QgsProcessingParameterFileDestination(
                 name, self.tr(label), file_filter, optional=True, createByDefault=False))
@@ -141,19 +147,19 @@ class PlanFlight(BirdsEyeAlgorithm):
         self.addOutput(QgsProcessingOutputString(self.MISSION_FILES, self.tr("Mission files written")))
 
     def _number(self, name, label, default, minimum=None, maximum=None, integer=False, advanced=False):
-        kind = QgsProcessingParameterNumber.Integer if integer else QgsProcessingParameterNumber.Double
+        kind = NUMBER_INTEGER if integer else NUMBER_DOUBLE
         param = QgsProcessingParameterNumber(name, self.tr(label), kind, default)
         if minimum is not None:
             param.setMinimum(minimum)
         if maximum is not None:
             param.setMaximum(maximum)
         if advanced:
-            param.setFlags(param.flags() | QgsProcessingParameterDefinition.FlagAdvanced)
+            param.setFlags(param.flags() | PARAMETER_ADVANCED)
         self.addParameter(param)
 
     def _enum(self, name, label, options):
         param = QgsProcessingParameterEnum(name, self.tr(label), options=options, defaultValue=0)
-        param.setFlags(param.flags() | QgsProcessingParameterDefinition.FlagAdvanced)
+        param.setFlags(param.flags() | PARAMETER_ADVANCED)
         self.addParameter(param)
 
     # ------------------------------------------------------------------------------------------ run
@@ -236,7 +242,7 @@ class PlanFlight(BirdsEyeAlgorithm):
     def _write_layers(self, parameters, context, feedback, plan, crs_core, crs):
         fields = layers.qgs_fields(WAYPOINT_FIELDS)
         sink, waypoints_id = self.parameterAsSink(parameters, self.OUTPUT_WAYPOINTS, context, fields,
-                                                  QgsWkbTypes.PointZ, crs)
+                                                  WKB_POINT_Z, crs)
         records = waypoint_records(plan)
         x, y = crs_core.from_geodetic([r["lat"] for r in records], [r["lon"] for r in records])
         geometries = (layers.point_z(px, py, r["altitude"]) for px, py, r in zip(np.atleast_1d(x), np.atleast_1d(y),
@@ -246,7 +252,7 @@ class PlanFlight(BirdsEyeAlgorithm):
 
         route_fields = layers.qgs_fields(ROUTE_FIELDS)
         route_sink, route_id = self.parameterAsSink(parameters, self.OUTPUT_ROUTE, context, route_fields,
-                                                    QgsWkbTypes.LineString, crs)
+                                                    WKB_LINE_STRING, crs)
         lines = []
         for mission in plan.missions:
             lat, lon = plan.route_latlon(mission)

@@ -2,7 +2,6 @@
 from __future__ import annotations
 
 from qgis.core import (
-    QgsProcessing,
     QgsProcessingOutputNumber,
     QgsProcessingParameterCrs,
     QgsProcessingParameterFeatureSink,
@@ -14,6 +13,7 @@ from qgis.PyQt.QtCore import QT_TRANSLATE_NOOP
 
 from ...birdseye_qgis.core.field.odm import parse_options, process_on_node
 from ...birdseye_qgis.core.field.solutions import import_camera_solution
+from ...birdseye_qgis.qgis_enums import FILE_BEHAVIOR_FOLDER, SOURCE_VECTOR_POLYGON
 from ...birdseye_qgis.qgis_io import layers
 from .base import BirdsEyeAlgorithm
 
@@ -33,7 +33,7 @@ class ProcessOdm(BirdsEyeAlgorithm):
 
     def initAlgorithm(self, config=None):
         self.addParameter(QgsProcessingParameterFile(
-            self.IMAGES, self.tr("Folder of the flight's images"), behavior=QgsProcessingParameterFile.Folder))
+            self.IMAGES, self.tr("Folder of the flight's images"), behavior=FILE_BEHAVIOR_FOLDER))
         self.addParameter(QgsProcessingParameterString(
             self.NODE_URL, self.tr("NodeODM / ClusterODM address"), defaultValue="http://localhost:3000"))
         self.addParameter(QgsProcessingParameterString(
@@ -46,7 +46,7 @@ class ProcessOdm(BirdsEyeAlgorithm):
         self.addParameter(QgsProcessingParameterFolderDestination(
             self.OUTPUT_FOLDER, self.tr("Folder for the downloaded reconstruction")))
         self.addParameter(QgsProcessingParameterFeatureSink(
-            self.OUTPUT, self.tr("Solved frames"), QgsProcessing.TypeVectorPolygon))
+            self.OUTPUT, self.tr("Solved frames"), SOURCE_VECTOR_POLYGON))
         self.addOutput(QgsProcessingOutputNumber(self.FRAME_COUNT, self.tr("Frames written")))
 
     def processAlgorithm(self, parameters, context, feedback):

@@ -5,7 +5,6 @@ import tempfile
 from pathlib import Path
 
 from qgis.core import (
-    QgsProcessing,
     QgsProcessingException,
     QgsProcessingOutputNumber,
     QgsProcessingParameterBoolean,
@@ -24,6 +23,7 @@ from ...birdseye_qgis.core.field.refinement import (
     refine_frames,
     refinement_report_html,
 )
+from ...birdseye_qgis.qgis_enums import NUMBER_INTEGER, SOURCE_VECTOR_POLYGON
 from ...birdseye_qgis.qgis_io import layers
 from .base import BirdsEyeAlgorithm
 
@@ -43,18 +43,18 @@ class RefinePoses(BirdsEyeAlgorithm):
     def initAlgorithm(self, config=None):
         self.addParameter(QgsProcessingParameterFeatureSource(
             self.FRAMES, self.tr("Frames (from Import DJI images, Import flight log or Import camera solution)"),
-            [QgsProcessing.TypeVectorPolygon]))
+            [SOURCE_VECTOR_POLYGON]))
         self.addParameter(QgsProcessingParameterNumber(
             self.MATCH_SIZE_PX, self.tr("Image size for feature extraction (px, longer side)"),
-            QgsProcessingParameterNumber.Integer, 2000, minValue=400, maxValue=10000))
+            NUMBER_INTEGER, 2000, minValue=400, maxValue=10000))
         self.addParameter(QgsProcessingParameterNumber(
-            self.MAX_FEATURES, self.tr("Features per image (at most)"), QgsProcessingParameterNumber.Integer, 8192,
+            self.MAX_FEATURES, self.tr("Features per image (at most)"), NUMBER_INTEGER, 8192,
             minValue=500, maxValue=65536))
         self.addParameter(QgsProcessingParameterBoolean(
             self.REFINE_INTRINSICS, self.tr("Refine focal length and distortion (only with relief, oblique views or "
                                             "ground control)"), defaultValue=False))
         self.addParameter(QgsProcessingParameterFeatureSink(
-            self.OUTPUT, self.tr("Refined frames"), QgsProcessing.TypeVectorPolygon))
+            self.OUTPUT, self.tr("Refined frames"), SOURCE_VECTOR_POLYGON))
         self.addParameter(QgsProcessingParameterFileDestination(
             self.OUTPUT_REPORT, self.tr("Report (HTML)"), "HTML (*.html)", optional=True, createByDefault=True))
         self.addOutput(QgsProcessingOutputNumber(self.REGISTERED_COUNT, self.tr("Frames registered")))

@@ -6,7 +6,6 @@ from pathlib import Path
 
 import numpy as np
 from qgis.core import (
-    QgsProcessing,
     QgsProcessingException,
     QgsProcessingOutputNumber,
     QgsProcessingParameterEnum,
@@ -33,6 +32,7 @@ from ...birdseye_qgis.core.scoring.screening import (
     frame_blocks,
     screen_checkpoints,
 )
+from ...birdseye_qgis.qgis_enums import NUMBER_DOUBLE, NUMBER_INTEGER, SOURCE_FILE, SOURCE_VECTOR, SOURCE_VECTOR_POINT
 from ...birdseye_qgis.qgis_io.detections import read_geotags, read_pose_groups
 from ...birdseye_qgis.qgis_io.outputs import write_output, write_rows_csv
 from ..parameters.clustering import ClusteringParametersMixin
@@ -75,30 +75,30 @@ class ScreenCheckpoints(ClusteringParametersMixin, BirdsEyeAlgorithm):
 
     def initAlgorithm(self, config=None):
         self.addParameter(QgsProcessingParameterMultipleLayers(
-            self.CHECKPOINTS, self.tr("ONNX checkpoints"), QgsProcessing.TypeFile))
+            self.CHECKPOINTS, self.tr("ONNX checkpoints"), SOURCE_FILE))
         self.addParameter(QgsProcessingParameterMultipleLayers(
-            self.FRAMES, self.tr("Validation flights (frame layers with their images)"), QgsProcessing.TypeVector))
+            self.FRAMES, self.tr("Validation flights (frame layers with their images)"), SOURCE_VECTOR))
         self.addParameter(QgsProcessingParameterFeatureSource(
-            self.GEOTAGS, self.tr("Geotags"), [QgsProcessing.TypeVectorPoint]))
+            self.GEOTAGS, self.tr("Geotags"), [SOURCE_VECTOR_POINT]))
         self.addParameter(QgsProcessingParameterEnum(
             self.PRESET, self.tr("Preset (blocks and threshold; the two fields below override it)"),
             options=[self.tr(name) for name in self.PRESET_NAMES], defaultValue=0))
         self.addParameter(QgsProcessingParameterNumber(
             self.THRESHOLD, self.tr("Detection threshold (empty: the preset's)"),
-            QgsProcessingParameterNumber.Double, None, optional=True, minValue=0.001, maxValue=0.999))
+            NUMBER_DOUBLE, None, optional=True, minValue=0.001, maxValue=0.999))
         self.addParameter(QgsProcessingParameterNumber(
             self.BLOCK_FRAMES, self.tr("Frames per block (0: each flight whole; empty: the preset's)"),
-            QgsProcessingParameterNumber.Integer, None, optional=True, minValue=0))
+            NUMBER_INTEGER, None, optional=True, minValue=0))
         self.add_clustering_parameters()
         self.addParameter(QgsProcessingParameterNumber(
-            self.PIXEL_RADIUS_PX, self.tr("Pixel F1: match radius (px)"), QgsProcessingParameterNumber.Double,
+            self.PIXEL_RADIUS_PX, self.tr("Pixel F1: match radius (px)"), NUMBER_DOUBLE,
             DEFAULT_PIXEL_RADIUS_PX, minValue=0.5))
         self.addParameter(QgsProcessingParameterNumber(
             self.COLLAPSED_BELOW, self.tr("Collapsed if the distinct-position fraction is below"),
-            QgsProcessingParameterNumber.Double, DEFAULT_COLLAPSED_BELOW, minValue=0.0, maxValue=1.0))
+            NUMBER_DOUBLE, DEFAULT_COLLAPSED_BELOW, minValue=0.0, maxValue=1.0))
         self.addParameter(QgsProcessingParameterNumber(
             self.SPARSE_BELOW, self.tr("Too sparse if detections per frame in the worst block are below"),
-            QgsProcessingParameterNumber.Double, DEFAULT_SPARSE_BELOW, minValue=0.0))
+            NUMBER_DOUBLE, DEFAULT_SPARSE_BELOW, minValue=0.0))
         self.addParameter(QgsProcessingParameterFileDestination(
             self.OUTPUT_TABLE, self.tr("Checkpoint table (CSV)"), "CSV (*.csv)"))
         self.addParameter(QgsProcessingParameterFileDestination(

@@ -5,7 +5,6 @@ import json
 from pathlib import Path
 
 from qgis.core import (
-    QgsProcessing,
     QgsProcessingException,
     QgsProcessingOutputString,
     QgsProcessingParameterFile,
@@ -20,6 +19,7 @@ from ...birdseye_qgis.core.detect.detector import file_digest
 from ...birdseye_qgis.core.errors import InputError
 from ...birdseye_qgis.core.scoring import preregistration
 from ...birdseye_qgis.core.scoring.arms import read_arms
+from ...birdseye_qgis.qgis_enums import NUMBER_DOUBLE, SOURCE_FILE
 from ..parameters.clustering import ClusteringParametersMixin
 from .base import BirdsEyeAlgorithm
 
@@ -56,7 +56,7 @@ class SealPreregistration(ClusteringParametersMixin, BirdsEyeAlgorithm):
     def initAlgorithm(self, config=None):
         self.addParameter(QgsProcessingParameterMultipleLayers(
             self.CHECKPOINTS, self.tr("ONNX checkpoints (without ARMS or ARM_LINES: one arm each)"),
-            QgsProcessing.TypeFile, optional=True))
+            SOURCE_FILE, optional=True))
         self.addParameter(QgsProcessingParameterFile(
             self.ARMS, self.tr("Arms file (from Select arms: each arm with its own operating point)"),
             optional=True, fileFilter="JSON (*.json)"))
@@ -65,7 +65,7 @@ class SealPreregistration(ClusteringParametersMixin, BirdsEyeAlgorithm):
                                     "min_samples, eps_pred_m"), "", multiLine=True, optional=True))
         self.addParameter(QgsProcessingParameterNumber(
             self.THRESHOLD, self.tr("Detection threshold of the arms (without ARMS or ARM_LINES)"),
-            QgsProcessingParameterNumber.Double, 0.5, minValue=0.001, maxValue=0.999))
+            NUMBER_DOUBLE, 0.5, minValue=0.001, maxValue=0.999))
         self.add_clustering_parameters()
         self.addParameter(QgsProcessingParameterFile(
             self.DESCRIPTIVE, self.tr("Descriptive configurations (optional: a sweep or screen JSON, recorded only)"),

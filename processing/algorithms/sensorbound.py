@@ -13,6 +13,7 @@ from qgis.PyQt.QtCore import QT_TRANSLATE_NOOP
 
 from ...birdseye_qgis.core.design.bound_report import altitude_summary, write_report
 from ...birdseye_qgis.core.design.sensor_bound import evaluate_bounds, frame_grid, lmax_field
+from ...birdseye_qgis.qgis_enums import NUMBER_INTEGER
 from ..parameters.design import DesignParametersMixin
 from .base import BirdsEyeAlgorithm
 
@@ -33,7 +34,7 @@ class SensorBoundAlgorithm(DesignParametersMixin, BirdsEyeAlgorithm):
         self.add_sigmas_parameter()
         self.add_tolerance_parameter()
         self.addParameter(QgsProcessingParameterNumber(
-            self.STRIDE_PX, self.tr("Grid stride [px] (1 = every pixel)"), QgsProcessingParameterNumber.Integer,
+            self.STRIDE_PX, self.tr("Grid stride [px] (1 = every pixel)"), NUMBER_INTEGER,
             defaultValue=1, minValue=1))
         self.addParameter(QgsProcessingParameterFileDestination(
             self.OUTPUT_JSON, self.tr("Results (JSON)"), "JSON files (*.json)"))

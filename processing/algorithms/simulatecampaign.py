@@ -7,7 +7,6 @@ from qgis.core import (
     QgsProcessingOutputNumber,
     QgsProcessingOutputRasterLayer,
     QgsProcessingParameterBoolean,
-    QgsProcessingParameterDefinition,
     QgsProcessingParameterEnum,
     QgsProcessingParameterFolderDestination,
     QgsProcessingParameterNumber,
@@ -24,10 +23,11 @@ from ...birdseye_qgis.core.sim.campaign import (
     parse_sigmas,
     simulate_campaign,
 )
+from ...birdseye_qgis.qgis_enums import NUMBER_DOUBLE, NUMBER_INTEGER, PARAMETER_ADVANCED
 from .base import BirdsEyeAlgorithm
 
 DEFAULTS = CampaignConfig()
-INT, DOUBLE = QgsProcessingParameterNumber.Integer, QgsProcessingParameterNumber.Double
+INT, DOUBLE = NUMBER_INTEGER, NUMBER_DOUBLE
 
 # (name, label, type, default, min, max, advanced), in the dialog's order; the advanced ones follow
 # the switches (SIGMAS, NOISE_OFF, RENDER).
@@ -133,7 +133,7 @@ class SimulateCampaign(BirdsEyeAlgorithm):
 
     def _add(self, param, advanced: bool) -> None:
         if advanced:
-            param.setFlags(param.flags() | QgsProcessingParameterDefinition.FlagAdvanced)
+            param.setFlags(param.flags() | PARAMETER_ADVANCED)
         self.addParameter(param)
 
     def processAlgorithm(self, parameters, context, feedback):

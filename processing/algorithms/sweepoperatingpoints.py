@@ -6,7 +6,6 @@ from pathlib import Path
 
 import numpy as np
 from qgis.core import (
-    QgsProcessing,
     QgsProcessingException,
     QgsProcessingOutputNumber,
     QgsProcessingParameterFeatureSource,
@@ -35,6 +34,7 @@ from ...birdseye_qgis.core.scoring.sweep import (
     flights_from_runs,
     sweep,
 )
+from ...birdseye_qgis.qgis_enums import NUMBER_DOUBLE, SOURCE_FILE, SOURCE_VECTOR, SOURCE_VECTOR_POINT
 from ...birdseye_qgis.qgis_io.detections import read_detections, read_geotags, read_pose_groups
 from ...birdseye_qgis.qgis_io.outputs import write_output, write_rows_csv
 from .base import BirdsEyeAlgorithm
@@ -89,29 +89,29 @@ class SweepOperatingPoints(BirdsEyeAlgorithm):
     def initAlgorithm(self, config=None):
         self.addParameter(QgsProcessingParameterMultipleLayers(
             self.CHECKPOINTS, self.tr("ONNX checkpoints (run over FRAMES, peaks extracted at every threshold)"),
-            QgsProcessing.TypeFile, optional=True))
+            SOURCE_FILE, optional=True))
         self.addParameter(QgsProcessingParameterMultipleLayers(
             self.DETECTIONS, self.tr("Or detection layers (checkpoints × flights × thresholds, from Detect)"),
-            QgsProcessing.TypeVectorPoint, optional=True))
+            SOURCE_VECTOR_POINT, optional=True))
         self.addParameter(QgsProcessingParameterFeatureSource(
-            self.GEOTAGS, self.tr("Geotags"), [QgsProcessing.TypeVectorPoint]))
+            self.GEOTAGS, self.tr("Geotags"), [SOURCE_VECTOR_POINT]))
         self.addParameter(QgsProcessingParameterMultipleLayers(
             self.FRAMES, self.tr("Frame layers (with CHECKPOINTS: one per flight; with DETECTIONS: one per "
-                                 "detection layer, same order)"), QgsProcessing.TypeVector))
+                                 "detection layer, same order)"), SOURCE_VECTOR))
         for name, text, default in LISTS:
             self.addParameter(QgsProcessingParameterString(name, self.tr(text), default))
         self.addParameter(QgsProcessingParameterNumber(
-            self.DEDUP_CM, self.tr("De-duplication grid cell (cm)"), QgsProcessingParameterNumber.Double,
+            self.DEDUP_CM, self.tr("De-duplication grid cell (cm)"), NUMBER_DOUBLE,
             DEFAULT_DEDUP_CM, minValue=0.1, maxValue=100.0))
         self.addParameter(QgsProcessingParameterNumber(
             self.EDGE_BUFFER_PX, self.tr("Edge buffer (px) of the in-view test and of CHECKPOINTS' detections"),
-            QgsProcessingParameterNumber.Double, DEFAULT_EDGE_BUFFER_PX, minValue=0.0, maxValue=1000.0))
+            NUMBER_DOUBLE, DEFAULT_EDGE_BUFFER_PX, minValue=0.0, maxValue=1000.0))
         self.addParameter(QgsProcessingParameterNumber(
             self.MAX_GEOTAGS_PER_HIT, self.tr("Credible: mean geotags per hit cluster at most"),
-            QgsProcessingParameterNumber.Double, DEFAULT_MAX_GEOTAGS_PER_HIT, minValue=1.0))
+            NUMBER_DOUBLE, DEFAULT_MAX_GEOTAGS_PER_HIT, minValue=1.0))
         self.addParameter(QgsProcessingParameterNumber(
             self.MAX_MEAN_EXTENT_M, self.tr("Credible: mean median cluster extent at most (m)"),
-            QgsProcessingParameterNumber.Double, DEFAULT_MAX_MEAN_EXTENT_M, minValue=0.0))
+            NUMBER_DOUBLE, DEFAULT_MAX_MEAN_EXTENT_M, minValue=0.0))
         self.addParameter(QgsProcessingParameterFileDestination(
             self.OUTPUT_TABLE, self.tr("Configurations (CSV)"), "CSV (*.csv)"))
         self.addParameter(QgsProcessingParameterFileDestination(

@@ -15,6 +15,7 @@ from ...birdseye_qgis.core.design.terrain_slope import (
     plot_slope_error,
     slope_error_grid,
 )
+from ...birdseye_qgis.qgis_enums import NUMBER_DOUBLE
 from ..parameters.design import DesignParametersMixin
 from .base import BirdsEyeAlgorithm
 
@@ -37,11 +38,11 @@ class TerrainSlopeAlgorithm(DesignParametersMixin, BirdsEyeAlgorithm):
     def initAlgorithm(self, config=None):
         self.add_camera_parameters()
         self.addParameter(QgsProcessingParameterNumber(
-            self.ALTITUDE_M, self.tr("Altitude above the ground [m]"), QgsProcessingParameterNumber.Double,
+            self.ALTITUDE_M, self.tr("Altitude above the ground [m]"), NUMBER_DOUBLE,
             defaultValue=10.0))
         self.add_tolerance_parameter()
         self.addParameter(QgsProcessingParameterNumber(
-            self.MAX_SLOPE_DEG, self.tr("Steepest slope studied [degrees]"), QgsProcessingParameterNumber.Double,
+            self.MAX_SLOPE_DEG, self.tr("Steepest slope studied [degrees]"), NUMBER_DOUBLE,
             defaultValue=45.0))
         self.addParameter(QgsProcessingParameterFileDestination(
             self.OUTPUT_JSON, self.tr("Results (JSON)"), "JSON files (*.json)"))

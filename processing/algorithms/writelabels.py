@@ -9,7 +9,6 @@ from qgis.core import (
     QgsFeatureSink,
     QgsField,
     QgsFields,
-    QgsProcessing,
     QgsProcessingException,
     QgsProcessingMultiStepFeedback,
     QgsProcessingOutputNumber,
@@ -33,6 +32,7 @@ from ...birdseye_qgis.core.labels.training_set import (
     frames_without_ground,
     project_labels,
 )
+from ...birdseye_qgis.qgis_enums import NUMBER_DOUBLE, NUMBER_INTEGER, SOURCE_VECTOR_POINT, SOURCE_VECTOR_POLYGON
 from ...birdseye_qgis.qgis_io import layers
 from ...birdseye_qgis.qgis_io.project_settings import read_sigma_label_px
 from ..parameters.dem import DemParametersMixin
@@ -78,41 +78,41 @@ class WriteLabels(DemParametersMixin, BirdsEyeAlgorithm):
 
     def initAlgorithm(self, config=None):
         self.addParameter(QgsProcessingParameterFeatureSource(
-            self.GEOTAGS, self.tr("Geotags (surveyed targets)"), [QgsProcessing.TypeVectorPoint]))
+            self.GEOTAGS, self.tr("Geotags (surveyed targets)"), [SOURCE_VECTOR_POINT]))
         self.addParameter(QgsProcessingParameterFeatureSource(
             self.FRAMES, self.tr("Frames (from Import flight log or Import DJI images)"),
-            [QgsProcessing.TypeVectorPolygon]))
+            [SOURCE_VECTOR_POLYGON]))
         self.addParameter(QgsProcessingParameterNumber(
             self.SIGMA_PX, self.tr("Soft-label σ (px); empty: the sensor-bound dock's value, else 10"),
-            QgsProcessingParameterNumber.Double, None, optional=True, minValue=0.5, maxValue=500.0))
+            NUMBER_DOUBLE, None, optional=True, minValue=0.5, maxValue=500.0))
         self.addParameter(QgsProcessingParameterFile(
             self.SENSOR_BOUND_JSON, self.tr("…or σ from a sensorbound result (JSON): r / 3"), optional=True,
             fileFilter="JSON (*.json)"))
         self.addParameter(QgsProcessingParameterNumber(
             self.EDGE_BUFFER_PX, self.tr("Edge buffer (px): geotags this close to the border are 'edge', not labels"),
-            QgsProcessingParameterNumber.Double, 0.0, minValue=0.0, maxValue=1000.0))
+            NUMBER_DOUBLE, 0.0, minValue=0.0, maxValue=1000.0))
         self.add_dem_parameters()
         self.addParameter(QgsProcessingParameterBoolean(
             self.WRITE_RASTERS, self.tr("Write one soft-label raster per frame"), defaultValue=True))
         self.addParameter(QgsProcessingParameterBoolean(
             self.WRITE_TILES, self.tr("Write a tiled training set (image and label tiles)"), defaultValue=False))
         self.addParameter(QgsProcessingParameterNumber(
-            self.TILE_SIZE, self.tr("Tile size (px)"), QgsProcessingParameterNumber.Integer, 224,
+            self.TILE_SIZE, self.tr("Tile size (px)"), NUMBER_INTEGER, 224,
             minValue=16, maxValue=4096))
         self.addParameter(QgsProcessingParameterNumber(
             self.NEGATIVE_RATIO, self.tr("Negative tiles kept per positive tile"),
-            QgsProcessingParameterNumber.Double, 1.0, minValue=0.0, maxValue=100.0))
+            NUMBER_DOUBLE, 1.0, minValue=0.0, maxValue=100.0))
         self.addParameter(QgsProcessingParameterNumber(
-            self.SEED, self.tr("Random seed for the negative-tile sample"), QgsProcessingParameterNumber.Integer,
+            self.SEED, self.tr("Random seed for the negative-tile sample"), NUMBER_INTEGER,
             0, minValue=0))
         self.addParameter(QgsProcessingParameterBoolean(
             self.WRITE_COCO, self.tr("Write COCO-keypoints JSON"), defaultValue=False))
         self.addParameter(QgsProcessingParameterFolderDestination(self.OUTPUT_FOLDER, self.tr("Label folder")))
         self.addParameter(QgsProcessingParameterFeatureSink(
-            self.OUTPUT_FRAMES, self.tr("Frames with label counts"), QgsProcessing.TypeVectorPolygon,
+            self.OUTPUT_FRAMES, self.tr("Frames with label counts"), SOURCE_VECTOR_POLYGON,
             optional=True, createByDefault=True))
         self.addParameter(QgsProcessingParameterFeatureSink(
-            self.OUTPUT_GEOTAGS, self.tr("Geotags with frames seen"), QgsProcessing.TypeVectorPoint,
+            self.OUTPUT_GEOTAGS, self.tr("Geotags with frames seen"), SOURCE_VECTOR_POINT,
             optional=True, createByDefault=True))
         for name, text in (("LABEL_COUNT", "Labels written"), ("FRAMES_WITH_LABELS", "Frames with labels"),
                            ("GEOTAGS_NEVER_IN_VIEW", "Geotags never in view"), ("SIGMA_USED_PX", "σ used (px)")):
@@ -265,7 +265,7 @@ class WriteLabels(DemParametersMixin, BirdsEyeAlgorithm):
                 if field.name() != extra.name():
                     out[field.name()] = feature[field.name()]
             out[extra.name()] = int(value)
-            sink.addFeature(out, QgsFeatureSink.FastInsert)
+            sink.addFeature(out, QgsFeatureSink.Flag.FastInsert)
         layers.style_on_load(context, dest_id, style)
         return {name: dest_id}
 

@@ -7,6 +7,7 @@ from qgis.core import QgsProcessingException, QgsProcessingParameterNumber
 from ...birdseye_qgis.core.detect.clustering import DEFAULT_DEDUP_CM, DEFAULT_EPS_M, DEFAULT_MIN_SAMPLES
 from ...birdseye_qgis.core.scoring.evaluation import Flight
 from ...birdseye_qgis.core.scoring.operating_point import DEFAULT_EDGE_BUFFER_PX, DEFAULT_EPS_PRED_M, OperatingPoint
+from ...birdseye_qgis.qgis_enums import NUMBER_DOUBLE, NUMBER_INTEGER
 from ...birdseye_qgis.qgis_io.detections import read_detections, read_pose_groups
 
 
@@ -22,14 +23,14 @@ class ClusteringParametersMixin:
     def add_clustering_parameters(self, with_prediction: bool = True) -> None:
         """DEDUP_CM, EPS_M, MIN_SAMPLES (and EPS_PRED_M, EDGE_BUFFER_PX) with the method's defaults."""
         self.addParameter(QgsProcessingParameterNumber(
-            self.DEDUP_CM, self.tr("De-duplication grid cell (cm)"), QgsProcessingParameterNumber.Double,
+            self.DEDUP_CM, self.tr("De-duplication grid cell (cm)"), NUMBER_DOUBLE,
             DEFAULT_DEDUP_CM, minValue=0.1, maxValue=100.0))
         self.addParameter(QgsProcessingParameterNumber(
-            self.EPS_M, self.tr("DBSCAN radius EPS (m)"), QgsProcessingParameterNumber.Double, DEFAULT_EPS_M,
+            self.EPS_M, self.tr("DBSCAN radius EPS (m)"), NUMBER_DOUBLE, DEFAULT_EPS_M,
             minValue=0.001, maxValue=50.0))
         self.addParameter(QgsProcessingParameterNumber(
             self.MIN_SAMPLES, self.tr("DBSCAN minimum points per neighbourhood (itself included)"),
-            QgsProcessingParameterNumber.Integer, DEFAULT_MIN_SAMPLES, minValue=1, maxValue=1000))
+            NUMBER_INTEGER, DEFAULT_MIN_SAMPLES, minValue=1, maxValue=1000))
         if with_prediction:
             self.add_matching_parameters()
 
@@ -37,9 +38,9 @@ class ClusteringParametersMixin:
         """EPS_PRED_M and EDGE_BUFFER_PX: when a geotag counts as seen and as matched by a cluster."""
         self.addParameter(QgsProcessingParameterNumber(
             self.EPS_PRED_M, self.tr("Match radius geotag ↔ cluster core points EPS_PRED (m)"),
-            QgsProcessingParameterNumber.Double, DEFAULT_EPS_PRED_M, minValue=0.001, maxValue=50.0))
+            NUMBER_DOUBLE, DEFAULT_EPS_PRED_M, minValue=0.001, maxValue=50.0))
         self.addParameter(QgsProcessingParameterNumber(
-            self.EDGE_BUFFER_PX, self.tr("Edge buffer of the in-view test (px)"), QgsProcessingParameterNumber.Double,
+            self.EDGE_BUFFER_PX, self.tr("Edge buffer of the in-view test (px)"), NUMBER_DOUBLE,
             DEFAULT_EDGE_BUFFER_PX, minValue=0.0, maxValue=1000.0))
 
     def read_operating_point(self, parameters, context, threshold=None) -> OperatingPoint:

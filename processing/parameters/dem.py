@@ -14,7 +14,6 @@ from __future__ import annotations
 import numpy as np
 from qgis.core import (
     QgsProcessingException,
-    QgsProcessingParameterDefinition,
     QgsProcessingParameterEnum,
     QgsProcessingParameterNumber,
     QgsProcessingParameterRasterLayer,
@@ -24,6 +23,7 @@ from ...birdseye_qgis.__about__ import tr
 from ...birdseye_qgis.core.errors import InputError
 from ...birdseye_qgis.core.geometry.dem import VERTICAL_DATUMS, DemGround, DemRaster
 from ...birdseye_qgis.core.geometry.ground import MethodPlaneGround
+from ...birdseye_qgis.qgis_enums import NUMBER_DOUBLE, PARAMETER_ADVANCED
 from ...birdseye_qgis.qgis_io import layers
 
 DATUM_LABELS = ("Ellipsoidal (WGS84), like RTK and INS heights",
@@ -56,12 +56,12 @@ class DemParametersMixin:
             defaultValue=2))
         self.addParameter(QgsProcessingParameterNumber(
             self.GEOID_UNDULATION_M, self.tr("Geoid undulation N at the site (m; ellipsoidal = MSL + N)"),
-            QgsProcessingParameterNumber.Double, None, optional=True, minValue=-120.0, maxValue=120.0))
+            NUMBER_DOUBLE, None, optional=True, minValue=-120.0, maxValue=120.0))
         if self.GROUP in GROUND_MODEL_GROUPS:
             choice = QgsProcessingParameterEnum(
                 self.GROUND_MODEL, self.tr("Ground model without a DEM"),
                 options=[self.tr(label) for label in GROUND_MODEL_LABELS], defaultValue=0)
-            choice.setFlags(choice.flags() | QgsProcessingParameterDefinition.FlagAdvanced)
+            choice.setFlags(choice.flags() | PARAMETER_ADVANCED)
             self.addParameter(choice)
 
     def read_dem(self, parameters, context) -> DemRaster | None:

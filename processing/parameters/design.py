@@ -23,6 +23,7 @@ from ...birdseye_qgis.core.design.platforms import DEPLOYED, PLATFORMS
 from ...birdseye_qgis.core.design.sensor_bound import MOUNTS, Intrinsics
 from ...birdseye_qgis.core.errors import InputError
 from ...birdseye_qgis.core.geometry.camera import CALIBRATION_FILE_FILTER, load_calibration
+from ...birdseye_qgis.qgis_enums import FILE_BEHAVIOR_FILE, NUMBER_DOUBLE, NUMBER_INTEGER
 
 # The platform the BirdsEye method was deployed on (camera calibration, INS and altimeter budget).
 DEPLOYED_CAMERA = DEPLOYED.camera
@@ -55,17 +56,17 @@ class DesignParametersMixin:
             options=[self.tr("Custom")] + [self.tr(p.name) for p in PLATFORMS], defaultValue=0))
         self.addParameter(QgsProcessingParameterFile(
             self.CALIBRATION, self.tr("Camera calibration (Kalibr or OpenCV YAML; overrides the intrinsics below)"),
-            behavior=QgsProcessingParameterFile.File, fileFilter=CALIBRATION_FILE_FILTER, optional=True))
+            behavior=FILE_BEHAVIOR_FILE, fileFilter=CALIBRATION_FILE_FILTER, optional=True))
         cam = DEPLOYED_CAMERA
         for name, label, default in (
                 (self.FX, "Focal length fx [px]", cam.fx), (self.FY, "Focal length fy [px]", cam.fy),
                 (self.CX, "Principal point cx [px]", cam.cx), (self.CY, "Principal point cy [px]", cam.cy)):
             self.addParameter(QgsProcessingParameterNumber(
-                name, self.tr(label), QgsProcessingParameterNumber.Double, defaultValue=default))
+                name, self.tr(label), NUMBER_DOUBLE, defaultValue=default))
         for name, label, default in ((self.WIDTH, "Image width [px]", cam.width),
                                      (self.HEIGHT, "Image height [px]", cam.height)):
             self.addParameter(QgsProcessingParameterNumber(
-                name, self.tr(label), QgsProcessingParameterNumber.Integer, defaultValue=default, minValue=1))
+                name, self.tr(label), NUMBER_INTEGER, defaultValue=default, minValue=1))
 
     def add_sigmas_parameter(self) -> None:
         """SIGMAS and MOUNT, which says how the roll, pitch and yaw sigmas turn the camera."""
@@ -84,7 +85,7 @@ class DesignParametersMixin:
     def add_tolerance_parameter(self) -> None:
         self.addParameter(QgsProcessingParameterNumber(
             self.TOLERANCE_PX, self.tr("Label tolerance r [px] (label radius at 3σ)"),
-            QgsProcessingParameterNumber.Double, defaultValue=DEPLOYED_TOLERANCE_PX))
+            NUMBER_DOUBLE, defaultValue=DEPLOYED_TOLERANCE_PX))
 
     # ------------------------------------------------------------------ readers
     def camera_from_parameters(self, parameters, context, feedback):

@@ -39,6 +39,7 @@ from ...core.review.navigation import Entries, display_verdict
 from ...core.review.units import ADDED_PREFIX, CONSENSUS_UNITS, ReviewParameters, ReviewUnits, build_units
 from ...core.scoring.evaluation import Flight
 from ...core.scoring.operating_point import OperatingPoint
+from ...qgis_enums import GEOMETRY_POINT
 from ...qgis_io.review_project import save_propagate, save_review, saved_review
 from ...qgis_io.review_store import ReviewSession, RowMeta, VerdictStore, default_store_path, read_review_inputs
 from ..add_target_tool import AddTargetTool
@@ -137,7 +138,7 @@ class ReviewDock(QgsDockWidget):
         self.detections_combo.clear()
         for layer in QgsProject.instance().mapLayers().values():
             if isinstance(layer, QgsVectorLayer) and layer.isValid() and \
-                    QgsWkbTypes.geometryType(layer.wkbType()) == QgsWkbTypes.PointGeometry and \
+                    QgsWkbTypes.geometryType(layer.wkbType()) == GEOMETRY_POINT and \
                     {"frame_id", "score", "u", "v"} <= set(layer.fields().names()):
                 self.detections_combo.addItemWithCheckState(layer.name(), Qt.CheckState.Checked if layer.id() in checked
                                                             else Qt.CheckState.Unchecked, layer.id())
@@ -437,7 +438,7 @@ class ReviewDock(QgsDockWidget):
         message = tr("The verdict was NOT saved: {error}. Check that {path} is writable and not locked, then try "
                      "again.").format(error=exc, path=self.session.store.path)
         show_banner(self.banner, [message], error=True)
-        QgsMessageLog.logMessage(message, LOG_TAG, Qgis.Critical)
+        QgsMessageLog.logMessage(message, LOG_TAG, Qgis.MessageLevel.Critical)
 
     # ------------------------------------------------------------------ add a missed target
     def start_add_target(self):

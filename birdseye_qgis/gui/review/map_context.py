@@ -50,7 +50,7 @@ class ReviewMap:
             self.canvas.zoomScale(scale)
         if self.marker is None:
             self.marker = QgsVertexMarker(self.canvas)
-            self.marker.setIconType(QgsVertexMarker.ICON_CIRCLE)
+            self.marker.setIconType(QgsVertexMarker.IconType.ICON_CIRCLE)
             self.marker.setIconSize(22)
             self.marker.setPenWidth(3)
         self.marker.setColor(QColor(colour))
@@ -79,7 +79,7 @@ class ReviewMap:
         layer = verdict_layer(store, name, VERDICT_COLOURS, VERDICT_TEXT)
         if not layer.isValid():
             QgsMessageLog.logMessage(tr("Verdict layer {uri} could not be loaded").format(uri=store.layer_uri),
-                                     LOG_TAG, Qgis.Warning)
+                                     LOG_TAG, Qgis.MessageLevel.Warning)
             return
         project.addMapLayer(layer)
         self.verdict_layer, self._verdict_layer_id = layer, layer.id()

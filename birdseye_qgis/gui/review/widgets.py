@@ -2,7 +2,7 @@
 areas, whose widgets become attributes of the dock so its slots (and tests) reach them by name."""
 from __future__ import annotations
 
-from qgis.core import QgsMapLayerProxyModel, QgsSettings
+from qgis.core import QgsSettings
 from qgis.gui import (
     QgsCheckableComboBox,
     QgsCollapsibleGroupBox,
@@ -39,6 +39,7 @@ from ...core.detect.clustering import DEFAULT_DEDUP_CM
 from ...core.review.chips import DEFAULT_WINDOW_PX, GEOTAG_COLOUR, LAYER_COLOURS
 from ...core.review.units import CONSENSUS_UNITS, METHOD_UNITS, PROPAGATION_EPS_M, PROPAGATION_RULE
 from ...core.scoring.verdicts import CONVENTIONS
+from ...qgis_enums import FILTER_POINT_LAYER, FILTER_VECTOR_LAYER
 from .model import CONVENTION_TEXT, VERDICT_COLOURS, VERDICT_TEXT, UnitTableModel
 
 SETTINGS_REVIEWER = "birdseye/review/reviewer"
@@ -204,18 +205,18 @@ def build_setup_box(dock):
                                         "thresholds are reviewed together: one verdict per spot)."))
     form.addRow(tr("Detections"), dock.detections_combo)
     dock.frames_combo = QgsMapLayerComboBox()
-    dock.frames_combo.setFilters(QgsMapLayerProxyModel.VectorLayer)
+    dock.frames_combo.setFilters(FILTER_VECTOR_LAYER)
     dock.frames_combo.setAllowEmptyLayer(True)
     dock.frames_combo.setToolTip(tr("The flight's frame layer (Import flight log or Import DJI images): "
                                     "poses, camera and image of every frame."))
     form.addRow(tr("Frames"), dock.frames_combo)
     dock.geotags_combo = QgsMapLayerComboBox()
-    dock.geotags_combo.setFilters(QgsMapLayerProxyModel.PointLayer)
+    dock.geotags_combo.setFilters(FILTER_POINT_LAYER)
     dock.geotags_combo.setAllowEmptyLayer(True)
     dock.geotags_combo.setToolTip(tr("The survey points (Import geotags)."))
     form.addRow(tr("Geotags"), dock.geotags_combo)
     dock.store_widget = QgsFileWidget()
-    dock.store_widget.setStorageMode(QgsFileWidget.SaveFile)
+    dock.store_widget.setStorageMode(QgsFileWidget.StorageMode.SaveFile)
     dock.store_widget.setConfirmOverwrite(False)
     dock.store_widget.setFilter("GeoPackage (*.gpkg)")
     dock.store_widget.setToolTip(tr("GeoPackage holding the append-only verdict log (table birdseye_verdicts). "
