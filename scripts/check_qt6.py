@@ -158,7 +158,8 @@ class Checker(ast.NodeVisitor):
         if chain and len(chain) > 1 and chain[0] in self.qgis_names:
             deprecated = DEPRECATED_QGIS_NAMES.get(self.qgis_names[chain[0]])
             if deprecated and re.fullmatch(deprecated[0], chain[1]):
-                self.report(node, f"{'.'.join(chain)} is deprecated since the enum moved: use {deprecated[1]}")
+                self.report(node, f"{'.'.join(chain)} is deprecated (QGIS 4 keeps it only as an alias): "
+                                  f"use {deprecated[1]}")
                 return
         if chain and chain[0] in self.qt_names:
             self.check_chain(node, chain)

@@ -5,6 +5,7 @@ first show it catches what QGIS 4 would reject, then run it over the plugin.
 """
 from __future__ import annotations
 
+import configparser
 import subprocess
 import textwrap
 from pathlib import Path
@@ -63,6 +64,42 @@ def test_checker_reports_what_pyqt6_lacks_and_fixes_unscoped_enums(tmp_path):
     assert "ALIGN = Qt.AlignmentFlag.AlignLeft | Qt.AlignmentFlag.AlignTop" in text
     assert "POLICY = QSizePolicy.Policy.Expanding" in text
     assert sorted(fixed.stdout.splitlines()) == sorted(p for p in problems if ":4:" in p or ":20:" in p or ":10:" in p)
+
+
+def test_checker_refuses_qgis_enum_names_deprecated_since_they_moved(tmp_path):
+    source = tmp_path / "algorithm.py"
+    source.write_text(textwrap.dedent("""\
+        from qgis.core import Qgis, QgsFeatureSink, QgsProcessing, QgsWkbTypes
+        from qgis.gui import QgsVertexMarker as Marker
+
+        SOURCES = [QgsProcessing.TypeVectorPoint]
+        GEOMETRY = QgsWkbTypes.PointZ
+        KIND = QgsWkbTypes.geometryType(GEOMETRY)
+        FAST = QgsFeatureSink.Flag.FastInsert
+        LEVEL = Qgis.Warning
+        if Qgis.QGIS_VERSION_INT >= 33600:
+            POINTS = Qgis.ProcessingSourceType.VectorPoint
+        else:
+            POINTS = QgsProcessing.TypeVectorPoint
+        ICON = Marker.ICON_CROSS
+        """))
+    result = run_checker(source)
+    assert result.returncode == 1
+    lines = sorted(int(line.split(":")[1]) for line in result.stdout.splitlines())
+    # the methods, the scoped spellings and the 3.22 branch of the version guard pass
+    assert lines == [4, 5, 8, 13], result.stdout
+    assert "QgsProcessing.TypeVectorPoint is deprecated" in result.stdout
+    assert "SOURCE_… of birdseye_qgis/qgis_enums.py" in result.stdout
+    assert "Marker.ICON_CROSS is deprecated" in result.stdout and "QgsVertexMarker.IconType" in result.stdout
+
+
+def test_metadata_lets_qgis_4_load_the_plugin():
+    """QGIS 4 lists only plugins that declare Qt 6 support and a maximum version of 4.x."""
+    metadata = configparser.ConfigParser(interpolation=None)
+    metadata.read(REPO_ROOT / "metadata.txt", encoding="utf-8")
+    general = metadata["general"]
+    assert general["supportsQt6"] == "True"
+    assert (general["qgisMinimumVersion"], general["qgisMaximumVersion"]) == ("3.22", "4.99")
 
 
 def test_the_plugin_names_only_what_pyqt6_has():
