@@ -1,11 +1,14 @@
 """Every Qt name the plugin spells exists in PyQt6 (QGIS 4), checked without QGIS 4.
 
 ``scripts/check_qt6.py`` runs in ``.venv-qt6`` (PyQt6 from PyPI, made by ``make setup``); these tests
-first show it catches what QGIS 4 would reject, then run it over the plugin.
+first show it catches what QGIS 4 would reject, then run it over the plugin. The review dock's pure-Qt
+parts then run under PyQt6 (tests/qt6/probe_pure_qt.py).
 """
 from __future__ import annotations
 
 import configparser
+import os
+import re
 import subprocess
 import textwrap
 from pathlib import Path
@@ -15,6 +18,7 @@ import pytest
 REPO_ROOT = Path(__file__).resolve().parents[2]
 QT6_PYTHON = REPO_ROOT / ".venv-qt6" / "bin" / "python"
 CHECKER = REPO_ROOT / "scripts" / "check_qt6.py"
+PURE_QT_PROBE = REPO_ROOT / "tests" / "qt6" / "probe_pure_qt.py"
 
 
 def run_checker(*args) -> subprocess.CompletedProcess:
@@ -105,3 +109,14 @@ def test_metadata_lets_qgis_4_load_the_plugin():
 def test_the_plugin_names_only_what_pyqt6_has():
     result = run_checker()
     assert result.returncode == 0, "Qt 6 problems:\n" + result.stdout
+
+
+def test_the_review_docks_pure_qt_parts_run_under_pyqt6():
+    """The unit table model in a real view, the scores table, the chip strip, the review keys and the chip
+    loader's thread pool, with ``qgis.PyQt`` being PyQt6 (see the probe's docstring)."""
+    if not QT6_PYTHON.exists():
+        pytest.fail(f"{QT6_PYTHON} is missing: run `make setup` (it installs PyQt6 there)")
+    result = subprocess.run([str(QT6_PYTHON), str(PURE_QT_PROBE)], capture_output=True, text=True, timeout=300,
+                            env={**os.environ, "QT_QPA_PLATFORM": "offscreen"})
+    assert result.returncode == 0, result.stdout + result.stderr
+    assert re.search(r"^pure-Qt probe: \d+ checks passed \(PyQt 6\.", result.stdout, re.MULTILINE), result.stdout

@@ -1,0 +1,2 @@
+"""``qgis.PyQt.QtWidgets`` of QGIS 4."""
+from PyQt6.QtWidgets import *  # noqa: F403
