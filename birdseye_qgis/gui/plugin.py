@@ -13,7 +13,7 @@ from typing import NamedTuple
 from qgis.core import Qgis, QgsApplication, QgsMessageLog
 from qgis.PyQt.QtCore import QCoreApplication, QLocale, Qt, QTranslator
 from qgis.PyQt.QtGui import QIcon
-from qgis.PyQt.QtWidgets import QMenu, QToolBar
+from qgis.PyQt.QtWidgets import QMenu, QPushButton, QToolBar
 
 try:
     from qgis.PyQt.QtGui import QAction  # Qt 6 (QGIS 4)
@@ -21,6 +21,7 @@ except ImportError:
     from qgis.PyQt.QtWidgets import QAction  # Qt 5 (QGIS 3)
 
 from ..__about__ import I18N_DIR, ICON_PATH, LOG_TAG, PLUGIN_ROOT, tr
+from ..dependencies import activate, package_folder, statuses
 
 # The name QGIS imported the plugin under ("birdseye" when installed from the zip), so dock modules
 # are found whatever the plugin folder is called.
@@ -101,6 +102,10 @@ class BirdsEyePlugin:
         self.provider = self.provider_class()
         if not QgsApplication.processingRegistry().addProvider(self.provider):
             log(tr("The BirdsEye Processing provider could not be registered."), Qgis.Critical)
+        self.dependencies_action: QAction | None = None
+        # Packages installed by BirdsEye › Install dependencies… (at the end of sys.path: QGIS's own win).
+        self.package_folder = package_folder(QgsApplication.qgisSettingsDirPath())
+        activate(self.package_folder)
             self.provider = None
 
     # ------------------------------------------------------------------ desktop
@@ -144,8 +149,16 @@ class BirdsEyePlugin:
         self.dock_actions.clear()
         for dock in self.docks.values():
             if hasattr(dock, "shutdown"):  # stop worker threads and close files before the widget goes
+        self.menu.addSeparator()
+        self.dependencies_action = QAction(tr("Install dependencies…"), main_window)
+        self.dependencies_action.setObjectName("mActionBirdsEyeDependencies")
+        self.dependencies_action.setToolTip(tr("Install the Python packages BirdsEye's algorithms need"))
+        self.dependencies_action.triggered.connect(self.show_dependencies)
+        self.menu.addAction(self.dependencies_action)
+
                 dock.shutdown()
             self.iface.removeDockWidget(dock)
+        self._offer_missing_packages()
             dock.deleteLater()
         self.docks.clear()
         if self.menu is not None:
@@ -171,6 +184,9 @@ class BirdsEyePlugin:
     def show_algorithms(self) -> None:
         """Show the Processing toolbox filtered to the BirdsEye algorithms."""
         from qgis import utils
+        if self.dependencies_action is not None:
+            self.dependencies_action.deleteLater()
+            self.dependencies_action = None
 
         toolbox = getattr(utils.plugins.get("processing"), "toolbox", None)
         if toolbox is None:
@@ -191,6 +207,27 @@ class BirdsEyePlugin:
             if dock is None:
                 action = self.dock_actions.get(entry)
                 if action is not None:
+
+    def show_dependencies(self) -> None:
+        """BirdsEye › Install dependencies…: the missing packages, installed on consent."""
+        from .dependencies import DependenciesDialog
+
+        DependenciesDialog(self.iface.mainWindow(), folder=self.package_folder).exec()
+
+    def _offer_missing_packages(self) -> None:
+        """A message-bar notice (never a dialog at start) when algorithms lack packages."""
+        missing = [s.package.distribution for s in statuses(folder=self.package_folder)
+                   if s.needs_install and (s.package.use.always or s.package.use.sometimes)]
+        if not missing:
+            return
+        bar = self.iface.messageBar()
+        item = bar.createMessage(LOG_TAG, tr("Some algorithms need Python packages that are not installed: "
+                                             "{names}.").format(names=", ".join(missing)))
+        button = QPushButton(tr("Install dependencies…"), item)
+        button.setObjectName("mBirdsEyeInstallDependenciesButton")
+        button.clicked.connect(self.show_dependencies)
+        item.layout().addWidget(button)
+        bar.pushWidget(item, Qgis.MessageLevel.Warning)
                     action.blockSignals(True)
                     action.setChecked(False)
                     action.blockSignals(False)

@@ -1,10 +1,13 @@
 """Shared base of every BirdsEye Processing algorithm: naming, groups, help, errors, progress."""
 from __future__ import annotations
 
+import functools
+
 from qgis.core import QgsProcessingAlgorithm, QgsProcessingException
 from qgis.PyQt.QtCore import QT_TRANSLATE_NOOP, QCoreApplication
 from qgis.PyQt.QtGui import QIcon
 
+from ...birdseye_qgis import dependencies
 from ...birdseye_qgis.__about__ import HELP_DIR, ICON_PATH
 from ...birdseye_qgis.core.errors import Cancelled, InputError
 
@@ -30,8 +33,19 @@ class BirdsEyeAlgorithm(QgsProcessingAlgorithm):
     DISPLAY_NAME = ""
     GROUP = ""
 
+    def __init_subclass__(cls, **kwargs):
+        super().__init_subclass__(**kwargs)
+        if "processAlgorithm" in cls.__dict__:
+            cls.processAlgorithm = _explaining_missing_packages(cls.__dict__["processAlgorithm"])
+
     def tr(self, text: str) -> str:
         return QCoreApplication.translate(type(self).__name__, text)
+
+    def canExecute(self):  # noqa: N802 — QGIS's name
+        """Refused, saying what to install, while a package this algorithm needs on every run is missing
+        (``dependencies.USES``); the toolbox, the locator and models ask before opening or running."""
+        missing = dependencies.missing_for(self.ALG_ID)
+        return (False, missing_packages_message(missing)) if missing else (True, "")
 
     def name(self) -> str:
         return self.ALG_ID
@@ -87,6 +101,36 @@ class BirdsEyeAlgorithm(QgsProcessingAlgorithm):
             raise self.user_error(exc) from exc
         except Cancelled:
             raise QgsProcessingException(self.tr("Cancelled by the user.")) from None
+
+
+def missing_packages_message(packages) -> str:
+    return QCoreApplication.translate(
+        "BirdsEyeAlgorithm",
+        "This algorithm needs the Python package(s) {names}, which the Python QGIS runs does not have. In "
+        "QGIS, choose BirdsEye › Install dependencies… to install them; or install them yourself: "
+        "python -m pip install {pins}").format(names=", ".join(p.distribution for p in packages),
+                                               pins=" ".join(p.requirement for p in packages))
+
+
+def _explaining_missing_packages(process_algorithm):
+    """``processAlgorithm`` that first checks :meth:`BirdsEyeAlgorithm.canExecute` (``processing.run``
+    and ``qgis_process`` do not ask it) and turns the import error of a package needed only for some
+    inputs (``dependencies.USES``, ``sometimes``) into the same message."""
+
+    @functools.wraps(process_algorithm)
+    def process(self, parameters, context, feedback):
+        can_execute, message = self.canExecute()
+        if not can_execute:
+            raise QgsProcessingException(message)
+        try:
+            return process_algorithm(self, parameters, context, feedback)
+        except ModuleNotFoundError as exc:
+            package = dependencies.package_for_module(exc.name or "")
+            if package is None:
+                raise
+            raise QgsProcessingException(missing_packages_message([package])) from exc
+
+    return process
 
 
 def markdown_to_html(text: str) -> str:

@@ -138,14 +138,15 @@ def test_plugin_gui_is_added_and_removed(qgis_iface, plugin_module, fake_dock_mo
         menus = [m for m in menu_bar_menus(qgis_iface) if m.objectName() == plugin_module.MENU_OBJECT_NAME]
         assert len(menus) == 1
         menu_texts = [a.text() for a in menus[0].actions() if not a.isSeparator()]
-        assert menu_texts == ["BirdsEye algorithms…", "Test dock"], "a missing dock module must not show"
+        assert menu_texts == ["BirdsEye algorithms…", "Test dock", "Install dependencies…"], \
+            "a missing dock module must not show"
         toolbars = main_window.findChildren(QToolBar, plugin_module.TOOLBAR_OBJECT_NAME)
         assert len(toolbars) == 1 and len(toolbars[0].actions()) == 2
         assert registry.providerById("birdseye_plugin_test") is not None
 
         # the dock is imported and created only when first opened, then toggled by the same action
         assert fake_dock_module.created == []
-        dock_action = menus[0].actions()[-1]
+        dock_action = next(a for a in menus[0].actions() if a.text() == "Test dock")
         dock_action.trigger()
         assert len(fake_dock_module.created) == 1
         dock = fake_dock_module.created[0]
@@ -171,7 +172,7 @@ def test_broken_dock_is_reported_not_raised(qgis_iface, plugin_module, monkeypat
     plugin = plugin_module.BirdsEyePlugin(qgis_iface, plugin_module.ProviderUnderTest)
     plugin.initGui()
     try:
-        action = plugin.menu.actions()[-1]
+        [action] = plugin.dock_actions.values()
         action.trigger()
         assert not action.isChecked(), "the action must not stay checked for a dock that never opened"
         warnings = qgis_iface.messageBar().get_messages(Qgis.Warning)

@@ -1,0 +1,470 @@
+"""The Python packages BirdsEye needs at run time: which are missing, and installing them with pip.
+
+QGIS runs its own Python (on Windows and macOS a copy shipped inside QGIS) with numpy, GDAL and often
+scipy and matplotlib, but without onnxruntime, OpenCV, scikit-learn and the rest of ``requirements.txt``.
+This module knows those packages — the pins come from the plugin's ``requirements.txt``, shipped in the
+zip, the versions the tests ran with; :data:`USES` says which algorithms need each — and installs the
+missing ones with QGIS's own interpreter::
+
+    python -m pip install --target <profile>/python/birdseye-dependencies/python3.X --no-deps name==version …
+
+into a folder of the QGIS profile (it survives plugin updates, which replace the plugin folder). The
+plugin adds that folder at the *end* of ``sys.path`` when it starts (:func:`activate`), so a package
+QGIS already has is never shadowed; pip first resolves the pins against what QGIS's Python already has
+(``--dry-run --report``), and the installer refuses a plan that needs another version of one of QGIS's
+own packages (numpy above all: GDAL's bindings are built against it).
+
+No QGIS and no Qt here: the dialog (``gui/dependencies.py``) and the Processing algorithms
+(``processing/algorithms/base.py``) use it, and it is tested without QGIS.
+"""
+from __future__ import annotations
+
+import importlib
+import importlib.metadata
+import importlib.util
+import json
+import os
+import queue
+import re
+import site
+import subprocess
+import sys
+import tempfile
+import threading
+from dataclasses import dataclass
+from pathlib import Path, PurePosixPath, PureWindowsPath
+from typing import Callable, Iterable, Sequence
+
+from .core.errors import Cancelled, InputError
+
+#: The plugin folder; ``requirements.txt`` sits at its top, in the repository and in the zip.
+PLUGIN_ROOT = Path(__file__).resolve().parents[1]
+REQUIREMENTS_FILE = PLUGIN_ROOT / "requirements.txt"
+#: pip's ``--dry-run --report`` (the resolution against the packages QGIS already has) needs pip 22.2.
+MIN_PIP = (22, 2)
+MENU_PATH = "BirdsEye › Install dependencies…"
+
+
+@dataclass(frozen=True)
+class Use:
+    """What imports a distribution and which algorithms (ids without ``birdseye:``) need it:
+    ``always`` on every run, ``sometimes`` only for some inputs or options (they are not refused
+    upfront; the run says so when it gets there)."""
+
+    module: str
+    always: tuple[str, ...] = ()
+    sometimes: tuple[str, ...] = ()
+
+
+#: Every distribution of ``requirements.txt`` (tests check both lists agree), found by following
+#: each algorithm's calls to the functions that import the package.
+USES: dict[str, Use] = {
+    "onnxruntime": Use("onnxruntime", always=("detect", "screencheckpoints"),
+                       sometimes=("sweepoperatingpoints",)),
+    "opencv-python-headless": Use("cv2", always=("detect", "screencheckpoints", "simulatecampaign"),
+                                  sometimes=("sweepoperatingpoints", "writelabels")),
+    "scikit-learn": Use("sklearn", always=("clusterdetections", "evaluatedetections", "screencheckpoints",
+                                           "sweepoperatingpoints")),
+    "scipy": Use("scipy", always=("simulatecampaign", "sensorbound", "montecarlobound"),
+                 sometimes=("clusterdetections", "evaluatedetections", "importcameras", "importgeotags",
+                            "planflight", "screencheckpoints", "sweepoperatingpoints", "writelabels")),
+    "fast-tsp": Use("fast_tsp", always=("planflight",)),
+    "PyYAML": Use("yaml", sometimes=("importdjiimages", "importflightlog", "planflight", "sensorbound",
+                                     "montecarlobound", "terrainslope", "writelabels", "simulatecampaign")),
+    "onnx": Use("onnx"),
+    "matplotlib": Use("matplotlib", always=("sensorbound", "montecarlobound", "terrainslope"),
+                      sometimes=("evaluatedetections", "refineposes", "screencheckpoints",
+                                 "sweepoperatingpoints")),
+    "pycolmap": Use("pycolmap", always=("refineposes",), sometimes=("importcameras",)),
+    "pyodm": Use("pyodm", always=("processodm",)),
+}
+
+
+@dataclass(frozen=True)
+class RuntimePackage:
+    """One line of ``requirements.txt`` with what the plugin knows about it."""
+
+    distribution: str
+    version: str
+    use: Use
+
+    @property
+    def requirement(self) -> str:
+        return f"{self.distribution}=={self.version}"
+
+    @property
+    def module(self) -> str:
+        return self.use.module
+
+
+@dataclass(frozen=True)
+class PackageStatus:
+    """Where a package stands in the running Python.
+
+    ``installed_version`` is None when the module cannot be found. ``in_folder`` says it was found in
+    BirdsEye's package folder (installed by this installer), else QGIS's Python has it itself.
+    """
+
+    package: RuntimePackage
+    installed_version: str | None
+    in_folder: bool
+
+    @property
+    def needs_install(self) -> bool:
+        """Missing, or installed by BirdsEye at another version than the pin (a plugin update moved
+        it). A version QGIS itself ships is used as it is: replacing it could break QGIS."""
+        if self.installed_version is None:
+            return True
+        return self.in_folder and self.installed_version != self.package.version
+
+
+def normalized(name: str) -> str:
+    """A distribution name as pip compares them (PEP 503)."""
+    return re.sub(r"[-_.]+", "-", name).lower()
+
+
+_PIN = re.compile(r"^([A-Za-z0-9][A-Za-z0-9._-]*)==([A-Za-z0-9.+!_-]+)$")
+
+
+def read_requirements(path: Path = REQUIREMENTS_FILE) -> list[RuntimePackage]:
+    """The pinned packages of ``requirements.txt`` (``name==version`` lines; ``#`` comments)."""
+    path = Path(path)
+    try:
+        lines = path.read_text(encoding="utf-8").splitlines()
+    except OSError as exc:
+        raise InputError(f"cannot be read ({exc.strerror})", source=str(path)) from exc
+    uses = {normalized(name): (name, use) for name, use in USES.items()}
+    packages = []
+    # A pin USES does not know yet (tests/unit/test_dependencies.py fails on it) is still installed;
+    # its module is guessed from its name and no algorithm is refused for it.
+    for row, line in enumerate(lines, start=1):
+        text = line.split("#", 1)[0].strip()
+        if not text:
+            continue
+        match = _PIN.match(text)
+        if match is None:
+            raise InputError(f"'{text}' is not a pin 'name==version'", source=str(path), row=row)
+        name, version = match.groups()
+        known_name, use = uses.get(normalized(name), (name, Use(normalized(name).replace("-", "_"))))
+        packages.append(RuntimePackage(known_name, version, use))
+    return packages
+
+
+def package_folder(profile_dir: Path | str, version: Sequence[int] = sys.version_info) -> Path:
+    """BirdsEye's package folder in a QGIS profile; one per Python version, since compiled wheels
+    only load in the Python they were built for (a QGIS upgrade to a new Python starts afresh)."""
+    return Path(profile_dir) / "python" / "birdseye-dependencies" / f"python{version[0]}.{version[1]}"
+
+
+def activate(folder: Path | str) -> None:
+    """Make the packages in ``folder`` importable: append it to ``sys.path`` (``.pth`` files
+    included, as in any site folder) and forget what the import system cached about it, so packages
+    installed a moment ago are found without restarting QGIS."""
+    folder = str(folder)
+    if folder not in sys.path:
+        site.addsitedir(folder)
+    sys.path_importer_cache.pop(folder, None)
+    importlib.invalidate_caches()
+
+
+def _in_folder(path: str | None, folder: Path | None) -> bool:
+    if not path or folder is None:
+        return False
+    try:
+        Path(path).resolve().relative_to(Path(folder).resolve())
+    except ValueError:
+        return False
+    return True
+
+
+def package_status(package: RuntimePackage, folder: Path | None = None) -> PackageStatus:
+    """Whether ``package`` is importable, without importing it (``find_spec``), and which version."""
+    try:
+        spec = importlib.util.find_spec(package.module)
+    except (ImportError, ValueError):
+        spec = None
+    if spec is None:
+        return PackageStatus(package, None, False)
+    location = spec.origin if spec.has_location else next(iter(spec.submodule_search_locations or []), None)
+    in_folder = _in_folder(location, folder)
+    search = [str(folder)] if in_folder else [p for p in sys.path if not _in_folder(p, folder)]
+    found = next(iter(importlib.metadata.distributions(name=package.distribution, path=search)), None)
+    return PackageStatus(package, found.version if found is not None else "unknown", in_folder)
+
+
+def statuses(packages: Iterable[RuntimePackage] | None = None, folder: Path | None = None) -> list[PackageStatus]:
+    return [package_status(p, folder) for p in (read_requirements() if packages is None else packages)]
+
+
+def missing_for(algorithm_id: str, packages: Iterable[RuntimePackage] | None = None) -> list[RuntimePackage]:
+    """The packages ``algorithm_id`` needs on every run that cannot be imported."""
+    needed = [p for p in (read_requirements() if packages is None else packages) if algorithm_id in p.use.always]
+    return [p for p in needed if package_status(p).installed_version is None]
+
+
+def package_for_module(module_name: str, packages: Iterable[RuntimePackage] | None = None) -> RuntimePackage | None:
+    """The runtime package that provides ``module_name`` (``cv2.dnn`` → opencv-python-headless)."""
+    top = module_name.split(".")[0]
+    return next((p for p in (read_requirements() if packages is None else packages) if p.module == top), None)
+
+
+# ---------------------------------------------------------------------------------------- the interpreter
+class InstallError(RuntimeError):
+    """The installation failed; ``log`` holds pip's output for the user."""
+
+    def __init__(self, message: str, log: str = ""):
+        super().__init__(message)
+        self.log = log
+
+
+def python_candidates(executable: str | None = sys.executable,
+                      prefixes: Sequence[str] = (sys.exec_prefix, sys.base_exec_prefix, sys.prefix),
+                      platform: str = sys.platform, version: Sequence[int] = sys.version_info) -> list[str]:
+    """Where the interpreter of the running Python may be, most likely first.
+
+    ``sys.executable`` is that interpreter in Debian's and Ubuntu's QGIS, but in QGIS for Windows it
+    is ``qgis-bin.exe`` and on macOS the QGIS app itself (qgis/QGIS#45646, #66672), and running it
+    with ``-m pip`` would start another QGIS. So, as Deepness, qpip and QGIS's own proposed fix do,
+    look where QGIS keeps its Python: ``<prefix>\\python.exe`` on Windows (OSGeo4W, the standalone
+    installer and conda keep it in ``sys.prefix``, ``apps\\Python3X``), ``bin\\python3.exe`` beside
+    ``qgis-bin.exe`` (OSGeo4W's launcher); ``<prefix>/bin/python3.X`` elsewhere and
+    ``QGIS.app/Contents/MacOS/bin/python3`` in the macOS bundle. :func:`find_python` then keeps the
+    first that runs and reports this Python's version. The ``python`` on ``PATH`` is never used: it
+    may be another installation whose wheels QGIS's Python cannot load.
+    """
+    windows = platform == "win32"
+    pure = PureWindowsPath if windows else PurePosixPath
+    versioned = f"python{version[0]}.{version[1]}"
+    found: list[str] = []
+    exe = pure(executable) if executable else None
+    if exe is not None and exe.name.lower().startswith("python"):
+        found.append(str(exe))
+    for prefix in prefixes:
+        if not prefix:
+            continue
+        if windows:
+            found.append(str(pure(prefix) / "python.exe"))
+        else:
+            found += [str(pure(prefix) / "bin" / versioned), str(pure(prefix) / "bin" / "python3")]
+    if exe is not None and windows:
+        found += [str(exe.parent / "python3.exe"), str(exe.parent / "python.exe")]
+    elif exe is not None and platform == "darwin":
+        found += [str(exe.parent / "bin" / versioned), str(exe.parent / "bin" / "python3")]
+    return list(dict.fromkeys(found))
+
+
+def _hidden_window() -> dict:
+    """On Windows, keep pip from flashing a console window over QGIS."""
+    return {"creationflags": getattr(subprocess, "CREATE_NO_WINDOW", 0)} if sys.platform == "win32" else {}
+
+
+def find_python(candidates: Sequence[str] | None = None, version: Sequence[int] = sys.version_info) -> str:
+    """The first candidate interpreter that runs and is this Python's major.minor version."""
+    candidates = python_candidates() if candidates is None else candidates
+    wanted = f"{version[0]}.{version[1]}"
+    tried = []
+    for candidate in candidates:
+        if not Path(candidate).is_file():
+            tried.append(f"{candidate} (not found)")
+            continue
+        try:
+            result = subprocess.run([candidate, "-c", "import sys; print('%d.%d' % sys.version_info[:2])"],
+                                    capture_output=True, text=True, timeout=60, check=False, **_hidden_window())
+        except (OSError, subprocess.TimeoutExpired) as exc:
+            tried.append(f"{candidate} ({exc})")
+            continue
+        reported = result.stdout.strip()
+        if result.returncode == 0 and reported == wanted:
+            return candidate
+        tried.append(f"{candidate} (Python {reported or 'did not start'})")
+    raise InstallError(f"Python {wanted}, the Python QGIS runs, was not found as a program; looked at:\n  "
+                       + "\n  ".join(tried))
+
+
+def pip_environment(folder: Path, search_path: Sequence[str] = tuple(sys.path),
+                    base: dict | None = None) -> dict[str, str]:
+    """The environment pip runs in: QGIS's own search path, BirdsEye's folder last (as at run time),
+    so pip resolves against exactly the packages QGIS imports."""
+    env = dict(os.environ if base is None else base)
+    entries = [p for p in search_path if p and Path(p).is_dir() and not _in_folder(p, folder)]
+    env["PYTHONPATH"] = os.pathsep.join(list(dict.fromkeys(entries)) + [str(folder)])
+    env["PIP_DISABLE_PIP_VERSION_CHECK"] = "1"
+    env["PYTHONIOENCODING"] = "utf-8"
+    return env
+
+
+def run_streaming(command: Sequence[str], env: dict[str, str], log: Callable[[str], None],
+                  is_canceled: Callable[[], bool] = lambda: False, poll_s: float = 0.1) -> int:
+    """Run ``command``, passing each output line (stdout and stderr) to ``log`` as it comes; stop it
+    and raise :class:`Cancelled` as soon as ``is_canceled()`` says so. Returns the exit status."""
+    process = subprocess.Popen(list(command), stdout=subprocess.PIPE, stderr=subprocess.STDOUT, env=env,
+                               stdin=subprocess.DEVNULL, text=True, encoding="utf-8", errors="replace",
+                               bufsize=1, **_hidden_window())
+    lines: queue.Queue = queue.Queue()
+
+    def read() -> None:
+        for line in process.stdout:
+            lines.put(line.rstrip("\r\n"))
+        lines.put(None)
+
+    reader = threading.Thread(target=read, daemon=True)
+    reader.start()
+    try:
+        while True:
+            if is_canceled():
+                raise Cancelled()
+            try:
+                line = lines.get(timeout=poll_s)
+            except queue.Empty:
+                continue
+            if line is None:
+                break
+            log(line)
+        return process.wait()
+    finally:
+        if process.poll() is None:
+            process.terminate()
+            try:
+                process.wait(timeout=10)
+            except subprocess.TimeoutExpired:
+                process.kill()
+                process.wait()
+        reader.join(timeout=5)
+        process.stdout.close()
+
+
+def _pip_version(python: str, env: dict[str, str]) -> tuple[int, ...]:
+    result = subprocess.run([python, "-m", "pip", "--version"], capture_output=True, text=True, env=env,
+                            timeout=120, check=False, **_hidden_window())
+    match = re.match(r"pip (\d+)\.(\d+)", result.stdout)
+    if result.returncode != 0 or match is None:
+        raise InstallError(f"pip is not available in the Python QGIS runs ({python}). Install it first "
+                           "(Debian/Ubuntu: sudo apt install python3-pip; elsewhere: "
+                           f"{python} -m ensurepip), then try again.", result.stdout + result.stderr)
+    return tuple(int(g) for g in match.groups())
+
+
+@dataclass(frozen=True)
+class Planned:
+    """A distribution pip will put in BirdsEye's folder (a pin or one of its dependencies)."""
+
+    name: str
+    version: str
+
+    @property
+    def requirement(self) -> str:
+        return f"{self.name}=={self.version}"
+
+
+def host_distributions(folder: Path, search_path: Sequence[str] = tuple(sys.path)) -> dict[str, str]:
+    """{normalized name: version} of what QGIS's Python has outside BirdsEye's folder."""
+    path = [p for p in search_path if p and not _in_folder(p, folder)]
+    return {normalized(d.metadata["Name"] or ""): d.version for d in importlib.metadata.distributions(path=path)}
+
+
+def read_plan(report: dict, host: dict[str, str]) -> list[Planned]:
+    """What pip's installation report says to install, refused when that would replace one of QGIS's
+    own packages: BirdsEye's folder comes last on ``sys.path``, so the new version would never load
+    and the package that asked for it would run against the old one."""
+    plan = [Planned(item["metadata"]["name"], item["metadata"]["version"]) for item in report.get("install", [])]
+    clashes = [f"{p.name} {host[normalized(p.name)]} (needed: {p.version})" for p in plan
+               if normalized(p.name) in host]
+    if clashes:
+        raise InstallError("Installing would replace packages of the Python QGIS runs: " + ", ".join(clashes)
+                           + ". BirdsEye does not change QGIS's own packages; update QGIS, or install the "
+                           "versions BirdsEye needs with your Python's package manager.")
+    return plan
+
+
+class Installer:
+    """Installs runtime packages into BirdsEye's folder with the interpreter QGIS runs.
+
+    ``log(line)`` receives every line pip writes; ``progress(fraction)`` goes from 0 to 1;
+    ``is_canceled()`` is polled while pip runs (cancelling stops pip and raises :class:`Cancelled`;
+    pip writes into the folder only at the very end, so a cancelled download leaves it as it was).
+    """
+
+    def __init__(self, folder: Path, python: str | None = None, search_path: Sequence[str] | None = None,
+                 log: Callable[[str], None] = lambda line: None,
+                 progress: Callable[[float], None] = lambda fraction: None,
+                 is_canceled: Callable[[], bool] = lambda: False):
+        self.folder = Path(folder)
+        self.python = python
+        self.search_path = tuple(sys.path) if search_path is None else tuple(search_path)
+        self.log, self.progress, self.is_canceled = log, progress, is_canceled
+        self.output: list[str] = []
+
+    def _log(self, line: str) -> None:
+        self.output.append(line)
+        self.log(line)
+
+    def _pip(self, arguments: Sequence[str], env: dict[str, str], on_line=None) -> None:
+        command = [self.python, "-m", "pip", *arguments]
+        self._log("$ " + " ".join(command))
+
+        def line(text: str) -> None:
+            self._log(text)
+            if on_line is not None:
+                on_line(text)
+
+        status = run_streaming(command, env, line, self.is_canceled)
+        if status != 0:
+            raise InstallError(f"pip stopped with exit status {status}.", "\n".join(self.output))
+
+    def install(self, packages: Sequence[RuntimePackage]) -> list[Planned]:
+        """Install ``packages`` at their pins with what they depend on; returns what was installed."""
+        self.progress(0.0)
+        if self.python is None:
+            self.python = find_python()
+        self._log(f"Python: {self.python}")
+        self._log(f"Folder: {self.folder}")
+        self.folder.mkdir(parents=True, exist_ok=True)
+        env = pip_environment(self.folder, self.search_path)
+        pip = _pip_version(self.python, env)
+        if pip < MIN_PIP:
+            raise InstallError(f"pip {'.'.join(map(str, pip))} in {self.python} is too old; BirdsEye needs "
+                               f"pip {'.'.join(map(str, MIN_PIP))} or newer ({self.python} -m pip install "
+                               "--upgrade pip).")
+        with tempfile.TemporaryDirectory(prefix="birdseye-pip-") as scratch:
+            report_path = Path(scratch) / "report.json"
+            self._pip(["install", "--dry-run", "--no-input", "--only-binary=:all:", "--report", str(report_path),
+                       *(p.requirement for p in packages)], env)
+            report = json.loads(report_path.read_text(encoding="utf-8"))
+        plan = read_plan(report, host_distributions(self.folder, self.search_path))
+        self.progress(0.1)
+        if plan:
+            self._install_plan(plan, env)
+        self.progress(0.95)
+        self._verify(packages, env)
+        activate(self.folder)
+        self.progress(1.0)
+        return plan
+
+    def _install_plan(self, plan: list[Planned], env: dict[str, str]) -> None:
+        fetched = 0
+
+        def follow(line: str) -> None:
+            nonlocal fetched
+            if line.startswith(("Collecting ", "Processing ")):
+                fetched += 1
+                self.progress(0.1 + 0.75 * min(fetched, len(plan)) / len(plan))
+            elif line.startswith("Installing collected packages"):
+                self.progress(0.85)
+
+        self._pip(["install", "--no-deps", "--no-input", "--only-binary=:all:", "--progress-bar", "off",
+                   "--upgrade", "--target", str(self.folder), *(p.requirement for p in plan)], env, follow)
+
+    def _verify(self, packages: Sequence[RuntimePackage], env: dict[str, str]) -> None:
+        """Import each package in a separate Python: a wheel that does not load on this system fails
+        here, with its error in the log, instead of inside QGIS."""
+        modules = [p.module for p in packages]
+        script = ("import importlib, sys\n"
+                  "for name in sys.argv[1:]:\n"
+                  "    importlib.import_module(name)\n"
+                  "    print('imported', name)\n")
+        command = [self.python, "-c", script, *modules]
+        self._log("$ " + " ".join([self.python, "-c", "<import each package>", *modules]))
+        status = run_streaming(command, env, self._log, self.is_canceled)
+        if status != 0:
+            raise InstallError("The packages were installed but do not load: " + ", ".join(modules) + ".",
+                               "\n".join(self.output))
