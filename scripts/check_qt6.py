@@ -12,10 +12,11 @@ directly (only ``qgis.PyQt`` picks the right one), any ``.exec_`` attribute, imp
 ``qgis.PyQt`` module whose PyQt6 counterpart lacks it (``QAction`` moved from QtWidgets to QtGui), and the
 QGIS enum names QGIS 3.30–3.36 deprecated when the enums moved into ``Qgis`` (``QgsProcessing.TypeVectorPoint``,
 ``QgsWkbTypes.PointZ`` …; QGIS 4 keeps them only as aliases): those values come from
-``birdseye_qgis/qgis_enums.py``, or take the scoped spelling QGIS 3.22 already has. Code for old releases
-is left alone where it says so: the ``else`` of ``if Qgis.QGIS_VERSION_INT >= N``, the body
-of ``if … QGIS_VERSION_INT < N``, and the ``except ImportError`` fallback of a ``try`` import — that is
-where APIs that moved keep their QGIS 3.22 spelling.
+``birdseye_qgis/qgis_enums.py``, or take the scoped spelling QGIS 3.22 already has. The new spellings,
+``Qgis.<Enum>.<Member>``, must exist in the QGIS API of ``qgis-stubs`` (PyPI; a recent QGIS 3 release,
+whose enums QGIS 4 keeps). Code for old releases is left alone where it says so: the ``else`` of
+``if Qgis.QGIS_VERSION_INT >= N``, the body of ``if … QGIS_VERSION_INT < N``, and the ``except ImportError``
+fallback of a ``try`` import — that is where APIs that moved keep their QGIS 3.22 spelling.
 
 Prints one line per problem (``file:line: message``) and exits 1 if there is any. ``--fix`` rewrites
 the unscoped enum members that belong to exactly one enum of their class to the scoped spelling, which
@@ -27,6 +28,8 @@ import ast
 import importlib
 import re
 import sys
+import sysconfig
+from functools import lru_cache
 from pathlib import Path
 
 REPO_ROOT = Path(__file__).resolve().parents[1]
@@ -56,6 +59,24 @@ DEPRECATED_QGIS_NAMES = {
                       "QgsFileWidget.StorageMode.<name> (QGIS 3.22 has it too)"),
     "Qgis": (r"Info|Warning|Critical|Success|NoLevel", "Qgis.MessageLevel.<name> (QGIS 3.22 has it too)"),
 }
+
+
+@lru_cache(maxsize=None)
+def qgis_stub_enums() -> dict[str, set[str]]:
+    """``{'ProcessingSourceType': {'VectorPoint', …}, '': {members of Qgis itself}}`` from qgis-stubs."""
+    stub = Path(sysconfig.get_paths()["purelib"]) / "qgis-stubs" / "_core.pyi"
+    if not stub.is_file():
+        sys.exit(f"check_qt6: {stub} is missing: run `make setup` (requirements-qt6.txt installs qgis-stubs)")
+    qgis = next(node for node in ast.parse(stub.read_text(encoding="utf-8")).body
+                if isinstance(node, ast.ClassDef) and node.name == "Qgis")
+    enums = {"": set()}
+    for node in qgis.body:
+        if isinstance(node, ast.ClassDef):
+            enums[node.name] = {target.id for item in node.body if isinstance(item, ast.Assign)
+                                for target in item.targets if isinstance(target, ast.Name)}
+        names = [t.id for t in node.targets if isinstance(t, ast.Name)] if isinstance(node, ast.Assign) else []
+        enums[""].update(names + [getattr(node, "name", "")])
+    return enums
 
 
 def python_files(paths) -> list[Path]:
@@ -160,11 +181,21 @@ class Checker(ast.NodeVisitor):
             if deprecated and re.fullmatch(deprecated[0], chain[1]):
                 self.report(node, f"{'.'.join(chain)} is deprecated (QGIS 4 keeps it only as an alias): "
                                   f"use {deprecated[1]}")
-                return
+            elif self.qgis_names[chain[0]] == "Qgis" and chain[1][:1].isupper() and not chain[1].isupper():
+                self.check_qgis_enum(node, chain)
+            return  # the whole chain is checked; its inner Attribute nodes are prefixes of it
         if chain and chain[0] in self.qt_names:
             self.check_chain(node, chain)
             return  # the whole chain is checked; its inner Attribute nodes are prefixes of it
         self.generic_visit(node)
+
+    def check_qgis_enum(self, node: ast.Attribute, chain: list[str]) -> None:
+        """``Qgis.<Enum>.<Member>`` (or ``Qgis.<Member>``) must be in the QGIS API of qgis-stubs."""
+        enums = qgis_stub_enums()
+        if chain[1] not in enums and chain[1] not in enums[""]:
+            self.report(node, f"{'.'.join(chain[:2])} is not in the QGIS API (qgis-stubs)")
+        elif len(chain) > 2 and chain[1] in enums and chain[2] not in enums[chain[1]]:
+            self.report(node, f"{'.'.join(chain[:3])} is not in the QGIS API (qgis-stubs)")
 
     def check_chain(self, node: ast.Attribute, chain: list[str]) -> None:
         module_name, _, class_name = self.qt_names[chain[0]].rpartition(".")

@@ -86,12 +86,14 @@ def test_checker_refuses_qgis_enum_names_deprecated_since_they_moved(tmp_path):
         else:
             POINTS = QgsProcessing.TypeVectorPoint
         ICON = Marker.ICON_CROSS
+        TYPO = Qgis.ProcessingSourceType.VectorPoints
         """))
     result = run_checker(source)
     assert result.returncode == 1
     lines = sorted(int(line.split(":")[1]) for line in result.stdout.splitlines())
     # the methods, the scoped spellings and the 3.22 branch of the version guard pass
-    assert lines == [4, 5, 8, 13], result.stdout
+    assert lines == [4, 5, 8, 13, 14], result.stdout
+    assert "Qgis.ProcessingSourceType.VectorPoints is not in the QGIS API (qgis-stubs)" in result.stdout
     assert "QgsProcessing.TypeVectorPoint is deprecated" in result.stdout
     assert "SOURCE_… of birdseye_qgis/qgis_enums.py" in result.stdout
     assert "Marker.ICON_CROSS is deprecated" in result.stdout and "QgsVertexMarker.IconType" in result.stdout
