@@ -18,7 +18,7 @@ help:
 	@echo "make demo          set up, then run the whole chain on a simulated campaign -> birdseye-demo/"
 	@echo "make test          set up, then run every test suite (unit, QGIS, desktop under Xvfb, qgis_process)"
 	@echo "make setup         install missing Debian packages and the pinned Python packages into $(VENV)"
-	@echo "make lint          ruff, flake8-qgis and the Qt 6 name check (run by make test)"
+	@echo "make lint          ruff, flake8-qgis and the Qt 6 / QGIS API name check (run by make test)"
 	@echo "make bench         run each benchmarks/bench_*.py and print its figures and ratios"
 	@echo "make package       build/birdseye-<version>.zip, the plugin zip for QGIS's 'Install from ZIP'"
 	@echo "make qgis-process ARGS='run birdseye:<id> -- PARAM=value'   run qgis_process with the plugin loaded"
@@ -32,8 +32,9 @@ setup:
 test: setup
 	@$(MAKE) --no-print-directory lint test-unit test-integration
 
-# ruff (pyproject.toml), flake8-qgis on what ships (.flake8), and every Qt name checked against PyQt6
-# (scripts/check_qt6.py in .venv-qt6): QGIS 4 runs Qt 6, this machine only QGIS 3.22.
+# ruff (pyproject.toml), flake8-qgis on what ships (.flake8), and every Qt name checked against PyQt6 and
+# every Qgis enum name against qgis-stubs (scripts/check_qt6.py in .venv-qt6): QGIS 4 runs Qt 6, this
+# machine only QGIS 3.22.
 lint: setup
 	$(VENV)/bin/ruff check .
 	$(VENV)/bin/flake8 birdseye_qgis processing __init__.py

@@ -22,10 +22,12 @@ Formats (as documented by their owners):
   (178), gimbal pitch (205, mount control), waypoints (16) in frame 3 =
   MAV_FRAME_GLOBAL_RELATIVE_ALT with the hover time as hold time (param 1), camera trigger
   (2000 image start capture: one image per waypoint, or an interval started before the first
-  waypoint and stopped with 2001 after the last), return to launch (20).
+  waypoint and stopped with 2001 after the last), return to launch (20). MAVSDK imports these plans
+  and uploads them to a vehicle (tests/unit/plan/test_mission_clients.py).
 * **Litchi CSV**: Litchi's standard 46-column header; altitude mode 0 (relative to take-off),
   gimbal mode 2 (interpolate) at −90°, actions "stay for" (0, ms) and "take photo" (1), or a photo
-  time interval for timed capture. Litchi holds 2…99 waypoints per mission.
+  time interval for timed capture. Litchi holds 2…99 waypoints per mission. litchi-wp (PyPI) reads
+  these files back in the same test module.
 * **Plain KML** for Google Earth: one ``Folder`` per mission holding the route line and one
   placemark per waypoint (``ExtendedData``: mission, order, altitude, geotag ids); all missions in
   one file.
