@@ -12,7 +12,7 @@ import pytest
 from qgis.core import QgsFeature, QgsGeometry, QgsPoint, QgsProcessingException, QgsVectorLayer
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "data"))
-from camera_solutions import SITE, camera_coordinates, metashape_pixel, to_ecef, truth, write_metashape
+from camera_solutions import camera_coordinates, metashape_pixel, to_ecef, truth, write_metashape
 
 from birdseye.birdseye_qgis.core.geometry.geodesy import ecef_to_geodetic
 
