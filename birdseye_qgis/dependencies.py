@@ -229,8 +229,8 @@ def python_candidates(executable: str | None = sys.executable,
     installer and conda keep it in ``sys.prefix``, ``apps\\Python3X``), ``bin\\python3.exe`` beside
     ``qgis-bin.exe`` (OSGeo4W's launcher); ``<prefix>/bin/python3.X`` elsewhere and
     ``QGIS.app/Contents/MacOS/bin/python3`` in the macOS bundle. :func:`find_python` then keeps the
-    first that runs and reports this Python's version. The ``python`` on ``PATH`` is never used: it
-    may be another installation whose wheels QGIS's Python cannot load.
+    first that is this very Python. The ``python`` on ``PATH`` is never asked for: it may be another
+    installation, whose packages QGIS does not see and whose wheels its Python may not load.
     """
     windows = platform == "win32"
     pure = PureWindowsPath if windows else PurePosixPath
@@ -258,8 +258,16 @@ def _hidden_window() -> dict:
     return {"creationflags": getattr(subprocess, "CREATE_NO_WINDOW", 0)} if sys.platform == "win32" else {}
 
 
-def find_python(candidates: Sequence[str] | None = None, version: Sequence[int] = sys.version_info) -> str:
-    """The first candidate interpreter that runs and is this Python's major.minor version."""
+def _same_path(a: str, b: str) -> bool:
+    return os.path.normcase(os.path.realpath(a)) == os.path.normcase(os.path.realpath(b))
+
+
+def find_python(candidates: Sequence[str] | None = None, version: Sequence[int] = sys.version_info,
+                base_prefix: str = sys.base_exec_prefix) -> str:
+    """The first candidate interpreter that runs and is *this* Python: the same major.minor version and
+    the same installation (``sys.base_exec_prefix``). The version alone is not enough: Debian's QGIS
+    finds its ``sys.executable`` on ``PATH``, where a pyenv or conda ``python3`` of the same version
+    may come first, and its packages are not QGIS's."""
     candidates = python_candidates() if candidates is None else candidates
     wanted = f"{version[0]}.{version[1]}"
     tried = []
@@ -268,17 +276,19 @@ def find_python(candidates: Sequence[str] | None = None, version: Sequence[int] 
             tried.append(f"{candidate} (not found)")
             continue
         try:
-            result = subprocess.run([candidate, "-c", "import sys; print('%d.%d' % sys.version_info[:2])"],
-                                    capture_output=True, text=True, timeout=60, check=False, **_hidden_window())
+            result = subprocess.run(
+                [candidate, "-c", "import sys; print('%d.%d' % sys.version_info[:2]); print(sys.base_exec_prefix)"],
+                capture_output=True, text=True, timeout=60, check=False, **_hidden_window())
         except (OSError, subprocess.TimeoutExpired) as exc:
             tried.append(f"{candidate} ({exc})")
             continue
-        reported = result.stdout.strip()
-        if result.returncode == 0 and reported == wanted:
+        reported = result.stdout.splitlines() if result.returncode == 0 else []
+        if len(reported) == 2 and reported[0] == wanted and _same_path(reported[1], base_prefix):
             return candidate
-        tried.append(f"{candidate} (Python {reported or 'did not start'})")
-    raise InstallError(f"Python {wanted}, the Python QGIS runs, was not found as a program; looked at:\n  "
-                       + "\n  ".join(tried))
+        tried.append(f"{candidate} (" + (f"Python {reported[0]} in {reported[1]}" if len(reported) == 2
+                                         else "did not start") + ")")
+    raise InstallError(f"The program of the Python QGIS runs (Python {wanted} in {base_prefix}) was not found; "
+                       "looked at:\n  " + "\n  ".join(tried))
 
 
 def pip_environment(folder: Path, search_path: Sequence[str] = tuple(sys.path),
@@ -294,12 +304,13 @@ def pip_environment(folder: Path, search_path: Sequence[str] = tuple(sys.path),
 
 
 def run_streaming(command: Sequence[str], env: dict[str, str], log: Callable[[str], None],
-                  is_canceled: Callable[[], bool] = lambda: False, poll_s: float = 0.1) -> int:
-    """Run ``command``, passing each output line (stdout and stderr) to ``log`` as it comes; stop it
-    and raise :class:`Cancelled` as soon as ``is_canceled()`` says so. Returns the exit status."""
+                  is_canceled: Callable[[], bool] = lambda: False, poll_s: float = 0.1, cwd: Path | None = None) -> int:
+    """Run ``command`` (in ``cwd``), passing each output line (stdout and stderr) to ``log`` as it
+    comes; stop it and raise :class:`Cancelled` as soon as ``is_canceled()`` says so. Returns the exit
+    status."""
     process = subprocess.Popen(list(command), stdout=subprocess.PIPE, stderr=subprocess.STDOUT, env=env,
                                stdin=subprocess.DEVNULL, text=True, encoding="utf-8", errors="replace",
-                               bufsize=1, **_hidden_window())
+                               bufsize=1, cwd=cwd, **_hidden_window())
     lines: queue.Queue = queue.Queue()
 
     def read() -> None:
@@ -333,9 +344,9 @@ def run_streaming(command: Sequence[str], env: dict[str, str], log: Callable[[st
         process.stdout.close()
 
 
-def _pip_version(python: str, env: dict[str, str]) -> tuple[int, ...]:
+def _pip_version(python: str, env: dict[str, str], cwd: Path) -> tuple[int, ...]:
     result = subprocess.run([python, "-m", "pip", "--version"], capture_output=True, text=True, env=env,
-                            timeout=120, check=False, **_hidden_window())
+                            cwd=cwd, timeout=120, check=False, **_hidden_window())
     match = re.match(r"pip (\d+)\.(\d+)", result.stdout)
     if result.returncode != 0 or match is None:
         raise InstallError(f"pip is not available in the Python QGIS runs ({python}). Install it first "
@@ -393,6 +404,9 @@ class Installer:
         self.search_path = tuple(sys.path) if search_path is None else tuple(search_path)
         self.log, self.progress, self.is_canceled = log, progress, is_canceled
         self.output: list[str] = []
+        # Every command runs in an empty scratch folder: `python -m` puts the working folder first on
+        # sys.path, where whatever QGIS was started from could shadow pip's own modules.
+        self.scratch: Path | None = None
 
     def _log(self, line: str) -> None:
         self.output.append(line)
@@ -407,7 +421,7 @@ class Installer:
             if on_line is not None:
                 on_line(text)
 
-        status = run_streaming(command, env, line, self.is_canceled)
+        status = run_streaming(command, env, line, self.is_canceled, cwd=self.scratch)
         if status != 0:
             raise InstallError(f"pip stopped with exit status {status}.", "\n".join(self.output))
 
@@ -420,22 +434,23 @@ class Installer:
         self._log(f"Folder: {self.folder}")
         self.folder.mkdir(parents=True, exist_ok=True)
         env = pip_environment(self.folder, self.search_path)
-        pip = _pip_version(self.python, env)
-        if pip < MIN_PIP:
-            raise InstallError(f"pip {'.'.join(map(str, pip))} in {self.python} is too old; BirdsEye needs "
-                               f"pip {'.'.join(map(str, MIN_PIP))} or newer ({self.python} -m pip install "
-                               "--upgrade pip).")
         with tempfile.TemporaryDirectory(prefix="birdseye-pip-") as scratch:
-            report_path = Path(scratch) / "report.json"
+            self.scratch = Path(scratch)
+            pip = _pip_version(self.python, env, self.scratch)
+            if pip < MIN_PIP:
+                raise InstallError(f"pip {'.'.join(map(str, pip))} in {self.python} is too old; BirdsEye needs "
+                                   f"pip {'.'.join(map(str, MIN_PIP))} or newer ({self.python} -m pip install "
+                                   "--upgrade pip).")
+            report_path = self.scratch / "report.json"
             self._pip(["install", "--dry-run", "--no-input", "--only-binary=:all:", "--report", str(report_path),
                        *(p.requirement for p in packages)], env)
             report = json.loads(report_path.read_text(encoding="utf-8"))
-        plan = read_plan(report, host_distributions(self.folder, self.search_path))
-        self.progress(0.1)
-        if plan:
-            self._install_plan(plan, env)
-        self.progress(0.95)
-        self._verify(packages, env)
+            plan = read_plan(report, host_distributions(self.folder, self.search_path))
+            self.progress(0.1)
+            if plan:
+                self._install_plan(plan, env)
+            self.progress(0.95)
+            self._verify(packages, env)
         activate(self.folder)
         self.progress(1.0)
         return plan
@@ -464,7 +479,7 @@ class Installer:
                   "    print('imported', name)\n")
         command = [self.python, "-c", script, *modules]
         self._log("$ " + " ".join([self.python, "-c", "<import each package>", *modules]))
-        status = run_streaming(command, env, self._log, self.is_canceled)
+        status = run_streaming(command, env, self._log, self.is_canceled, cwd=self.scratch)
         if status != 0:
             raise InstallError("The packages were installed but do not load: " + ", ".join(modules) + ".",
                                "\n".join(self.output))

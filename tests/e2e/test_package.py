@@ -65,7 +65,8 @@ def names(package) -> list[str]:
 
 def test_one_top_folder_named_birdseye(names):
     assert {name.split("/")[0] for name in names} == {"birdseye"}
-    for required in ("__init__.py", "metadata.txt", "LICENSE", "README.md", "birdseye_qgis/gui/plugin.py",
+    for required in ("__init__.py", "metadata.txt", "LICENSE", "README.md", "requirements.txt",
+                     "birdseye_qgis/gui/plugin.py",
                      "processing/provider.py", "resources/icons/birdseye.svg"):
         assert f"birdseye/{required}" in names
 
@@ -75,7 +76,7 @@ def test_no_tests_dev_files_or_caches(names, package):
                  if DEV_ONLY & set(n.split("/")[1:-1]) or n.endswith((".pyc", ".pyo"))
                  or any(part.startswith(".") for part in n.split("/"))
                  or n.count("/") == 1 and n.split("/")[1] not in
-                 {"__init__.py", "metadata.txt", "LICENSE", "README.md"}]
+                 {"__init__.py", "metadata.txt", "LICENSE", "README.md", "requirements.txt"}]
     assert offending == []
     assert package.stat().st_size < MAX_UPLOAD_BYTES
 
@@ -347,3 +348,196 @@ def test_install_from_zip_in_the_desktop(package, tmp_path):
     log = report["message_log"]
     assert "Python error" not in log, log.get("Python error")
     assert "Traceback" not in output, output
+
+
+# ------------------------------------------------------------------------------ dependencies from the plugin
+DETECT_PACKAGES = ("onnxruntime", "opencv-python-headless")  # what birdseye:detect needs on every run
+BARE_PYTHON = "/usr/bin/python3"  # the Python Debian's QGIS embeds, here without .venv's packages
+WHEELHOUSE = REPO_ROOT / "build" / "wheelhouse" / f"cp{sys.version_info[0]}{sys.version_info[1]}"
+
+DEPENDENCIES_PROBE = r"""
+import json, os, traceback
+from qgis.core import QgsApplication
+from qgis.PyQt.QtCore import Qt, QTimer
+from qgis.PyQt.QtWidgets import QApplication
+from qgis.utils import iface
+
+result = {"errors": []}
+wanted = set(os.environ["BIRDSEYE_WANTED"].split(","))
+
+
+def rows(dialog):
+    table = dialog.table
+    return [[table.topLevelItem(r).text(c) for c in range(4)] for r in range(table.topLevelItemCount())]
+
+
+def open_dialog():
+    # What the user does: BirdsEye > Install dependencies... (the dialog is modal; drive() runs inside it).
+    try:
+        menu = next(a.menu() for a in iface.mainWindow().menuBar().actions()
+                    if a.menu() is not None and a.menu().objectName() == "mBirdsEyeMenu")
+        action = next(a for a in menu.actions() if a.objectName() == "mActionBirdsEyeDependencies")
+        result["menu_text"] = action.text()
+        QTimer.singleShot(300, drive)
+        action.trigger()
+    except Exception:
+        result["errors"].append(traceback.format_exc())
+    with open(os.environ["BIRDSEYE_PROBE_RESULT"], "w", encoding="utf-8") as f:
+        json.dump(result, f, indent=1)
+    QgsApplication.instance().quit()
+
+
+def drive():
+    try:
+        dialog = QApplication.activeModalWidget()
+        result["dialog"] = dialog.objectName()
+        result["rows_before"] = rows(dialog)
+        for r in range(dialog.table.topLevelItemCount()):  # keep the download small: only detect's packages
+            item = dialog.table.topLevelItem(r)
+            if item.flags() & Qt.ItemFlag.ItemIsUserCheckable:
+                item.setCheckState(0, Qt.CheckState.Checked if item.text(0) in wanted else Qt.CheckState.Unchecked)
+        result["ticked"] = [p.distribution for p in dialog.checked_packages()]
+        dialog.install_button.click()
+        QTimer.singleShot(500, lambda: wait(dialog))
+    except Exception:
+        result["errors"].append(traceback.format_exc())
+        QApplication.activeModalWidget().reject()
+
+
+def wait(dialog):
+    if dialog.is_running():
+        QTimer.singleShot(500, lambda: wait(dialog))
+        return
+    result.update(status=dialog.status.text(), progress=dialog.progress.value(), log=dialog.log.toPlainText(),
+                  rows_after=rows(dialog), folder=str(dialog.folder))
+    dialog.reject()
+
+
+QTimer.singleShot(500, open_dialog)
+"""
+
+
+def bare_qgis_env(config: Path, tmp_path: Path, **extra: str) -> dict[str, str]:
+    """qgis_process.sh with the profile in ``config``, QGIS's own Python and nothing of .venv, and pip
+    pointed at the local wheel folder only (no index, no pip.conf)."""
+    nowhere = tmp_path / "no-extra-plugins"
+    nowhere.mkdir(exist_ok=True)
+    env = {k: v for k, v in os.environ.items()
+           if k not in {"QGIS_CUSTOM_CONFIG_PATH", "QGIS_PLUGINPATH", "PYTHONPATH"} and not k.startswith("PIP_")}
+    env.update(BIRDSEYE_QGIS_CONFIG=str(config), BIRDSEYE_PLUGIN_PATH=str(nowhere), BIRDSEYE_VENV="",
+               PIP_CONFIG_FILE=os.devnull, PIP_NO_INDEX="1", PIP_FIND_LINKS=str(WHEELHOUSE), **extra)
+    return env
+
+
+def run_bare(env: dict[str, str], *args: str, timeout: float = 300) -> subprocess.CompletedProcess:
+    return subprocess.run([str(REPO_ROOT / "scripts" / "qgis_process.sh"), "--json", "run", *args], env=env,
+                          capture_output=True, text=True, timeout=timeout, check=False)
+
+
+@pytest.fixture(scope="module")
+def wheelhouse() -> Path:
+    """detect's packages and what they need beyond QGIS's Python, as wheels in build/wheelhouse.
+
+    The list comes from pip's own resolution in the bare Python (what the installer will ask for);
+    the wheels are downloaded once from the package index and kept for later runs."""
+    from birdseye.birdseye_qgis.dependencies import read_requirements
+
+    pins = [p.requirement for p in read_requirements() if p.distribution in DETECT_PACKAGES]
+    WHEELHOUSE.mkdir(parents=True, exist_ok=True)
+    report = WHEELHOUSE / "plan.json"
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
+    resolved = subprocess.run([BARE_PYTHON, "-m", "pip", "install", "--dry-run", "--quiet", "--only-binary=:all:",
+                               "--report", str(report), *pins], env=env, capture_output=True, text=True,
+                              timeout=600, check=False)
+    assert resolved.returncode == 0, f"pip could not resolve {pins} for {BARE_PYTHON}:\n{resolved.stderr}"
+    plan = [f"{i['metadata']['name']}=={i['metadata']['version']}"
+            for i in json.loads(report.read_text(encoding="utf-8"))["install"]]
+    fetched = subprocess.run([BARE_PYTHON, "-m", "pip", "download", "--quiet", "--no-deps", "--only-binary=:all:",
+                              "--dest", str(WHEELHOUSE), *plan], env=env, capture_output=True, text=True,
+                             timeout=1200, check=False)
+    assert fetched.returncode == 0, f"pip could not download {plan}:\n{fetched.stderr}"
+    return WHEELHOUSE
+
+
+@pytest.mark.skipif(not QGIS_BIN.exists() or shutil.which("Xvfb") is None,
+                    reason="needs Debian's qgis and xvfb (make setup installs them)")
+def test_installer_brings_a_bare_profile_to_a_working_detect(package, wheelhouse, tmp_path):
+    """A fresh profile whose Python lacks the packages: the algorithms say what to install; BirdsEye ›
+    Install dependencies… in the real desktop installs detect's packages from the local wheel folder
+    (QGIS's own Python and pip, numpy left to QGIS); then a simulated flight goes through
+    simulatecampaign, importflightlog and detect in that profile, with no other Python packages."""
+    missing = subprocess.run([BARE_PYTHON, "-c", "import importlib.util as u, sys; "
+                              "print([m for m in sys.argv[1:] if u.find_spec(m)])", "onnxruntime", "cv2"],
+                             env={k: v for k, v in os.environ.items() if k != "PYTHONPATH"},
+                             capture_output=True, text=True, check=True)
+    if missing.stdout.strip() != "[]":
+        pytest.skip(f"{BARE_PYTHON} itself has {missing.stdout.strip()}: no bare Python to start from")
+    profiles = tmp_path / "profiles"
+    profile = profiles / "profiles" / "default"
+    (profile / "python" / "plugins").mkdir(parents=True)
+    with zipfile.ZipFile(package) as zf:
+        zf.extractall(profile / "python" / "plugins")
+    ini = profile / "QGIS" / "QGIS3.ini"
+    ini.parent.mkdir(parents=True)
+    ini.write_text("[PythonPlugins]\nbirdseye=true\nprocessing=true\n\n[core]\nNewsFeed\\httpsfeedqgisorg\\disabled=true\n")
+    env = bare_qgis_env(profiles, tmp_path)
+    campaign = tmp_path / "campaign"
+    simulate = ["birdseye:simulatecampaign", "--", "SEED=7", f"OUTPUT_FOLDER={campaign}", "N_TARGETS=3",
+                "IMAGE_WIDTH=320", "IMAGE_HEIGHT=200", "FIELD_WIDTH_M=6", "FIELD_LENGTH_M=4"]
+
+    refused = run_bare(env, *simulate)
+    assert refused.returncode != 0
+    assert ("This algorithm needs the Python package(s) opencv-python-headless, which the Python QGIS runs "
+            "does not have. In QGIS, choose BirdsEye › Install dependencies…") in refused.stdout + refused.stderr
+
+    probe = tmp_path / "dependencies_probe.py"
+    probe.write_text(DEPENDENCIES_PROBE, encoding="utf-8")
+    report_path = tmp_path / "report.json"
+    runtime_dir = tmp_path / "runtime"
+    runtime_dir.mkdir(mode=0o700)
+    with xvfb_display() as display:
+        desktop_env = {**env, "DISPLAY": display, "QT_QPA_PLATFORM": "xcb", "XDG_RUNTIME_DIR": str(runtime_dir),
+                       "BIRDSEYE_WANTED": ",".join(DETECT_PACKAGES), "BIRDSEYE_PROBE_RESULT": str(report_path)}
+        qgis = subprocess.Popen([str(QGIS_BIN), "--nologo", "--noversioncheck", "--profiles-path", str(profiles),
+                                 "--code", str(probe)], env=desktop_env, stdout=subprocess.PIPE,
+                                stderr=subprocess.STDOUT, text=True)
+        try:
+            output, _ = qgis.communicate(timeout=600)
+        except subprocess.TimeoutExpired:
+            stuck = REPO_ROOT / "build" / "screenshots" / "install-dependencies-timeout.png"
+            stuck.parent.mkdir(parents=True, exist_ok=True)
+            grab_screen(display, stuck)
+            qgis.kill()
+            output, _ = qgis.communicate()
+            pytest.fail(f"QGIS did not quit; screen saved to {stuck}\n{output}")
+    assert report_path.is_file(), f"the probe wrote no report (QGIS exit {qgis.returncode}):\n{output}"
+    report = json.loads(report_path.read_text(encoding="utf-8"))
+    assert report["errors"] == [], report["errors"]
+    assert report["menu_text"] == "Install dependencies…" and report["dialog"] == "BirdsEyeDependenciesDialog"
+    states = {row[0]: row[2] for row in report["rows_before"]}
+    assert states["onnxruntime"] == states["opencv-python-headless"] == "missing"
+    assert report["ticked"] == list(DETECT_PACKAGES)
+    assert report["status"].startswith("Installed: "), report["log"]
+    assert report["progress"] == 100
+    after = {row[0]: row[2] for row in report["rows_after"]}
+    assert after["onnxruntime"].startswith("installed by BirdsEye (") and \
+        after["opencv-python-headless"].startswith("installed by BirdsEye (")
+    folder = Path(report["folder"])
+    assert folder == profile / "python" / "birdseye-dependencies" / f"python{sys.version_info[0]}.{sys.version_info[1]}"
+    assert (folder / "onnxruntime").is_dir() and (folder / "cv2").is_dir()
+    assert not (folder / "numpy").exists(), "QGIS's numpy is used, never a second copy"
+    assert f"Looking in links: {WHEELHOUSE}" in report["log"] and "Successfully installed" in report["log"]
+
+    simulated = run_bare(env, *simulate)
+    assert simulated.returncode == 0, simulated.stderr
+    results = json.loads(simulated.stdout)["results"]
+    imported = run_bare(env, "birdseye:importflightlog", "--", f"POSE_LOG={results['POSES']}",
+                        f"IMAGES={campaign}", f"CALIBRATION={results['CALIBRATION']}",
+                        f"OUTPUT={tmp_path / 'frames.gpkg'}")
+    assert imported.returncode == 0, imported.stderr
+    detected = run_bare(env, "birdseye:detect", "--", f"FRAMES={tmp_path / 'frames.gpkg'}",
+                        f"OUTPUT={tmp_path / 'detections.gpkg'}")
+    assert detected.returncode == 0, detected.stderr
+    detections = json.loads(detected.stdout)["results"]
+    assert detections["FRAMES_PROCESSED"] == results["FRAME_COUNT"] > 0
+    assert detections["DETECTION_COUNT"] > 0 and (tmp_path / "detections.gpkg").is_file()

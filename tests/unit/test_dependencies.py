@@ -192,20 +192,24 @@ def test_candidates_on_linux_start_with_sys_executable():
     assert embedded == ["/usr/bin/python3.11", "/usr/bin/python3"]
 
 
-def fake_python(path: Path, version: str) -> str:
-    path.write_text(f"#!/bin/sh\necho {version}\n")
+def fake_python(path: Path, version: str, prefix: str) -> str:
+    path.write_text(f"#!/bin/sh\necho {version}\necho {prefix}\n")
     path.chmod(0o755)
     return str(path)
 
 
-def test_find_python_keeps_the_first_of_this_version(tmp_path):
-    old = fake_python(tmp_path / "python2", "2.7")
+def test_find_python_keeps_the_first_that_is_this_python(tmp_path):
+    """Same version and same installation: a pyenv python3.X first on PATH is not QGIS's Python."""
     this = f"{sys.version_info[0]}.{sys.version_info[1]}"
-    assert deps.find_python([str(tmp_path / "absent"), old, sys.executable]) == sys.executable
+    old = fake_python(tmp_path / "python2", "2.7", sys.base_exec_prefix)
+    other = fake_python(tmp_path / "pyenv-python3", this, "/root/.pyenv/versions/other")
+    assert deps.find_python([str(tmp_path / "absent"), old, other, sys.executable]) == sys.executable
     with pytest.raises(deps.InstallError) as info:
-        deps.find_python([str(tmp_path / "absent"), old])
-    assert f"Python {this}, the Python QGIS runs, was not found" in str(info.value)
-    assert "absent (not found)" in str(info.value) and "python2 (Python 2.7)" in str(info.value)
+        deps.find_python([str(tmp_path / "absent"), old, other])
+    message = str(info.value)
+    assert message.startswith(f"The program of the Python QGIS runs (Python {this} in {sys.base_exec_prefix})")
+    assert "absent (not found)" in message and f"python2 (Python 2.7 in {sys.base_exec_prefix})" in message
+    assert f"pyenv-python3 (Python {this} in /root/.pyenv/versions/other)" in message
 
 
 # ------------------------------------------------------------------------------ streaming and cancel
