@@ -406,11 +406,11 @@ def osm_basemap():
 def draw_rank(layer) -> int:
     """Points over lines over polygons over the farm's maps over an online basemap, so nothing hides the
     survey points."""
-    from qgis.core import QgsMapLayerType, QgsWkbTypes
+    from birdseye.birdseye_qgis.qgis_enums import GEOMETRY_LINE, GEOMETRY_POINT, LAYER_VECTOR
 
-    if layer.type() != QgsMapLayerType.VectorLayer:
+    if layer.type() != LAYER_VECTOR:
         return 4 if layer.providerType() == "wms" else 3
-    return {QgsWkbTypes.PointGeometry: 0, QgsWkbTypes.LineGeometry: 1}.get(layer.geometryType(), 2)
+    return {GEOMETRY_POINT: 0, GEOMETRY_LINE: 1}.get(layer.geometryType(), 2)
 
 
 def add_to_group(project, group_name: str | None, layers: list[tuple]) -> None:

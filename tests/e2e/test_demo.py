@@ -67,9 +67,9 @@ def source_stem(layer) -> str:
 
 
 def is_vector(layer) -> bool:
-    from qgis.core import QgsMapLayerType
+    from birdseye.birdseye_qgis.qgis_enums import LAYER_VECTOR
 
-    return layer.type() == QgsMapLayerType.VectorLayer
+    return layer.type() == LAYER_VECTOR
 
 
 def is_web_basemap(layer) -> bool:
