@@ -11,7 +11,7 @@ import importlib.util
 from typing import NamedTuple
 
 from qgis.core import Qgis, QgsApplication, QgsMessageLog
-from qgis.PyQt.QtCore import QCoreApplication, QLocale, Qt, QTranslator
+from qgis.PyQt.QtCore import QT_TRANSLATE_NOOP, QCoreApplication, QLocale, Qt, QTranslator
 from qgis.PyQt.QtGui import QIcon
 from qgis.PyQt.QtWidgets import QMenu, QPushButton, QToolBar
 
@@ -29,25 +29,34 @@ PLUGIN_PACKAGE = __name__.rsplit(".birdseye_qgis.", 1)[0]
 MENU_OBJECT_NAME = "mBirdsEyeMenu"
 TOOLBAR_OBJECT_NAME = "mBirdsEyeToolBar"
 TOOLBOX_FILTER = "birdseye"
+ALGORITHMS_ICON = "resources/icons/algorithms.svg"
 
 
 class DockEntry(NamedTuple):
     """A dock widget the plugin offers; its module is imported only when the user first opens it.
 
     ``module`` is relative to the plugin package; the class is called as ``cls(iface)`` and must be a
-    ``QDockWidget``. ``icon`` is a path relative to the plugin root (the plugin icon when empty).
+    ``QDockWidget``. ``icon`` is a path relative to the plugin root (the plugin icon when empty);
+    ``tooltip`` says what the dock is for (marked with ``QT_TRANSLATE_NOOP("@default", …)`` so it is
+    translated).
     """
 
     module: str
     class_name: str
     title: str
     icon: str = ""
+    tooltip: str = ""
 
 
 # Later features append their dock here; an entry whose module does not exist yet is simply not shown.
 DOCKS: list[DockEntry] = [
-    DockEntry("birdseye_qgis.gui.review.dock", "ReviewDock", "Review clusters"),
-    DockEntry("birdseye_qgis.gui.sensor_bound_dock", "SensorBoundDock", "Sensor-bound calculator"),
+    DockEntry("birdseye_qgis.gui.review.dock", "ReviewDock", "Review clusters", "resources/icons/review.svg",
+              QT_TRANSLATE_NOOP("@default", "Review clusters: walk through the detected clusters beside the "
+                                            "survey, judge each, and see recall and GMCF before and after review")),
+    DockEntry("birdseye_qgis.gui.sensor_bound_dock", "SensorBoundDock", "Sensor-bound calculator",
+              "resources/icons/sensor_bound.svg",
+              QT_TRANSLATE_NOOP("@default", "Sensor-bound calculator: which pose-noise budget keeps labels "
+                                            "within their pixel tolerance for a camera and flying height")),
 ]
 
 
@@ -112,7 +121,7 @@ class BirdsEyePlugin:
     def initGui(self) -> None:
         self.initProcessing()
         main_window = self.iface.mainWindow()
-        icon = QIcon(str(ICON_PATH))
+        icon = QIcon(str(PLUGIN_ROOT / ALGORITHMS_ICON))
 
         self.menu = QMenu(tr("&BirdsEye"), main_window)
         self.menu.setObjectName(MENU_OBJECT_NAME)
@@ -132,6 +141,8 @@ class BirdsEyePlugin:
         for entry in available:
             action = QAction(self._icon_for(entry), tr(entry.title), main_window)
             action.setObjectName(f"mActionBirdsEye{entry.class_name}")
+            if entry.tooltip:
+                action.setToolTip(tr(entry.tooltip))
             action.setCheckable(True)
             action.toggled.connect(lambda checked, e=entry: self.set_dock_visible(e, checked))
             self.menu.addAction(action)
