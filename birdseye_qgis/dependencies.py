@@ -56,25 +56,29 @@ class Use:
     sometimes: tuple[str, ...] = ()
 
 
-#: Every distribution of ``requirements.txt`` (tests check both lists agree), found by following
-#: each algorithm's calls to the functions that import the package.
+#: Every distribution of ``requirements.txt`` (tests check both lists agree). Found by recording, while
+#: the QGIS test suites ran each algorithm, which of these packages its run imported, and reading the
+#: code behind each import: ``always`` when the algorithm's main path imports it, ``sometimes`` when only
+#: an option does (a DEM, a calibration YAML file, an HTML report or plot, a COLMAP model, …).
 USES: dict[str, Use] = {
-    "onnxruntime": Use("onnxruntime", always=("detect", "screencheckpoints"),
-                       sometimes=("sweepoperatingpoints",)),
+    "onnxruntime": Use("onnxruntime", always=("detect", "screencheckpoints"), sometimes=("sweepoperatingpoints",)),
     "opencv-python-headless": Use("cv2", always=("detect", "screencheckpoints", "simulatecampaign"),
                                   sometimes=("sweepoperatingpoints", "writelabels")),
     "scikit-learn": Use("sklearn", always=("clusterdetections", "evaluatedetections", "screencheckpoints",
                                            "sweepoperatingpoints")),
-    "scipy": Use("scipy", always=("simulatecampaign", "sensorbound", "montecarlobound"),
-                 sometimes=("clusterdetections", "evaluatedetections", "importcameras", "importgeotags",
-                            "planflight", "screencheckpoints", "sweepoperatingpoints", "writelabels")),
+    "scipy": Use("scipy", always=("clusterdetections", "evaluatedetections", "importgeotags", "montecarlobound",
+                                  "planflight", "screencheckpoints", "sensorbound", "simulatecampaign",
+                                  "sweepoperatingpoints", "writelabels"),
+                 sometimes=("detect", "importcameras", "importdjiimages", "importflightlog")),
     "fast-tsp": Use("fast_tsp", always=("planflight",)),
-    "PyYAML": Use("yaml", sometimes=("importdjiimages", "importflightlog", "planflight", "sensorbound",
-                                     "montecarlobound", "terrainslope", "writelabels", "simulatecampaign")),
+    "PyYAML": Use("yaml", always=("simulatecampaign",),
+                  sometimes=("importdjiimages", "importflightlog", "montecarlobound", "planflight", "sensorbound",
+                             "terrainslope")),
+    # Read by core.detect.model_metadata.read_onnx_metadata, which only the tests and the training
+    # recipe call: no algorithm needs it (the dialog offers it unticked).
     "onnx": Use("onnx"),
-    "matplotlib": Use("matplotlib", always=("sensorbound", "montecarlobound", "terrainslope"),
-                      sometimes=("evaluatedetections", "refineposes", "screencheckpoints",
-                                 "sweepoperatingpoints")),
+    "matplotlib": Use("matplotlib", always=("montecarlobound", "sensorbound", "terrainslope"),
+                      sometimes=("evaluatedetections", "screencheckpoints", "sweepoperatingpoints")),
     "pycolmap": Use("pycolmap", always=("refineposes",), sometimes=("importcameras",)),
     "pyodm": Use("pyodm", always=("processodm",)),
 }

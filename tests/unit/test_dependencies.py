@@ -60,6 +60,45 @@ def test_every_module_in_uses_is_imported_by_the_plugin():
     assert {use.module for use in deps.USES.values()} - imported == set()
 
 
+def plugin_module_file(dotted: str) -> Path | None:
+    """The source file of ``birdseye.<dotted>`` in this tree, or None (a name, not a module)."""
+    path = REPO_ROOT.joinpath(*dotted.split(".")[1:])
+    if (path / "__init__.py").is_file():
+        return path / "__init__.py"
+    return path.with_suffix(".py") if path.with_suffix(".py").is_file() else None
+
+
+def reachable_packages(algorithm_id: str) -> set[str]:
+    """Top-level modules imported anywhere (module level or inside functions) in the plugin modules an
+    algorithm's module imports, transitively: every package it could possibly reach."""
+    todo, seen, found = [f"birdseye.processing.algorithms.{algorithm_id}"], set(), set()
+    while todo:
+        name = todo.pop()
+        path = plugin_module_file(name)
+        if name in seen or path is None:
+            continue
+        seen.add(name)
+        package = name.split(".") if path.name == "__init__.py" else name.split(".")[:-1]
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if isinstance(node, ast.Import):
+                found |= {alias.name.split(".")[0] for alias in node.names}
+            elif isinstance(node, ast.ImportFrom) and node.level == 0 and node.module:
+                found.add(node.module.split(".")[0])
+            elif isinstance(node, ast.ImportFrom):
+                base = ".".join(package[:len(package) - node.level + 1] + ([node.module] if node.module else []))
+                todo += [base] + [f"{base}.{alias.name}" for alias in node.names]
+    return found
+
+
+def test_an_algorithm_said_to_need_a_package_can_reach_it():
+    """USES is checked against the code: each algorithm it names imports, somewhere down its imports,
+    the package it is said to need (an algorithm that stopped using one must not be refused for it)."""
+    stale = [f"{algorithm} → {use.module}" for use in deps.USES.values()
+             for algorithm in use.always + use.sometimes if use.module not in reachable_packages(algorithm)]
+    assert stale == []
+    assert "onnxruntime" in reachable_packages("detect") and "fast_tsp" not in reachable_packages("detect")
+
+
 def write(path: Path, text: str) -> Path:
     path.write_text(textwrap.dedent(text), encoding="utf-8")
     return path
