@@ -165,7 +165,7 @@ class DependenciesDialog(QDialog):
         layout = QVBoxLayout(self)
         for widget in (self.intro, self.table, self.progress, self.status, self.log, self.buttons):
             layout.addWidget(widget)
-        self.resize(820, 460)
+        self.resize(900, 600)
         self.refresh()
 
     # ------------------------------------------------------------------ state

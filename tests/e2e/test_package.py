@@ -354,6 +354,7 @@ def test_install_from_zip_in_the_desktop(package, tmp_path):
 DETECT_PACKAGES = ("onnxruntime", "opencv-python-headless")  # what birdseye:detect needs on every run
 BARE_PYTHON = "/usr/bin/python3"  # the Python Debian's QGIS embeds, here without .venv's packages
 WHEELHOUSE = REPO_ROOT / "build" / "wheelhouse" / f"cp{sys.version_info[0]}{sys.version_info[1]}"
+DEPENDENCIES_SCREENSHOT = REPO_ROOT / "build" / "screenshots" / "install-dependencies.png"
 
 DEPENDENCIES_PROBE = r"""
 import json, os, traceback
@@ -410,6 +411,8 @@ def wait(dialog):
         return
     result.update(status=dialog.status.text(), progress=dialog.progress.value(), log=dialog.log.toPlainText(),
                   rows_after=rows(dialog), folder=str(dialog.folder))
+    dialog.log_button.setChecked(True)
+    dialog.grab().save(os.environ["BIRDSEYE_SCREENSHOT"])
     dialog.reject()
 
 
@@ -490,6 +493,8 @@ def test_installer_brings_a_bare_profile_to_a_working_detect(package, wheelhouse
     assert ("This algorithm needs the Python package(s) opencv-python-headless, which the Python QGIS runs "
             "does not have. In QGIS, choose BirdsEye › Install dependencies…") in refused.stdout + refused.stderr
 
+    DEPENDENCIES_SCREENSHOT.parent.mkdir(parents=True, exist_ok=True)
+    DEPENDENCIES_SCREENSHOT.unlink(missing_ok=True)
     probe = tmp_path / "dependencies_probe.py"
     probe.write_text(DEPENDENCIES_PROBE, encoding="utf-8")
     report_path = tmp_path / "report.json"
@@ -497,7 +502,8 @@ def test_installer_brings_a_bare_profile_to_a_working_detect(package, wheelhouse
     runtime_dir.mkdir(mode=0o700)
     with xvfb_display() as display:
         desktop_env = {**env, "DISPLAY": display, "QT_QPA_PLATFORM": "xcb", "XDG_RUNTIME_DIR": str(runtime_dir),
-                       "BIRDSEYE_WANTED": ",".join(DETECT_PACKAGES), "BIRDSEYE_PROBE_RESULT": str(report_path)}
+                       "BIRDSEYE_WANTED": ",".join(DETECT_PACKAGES), "BIRDSEYE_PROBE_RESULT": str(report_path),
+                       "BIRDSEYE_SCREENSHOT": str(DEPENDENCIES_SCREENSHOT)}
         qgis = subprocess.Popen([str(QGIS_BIN), "--nologo", "--noversioncheck", "--profiles-path", str(profiles),
                                  "--code", str(probe)], env=desktop_env, stdout=subprocess.PIPE,
                                 stderr=subprocess.STDOUT, text=True)
@@ -518,7 +524,7 @@ def test_installer_brings_a_bare_profile_to_a_working_detect(package, wheelhouse
     assert states["onnxruntime"] == states["opencv-python-headless"] == "missing"
     assert report["ticked"] == list(DETECT_PACKAGES)
     assert report["status"].startswith("Installed: "), report["log"]
-    assert report["progress"] == 100
+    assert report["progress"] == 100 and DEPENDENCIES_SCREENSHOT.is_file()
     after = {row[0]: row[2] for row in report["rows_after"]}
     assert after["onnxruntime"].startswith("installed by BirdsEye (") and \
         after["opencv-python-headless"].startswith("installed by BirdsEye (")
