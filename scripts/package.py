@@ -3,9 +3,9 @@
 The zip holds one top folder, ``birdseye/`` (the name QGIS installs the plugin under), with only what
 the plugin needs at run time: the files and folders in :data:`INCLUDED` (the bundled ONNX model and
 the pins of ``requirements.txt`` included) and the compiled translations ``i18n/*.qm``. Tests,
-benchmarks, scripts, the venv, build output, caches and hidden files stay out. The zip is then checked as plugins.qgis.org's upload
-validator checks it (:func:`repository_problems`); any problem fails the build. Runs with Debian's
-python3 (no QGIS needed).
+benchmarks, scripts, the venv, build output, caches and hidden files stay out. The zip is then checked
+as plugins.qgis.org's upload validator checks it (:func:`repository_problems`); any problem fails the
+build. Runs with Debian's python3 (no QGIS needed).
 
     /usr/bin/python3 scripts/package.py [--out build]
 """
