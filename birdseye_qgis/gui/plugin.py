@@ -102,6 +102,10 @@ class BirdsEyePlugin:
         self.docks: dict[DockEntry, object] = {}
         # Before anything builds a user-visible string: the provider's names come from tr() too.
         self.translator = load_translator()
+        self.dependencies_action: QAction | None = None
+        # Packages installed by BirdsEye › Install dependencies… (at the end of sys.path: QGIS's own win).
+        self.package_folder = package_folder(QgsApplication.qgisSettingsDirPath())
+        activate(self.package_folder)
 
     # ------------------------------------------------------------------ Processing
     def initProcessing(self) -> None:
@@ -111,10 +115,6 @@ class BirdsEyePlugin:
         self.provider = self.provider_class()
         if not QgsApplication.processingRegistry().addProvider(self.provider):
             log(tr("The BirdsEye Processing provider could not be registered."), Qgis.Critical)
-        self.dependencies_action: QAction | None = None
-        # Packages installed by BirdsEye › Install dependencies… (at the end of sys.path: QGIS's own win).
-        self.package_folder = package_folder(QgsApplication.qgisSettingsDirPath())
-        activate(self.package_folder)
             self.provider = None
 
     # ------------------------------------------------------------------ desktop
@@ -149,8 +149,16 @@ class BirdsEyePlugin:
             self.toolbar.addAction(action)
             self.dock_actions[entry] = action
 
+        self.menu.addSeparator()
+        self.dependencies_action = QAction(tr("Install dependencies…"), main_window)
+        self.dependencies_action.setObjectName("mActionBirdsEyeDependencies")
+        self.dependencies_action.setToolTip(tr("Install the Python packages BirdsEye's algorithms need"))
+        self.dependencies_action.triggered.connect(self.show_dependencies)
+        self.menu.addAction(self.dependencies_action)
+
         self._insert_menu(main_window.menuBar())
         self.iface.addToolBar(self.toolbar)
+        self._offer_missing_packages()
 
     def unload(self) -> None:
         """Remove everything :meth:`initGui` and :meth:`initProcessing` added."""
@@ -160,16 +168,8 @@ class BirdsEyePlugin:
         self.dock_actions.clear()
         for dock in self.docks.values():
             if hasattr(dock, "shutdown"):  # stop worker threads and close files before the widget goes
-        self.menu.addSeparator()
-        self.dependencies_action = QAction(tr("Install dependencies…"), main_window)
-        self.dependencies_action.setObjectName("mActionBirdsEyeDependencies")
-        self.dependencies_action.setToolTip(tr("Install the Python packages BirdsEye's algorithms need"))
-        self.dependencies_action.triggered.connect(self.show_dependencies)
-        self.menu.addAction(self.dependencies_action)
-
                 dock.shutdown()
             self.iface.removeDockWidget(dock)
-        self._offer_missing_packages()
             dock.deleteLater()
         self.docks.clear()
         if self.menu is not None:
@@ -184,6 +184,9 @@ class BirdsEyePlugin:
         if self.toolbox_action is not None:
             self.toolbox_action.deleteLater()
             self.toolbox_action = None
+        if self.dependencies_action is not None:
+            self.dependencies_action.deleteLater()
+            self.dependencies_action = None
         if self.provider is not None:
             QgsApplication.processingRegistry().removeProvider(self.provider)
             self.provider = None
@@ -195,9 +198,6 @@ class BirdsEyePlugin:
     def show_algorithms(self) -> None:
         """Show the Processing toolbox filtered to the BirdsEye algorithms."""
         from qgis import utils
-        if self.dependencies_action is not None:
-            self.dependencies_action.deleteLater()
-            self.dependencies_action = None
 
         toolbox = getattr(utils.plugins.get("processing"), "toolbox", None)
         if toolbox is None:
@@ -207,17 +207,6 @@ class BirdsEyePlugin:
         toolbox.setUserVisible(True)
         toolbox.raise_()
         toolbox.searchBox.setText(TOOLBOX_FILTER)
-
-    def set_dock_visible(self, entry: DockEntry, visible: bool) -> None:
-        """Show or hide a dock, creating it (and importing its module) the first time."""
-        dock = self.docks.get(entry)
-        if dock is None:
-            if not visible:
-                return
-            dock = self._create_dock(entry)
-            if dock is None:
-                action = self.dock_actions.get(entry)
-                if action is not None:
 
     def show_dependencies(self) -> None:
         """BirdsEye › Install dependencies…: the missing packages, installed on consent."""
@@ -239,6 +228,17 @@ class BirdsEyePlugin:
         button.clicked.connect(self.show_dependencies)
         item.layout().addWidget(button)
         bar.pushWidget(item, Qgis.MessageLevel.Warning)
+
+    def set_dock_visible(self, entry: DockEntry, visible: bool) -> None:
+        """Show or hide a dock, creating it (and importing its module) the first time."""
+        dock = self.docks.get(entry)
+        if dock is None:
+            if not visible:
+                return
+            dock = self._create_dock(entry)
+            if dock is None:
+                action = self.dock_actions.get(entry)
+                if action is not None:
                     action.blockSignals(True)
                     action.setChecked(False)
                     action.blockSignals(False)
