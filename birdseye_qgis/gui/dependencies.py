@@ -214,7 +214,7 @@ class DependenciesDialog(QDialog):
         if not packages or self.is_running():
             return
         self.log.clear()
-        self.progress.setValue(0)
+        self.progress.setRange(0, 0)  # busy while pip resolves: it cannot say how long that takes
         self.progress.setVisible(True)
         self.status.setText(tr("Installing {names}…").format(names=", ".join(p.requirement for p in packages)))
         self.install_button.setEnabled(False)
@@ -222,12 +222,17 @@ class DependenciesDialog(QDialog):
         self.close_button.setText(tr("Cancel"))
         self.thread = InstallThread(self.folder, packages, self.python, self)
         self.thread.line.connect(self.log.appendPlainText)
-        self.thread.fraction.connect(lambda f: self.progress.setValue(round(100 * f)))
+        self.thread.fraction.connect(self._show_fraction)
         self.thread.succeeded.connect(self._succeeded)
         self.thread.failed.connect(self._failed)
         self.thread.stopped.connect(self._stopped)
         self.thread.finished.connect(self._finished)
         self.thread.start()
+
+    def _show_fraction(self, fraction: float) -> None:
+        if fraction > 0:
+            self.progress.setRange(0, 100)
+            self.progress.setValue(round(100 * fraction))
 
     def _succeeded(self, plan) -> None:
         self.status.setText(tr("Installed: {names}. The algorithms can use them now; no restart needed.").format(

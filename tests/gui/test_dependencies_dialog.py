@@ -99,7 +99,7 @@ def test_install_on_consent_streams_pip_and_makes_the_package_importable(dialog,
     with qtbot.waitSignal(dialog.installed, timeout=120_000):
         qtbot.mouseClick(dialog.install_button, Qt.MouseButton.LeftButton)
         assert dialog.close_button.text() == "Cancel" and not dialog.table.isEnabled()
-        assert dialog.progress.isVisible()
+        assert dialog.progress.isVisible() and dialog.progress.maximum() == 0, "busy while pip resolves"
     qtbot.waitUntil(lambda: not dialog.is_running(), timeout=10_000)
     installed = re.fullmatch(r"Installed: (.*)\. The algorithms can use them now; no restart needed\.",
                              dialog.status.text())
