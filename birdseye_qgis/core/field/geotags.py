@@ -36,7 +36,7 @@ DUPLICATE_DISTANCE_M = 0.02
 
 #: The geotag-layer schema: (name, type, description); type is "int", "double" or "string".
 GEOTAG_FIELDS = [
-    ("id", "int", "geotag number, 1.. in file order"),
+    ("id", "int", "geotag number, 1.. in file order, kept whatever the fix filter drops"),
     ("label", "string", "target class or name from the rover"),
     ("fix_quality", "int", "NMEA GGA fix quality: 4 RTK fixed, 5 RTK float, 2 DGPS, 1 autonomous, 0 unknown"),
     ("lat", "double", "latitude, WGS84 (deg)"),
@@ -86,6 +86,9 @@ class Geotags:
     source: str = ""
     problems: list = field(default_factory=list)
     flags: list = field(default_factory=list)
+    #: 1.. over the geotags as read, so a target keeps its id when a filter drops others (labels,
+    #: evaluations and reviews of one survey refer to the same ids).
+    number: np.ndarray | None = None
 
     def __post_init__(self):
         for name in ("lat", "lon", "h_ellipsoid", "h_msl"):
@@ -95,6 +98,8 @@ class Geotags:
         self.label = [str(v) for v in self.label]
         if not self.flags:
             self.flags = [[] for _ in range(len(self.lat))]
+        self.number = (np.arange(1, len(self.lat) + 1) if self.number is None
+                       else np.asarray(self.number, dtype=np.int64).reshape(-1))
 
     def __len__(self) -> int:
         return len(self.lat)
@@ -105,12 +110,12 @@ class Geotags:
             index = np.flatnonzero(index)
         return Geotags(self.lat[index], self.lon[index], self.h_ellipsoid[index], self.h_msl[index],
                        self.fix_quality[index], [self.label[i] for i in index], self.source_row[index],
-                       self.source, list(self.problems), [list(self.flags[i]) for i in index])
+                       self.source, list(self.problems), [list(self.flags[i]) for i in index], self.number[index])
 
     def records(self):
-        """One dict per geotag with the :data:`GEOTAG_FIELD_NAMES`; ids count from 1 in order."""
+        """One dict per geotag with the :data:`GEOTAG_FIELD_NAMES`; ids are the geotags' :attr:`number`."""
         for i in range(len(self)):
-            yield {"id": i + 1, "label": self.label[i], "fix_quality": int(self.fix_quality[i]),
+            yield {"id": int(self.number[i]), "label": self.label[i], "fix_quality": int(self.fix_quality[i]),
                    "lat": float(self.lat[i]), "lon": float(self.lon[i]),
                    "h_ellipsoid": _none_if_nan(self.h_ellipsoid[i]), "h_msl": _none_if_nan(self.h_msl[i]),
                    "source_row": int(self.source_row[i]), "flags": ",".join(self.flags[i])}

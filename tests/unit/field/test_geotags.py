@@ -191,6 +191,18 @@ def test_prepare_pole_height_fix_filter_flags_and_duplicates():
         prepare_geotags(tags, pole_height_m=-1.0)
 
 
+def test_a_target_keeps_its_id_when_the_fix_filter_drops_an_earlier_geotag():
+    """Ids number the geotags as read: dropping the float fix in row 2 must not renumber rows 3 and 4,
+    or labels and evaluations made with and without the filter would name different targets."""
+    local = LocalFrame(48.0, 11.0, 500.0)
+    lat, lon, _ = offsets_to_geodetic(local, [[0, 0], [5, 0], [10, 0], [15, 0]])
+    tags = geotags_from_columns(lat, lon, h_ellipsoid=[500.0] * 4, h_msl=[450.0] * 4, fix_quality=[4, 5, 4, 4])
+    every = [r["id"] for r in prepare_geotags(tags).geotags.records()]
+    fixed = list(prepare_geotags(tags, fixed_only=True).geotags.records())
+    assert every == [1, 2, 3, 4]
+    assert [r["id"] for r in fixed] == [1, 3, 4] and fixed[1]["lat"] == pytest.approx(lat[2])
+
+
 # ------------------------------------------------------------------------------------ fuzz
 def valid_row(draw_lat, draw_lon, fix, label):
     return f"{draw_lat:.8f},{draw_lon:.8f},12.345,-3.21,{fix},{label}"
