@@ -210,15 +210,20 @@ class WriteLabels(DemParametersMixin, BirdsEyeAlgorithm):
     @staticmethod
     def _read_geotags(source, context) -> Geotags:
         names = source.fields().names()
-        attrs = [n for n in ("id", "label") if n in names]
+        attrs = [n for n in ("id", "label", "h_ellipsoid") if n in names]
         cols = layers.read_point_layer(source, context.transformContext(), attrs, source.sourceName())
         ok = np.isfinite(cols["lat"]) & np.isfinite(cols["lon"])
         ids = np.asarray(cols["attributes"]["id"] if "id" in attrs else cols["row"], dtype=object)
         labels = np.asarray([v if v else "target" for v in cols["attributes"]["label"]] if "label" in attrs
                             else ["target"] * len(ok), dtype=object)
         # Heights move labels only on frames of an ellipsoidal camera solution (flag geotag_heights);
-        # elsewhere each frame places geotags on its own ground. NaN: no surveyed height.
-        return Geotags(ids[ok], labels[ok], cols["lat"][ok], cols["lon"][ok], np.asarray(cols["z"], float)[ok])
+        # elsewhere each frame places geotags on its own ground. NaN: no surveyed height — Import geotags
+        # writes Z = 0 then, so its h_ellipsoid field (NULL) is the one to trust.
+        if "h_ellipsoid" in attrs:
+            height = np.array([np.nan if v is None else float(v) for v in cols["attributes"]["h_ellipsoid"]])
+        else:
+            height = np.asarray(cols["z"], float)
+        return Geotags(ids[ok], labels[ok], cols["lat"][ok], cols["lon"][ok], height[ok])
 
     @staticmethod
     def _log_summary(feedback, summary) -> None:
