@@ -60,7 +60,7 @@ DOCKS: list[DockEntry] = [
 ]
 
 
-def log(message: str, level=Qgis.Info) -> None:
+def log(message: str, level=Qgis.MessageLevel.Info) -> None:
     QgsMessageLog.logMessage(message, LOG_TAG, level)
 
 
@@ -114,7 +114,7 @@ class BirdsEyePlugin:
             return
         self.provider = self.provider_class()
         if not QgsApplication.processingRegistry().addProvider(self.provider):
-            log(tr("The BirdsEye Processing provider could not be registered."), Qgis.Critical)
+            log(tr("The BirdsEye Processing provider could not be registered."), Qgis.MessageLevel.Critical)
             self.provider = None
 
     # ------------------------------------------------------------------ desktop
@@ -279,6 +279,6 @@ class BirdsEyePlugin:
         return QIcon(str(PLUGIN_ROOT / entry.icon)) if entry.icon else QIcon(str(ICON_PATH))
 
     def _warn(self, message: str) -> None:
-        log(message, Qgis.Warning)
+        log(message, Qgis.MessageLevel.Warning)
         if self.iface is not None:
-            self.iface.messageBar().pushMessage(LOG_TAG, message, Qgis.Warning, 8)
+            self.iface.messageBar().pushMessage(LOG_TAG, message, Qgis.MessageLevel.Warning, 8)
