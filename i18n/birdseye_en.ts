@@ -4,263 +4,263 @@
 <context>
     <name>@default</name>
     <message>
-        <location filename="../birdseye_qgis/gui/plugin.py" line="103"/>
+        <location filename="../birdseye_qgis/gui/plugin.py" line="117"/>
         <source>The BirdsEye Processing provider could not be registered.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/plugin.py" line="112"/>
+        <location filename="../birdseye_qgis/gui/plugin.py" line="126"/>
         <source>&amp;BirdsEye</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/plugin.py" line="114"/>
+        <location filename="../birdseye_qgis/gui/plugin.py" line="128"/>
         <source>BirdsEye</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/plugin.py" line="117"/>
+        <location filename="../birdseye_qgis/gui/plugin.py" line="131"/>
         <source>BirdsEye algorithms…</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/plugin.py" line="119"/>
+        <location filename="../birdseye_qgis/gui/plugin.py" line="133"/>
         <source>Open the Processing toolbox showing the BirdsEye algorithms</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/plugin.py" line="177"/>
+        <location filename="../birdseye_qgis/gui/plugin.py" line="204"/>
         <source>The Processing plugin is not active: enable it under Plugins ▸ Manage and Install Plugins, then try again.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/plugin.py" line="207"/>
+        <location filename="../birdseye_qgis/gui/plugin.py" line="255"/>
         <source>The &apos;{title}&apos; panel could not be opened ({module}.{cls}: {error}).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="66"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="67"/>
         <source>Review clusters</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="198"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="199"/>
         <source>Review setup</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="202"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="203"/>
         <source>choose one or more detection layers</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="203"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="204"/>
         <source>Outputs of Detect targets over one flight (several checkpoints or thresholds are reviewed together: one verdict per spot).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="205"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="206"/>
         <source>Detections</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="209"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="210"/>
         <source>The flight&apos;s frame layer (Import flight log or Import DJI images): poses, camera and image of every frame.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="211"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="212"/>
         <source>Frames</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="215"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="216"/>
         <source>The survey points (Import geotags).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="216"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="217"/>
         <source>Geotags</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="221"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="222"/>
         <source>GeoPackage holding the append-only verdict log (table birdseye_verdicts). Default: the first detection layer&apos;s GeoPackage, else one next to the project.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="224"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="225"/>
         <source>Verdict log</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="226"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="227"/>
         <source>Recorded with every verdict.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="228"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="229"/>
         <source>Reviewer</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="230"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="231"/>
         <source>Clustering and matching</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="240"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="251"/>
         <source>DBSCAN minimum points per neighbourhood (itself included).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="251"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="262"/>
         <source>Size of the image window cut around a detection.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="258"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="269"/>
         <source>Map scale the canvas zooms to around each unit.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="259"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="270"/>
         <source>Grid cell</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="259"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="270"/>
         <source>EPS</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="259"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="270"/>
         <source>Min. points</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="259"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="270"/>
         <source>EPS_PRED</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="259"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="270"/>
         <source>Edge buffer</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="259"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="270"/>
         <source>Chip window</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="259"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="270"/>
         <source>Map scale</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="265"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="277"/>
         <source>Start / resume review</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="279"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="291"/>
         <source>No review started</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="289"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="301"/>
         <source>All layers</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="299"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="311"/>
         <source>Fired by</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="301"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="313"/>
         <source>Show</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="339"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="351"/>
         <source>Previous (P)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="341"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="353"/>
         <source>Next (N)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="358"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="370"/>
         <source>Undo (Ctrl+Z)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="360"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="372"/>
         <source>Add missed target (A)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="366"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="378"/>
         <source>Propagate to units within {:.2f} m</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="367"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="379"/>
         <source>Off by default. When on, a verdict also votes (provenance propagated:{rule}) on the units chained to this one by gaps of at most {eps:.2f} m; conflicting votes are resolved under the three conventions, all shown.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="372"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="384"/>
         <source>Next unit after a verdict</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="379"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="391"/>
         <source>&lt;b&gt;Scores per detection layer&lt;/b&gt; — after review under each tie-break convention</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="381"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="393"/>
         <source>Recall and the geotag-matched cluster fraction (GMCF), computed as Evaluate detections computes them from this verdict log.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="385"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="397"/>
         <source>before
 review</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="389"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="401"/>
         <source>After review, {}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="403"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="415"/>
         <source>GMCF is a lower bound on precision, not precision; recall after review is an upper bound (≥). The spread between the conventions is part of the result.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="171"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="172"/>
         <source>Choose at least one detection layer (an output of Detect targets).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="177"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="178"/>
         <source>Choose a GeoPackage for the verdict log (save the project first to get one next to it).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="229"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="230"/>
         <source>{n} units from {k} layer(s); verdict log {path}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="298"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="300"/>
         <source>A layer of the review was removed from the project; the review stopped. Every verdict is in the log; choose the layers again to resume.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -270,72 +270,72 @@ review</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="335"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="337"/>
         <source>&lt;b&gt;{pos}&lt;/b&gt; of {vis} shown · {done} of {n} units reviewed · {added} added</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="388"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="390"/>
         <source>An added target can only be withdrawn (0 or Backspace) or undone.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="399"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="401"/>
         <source>Saved: {key} → {verdict}{more} ({time} UTC)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="399"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="401"/>
         <source>, {} propagated vote(s)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="414"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="416"/>
         <source>Nothing to undo.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="418"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="420"/>
         <source>Undone: action {action} on {key} (rows appended; nothing deleted).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="436"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="438"/>
         <source>The verdict was NOT saved: {error}. Check that {path} is writable and not locked, then try again.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="451"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="453"/>
         <source>Click the map where the missed target is (Esc or right click cancels).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="472"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="474"/>
         <source>Added target {key} (Ctrl+Z undoes it).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="472"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="474"/>
         <source>A target is already recorded there.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="493"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="495"/>
         <source>No units: the detection layers have no clusters at these settings.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="494"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="496"/>
         <source>Nothing to show</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="506"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="508"/>
         <source>Loading frames…</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="513"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="515"/>
         <source>&lt;b&gt;Added target&lt;/b&gt; {key}&lt;br&gt;{lat:.7f}°, {lon:.7f}° · recorded as a target the detector missed (the &lt;i&gt;a&lt;/i&gt; term). 0 withdraws it.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -360,32 +360,32 @@ review</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="418"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="430"/>
         <source>The frames could not be read: {}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="420"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="432"/>
         <source>No frame of the frame layer shows this spot.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="426"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="438"/>
         <source>frame {f}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="432"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="444"/>
         <source>{shown} of {n} frames</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="570"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="572"/>
         <source>updating…</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="579"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="581"/>
         <source>Scores could not be computed: {}</source>
         <translation type="unfinished"></translation>
     </message>
@@ -400,277 +400,277 @@ review</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="227"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="228"/>
         <source>Review verdicts</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="441"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="453"/>
         <source>Cannot start the review</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="441"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="453"/>
         <source>Inputs changed since verdicts were recorded</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="104"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="114"/>
         <source>Accept</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="104"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="114"/>
         <source>Reject</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="104"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="114"/>
         <source>: κ* = λ_target / sup; every variance of the budget may grow by this factor. Accept when κ* ≥ 1.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="127"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="137"/>
         <source>Sensor-bound calculator</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="164"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="174"/>
         <source>Camera</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="171"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="181"/>
         <source>A platform sets the camera and the pose-noise budget together.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="173"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="183"/>
         <source>Platform</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="176"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="186"/>
         <source>Camera calibration (Kalibr or OpenCV YAML)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="177"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="187"/>
         <source>Load fx, fy, cx, cy and the image size from a Kalibr camchain or OpenCV YAML file.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="180"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="190"/>
         <source>Calibration</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="194"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="204"/>
         <source>Width</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="195"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="205"/>
         <source>Height</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="207"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="217"/>
         <source>Pose noise (1σ)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="227"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="249"/>
         <source>Label tolerance and altitudes</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="232"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="254"/>
         <source>Label radius r at 3σ: the label must stay within r px of the target.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="236"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="258"/>
         <source>σ_label = r/3: the Gaussian sigma of the soft labels (λ_target = σ_label²).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="240"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="262"/>
         <source>Tolerance r (3σ)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="242"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="264"/>
         <source>e.g. 10, 20</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="243"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="265"/>
         <source>Heights above the ground in metres, separated by commas.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="245"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="267"/>
         <source>Altitudes [m]</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="249"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="271"/>
         <source>Verdicts</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="257"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="279"/>
         <source>Altitude</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="257"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="279"/>
         <source>sup tr Σ
 [px²]</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="257"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="279"/>
         <source>sup λmax
 [px²]</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="257"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="279"/>
         <source>κ* trace</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="257"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="279"/>
         <source>κ* exact</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="259"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="281"/>
         <source>Largest trace of the label covariance over the frame (the linear, pessimistic criterion).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="261"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="283"/>
         <source>Largest eigenvalue of the label covariance over the frame (the exact criterion).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="267"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="289"/>
         <source>Details for</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="269"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="291"/>
         <source>The altitude whose budget table and λ_max field are shown.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="277"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="299"/>
         <source>Your σ</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="277"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="299"/>
         <source>Balanced σ
 (trace)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="277"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="299"/>
         <source>Balanced σ
 (exact)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="277"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="299"/>
         <source>Share of
 error</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="279"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="301"/>
         <source>The largest budget with no axis starved (maximum Σ log σ²) that meets the exact bound.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="281"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="303"/>
         <source>Each axis&apos;s share of the error of your budget at the worst pixel: improve the largest first.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="306"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="328"/>
         <source>λ_max field — red: the tolerance λ_target</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="319"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="341"/>
         <source>Evaluate every pixel</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="320"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="342"/>
         <source>Re-evaluate on the full-resolution grid (stride 1 px), as the Processing algorithm does by default.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="323"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="345"/>
         <source>Use σ_label in Write labels</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="324"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="346"/>
         <source>Store σ_label = r/3 px in the project; Write labels uses it as its default label sigma (SIGMA_PX).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="327"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="349"/>
         <source>Run in Processing…</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="328"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="350"/>
         <source>Open the Sensor bound algorithm with these values, to write the JSON results, the HTML report and the λ_max raster.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="349"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="375"/>
         <source>Altitudes</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="427"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="455"/>
         <source>σ_label = {value:.2f} px</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="453"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="482"/>
         <source>every pixel</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="453"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="482"/>
         <source>preview grid: every {s} px and the frame edges</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="458"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="487"/>
         <source>λ_target = (r/3)² = {lam:.4g} px² · {grid}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="477"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="506"/>
         <source>worst pixel ({u:.0f}, {v:.0f})</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="495"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="524"/>
         <source>worst at ({u:.0f}, {v:.0f})</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="524"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="554"/>
         <source>σ_label = {s:.2f} px stored in the project: Write labels will use it as its label sigma (project variable @birdseye_sigma_label_px).</source>
         <translation type="unfinished"></translation>
     </message>
@@ -680,7 +680,7 @@ error</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/evaluatedetections.py" line="46"/>
+        <location filename="../processing/algorithms/evaluatedetections.py" line="34"/>
         <source>Sealed rule verified (seal {value}…, sealed {sealed_at}); arm '{name}': its operating point replaces the dialog's values: {value2}</source>
         <translation type="unfinished"></translation>
     </message>
@@ -695,143 +695,331 @@ error</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="218"/>
+        <location filename="../processing/algorithms/writelabels.py" line="231"/>
         <source>{n_labels} labels in {n_frames_with_labels} of {n_frames} frames (labels per labelled frame: mean {mean:g}, max {max}); {n_geotags_in_view} of {n_geotags} geotags in view (frames per geotag: mean {mean2:g}, max {max2})</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="227"/>
+        <location filename="../processing/algorithms/writelabels.py" line="240"/>
         <source>{n_occluded} projections were hidden behind terrain (not written)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="230"/>
+        <location filename="../processing/algorithms/writelabels.py" line="243"/>
         <source>{n_edge} projections fell within the edge buffer (not written)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="235"/>
+        <location filename="../processing/algorithms/writelabels.py" line="248"/>
         <source>{n_never} geotag(s) never in view of any frame: {shown}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="239"/>
+        <location filename="../processing/algorithms/writelabels.py" line="252"/>
         <source>{value} image(s) could not be read for tiles; first: {value2}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/dem.py" line="73"/>
+        <location filename="../processing/parameters/dem.py" line="103"/>
         <source>DEM {source}: {value}×{value2} cells of {cell_size_m:g} m, heights {value3:.1f}…{value4:.1f} m ({vertical_datum})</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="63"/>
+        <source>{always}; for some inputs: {sometimes}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="65"/>
+        <source>for some inputs: {sometimes}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="66"/>
+        <source>no algorithm (developer tools only)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="71"/>
+        <source>missing</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="73"/>
+        <source>update from {version}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="75"/>
+        <source>installed by BirdsEye ({version})</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="76"/>
+        <source>installed ({version})</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="120"/>
+        <source>BirdsEye — Python packages</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="134"/>
+        <source>Package</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="134"/>
+        <source>Version</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="134"/>
+        <source>State</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="134"/>
+        <source>Needed by</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="152"/>
+        <source>Install</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="156"/>
+        <source>Show pip&apos;s log</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="253"/>
+        <source>Close</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="190"/>
+        <source>BirdsEye&apos;s algorithms need {count} Python package(s) that the Python QGIS runs does not have. Tick the ones to install and press Install: pip installs them at the versions BirdsEye was tested with, with what they depend on, into a folder of your QGIS profile:
+{folder}
+QGIS&apos;s own packages are not changed. pip downloads them from the Python Package Index (or the index your pip is set up to use).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="197"/>
+        <source>Every Python package BirdsEye&apos;s algorithms need is installed in the Python QGIS runs.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="219"/>
+        <source>Installing {names}…</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="222"/>
+        <source>Cancel</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="238"/>
+        <source>Installed: {names}. The algorithms can use them now; no restart needed.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="238"/>
+        <source>nothing new</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="243"/>
+        <source>The installation failed: {message}
+pip&apos;s log is below; the packages already there are unchanged.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="249"/>
+        <source>Cancelled; nothing was installed.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="260"/>
+        <source>Cancelling…</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/gui/plugin.py" line="53"/>
+        <source>Review clusters: walk through the detected clusters beside the survey, judge each, and see recall and GMCF before and after review</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/gui/plugin.py" line="56"/>
+        <source>Sensor-bound calculator: which pose-noise budget keeps labels within their pixel tolerance for a camera and flying height</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/gui/plugin.py" line="226"/>
+        <source>Install dependencies…</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/gui/plugin.py" line="155"/>
+        <source>Install the Python packages BirdsEye&apos;s algorithms need</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/gui/plugin.py" line="224"/>
+        <source>Some algorithms need Python packages that are not installed: {names}.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="235"/>
+        <source>Consensus clusters (one per spot, all layers)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="236"/>
+        <source>The method&apos;s (per frame, complete linkage at {px:.0f} px)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="238"/>
+        <source>How detections become review units. Consensus clusters (the default) pool the layers and judge each spot once. The method&apos;s: detections within EPS_PRED of an in-view geotag are set aside one by one; per frame, the rest are grouped so that every two detections of a group are at most {px:.0f} px apart; each group is a unit, so a spot is judged once per frame.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="270"/>
+        <source>Review units</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="238"/>
+        <source>How roll, pitch and yaw turn the camera. As the method: about the camera&apos;s x, y and optical axes; nadir, image top towards the nose: roll and pitch trade places.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="242"/>
+        <source>Mount</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/parameters/dem.py" line="75"/>
+        <source>{GROUND_MODEL}: the method&apos;s plane stands in for the level ground; with a terrain model ({DEM}) the terrain is the ground. Give one or the other.</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
 <context>
     <name>BirdsEyeAlgorithm</name>
     <message>
-        <location filename="../processing/algorithms/base.py" line="89"/>
+        <location filename="../processing/algorithms/base.py" line="103"/>
         <source>Cancelled by the user.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/base.py" line="12"/>
+        <location filename="../processing/algorithms/base.py" line="15"/>
         <source>1 · Field data</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/base.py" line="13"/>
+        <location filename="../processing/algorithms/base.py" line="16"/>
         <source>2 · Flight planning</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/base.py" line="14"/>
+        <location filename="../processing/algorithms/base.py" line="17"/>
         <source>3 · Training labels</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/base.py" line="15"/>
+        <location filename="../processing/algorithms/base.py" line="18"/>
         <source>4 · Detection and review</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/base.py" line="16"/>
+        <location filename="../processing/algorithms/base.py" line="19"/>
         <source>5 · Platform design</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/base.py" line="17"/>
+        <location filename="../processing/algorithms/base.py" line="20"/>
         <source>6 · Simulation</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/base.py" line="107"/>
+        <source>This algorithm needs the Python package(s) {names}, which the Python QGIS runs does not have. In QGIS, choose BirdsEye › Install dependencies… to install them; or install them yourself: python -m pip install {pins}</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
 <context>
     <name>ClusterDetections</name>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="46"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="51"/>
         <source>Detections (from Detect targets)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="49"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="54"/>
         <source>Geotags (optional: fills matched_geotag_ids and hit)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="52"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="57"/>
         <source>Frames of the flight (optional: only in-view geotags can match)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="56"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="61"/>
         <source>Clusters</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="58"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="63"/>
         <source>De-duplicated points</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="68"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="73"/>
         <source>DETECTIONS: the detection layer cannot be read.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="79"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="84"/>
         <source>The detection layer holds no detection with a position.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="133"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="138"/>
         <source>OUTPUT: the cluster layer cannot be created.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="155"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="160"/>
         <source>OUTPUT_POINTS: the point layer cannot be created.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="71"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="76"/>
         <source>{dropped} detection(s) without a position or score were left out</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="97"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="102"/>
         <source>No FRAMES given: every geotag is treated as in view.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="104"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="109"/>
         <source>{n_hit_clusters} of {n} clusters match an in-view geotag; {n_recovered} of {n_in_view} in-view geotags recovered.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="116"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="121"/>
         <source>{n_det} detections → {n_points} de-duplicated points → {n} clusters ({NOISE_POINTS} points are noise).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="37"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="42"/>
         <source>Cluster detections</source>
         <translation type="unfinished"></translation>
     </message>
@@ -839,42 +1027,42 @@ error</source>
 <context>
     <name>ClusteringParametersMixin</name>
     <message>
-        <location filename="../processing/parameters/clustering.py" line="24"/>
+        <location filename="../processing/parameters/clustering.py" line="25"/>
         <source>De-duplication grid cell (cm)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/clustering.py" line="27"/>
+        <location filename="../processing/parameters/clustering.py" line="28"/>
         <source>DBSCAN radius EPS (m)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/clustering.py" line="30"/>
+        <location filename="../processing/parameters/clustering.py" line="31"/>
         <source>DBSCAN minimum points per neighbourhood (itself included)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/clustering.py" line="38"/>
+        <location filename="../processing/parameters/clustering.py" line="39"/>
         <source>Match radius geotag ↔ cluster core points EPS_PRED (m)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/clustering.py" line="41"/>
+        <location filename="../processing/parameters/clustering.py" line="42"/>
         <source>Edge buffer of the in-view test (px)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/clustering.py" line="58"/>
+        <location filename="../processing/parameters/clustering.py" line="59"/>
         <source>{name}: give at least one detection layer.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/clustering.py" line="61"/>
+        <location filename="../processing/parameters/clustering.py" line="62"/>
         <source>{name}: give one frame layer per detection layer, in the same order (got {detections} detection layer(s) and {frames} frame layer(s)).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/clustering.py" line="69"/>
+        <location filename="../processing/parameters/clustering.py" line="70"/>
         <source>{layer}: {n} detection(s) without a position or score left out</source>
         <translation type="unfinished"></translation>
     </message>
@@ -882,153 +1070,163 @@ error</source>
 <context>
     <name>DemParametersMixin</name>
     <message>
-        <location filename="../processing/parameters/dem.py" line="35"/>
+        <location filename="../processing/parameters/dem.py" line="51"/>
         <source>Terrain model (DEM/DSM raster, projected CRS in metres; empty: level ground)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/dem.py" line="38"/>
+        <location filename="../processing/parameters/dem.py" line="54"/>
         <source>DEM heights are measured from</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/dem.py" line="41"/>
+        <location filename="../processing/parameters/dem.py" line="57"/>
         <source>Geoid undulation N at the site (m; ellipsoidal = MSL + N)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/parameters/dem.py" line="61"/>
+        <source>Ground model without a DEM</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
 <context>
     <name>DesignParametersMixin</name>
     <message>
-        <location filename="../processing/parameters/design.py" line="54"/>
+        <location filename="../processing/parameters/design.py" line="57"/>
         <source>Camera calibration (Kalibr or OpenCV YAML; overrides the intrinsics below)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/design.py" line="69"/>
+        <location filename="../processing/parameters/design.py" line="73"/>
         <source>Pose sigmas, 1σ (x, y, z in metres; roll, pitch, yaw in degrees)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/design.py" line="74"/>
+        <location filename="../processing/parameters/design.py" line="81"/>
         <source>Altitudes above the ground [m], comma-separated</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/design.py" line="79"/>
+        <location filename="../processing/parameters/design.py" line="86"/>
         <source>Label tolerance r [px] (label radius at 3σ)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/design.py" line="105"/>
+        <location filename="../processing/parameters/design.py" line="113"/>
         <source>Camera from {file}: {w}×{h} px, fx {fx:.4f}, fy {fy:.4f}, cx {cx:.4f}, cy {cy:.4f} px (the typed intrinsics are ignored).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/design.py" line="123"/>
+        <location filename="../processing/parameters/design.py" line="131"/>
         <source>{name}: the focal length must be greater than 0 px, got {value:g}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/design.py" line="146"/>
+        <location filename="../processing/parameters/design.py" line="161"/>
         <source>{name}: the label tolerance must be greater than 0 px, got {value:g}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/design.py" line="153"/>
+        <location filename="../processing/parameters/design.py" line="168"/>
         <source>Cancelled by the user.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/design.py" line="51"/>
-        <source>Platform preset (sets the camera and the pose sigmas; Custom: the values below)</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../processing/parameters/design.py" line="51"/>
+        <location filename="../processing/parameters/design.py" line="54"/>
         <source>Custom</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/design.py" line="92"/>
+        <location filename="../processing/parameters/design.py" line="99"/>
         <source>Platform {name}. Sources: {sources}.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/design.py" line="95"/>
-        <source>Pose sigmas of the platform: {sigmas} ({hint}; the typed SIGMAS are ignored).</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../processing/parameters/design.py" line="102"/>
+        <location filename="../processing/parameters/design.py" line="110"/>
         <source>{CALIBRATION}: {exc}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/design.py" line="114"/>
+        <location filename="../processing/parameters/design.py" line="122"/>
         <source>Camera of the platform: {w}×{h} px, fx {fx:.4f}, fy {fy:.4f}, cx {cx:.4f}, cy {cy:.4f} px (the typed intrinsics are ignored).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/parameters/design.py" line="54"/>
+        <source>Platform preset (camera, pose sigmas and mount; Custom: the values below)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/parameters/design.py" line="76"/>
+        <source>Camera mount (how roll, pitch and yaw turn the camera)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/parameters/design.py" line="102"/>
+        <source>Pose sigmas of the platform: {sigmas} ({hint}; the typed SIGMAS are ignored), camera mount: {mount} (the chosen {MOUNT} is ignored).</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
 <context>
     <name>Detect</name>
     <message>
-        <location filename="../processing/algorithms/detect.py" line="43"/>
+        <location filename="../processing/algorithms/detect.py" line="42"/>
         <source>Frames (from Import flight log or Import DJI images)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/detect.py" line="46"/>
+        <location filename="../processing/algorithms/detect.py" line="45"/>
         <source>ONNX heatmap model (empty: the bundled demo model)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/detect.py" line="49"/>
+        <location filename="../processing/algorithms/detect.py" line="48"/>
         <source>Probability threshold (empty: the model&apos;s default)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/detect.py" line="52"/>
+        <location filename="../processing/algorithms/detect.py" line="51"/>
         <source>Edge buffer (px): detections closer to the image border are dropped</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/detect.py" line="56"/>
+        <location filename="../processing/algorithms/detect.py" line="55"/>
         <source>Detections</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/detect.py" line="58"/>
+        <location filename="../processing/algorithms/detect.py" line="57"/>
         <source>Heatmap folder (one PNG per frame)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/detect.py" line="64"/>
+        <location filename="../processing/algorithms/detect.py" line="63"/>
         <source>SHA-256 of the model</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/detect.py" line="86"/>
+        <location filename="../processing/algorithms/detect.py" line="85"/>
         <source>Model {name} (sha256 {value}…): {resolution_cm:g} cm/px, tiles {tile_size} px with {overlap_px} px overlap, threshold {used:g}{value2}.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/detect.py" line="103"/>
+        <location filename="../processing/algorithms/detect.py" line="102"/>
         <source>{detections} detections in {processed} frames ({value:.2f} per frame); {edge} dropped within {edge_buffer_px:g} px of the border, {no_ground} whose ray missed the ground; {skipped} frames skipped.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/detect.py" line="133"/>
+        <location filename="../processing/algorithms/detect.py" line="132"/>
         <source>Frame {frame_id}: {skipped}; skipped.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/detect.py" line="151"/>
+        <location filename="../processing/algorithms/detect.py" line="150"/>
         <source>{n_coarse} frame(s) (e.g. {items}) are coarser than 1.5× the model's resolution of {resolution_cm:g} cm/px: targets look smaller than in training, so expect fewer detections (fly lower or use a model trained at that resolution).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/detect.py" line="32"/>
+        <location filename="../processing/algorithms/detect.py" line="31"/>
         <source>Detect targets (ONNX heatmap model)</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1036,68 +1234,156 @@ error</source>
 <context>
     <name>EvaluateDetections</name>
     <message>
-        <location filename="../processing/algorithms/evaluatedetections.py" line="67"/>
+        <location filename="../processing/algorithms/evaluatedetections.py" line="56"/>
         <source>Detection layers (one per flight)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/evaluatedetections.py" line="69"/>
+        <location filename="../processing/algorithms/evaluatedetections.py" line="58"/>
         <source>Geotags</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/evaluatedetections.py" line="71"/>
+        <location filename="../processing/algorithms/evaluatedetections.py" line="60"/>
         <source>Frame layers (one per flight, same order)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/evaluatedetections.py" line="74"/>
+        <location filename="../processing/algorithms/evaluatedetections.py" line="63"/>
         <source>Review verdicts (optional: adds the POST scores)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/evaluatedetections.py" line="77"/>
+        <location filename="../processing/algorithms/evaluatedetections.py" line="66"/>
         <source>Sealed selection rule (optional: verified, its operating point is used)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/evaluatedetections.py" line="80"/>
+        <location filename="../processing/algorithms/evaluatedetections.py" line="72"/>
         <source>Scores (JSON)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/evaluatedetections.py" line="82"/>
+        <location filename="../processing/algorithms/evaluatedetections.py" line="74"/>
         <source>Report (HTML)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/evaluatedetections.py" line="93"/>
+        <location filename="../processing/algorithms/evaluatedetections.py" line="85"/>
         <source>GEOTAGS: the geotag layer cannot be read.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/evaluatedetections.py" line="96"/>
+        <location filename="../processing/algorithms/evaluatedetections.py" line="88"/>
         <source>GEOTAGS: the layer holds no point with a position.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/evaluatedetections.py" line="115"/>
+        <location filename="../processing/algorithms/evaluatedetections.py" line="111"/>
         <source>{name}: {n_frames_without_ground} frame(s) without a ground height were not counted as processed</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/evaluatedetections.py" line="122"/>
+        <location filename="../processing/algorithms/evaluatedetections.py" line="118"/>
         <source>OUTPUT_JSON: cannot write {out_json} ({exc})</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/evaluatedetections.py" line="130"/>
+        <location filename="../processing/algorithms/evaluatedetections.py" line="126"/>
         <source>OUTPUT_REPORT: cannot write {out_report} ({exc})</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/evaluatedetections.py" line="56"/>
+        <location filename="../processing/algorithms/evaluatedetections.py" line="44"/>
         <source>Evaluate detections (recall, GMCF)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/evaluatedetections.py" line="69"/>
+        <source>Arm to score (its name in the sealed rule; needed when arms share the checkpoint)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/evaluatedetections.py" line="95"/>
+        <source>ARM: names an arm of a sealed selection rule; give the rule (PREREGISTRATION) too, or leave ARM empty.</source>
+        <translation type="unfinished"></translation>
+    </message>
+</context>
+<context>
+    <name>ImportCameras</name>
+    <message>
+        <location filename="../processing/algorithms/importcameras.py" line="23"/>
+        <source>Align to the images&apos; GPS tags (needs IMAGES)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/importcameras.py" line="23"/>
+        <source>Already georegistered in ECEF (model_aligner --alignment_type ecef)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/importcameras.py" line="23"/>
+        <source>East-north-up at the origin given in ENU_ORIGIN</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/importcameras.py" line="32"/>
+        <source>Import camera solution (Metashape, OpenDroneMap, COLMAP)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/importcameras.py" line="45"/>
+        <source>Camera solution (Metashape cameras .xml, OpenSfM/ODM reconstruction.json, or a COLMAP model folder)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/importcameras.py" line="50"/>
+        <source>Folder of the images (optional; matched by file name)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/importcameras.py" line="53"/>
+        <source>Ground height for frames without tie points (m, same reference as the solution; optional)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/importcameras.py" line="57"/>
+        <source>A COLMAP model&apos;s frame</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/importcameras.py" line="60"/>
+        <source>ENU origin of a COLMAP model: lat, lon, ellipsoidal height</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/importcameras.py" line="62"/>
+        <source>Output CRS (empty: UTM zone of the site)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/importcameras.py" line="65"/>
+        <source>Solved frames</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/importcameras.py" line="67"/>
+        <source>Frames written</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/importcameras.py" line="68"/>
+        <source>Cameras the solution did not align</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/importcameras.py" line="87"/>
+        <source>Camera: {width}×{height} px, fx {fx:.2f}, fy {fy:.2f}, cx {cx:.2f}, cy {cy:.2f} ({source})</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/importcameras.py" line="91"/>
+        <source>Output CRS: {value}</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
@@ -1225,77 +1511,77 @@ error</source>
 <context>
     <name>ImportGeotags</name>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="54"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="53"/>
         <source>Geotag file (rover CSV, CSV with header, NMEA)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="57"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="56"/>
         <source>…or a point layer</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="59"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="58"/>
         <source>File format</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="63"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="62"/>
         <source>Fix filter</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="65"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="64"/>
         <source>Antenna pole height (m), subtracted from heights</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="68"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="67"/>
         <source>Output CRS (empty: UTM zone of the site)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="70"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="69"/>
         <source>Geotags</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="81"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="80"/>
         <source>Give either a geotag file (INPUT) or a point layer (INPUT_LAYER), not both and not neither.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="94"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="93"/>
         <source>The input holds no usable geotag.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="113"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="112"/>
         <source>No geotag is left to write (all were filtered out).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="97"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="96"/>
         <source>{n_problems} bad row(s) left out; first: {examples}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="106"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="105"/>
         <source>{dropped_not_fixed} geotag(s) without an RTK fixed solution were left out (fix filter: RTK fixed only)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="110"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="109"/>
         <source>{duplicates} geotag(s) lie within 2 cm of an earlier one (flag duplicate_2cm)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="115"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="114"/>
         <source>Output CRS: {value}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="33"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="32"/>
         <source>Import geotags</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1343,27 +1629,27 @@ error</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/montecarlobound.py" line="96"/>
+        <location filename="../processing/algorithms/montecarlobound.py" line="97"/>
         <source>{alt:g} m: max sKLD at the deployed budget {skld:.3g} nats over {n} test pixels (threshold {thr:g}) → the linearised bound {verdict}; exact κ* = {kappa:.3g}.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/montecarlobound.py" line="96"/>
+        <location filename="../processing/algorithms/montecarlobound.py" line="97"/>
         <source>holds</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/montecarlobound.py" line="96"/>
+        <location filename="../processing/algorithms/montecarlobound.py" line="97"/>
         <source>does NOT hold</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/montecarlobound.py" line="119"/>
+        <location filename="../processing/algorithms/montecarlobound.py" line="120"/>
         <source>{name}: the smallest variance factor must be greater than 0, got {value:g}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/montecarlobound.py" line="122"/>
+        <location filename="../processing/algorithms/montecarlobound.py" line="123"/>
         <source>{name}: the largest variance factor must exceed {other} ({low:g}), got {value:g}</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1376,296 +1662,515 @@ error</source>
 <context>
     <name>PlanFlight</name>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="92"/>
+        <location filename="../processing/algorithms/planflight.py" line="98"/>
         <source>Geotags (point layer)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="94"/>
+        <location filename="../processing/algorithms/planflight.py" line="100"/>
         <source>Selected geotags only</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="96"/>
+        <location filename="../processing/algorithms/planflight.py" line="102"/>
         <source>Geotag id field (empty: &apos;id&apos; if present, else the feature number)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="99"/>
+        <location filename="../processing/algorithms/planflight.py" line="105"/>
         <source>Home: take-off and landing point (optional)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="105"/>
+        <location filename="../processing/algorithms/planflight.py" line="112"/>
         <source>Camera calibration (Kalibr or OpenCV YAML; optional)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="111"/>
+        <location filename="../processing/algorithms/planflight.py" line="118"/>
         <source>Capture</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="121"/>
+        <location filename="../processing/algorithms/planflight.py" line="128"/>
         <source>Plan even if the points spread over more than 10 km</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="125"/>
+        <location filename="../processing/algorithms/planflight.py" line="132"/>
         <source>Output CRS (empty: UTM zone of the site)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="129"/>
+        <location filename="../processing/algorithms/planflight.py" line="136"/>
         <source>Waypoints</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="131"/>
+        <location filename="../processing/algorithms/planflight.py" line="138"/>
         <source>Route</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="140"/>
+        <location filename="../processing/algorithms/planflight.py" line="147"/>
         <source>Mission files written</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="162"/>
+        <location filename="../processing/algorithms/planflight.py" line="169"/>
         <source>GEOTAGS: the geotag layer could not be opened.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="166"/>
+        <location filename="../processing/algorithms/planflight.py" line="173"/>
         <source>SELECTED_ONLY is set but no geotag of layer &apos;{}&apos; is selected: select the geotags of the partition to fly, or clear SELECTED_ONLY.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="178"/>
+        <location filename="../processing/algorithms/planflight.py" line="185"/>
         <source>GEOTAGS: layer &apos;{}&apos; has no features: there is nothing to fly over.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="216"/>
+        <location filename="../processing/algorithms/planflight.py" line="223"/>
         <source>With this camera at {alt:g} m and {v:g} m/s, one photo every {s:.2f} s gives {o:g} % forward overlap.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="278"/>
+        <location filename="../processing/algorithms/planflight.py" line="285"/>
         <source>{fmt}: {files}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="285"/>
+        <location filename="../processing/algorithms/planflight.py" line="292"/>
         <source>{g} geotag(s) → {w} waypoint(s) in {m} mission(s); route {km:.2f} km; estimated flight time {t:.1f} min at {v:g} m/s and {alt:g} m.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="291"/>
+        <location filename="../processing/algorithms/planflight.py" line="298"/>
         <source>  mission {n}: {w} waypoint(s), {l:.0f} m, {t:.1f} min</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="59"/>
+        <location filename="../processing/algorithms/planflight.py" line="65"/>
         <source>Plan the survey flight</source>
+        <translation type="unfinished"></translation>
+    </message>
+</context>
+<context>
+    <name>ProcessOdm</name>
+    <message>
+        <location filename="../processing/algorithms/processodm.py" line="23"/>
+        <source>Process on an OpenDroneMap node</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/processodm.py" line="35"/>
+        <source>Folder of the flight&apos;s images</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/processodm.py" line="37"/>
+        <source>NodeODM / ClusterODM address</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/processodm.py" line="39"/>
+        <source>Access token (if the node asks for one)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/processodm.py" line="41"/>
+        <source>OpenDroneMap options (name=value, separated by commas)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/processodm.py" line="44"/>
+        <source>Output CRS (empty: UTM zone of the site)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/processodm.py" line="46"/>
+        <source>Folder for the downloaded reconstruction</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/processodm.py" line="48"/>
+        <source>Solved frames</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/processodm.py" line="50"/>
+        <source>Frames written</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/processodm.py" line="61"/>
+        <source>Reconstruction: {path}</source>
+        <translation type="unfinished"></translation>
+    </message>
+</context>
+<context>
+    <name>RefinePoses</name>
+    <message>
+        <location filename="../processing/algorithms/refineposes.py" line="33"/>
+        <source>Refine frame poses (structure from motion)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/refineposes.py" line="44"/>
+        <source>Frames (from Import DJI images, Import flight log or Import camera solution)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/refineposes.py" line="47"/>
+        <source>Image size for feature extraction (px, longer side)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/refineposes.py" line="50"/>
+        <source>Features per image (at most)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/refineposes.py" line="53"/>
+        <source>Refine focal length and distortion (only with relief, oblique views or ground control)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/refineposes.py" line="56"/>
+        <source>Refined frames</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/refineposes.py" line="58"/>
+        <source>Report (HTML)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/refineposes.py" line="60"/>
+        <source>Frames registered</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/refineposes.py" line="65"/>
+        <source>FRAMES is required.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/refineposes.py" line="72"/>
+        <source>{n} frames; SIFT features at {size} px, at most {features} per image</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/refineposes.py" line="77"/>
+        <source>Registered {n} of {total} frames in {seconds:.0f} s ({rate:.1f} images per minute); intrinsics {intrinsics}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/refineposes.py" line="82"/>
+        <source>Aligned to the GNSS positions: residual RMS {rms:.3f} m</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/refineposes.py" line="88"/>
+        <source>{n} frame(s) keep their metadata pose (flag not_refined); first: {items}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/refineposes.py" line="104"/>
+        <source>OUTPUT_REPORT: cannot write {path} ({error})</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
 <context>
     <name>ScreenCheckpoints</name>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="71"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="77"/>
         <source>ONNX checkpoints</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="73"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="79"/>
         <source>Validation flights (frame layers with their images)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="75"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="81"/>
         <source>Geotags</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="77"/>
-        <source>Detection threshold (empty: each checkpoint&apos;s default)</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="81"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="93"/>
         <source>Pixel F1: match radius (px)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="84"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="96"/>
         <source>Collapsed if the distinct-position fraction is below</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="87"/>
-        <source>Too sparse if detections per frame on the worst flight are below</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="90"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="102"/>
         <source>Checkpoint table (CSV)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="92"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="104"/>
         <source>Checkpoint table (JSON)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="94"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="106"/>
         <source>Frontier plot (PNG)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="96"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="108"/>
         <source>Healthy checkpoints</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="102"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="114"/>
         <source>CHECKPOINTS: give at least one ONNX file.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="104"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="116"/>
         <source>FRAMES: give at least one validation flight.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="110"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="125"/>
         <source>GEOTAGS: the geotag layer cannot be read.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="197"/>
-        <source>Cancelled by the user.</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="170"/>
-        <source>{checkpoint}: {state}; recall_pre {value}, gmcf_pre {value2}, pixel F1 {value3}, review load {value4}{value5}</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="200"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="153"/>
         <source>{name} on {flight_name}: {skipped} frame(s) skipped (unreadable image or no ground height)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="56"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="58"/>
         <source>Screen checkpoints</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="73"/>
+        <source>Method: blocks of 500 frames, threshold 0.03</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="73"/>
+        <source>BirdsEye: whole flights, each checkpoint&apos;s own threshold</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="83"/>
+        <source>Preset (blocks and threshold; the two fields below override it)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="86"/>
+        <source>Detection threshold (empty: the preset&apos;s)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="89"/>
+        <source>Frames per block (0: each flight whole; empty: the preset&apos;s)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="99"/>
+        <source>Too sparse if detections per frame in the worst block are below</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="137"/>
+        <source>{n_blocks} block(s) of {size} frames over {n_flights} flight(s); threshold {threshold}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="137"/>
+        <source>all</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="137"/>
+        <source>of each checkpoint</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="186"/>
+        <source>healthy</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="186"/>
+        <source>collapsed</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="186"/>
+        <source>too sparse</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="188"/>
+        <source>{checkpoint}: {state}; recall_pre {recall}, gmcf_pre {gmcf}, F1 {f1_geo}, {dpf} detections per frame, review load {load}, pixel F1 {f1_pixel} (within {radius:g} px){frontier}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="188"/>
+        <source> (frontier)</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
 <context>
     <name>SealPreregistration</name>
     <message>
-        <location filename="../processing/algorithms/sealpreregistration.py" line="54"/>
-        <source>ONNX checkpoints (one arm each)</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../processing/algorithms/sealpreregistration.py" line="56"/>
-        <source>Detection threshold of the arms</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../processing/algorithms/sealpreregistration.py" line="60"/>
+        <location filename="../processing/algorithms/sealpreregistration.py" line="70"/>
         <source>Descriptive configurations (optional: a sweep or screen JSON, recorded only)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sealpreregistration.py" line="63"/>
+        <location filename="../processing/algorithms/sealpreregistration.py" line="73"/>
         <source>Note (what was chosen on which flights, what will be scored)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sealpreregistration.py" line="66"/>
+        <location filename="../processing/algorithms/sealpreregistration.py" line="76"/>
         <source>Sealed rule (JSON)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sealpreregistration.py" line="68"/>
+        <location filename="../processing/algorithms/sealpreregistration.py" line="78"/>
         <source>Seal (SHA-256)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sealpreregistration.py" line="73"/>
-        <source>CHECKPOINTS: give at least one ONNX file.</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../processing/algorithms/sealpreregistration.py" line="79"/>
+        <location filename="../processing/algorithms/sealpreregistration.py" line="88"/>
         <source>CHECKPOINTS: {path} is not a file</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sealpreregistration.py" line="81"/>
-        <source>Arm {name}: sha256 {model_digest}</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../processing/algorithms/sealpreregistration.py" line="92"/>
+        <location filename="../processing/algorithms/sealpreregistration.py" line="119"/>
         <source>OUTPUT: cannot write {out} ({exc})</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sealpreregistration.py" line="94"/>
+        <location filename="../processing/algorithms/sealpreregistration.py" line="121"/>
         <source>Sealed at {sealed_at}: {seal}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sealpreregistration.py" line="96"/>
+        <location filename="../processing/algorithms/sealpreregistration.py" line="123"/>
         <source>Record this seal somewhere you cannot edit later (an e-mail, a lab notebook, a commit): the seal proves the rule unchanged only against a copy kept elsewhere.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sealpreregistration.py" line="44"/>
+        <location filename="../processing/algorithms/sealpreregistration.py" line="45"/>
         <source>Seal a preregistered selection rule</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/sealpreregistration.py" line="57"/>
+        <source>ONNX checkpoints (without ARMS or ARM_LINES: one arm each)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/sealpreregistration.py" line="60"/>
+        <source>Arms file (from Select arms: each arm with its own operating point)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/sealpreregistration.py" line="63"/>
+        <source>Or arms typed one per line: name: checkpoint file, threshold, eps_m, min_samples, eps_pred_m</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/sealpreregistration.py" line="66"/>
+        <source>Detection threshold of the arms (without ARMS or ARM_LINES)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/sealpreregistration.py" line="85"/>
+        <source>ARMS, ARM_LINES: give the arms file or typed arms, not both.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/sealpreregistration.py" line="91"/>
+        <source>CHECKPOINTS: two files share a file name; arms name their checkpoint by file name, so rename one.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/sealpreregistration.py" line="97"/>
+        <source>CHECKPOINTS: give at least one ONNX file (or an ARMS file).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/sealpreregistration.py" line="107"/>
+        <source>Arm {name}: {checkpoint} (sha256 {model_digest}) at {operating_point}</source>
+        <translation type="unfinished"></translation>
+    </message>
+</context>
+<context>
+    <name>SelectArms</name>
+    <message>
+        <location filename="../processing/algorithms/selectarms.py" line="17"/>
+        <source>Select arms (max F1, max recall, lowest review burden)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/selectarms.py" line="23"/>
+        <source>Sweep (the JSON output of Sweep operating points)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/selectarms.py" line="25"/>
+        <source>Arms (JSON, read by Seal a preregistered selection rule)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/selectarms.py" line="38"/>
+        <source>{name}: {checkpoint} at threshold {threshold:g}, eps {eps_m:g} m, min_samples {min_samples}, eps_pred {eps_pred_m:g} m → recall_pre {recall:.3f}, gmcf_pre {gmcf:.3f}, F1 {f1:.3f}, {dpf} detections per frame (row {row})</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
 <context>
     <name>SensorBoundAlgorithm</name>
     <message>
-        <location filename="../processing/algorithms/sensorbound.py" line="35"/>
+        <location filename="../processing/algorithms/sensorbound.py" line="36"/>
         <source>Grid stride [px] (1 = every pixel)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sensorbound.py" line="38"/>
+        <location filename="../processing/algorithms/sensorbound.py" line="39"/>
         <source>Results (JSON)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sensorbound.py" line="40"/>
+        <location filename="../processing/algorithms/sensorbound.py" line="41"/>
         <source>Report with plots (HTML)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sensorbound.py" line="43"/>
+        <location filename="../processing/algorithms/sensorbound.py" line="44"/>
         <source>λ_max field, one band per altitude (GeoTIFF in pixel coordinates)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sensorbound.py" line="97"/>
+        <location filename="../processing/algorithms/sensorbound.py" line="99"/>
         <source>{name}: the stride {stride} px does not divide the frame size, so the raster stops at the last multiple of the stride; the JSON suprema still include the frame edges.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sensorbound.py" line="106"/>
+        <location filename="../processing/algorithms/sensorbound.py" line="108"/>
         <source>{name}: cannot create the GeoTIFF {path}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sensorbound.py" line="22"/>
+        <location filename="../processing/algorithms/sensorbound.py" line="23"/>
         <source>Sensor bound (pose-noise budget)</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1673,238 +2178,273 @@ error</source>
 <context>
     <name>SimulateCampaign</name>
     <message>
-        <location filename="../processing/algorithms/simulatecampaign.py" line="93"/>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="96"/>
         <source>Pose noise Σ0: x, y, z (m), roll, pitch, yaw (deg)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/simulatecampaign.py" line="96"/>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="99"/>
         <source>Noise off (ideal poses, altimeter and geotags)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/simulatecampaign.py" line="98"/>
-        <source>Render frames (off: poses and geotags only)</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../processing/algorithms/simulatecampaign.py" line="103"/>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="106"/>
         <source>Terrain</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/simulatecampaign.py" line="116"/>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="119"/>
         <source>Geoid undulation N for altMSL (m; empty: EGM96 at the site)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/simulatecampaign.py" line="120"/>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="123"/>
         <source>Output folder</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/simulatecampaign.py" line="124"/>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="127"/>
         <source>Terrain model (truth/dem.tif, ellipsoidal heights; none for flat terrain)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/simulatecampaign.py" line="127"/>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="132"/>
         <source>Frames</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/simulatecampaign.py" line="100"/>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="103"/>
         <source>Platform</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/simulatecampaign.py" line="110"/>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="113"/>
         <source>Side overlap of neighbouring lines (fraction; empty: {ins:g} for the payload, {dji:g} for a DJI drone)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/simulatecampaign.py" line="114"/>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="117"/>
         <source>DJI drone undistorts its JPEGs (DewarpFlag 1)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/simulatecampaign.py" line="126"/>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="131"/>
         <source>Frames folder</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/simulatecampaign.py" line="161"/>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="167"/>
         <source>Simulating seed {seed}: {n_targets} targets in a {field_width_m:g} × {field_length_m:g} m field, flown at {altitude_m:g} m, {speed_ms:g} m/s, {fps:g} frames/s.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/simulatecampaign.py" line="168"/>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="174"/>
         <source>TERRAIN is flat: SLOPE_DEG and RELIEF_M are ignored (choose plane or hills).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/simulatecampaign.py" line="171"/>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="177"/>
         <source>TERRAIN is a plane: RELIEF_M is ignored (choose hills).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/simulatecampaign.py" line="177"/>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="183"/>
         <source>A DJI drone: photos on the lines with {forward_overlap:.0%} forward and {effective_side_overlap:.0%} side overlap; the pose in each JPEG&apos;s metadata carries heading, tilt and height errors (truth/dji_metadata_errors.csv).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/simulatecampaign.py" line="187"/>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="193"/>
         <source>Wrote {n_frames} frames, {log}{n_geotags} geotags to {folder}.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/simulatecampaign.py" line="71"/>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="73"/>
         <source>Simulate a campaign</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="101"/>
+        <source>Render frames and the orthomosaic (off: poses and geotags only)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="129"/>
+        <source>Orthomosaic of the field (orthomosaic.tif; none without rendering)</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
 <context>
     <name>SweepOperatingPoints</name>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="76"/>
-        <source>Detection layers (one per flight, detected at the lowest threshold)</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="79"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="96"/>
         <source>Geotags</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="81"/>
-        <source>Frame layers (one per flight, same order)</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="85"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="103"/>
         <source>De-duplication grid cell (cm)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="88"/>
-        <source>Edge buffer of the in-view test (px)</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="91"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="109"/>
         <source>Credible: mean geotags per hit cluster at most</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="94"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="112"/>
         <source>Credible: mean median cluster extent at most (m)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="97"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="115"/>
         <source>Configurations (CSV)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="99"/>
-        <source>Configurations and Pareto front (JSON)</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="102"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="120"/>
         <source>Frontier plot (PNG)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="124"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="145"/>
         <source>GEOTAGS: the geotag layer cannot be read.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="117"/>
-        <source>THRESHOLDS: {name} was detected at threshold {t}, above the sweep&apos;s lowest threshold {value}; detections below {t} were never made. Run Detect at the lowest threshold of the sweep, or raise THRESHOLDS.</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="136"/>
-        <source>{name}: {n_detections} detections, {value} geotags in view</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="138"/>
-        <source>Sweeping {size} configurations ({items}: threshold × eps × min_samples × eps_pred)</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="174"/>
-        <source>Pareto: threshold {threshold}, eps {eps_m} m, min_samples {min_samples}, eps_pred {eps_pred_m} m → recall_pre {recall_pre:.3f}, gmcf_pre {gmcf_pre:.3f}</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="180"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="233"/>
         <source>No configuration passed the credibility filter.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="62"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="72"/>
         <source>Sweep operating points</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="90"/>
+        <source>ONNX checkpoints (run over FRAMES, peaks extracted at every threshold)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="93"/>
+        <source>Or detection layers (checkpoints × flights × thresholds, from Detect)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="98"/>
+        <source>Frame layers (with CHECKPOINTS: one per flight; with DETECTIONS: one per detection layer, same order)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="106"/>
+        <source>Edge buffer (px) of the in-view test and of CHECKPOINTS&apos; detections</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="117"/>
+        <source>Configurations and Pareto front (JSON, read by Select arms)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="133"/>
+        <source>CHECKPOINTS, DETECTIONS: give ONNX checkpoints (the sweep runs them over the frames) or detection layers made by Detect, not both and not neither.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="137"/>
+        <source>FRAMES: give at least one frame layer.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="139"/>
+        <source>FRAMES: give one frame layer per detection layer, in the same order (got {detections} detection layer(s) and {frames} frame layer(s)).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="163"/>
+        <source>{name}: {n_frames} frames, {value} geotags in view</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="172"/>
+        <source>{layer}: {n} detection(s) without a position or score left out</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="177"/>
+        <source>Threshold axis: the thresholds the layers were detected at, {values} (THRESHOLDS is used with CHECKPOINTS only).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="188"/>
+        <source>Sweeping {n_checkpoints} checkpoint(s) × {size} configurations ({items}: threshold × eps × min_samples × eps_pred)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="226"/>
+        <source>Pareto: {checkpoint}, threshold {threshold}, eps {eps_m} m, min_samples {min_samples}, eps_pred {eps_pred_m} m → recall_pre {recall_pre:.3f}, gmcf_pre {gmcf_pre:.3f}, F1 {f1_geo:.3f}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="252"/>
+        <source>{checkpoint} on {flight}: {n} frame(s) skipped, e.g. {frame_id}: {reason}</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
 <context>
     <name>TerrainSlopeAlgorithm</name>
     <message>
-        <location filename="../processing/algorithms/terrainslope.py" line="39"/>
+        <location filename="../processing/algorithms/terrainslope.py" line="40"/>
         <source>Altitude above the ground [m]</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/terrainslope.py" line="43"/>
+        <location filename="../processing/algorithms/terrainslope.py" line="44"/>
         <source>Steepest slope studied [degrees]</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/terrainslope.py" line="46"/>
+        <location filename="../processing/algorithms/terrainslope.py" line="47"/>
         <source>Results (JSON)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/terrainslope.py" line="48"/>
+        <location filename="../processing/algorithms/terrainslope.py" line="49"/>
         <source>Contour plot (PNG)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/terrainslope.py" line="56"/>
+        <location filename="../processing/algorithms/terrainslope.py" line="57"/>
         <source>{name}: the altitude must be greater than 0 m, got {value:g}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/terrainslope.py" line="61"/>
+        <location filename="../processing/algorithms/terrainslope.py" line="62"/>
         <source>{name}: the steepest slope must lie between 0° and 90° (exclusive), got {value:g}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/terrainslope.py" line="77"/>
+        <location filename="../processing/algorithms/terrainslope.py" line="78"/>
         <source>{where}: {d:.2f} m from the nadir point at {alt:g} m (ρ = {rho:.3f}) — labels stay within {tol:g} px up to a {limit:.1f}° uphill slope.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/terrainslope.py" line="101"/>
+        <location filename="../processing/algorithms/terrainslope.py" line="102"/>
         <source>Farthest left/right edge midpoint</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/terrainslope.py" line="102"/>
+        <location filename="../processing/algorithms/terrainslope.py" line="103"/>
         <source>Farthest top/bottom edge midpoint</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/terrainslope.py" line="103"/>
+        <location filename="../processing/algorithms/terrainslope.py" line="104"/>
         <source>Farthest frame corner</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/terrainslope.py" line="29"/>
+        <location filename="../processing/algorithms/terrainslope.py" line="30"/>
         <source>Sensor bound: terrain-slope study</source>
         <translation type="unfinished"></translation>
     </message>
@@ -2002,18 +2542,23 @@ error</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="168"/>
+        <location filename="../processing/algorithms/writelabels.py" line="176"/>
         <source>{n_steep} frame(s) lie on terrain steeper than the level plane's 10° envelope (flag steep_terrain; first: {items}): their labels drift off target — give the DEM (parameter DEM)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="174"/>
+        <location filename="../processing/algorithms/writelabels.py" line="182"/>
         <source>{n_no_ground} frame(s) have no ground height (no usable altimeter reading, flag no_ground_height) and get no labels; first: {items}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
         <location filename="../processing/algorithms/writelabels.py" line="62"/>
         <source>Write training labels</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/writelabels.py" line="170"/>
+        <source>{n} frame(s) could not be refined and keep their metadata pose (flag not_refined; first: {items}): their labels are only as good as the drone&apos;s metadata. Leave them out with a filter such as &quot;flags&quot; NOT LIKE &apos;%not_refined%&apos;</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
