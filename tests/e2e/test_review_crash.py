@@ -41,7 +41,7 @@ SCRIPT = textwrap.dedent(f'''
     import numpy as np
 
     from birdseye.birdseye_qgis.core.review.actions import Ledger
-    from birdseye.birdseye_qgis.core.review.units import ReviewLayer, build_units
+    from birdseye.birdseye_qgis.core.review.units import ReviewLayer, ReviewParameters, build_units
     from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame
     from birdseye.birdseye_qgis.core.scoring.evaluation import Detections, Geotags
     from birdseye.birdseye_qgis.qgis_io.review_store import ReviewSession, VerdictStore
@@ -52,14 +52,15 @@ SCRIPT = textwrap.dedent(f'''
 
 
     def scripted_units():
-        """24 spots of 9 detections; spots come in pairs 0.18 m apart (separate units, one
-        propagation group), pairs 2 m apart."""
+        """24 spots of 9 detections; spots come in pairs 0.18 m apart (separate units with DBSCAN's
+        EPS 0.10 m, one propagation group within EPS_PRED 0.20 m), pairs 2 m apart."""
         centres = [(2.0 * (k // 2), 0.18 * (k % 2)) for k in range(24)]
         xy = np.array([(cx + dx, cy + dy) for cx, cy in centres for dx in (-0.03, 0, 0.03) for dy in (-0.03, 0, 0.03)])
         lat, lon, h = SITE.to_geodetic(np.column_stack([xy, np.zeros(len(xy))]))
         det = Detections(lat, lon, h, np.arange(len(xy)) % 5, np.full(len(xy), 0.8), name="model")
         empty = Geotags(np.array([], dtype=object), [], [], [])
-        return build_units([ReviewLayer(det, np.zeros(len(xy)), np.zeros(len(xy)))], SITE, empty, [])
+        return build_units([ReviewLayer(det, np.zeros(len(xy)), np.zeros(len(xy)))], SITE, empty, [],
+                           ReviewParameters(eps_m=0.10, min_samples=3, eps_pred_m=0.20))
 
 
     def action(k, ledger, units):
