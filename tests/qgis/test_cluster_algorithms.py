@@ -348,9 +348,11 @@ def onnx_model(path, bias=None):
     return path
 
 
-def test_screencheckpoints_flags_a_collapsed_sparse_model_and_keeps_the_good_one(birdseye_provider, tmp_path):
-    cv2 = pytest.importorskip("cv2")
-    pytest.importorskip("onnxruntime")
+def three_frame_scene(tmp_path):
+    """Three nadir frames 0.3 m apart at 10 m (200 × 150 px, 1 cm/px) rendered with a 3 px Gaussian blob at
+    each of three targets, as a frame layer with its images, and the targets as a geotag layer."""
+    import cv2
+
     from birdseye.birdseye_qgis.core.geometry.ground import LevelPlaneGround
     from birdseye.birdseye_qgis.core.geometry.poses import FrameGeometry, FramePoses
     from birdseye.birdseye_qgis.core.geometry.projection import project_pairs
@@ -374,6 +376,14 @@ def test_screencheckpoints_flags_a_collapsed_sparse_model_and_keeps_the_good_one
         images.append(str(path))
     frames = frame_layer(east, 0.0, cam, images)
     geo = point_layer("geotags", [QgsField("id", QVariant.Int)], [[1], [2], [3]], targets)
+    return frames, geo
+
+
+def test_screencheckpoints_flags_a_collapsed_sparse_model_and_keeps_the_good_one(birdseye_provider, tmp_path):
+    pytest.importorskip("cv2")
+    pytest.importorskip("onnxruntime")
+
+    frames, geo = three_frame_scene(tmp_path)
     good, flat = onnx_model(tmp_path / "good.onnx"), onnx_model(tmp_path / "flat.onnx", bias=0.8)
     table = tmp_path / "screen.csv"
     result = run("screencheckpoints", {"CHECKPOINTS": [str(good), str(flat)], "FRAMES": [frames], "GEOTAGS": geo,

@@ -11,14 +11,13 @@ from qgis.core import QgsField, QgsProcessingException
 from qgis.PyQt.QtCore import QVariant
 from test_cluster_algorithms import (
     DIGEST,
-    SITE,
     detection_layer,
     frame_layer,
     grid9,
-    nadir_camera,
     onnx_model,
     point_layer,
     run,
+    three_frame_scene,
 )
 
 from birdseye.birdseye_qgis.__about__ import BUNDLED_MODEL
@@ -81,30 +80,9 @@ def test_the_sweeps_threshold_axis_equals_detect_runs_at_each_threshold(simulate
 
 # ------------------------------------------------------------------ screening in blocks
 def test_screencheckpoints_method_preset_and_blocks(birdseye_provider, tmp_path):
-    cv2 = pytest.importorskip("cv2")
+    pytest.importorskip("cv2")
     pytest.importorskip("onnxruntime")
-    from birdseye.birdseye_qgis.core.geometry.ground import LevelPlaneGround
-    from birdseye.birdseye_qgis.core.geometry.poses import FrameGeometry, FramePoses
-    from birdseye.birdseye_qgis.core.geometry.projection import project_pairs
-    from birdseye.birdseye_qgis.core.geometry.rotations import euler_zyx_to_rotmat, rotmat_to_quat
-
-    cam = nadir_camera(200, 150)                         # 1 cm/px at 10 m: a 2 m × 1.5 m footprint
-    east = np.array([0.0, 0.3, 0.6])
-    targets = np.array([[0.1, 0.2], [-0.25, -0.1], [0.45, 0.05]])
-    lat, lon, h = SITE.to_geodetic(np.column_stack([east, np.zeros(3), np.full(3, 10.0)]))
-    q = rotmat_to_quat(euler_zyx_to_rotmat(0.0, 0.0, 0.0))
-    geom = FrameGeometry(FramePoses(np.arange(3), lat, lon, h, np.tile(q, (3, 1)), np.full(3, SITE.h0), cam), SITE)
-    yy, xx = np.mgrid[0:150, 0:200]
-    images = []
-    for k in range(3):
-        img = np.zeros((150, 200))
-        for u, v in project_pairs(geom, np.full(3, k), np.column_stack([targets, np.zeros(3)]),
-                                  LevelPlaneGround(geom)).uv:
-            img = np.maximum(img, 0.9 * np.exp(-((xx - u) ** 2 + (yy - v) ** 2) / (2 * 3.0 ** 2)))
-        images.append(str(tmp_path / f"frame_{k}.png"))
-        cv2.imwrite(images[-1], np.repeat(np.rint(255 * img).astype(np.uint8)[:, :, None], 3, axis=2))
-    frames = frame_layer(east, 0.0, cam, images)
-    geo = point_layer("geotags", [QgsField("id", QVariant.Int)], [[1], [2], [3]], targets)
+    frames, geo = three_frame_scene(tmp_path)
     good = onnx_model(tmp_path / "good.onnx")
     out = tmp_path / "screen.json"
     # the method preset (threshold 0.03), its 500-frame blocks overridden by 2: blocks of frames 1–2 and 3
