@@ -315,28 +315,10 @@ def test_install_from_zip_in_the_desktop(package, tmp_path):
     ini.write_text("[PythonPlugins]\nprocessing=true\n\n[core]\nNewsFeed\\httpsfeedqgisorg\\disabled=true\n")
     probe = tmp_path / "install_probe.py"
     probe.write_text(INSTALL_PROBE, encoding="utf-8")
-    report_path = tmp_path / "report.json"
-    runtime_dir = tmp_path / "runtime"
-    runtime_dir.mkdir(mode=0o700)
     env = {k: v for k, v in os.environ.items() if k not in {"QGIS_CUSTOM_CONFIG_PATH", "QGIS_PLUGINPATH",
                                                             "PYTHONPATH"}}
-    with xvfb_display() as display:
-        env.update(DISPLAY=display, QT_QPA_PLATFORM="xcb", XDG_RUNTIME_DIR=str(runtime_dir),
-                   BIRDSEYE_ZIP=str(package), BIRDSEYE_PROBE_RESULT=str(report_path))
-        qgis = subprocess.Popen([str(QGIS_BIN), "--nologo", "--noversioncheck", "--profiles-path", str(profiles),
-                                 "--code", str(probe)], env=env, stdout=subprocess.PIPE,
-                                stderr=subprocess.STDOUT, text=True)
-        try:
-            output, _ = qgis.communicate(timeout=120)
-        except subprocess.TimeoutExpired:
-            stuck = REPO_ROOT / "build" / "screenshots" / "install-from-zip-timeout.png"
-            stuck.parent.mkdir(parents=True, exist_ok=True)
-            grab_screen(display, stuck)
-            qgis.kill()
-            output, _ = qgis.communicate()
-            pytest.fail(f"QGIS did not quit — a modal dialog of the installer? screen saved to {stuck}\n{output}")
-    assert report_path.is_file(), f"the probe wrote no report (QGIS exit {qgis.returncode}):\n{output}"
-    report = json.loads(report_path.read_text(encoding="utf-8"))
+    report, output = run_desktop_probe(profiles, probe, {**env, "BIRDSEYE_ZIP": str(package)}, tmp_path, 120,
+                               "install-from-zip-timeout.png")
     assert report["errors"] == []
     assert report["loaded_before"] is False
     installed = Path(report["installed_to"])
@@ -497,27 +479,9 @@ def test_installer_brings_a_bare_profile_to_a_working_detect(package, wheelhouse
     DEPENDENCIES_SCREENSHOT.unlink(missing_ok=True)
     probe = tmp_path / "dependencies_probe.py"
     probe.write_text(DEPENDENCIES_PROBE, encoding="utf-8")
-    report_path = tmp_path / "report.json"
-    runtime_dir = tmp_path / "runtime"
-    runtime_dir.mkdir(mode=0o700)
-    with xvfb_display() as display:
-        desktop_env = {**env, "DISPLAY": display, "QT_QPA_PLATFORM": "xcb", "XDG_RUNTIME_DIR": str(runtime_dir),
-                       "BIRDSEYE_WANTED": ",".join(DETECT_PACKAGES), "BIRDSEYE_PROBE_RESULT": str(report_path),
-                       "BIRDSEYE_SCREENSHOT": str(DEPENDENCIES_SCREENSHOT)}
-        qgis = subprocess.Popen([str(QGIS_BIN), "--nologo", "--noversioncheck", "--profiles-path", str(profiles),
-                                 "--code", str(probe)], env=desktop_env, stdout=subprocess.PIPE,
-                                stderr=subprocess.STDOUT, text=True)
-        try:
-            output, _ = qgis.communicate(timeout=600)
-        except subprocess.TimeoutExpired:
-            stuck = REPO_ROOT / "build" / "screenshots" / "install-dependencies-timeout.png"
-            stuck.parent.mkdir(parents=True, exist_ok=True)
-            grab_screen(display, stuck)
-            qgis.kill()
-            output, _ = qgis.communicate()
-            pytest.fail(f"QGIS did not quit; screen saved to {stuck}\n{output}")
-    assert report_path.is_file(), f"the probe wrote no report (QGIS exit {qgis.returncode}):\n{output}"
-    report = json.loads(report_path.read_text(encoding="utf-8"))
+    report, _ = run_desktop_probe(profiles, probe, {**env, "BIRDSEYE_WANTED": ",".join(DETECT_PACKAGES),
+                                                 "BIRDSEYE_SCREENSHOT": str(DEPENDENCIES_SCREENSHOT)},
+                               tmp_path, 600, "install-dependencies-timeout.png")
     assert report["errors"] == [], report["errors"]
     assert report["menu_text"] == "Install dependencies…" and report["dialog"] == "BirdsEyeDependenciesDialog"
     states = {row[0]: row[2] for row in report["rows_before"]}
@@ -547,3 +511,29 @@ def test_installer_brings_a_bare_profile_to_a_working_detect(package, wheelhouse
     detections = json.loads(detected.stdout)["results"]
     assert detections["FRAMES_PROCESSED"] == results["FRAME_COUNT"] > 0
     assert detections["DETECTION_COUNT"] > 0 and (tmp_path / "detections.gpkg").is_file()
+
+
+def run_desktop_probe(profiles, probe, env, tmp_path, timeout_s, stuck_png):
+    """Run the real desktop under Xvfb with ``probe`` (``--code``) in the given profiles folder and return
+    the JSON report the probe writes and the desktop's console output; a desktop that does not quit leaves a
+    screenshot named ``stuck_png``."""
+    report_path = tmp_path / "report.json"
+    runtime_dir = tmp_path / "runtime"
+    runtime_dir.mkdir(mode=0o700)
+    with xvfb_display() as display:
+        desktop_env = {**env, "DISPLAY": display, "QT_QPA_PLATFORM": "xcb", "XDG_RUNTIME_DIR": str(runtime_dir),
+                       "BIRDSEYE_PROBE_RESULT": str(report_path)}
+        qgis = subprocess.Popen([str(QGIS_BIN), "--nologo", "--noversioncheck", "--profiles-path", str(profiles),
+                                 "--code", str(probe)], env=desktop_env, stdout=subprocess.PIPE,
+                                stderr=subprocess.STDOUT, text=True)
+        try:
+            output, _ = qgis.communicate(timeout=timeout_s)
+        except subprocess.TimeoutExpired:
+            stuck = REPO_ROOT / "build" / "screenshots" / stuck_png
+            stuck.parent.mkdir(parents=True, exist_ok=True)
+            grab_screen(display, stuck)
+            qgis.kill()
+            output, _ = qgis.communicate()
+            pytest.fail(f"QGIS did not quit — a modal dialog? screen saved to {stuck}\n{output}")
+    assert report_path.is_file(), f"the probe wrote no report (QGIS exit {qgis.returncode}):\n{output}"
+    return json.loads(report_path.read_text(encoding="utf-8")), output
