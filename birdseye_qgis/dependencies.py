@@ -74,9 +74,6 @@ USES: dict[str, Use] = {
     "PyYAML": Use("yaml", always=("simulatecampaign",),
                   sometimes=("importdjiimages", "importflightlog", "montecarlobound", "planflight", "sensorbound",
                              "terrainslope")),
-    # Read by core.detect.model_metadata.read_onnx_metadata, which only the tests and the training
-    # recipe call: no algorithm needs it (the dialog offers it unticked).
-    "onnx": Use("onnx"),
     "matplotlib": Use("matplotlib", always=("montecarlobound", "sensorbound", "terrainslope"),
                       sometimes=("evaluatedetections", "screencheckpoints", "sweepoperatingpoints")),
     "pycolmap": Use("pycolmap", always=("refineposes",), sometimes=("importcameras",)),

@@ -71,8 +71,8 @@ class HeatmapModel:
         try:
             import onnxruntime as ort
         except ImportError as exc:  # the plugin's requirements include it; say so if it is gone
-            raise InputError("running a detector needs the Python package 'onnxruntime' "
-                             "(pip install onnxruntime)") from exc
+            raise InputError("running a detector needs the Python package 'onnxruntime', which the Python QGIS "
+                             "runs does not have; in QGIS choose BirdsEye › Install dependencies…") from exc
         self.path = Path(path)
         if not self.path.is_file():
             raise InputError("model file not found", source=str(path))
