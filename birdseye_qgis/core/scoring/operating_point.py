@@ -46,7 +46,13 @@ class OperatingPoint:
         if unknown:
             raise InputError(f"has unknown key(s) {', '.join(sorted(unknown))}", source=source)
         try:
-            return cls(**{k: (None if v is None else (int(v) if k == "min_samples" else float(v)))
-                          for k, v in d.items()})
+            values = {k: (None if v is None else float(v)) for k, v in d.items()}
         except (TypeError, ValueError) as exc:
             raise InputError(f"has a value that is not a number ({exc})", source=source) from exc
+        samples = values.get("min_samples")
+        if samples is not None:
+            if samples != int(samples):
+                raise InputError(f"min_samples must be a whole number of detections, got {samples:g}", source=source,
+                                 field="min_samples")
+            values["min_samples"] = int(samples)
+        return cls(**values)

@@ -291,3 +291,6 @@ def test_operating_point_validation_names_the_parameter():
     with pytest.raises(InputError, match="THRESHOLD"):
         OperatingPoint(threshold=1.5)
     assert OperatingPoint.from_dict(OperatingPoint(0.4).to_dict()) == OperatingPoint(0.4)
+    assert OperatingPoint.from_dict({"min_samples": 5.0}).min_samples == 5
+    with pytest.raises(InputError, match="min_samples must be a whole number.*2.5"):
+        OperatingPoint.from_dict({"min_samples": 2.5})  # a sealed or typed 2.5 is not silently 2
