@@ -146,3 +146,26 @@ def test_train_command_on_writelabels_output_and_a_frame_geopackage(recipe, labe
     # A second model starts from the first one's weights.
     recipe.main(args[:-1] + [str(tmp_path / "again.onnx"), "--init", str(out.with_suffix(".pt"))])
     assert HeatmapModel(tmp_path / "again.onnx").metadata.default_threshold == 0.4
+
+
+def test_threshold_figures_are_runs_at_each_threshold_not_a_score_filter(recipe, tmp_path):
+    """The recipe chooses the bundled model's threshold from figures at every threshold of its grid:
+    each must count what Detect finds when run at that threshold alone (peaks re-extracted, a blob that
+    splits above a higher threshold splits), on a small simulated campaign with the bundled model."""
+    from birdseye.birdseye_qgis.__about__ import BUNDLED_MODEL
+    from birdseye.birdseye_qgis.core.detect.detector import DetectRequest, HeatmapModel, detect_frames
+    from birdseye.birdseye_qgis.core.sim.campaign import CampaignConfig, simulate_campaign
+
+    if not BUNDLED_MODEL.is_file():
+        pytest.skip("the bundled model is not in this checkout")
+    simulate_campaign(CampaignConfig(seed=3, n_targets=6, field_width_m=4.0, field_length_m=3.0, image_width=480,
+                                     image_height=300), tmp_path / "c")
+    campaign = recipe.load_campaign(tmp_path / "c")
+    thresholds = (0.05, 0.3)
+    figures = recipe.evaluate(BUNDLED_MODEL, [campaign], thresholds)
+    model = HeatmapModel(BUNDLED_MODEL)
+    for t in thresholds:
+        alone = sum(len(f) for f in detect_frames(model, campaign.poses, campaign.images, DetectRequest(threshold=t))
+                    if f.skipped is None)
+        assert figures[t]["detections"] == alone > 0
+    assert figures[thresholds[0]]["frames"] == figures[thresholds[1]]["frames"] == len(campaign.images)
