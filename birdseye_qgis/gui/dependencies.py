@@ -123,6 +123,7 @@ class DependenciesDialog(QDialog):
         self.packages = read_requirements() if packages is None else list(packages)
         self.title = title
         self.thread: InstallThread | None = None
+        self._busy = False
 
         self.intro = QLabel()
         self.intro.setWordWrap(True)
@@ -206,7 +207,9 @@ class DependenciesDialog(QDialog):
                 and item.checkState(PACKAGE_COLUMN) == Qt.CheckState.Checked]
 
     def is_running(self) -> bool:
-        return self.thread is not None and self.thread.isRunning()
+        """True from Install until the outcome is shown: the thread's last signals are queued to this
+        thread, so the worker may have stopped a moment before its result reaches the dialog."""
+        return self._busy
 
     # ------------------------------------------------------------------ install
     def start_install(self) -> None:
@@ -220,6 +223,7 @@ class DependenciesDialog(QDialog):
         self.install_button.setEnabled(False)
         self.table.setEnabled(False)
         self.close_button.setText(tr("Cancel"))
+        self._busy = True
         self.thread = InstallThread(self.folder, packages, self.python, self)
         self.thread.line.connect(self.log.appendPlainText)
         self.thread.fraction.connect(self._show_fraction)
@@ -252,6 +256,7 @@ class DependenciesDialog(QDialog):
         self.table.setEnabled(True)
         self.close_button.setText(tr("Close"))
         self.refresh()
+        self._busy = False
 
     def reject(self) -> None:
         """Close; while pip runs, Cancel (and Esc) stop it first."""
