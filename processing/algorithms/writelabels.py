@@ -162,7 +162,8 @@ class WriteLabels(DemParametersMixin, BirdsEyeAlgorithm):
                               n_records=len(records), n_groups=len(groups), n_geotags=len(geotags), sigma=sigma,
                               edge_buffer_px=request.edge_buffer_px))
 
-        no_ground = [poses.frame_id[i] for poses, idx in groups if not uses_geotag_heights(records, idx)
+        geotag_heights = [uses_geotag_heights(records, idx) for _, idx in groups]
+        no_ground = [poses.frame_id[i] for (poses, _), own in zip(groups, geotag_heights) if not own
                      for i in np.flatnonzero(frames_without_ground(poses))]
         steep = [r["frame_id"] for r in records if "steep_terrain" in (r.get("flags") or "")]
         unrefined = [r["frame_id"] for r in records if "not_refined" in (r.get("flags") or "").split(",")]
@@ -186,7 +187,7 @@ class WriteLabels(DemParametersMixin, BirdsEyeAlgorithm):
         label_counts = np.zeros(len(records), dtype=np.int64)
         steps.setCurrentStep(0)
         projected = [self.run_core(project_labels, poses, geotags, request.edge_buffer_px, local,
-                                   self.dem_ground(dem), uses_geotag_heights(records, idx)) for poses, idx in groups]
+                                   self.dem_ground(dem), own) for (poses, _), own in zip(groups, geotag_heights)]
         steps.setCurrentStep(1)
         done = 0
         with LabelWriter(out_dir, geotags, request) as writer:

@@ -114,6 +114,21 @@ class DjiMetadata:
         return bool(self.xmp)
 
     @property
+    def gps_lat_lon(self) -> tuple:
+        """(lat, lon) from XMP ``GpsLatitude/GpsLongitude``, else EXIF GPS; Nones without either."""
+        lat = self.tag("GpsLatitude", "GPSLatitude")
+        lon = self.tag("GpsLongitude", "GpsLongtitude", "GPSLongitude")
+        if lat is None or lon is None:
+            return self.exif_lat, self.exif_lon
+        return lat, lon
+
+    @property
+    def gps_height(self) -> float | None:
+        """XMP ``AbsoluteAltitude``, else the EXIF GPS altitude (:data:`DJI_HEIGHT_DATUM`); None without either."""
+        absolute = self.tag("AbsoluteAltitude")
+        return absolute if absolute is not None else self.exif_alt
+
+    @property
     def dewarped(self) -> bool:
         """``DewarpFlag`` 1: the drone already removed the lens distortion from the pixels."""
         return self.tag("DewarpFlag") == 1.0
@@ -323,10 +338,7 @@ def dji_pose(meta: DjiMetadata) -> DjiPose:
     if not meta.has_dji_tags:
         raise InputError("has no DJI XMP tags (drone-dji:RelativeAltitude, GimbalPitchDegree, …); is it a "
                          "DJI drone image with its metadata intact?", source=meta.path, field="XMP drone-dji")
-    lat = meta.tag("GpsLatitude", "GPSLatitude")
-    lon = meta.tag("GpsLongitude", "GpsLongtitude", "GPSLongitude")
-    if lat is None or lon is None:
-        lat, lon = meta.exif_lat, meta.exif_lon
+    lat, lon = meta.gps_lat_lon
     if lat is None or lon is None:
         raise InputError("has no GPS position (XMP GpsLatitude/GpsLongitude or EXIF GPS)", source=meta.path,
                          field="GPSLatitude")
@@ -339,8 +351,7 @@ def dji_pose(meta: DjiMetadata) -> DjiPose:
     if relative <= 0.5:
         raise InputError(f"RelativeAltitude {relative:g} m: the drone is on or below the take-off point",
                          source=meta.path, field="drone-dji:RelativeAltitude")
-    absolute = meta.tag("AbsoluteAltitude")
-    height = absolute if absolute is not None else (meta.exif_alt if meta.exif_alt is not None else relative)
+    height = meta.gps_height if meta.gps_height is not None else relative
     flags = []
     pitch = meta.tag("GimbalPitchDegree")
     if pitch is None:

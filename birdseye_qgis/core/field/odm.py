@@ -10,11 +10,11 @@ from __future__ import annotations
 from pathlib import Path
 
 from ..errors import Cancelled, InputError
+from .solutions import IMAGE_SUFFIXES
 
 #: What the node is asked to put in the task's archive: the camera solution and its geographic reference.
 RECONSTRUCTION_OUTPUTS = ["opensfm/reconstruction.json", "opensfm/reconstruction.topocentric.json",
                           "opensfm/reference_lla.json"]
-IMAGE_SUFFIXES = (".jpg", ".jpeg", ".tif", ".tiff", ".png", ".dng")
 
 
 def parse_options(text: str) -> dict:

@@ -34,10 +34,11 @@ import numpy as np
 from ..errors import Cancelled, InputError
 from ..geometry.camera import CameraModel
 from ..geometry.similarity import Similarity, fit_similarity, is_collinear
+from .pose_log import RTK_FIXED, RTK_FLOAT, RTK_NONE
 from .solutions.colmap import colmap_camera
 
-#: GNSS standard deviation (m) assumed per rtk_status when the frame states none (3 fixed, 2 float, 1 none).
-SIGMA_BY_RTK_STATUS = {3: 0.03, 2: 0.5, 1: 3.0}
+#: GNSS standard deviation (m) assumed per rtk_status when the frame states none.
+SIGMA_BY_RTK_STATUS = {RTK_FIXED: 0.03, RTK_FLOAT: 0.5, RTK_NONE: 3.0}
 #: A frame whose aligned position is this many times the median residual away (and > 5 σ) is an outlier.
 OUTLIER_FACTOR = 5.0
 #: Tie points a frame must observe for its ground height to come from them.
@@ -362,7 +363,7 @@ REFINED_FLAG, NOT_REFINED_FLAG = "refined", "not_refined"
 def gnss_sigma_m(frames) -> np.ndarray:
     """Per frame, the GNSS position σ (m): the DJI RtkStd fields where given, else by RTK status."""
     stds = [frames.extra.get(name) for name in ("rtk_std_lon_m", "rtk_std_lat_m", "rtk_std_hgt_m")]
-    by_status = np.array([SIGMA_BY_RTK_STATUS.get(int(s), 3.0) for s in frames.rtk_status])
+    by_status = np.array([SIGMA_BY_RTK_STATUS.get(int(s), SIGMA_BY_RTK_STATUS[RTK_NONE]) for s in frames.rtk_status])
     if any(s is None for s in stds):
         return by_status
     stated = np.sqrt(np.mean(np.square(np.column_stack(stds)), axis=1))
@@ -379,11 +380,14 @@ def refine_frames(frames, workdir, options: RefineOptions | None = None, progres
 
     local = LocalFrame.around(frames.lat, frames.lon, frames.height)
     centres, rotations = np.zeros((len(frames), 3)), np.zeros((len(frames), 3, 3))
-    for i in range(len(frames)):
-        poses = FramePoses([frames.frame_id[i]], frames.lat[[i]], frames.lon[[i]], frames.height[[i]],
-                           frames.quat[[i]], frames.ground_h[[i]], frames.cameras[i])
-        geometry = FrameGeometry(poses, local)
-        centres[i], rotations[i] = geometry.C[0], geometry.R_local_cam[0]
+    by_camera: dict[int, list[int]] = {}
+    for i, camera in enumerate(frames.cameras):
+        by_camera.setdefault(id(camera), []).append(i)
+    for members in by_camera.values():
+        idx = np.asarray(members)
+        geometry = FrameGeometry(FramePoses(frames.frame_id[idx], frames.lat[idx], frames.lon[idx], frames.height[idx],
+                                            frames.quat[idx], frames.ground_h[idx], frames.cameras[idx[0]]), local)
+        centres[idx], rotations[idx] = geometry.C, geometry.R_local_cam
     sigma = gnss_sigma_m(frames)
     inputs = [FrameInput(Path(frames.image[i]) if frames.image[i] else None, frames.cameras[i], centres[i],
                          rotations[i], float(sigma[i])) for i in range(len(frames))]

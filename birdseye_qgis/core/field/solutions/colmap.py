@@ -96,10 +96,7 @@ def image_gps(path: Path):
     from ..dji import read_dji_metadata
 
     meta = read_dji_metadata(path)
-    lat = meta.tag("GpsLatitude", "GPSLatitude") or meta.exif_lat
-    lon = meta.tag("GpsLongitude", "GpsLongtitude", "GPSLongitude") or meta.exif_lon
-    height = meta.tag("AbsoluteAltitude")
-    height = meta.exif_alt if height is None else height
+    (lat, lon), height = meta.gps_lat_lon, meta.gps_height
     if lat is None or lon is None or height is None:
         return None
     return float(lat), float(lon), float(height)
