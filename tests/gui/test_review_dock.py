@@ -13,6 +13,7 @@ import csv
 import json
 import shutil
 import statistics
+import threading
 import time
 from pathlib import Path
 from types import SimpleNamespace
@@ -38,6 +39,7 @@ from birdseye.birdseye_qgis.core.geometry.poses import FrameGeometry
 from birdseye.birdseye_qgis.core.geometry.projection import pixel_to_ground, project_in_view
 from birdseye.birdseye_qgis.core.sim.campaign import CampaignConfig, simulate_campaign
 from birdseye.birdseye_qgis.gui.review import dock as dock_module
+from birdseye.birdseye_qgis.gui.review import jobs as jobs_module
 from birdseye.birdseye_qgis.gui.review import widgets as widgets_module
 from birdseye.birdseye_qgis.qgis_io.review_store import VERDICT_TABLE, VerdictStore
 
@@ -473,3 +475,49 @@ def test_the_methods_units_can_be_chosen_and_come_back_with_the_project(campaign
     qtbot.waitUntil(lambda: dock.session is not None, timeout=10000)
     assert dock.units_combo.currentData() == "method" and dock.units.keys == units.keys
     assert sum(1 for k in dock.units.keys if dock.status(k).direct == "confirmed_real") == 1
+
+
+def test_the_worker_threads_never_call_pyproj(campaign, clean_project, make_dock, qtbot, tmp_path, monkeypatch):
+    """pyproj 3.7 crashes QGIS when it runs on a thread Qt started (pyproj#1509), as the dock's chip and
+    score jobs are: whatever the pyproj, nothing they run may call it there. Every pyproj entry point
+    records the calls made from threads Python did not start; the jobs then plan a unit's chips, an
+    added target's chips and the scores."""
+    import pyproj
+
+    foreign, ran_on = [], []
+
+    def on_foreign_thread() -> bool:
+        return isinstance(threading.current_thread(), threading._DummyThread)
+
+    for owner, name in ((pyproj.CRS, "__init__"), (pyproj.Transformer, "__init__"), (pyproj.Transformer, "transform"),
+                        (pyproj.Proj, "__init__"), (pyproj.Proj, "get_factors")):
+        def watched(*args, _original=getattr(owner, name), _label=f"{owner.__name__}.{name}", **kwargs):
+            if on_foreign_thread():
+                foreign.append(_label)
+            return _original(*args, **kwargs)
+
+        monkeypatch.setattr(owner, name, watched)
+    for module, name in ((dock_module, "plan_unit_chips"), (dock_module, "plan_point_chips"),
+                         (jobs_module, "evaluate_flights")):
+        def recorded(*args, _original=getattr(module, name), _label=name, **kwargs):
+            ran_on.append((_label, on_foreign_thread()))
+            return _original(*args, **kwargs)
+
+        monkeypatch.setattr(module, name, recorded)
+    layers = copy_campaign(campaign, tmp_path)
+    dock = make_dock()
+    start(dock, layers)
+    wait_chips(qtbot, dock)
+    lat, lon, _ = campaign.missed
+    to_map = ProjectedCRS(UTM)
+    x, y = (float(c) for c in to_map.from_geodetic(lat, lon))
+    dock.add_target_at(QgsPointXY(x, y), QgsCoordinateReferenceSystem(f"EPSG:{UTM}"))
+    added = dock.session.ledger.added_targets()[0].key
+    dock.go_to(added)
+    wait_chips(qtbot, dock, added)
+    wait_scores(qtbot, dock)
+    assert {label for label, foreign_thread in ran_on if foreign_thread} == {
+        "plan_unit_chips", "plan_point_chips", "evaluate_flights"}
+    assert all(dock.chip_loader.chips[k][3] is None for k in dock.chip_loader.chips)
+    assert dock.chip_loader.chips[added][0], "the added target's chips were planned"
+    assert foreign == []

@@ -59,7 +59,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import Cancelled, InputError
-from .geodesy import LocalFrame, ProjectedCRS
+from .geodesy import LocalFrame, ProjectedCRS, on_python_thread
 from .ground import GroundModel
 from .poses import FrameGeometry, FramePoses
 
@@ -140,6 +140,7 @@ class DemRaster:
         return self.sample(x, y)
 
 
+@on_python_thread
 def _require_projected(crs, source) -> None:
     """The DEM's cells must be metres: a geographic CRS (degrees) has to be warped by the caller."""
     try:

@@ -4,9 +4,11 @@ Frames (docs/design.md#world):
 
 * Inputs are WGS84 latitude, longitude (degrees) and *ellipsoidal* height (metres).
 * Geometry is computed in a :class:`LocalFrame`: an east-north-up tangent frame at a site origin,
-  reached exactly through ECEF. Attitudes are relative to the local NED frame *at each pose's own
-  position* (true north there); :meth:`LocalFrame.rotation_from_ned` turns them into the local frame,
-  so true-north yaw is honoured everywhere and no map-projection convergence enters the geometry.
+  reached exactly through ECEF by closed-form WGS84 formulas (no PROJ, so it runs on any thread; see
+  :func:`on_python_thread` for what does use PROJ). Attitudes are relative to the local NED frame *at
+  each pose's own position* (true north there); :meth:`LocalFrame.rotation_from_ned` turns them into
+  the local frame, so true-north yaw is honoured everywhere and no map-projection convergence enters
+  the geometry.
 * Outputs are written in a projected CRS, by default the UTM zone of the site (:func:`utm_epsg`).
   Grid north of a UTM zone differs from true north by the meridian convergence
   (:func:`meridian_convergence_deg`), 2–3° near zone edges; that only matters to code that works in
@@ -16,6 +18,8 @@ from __future__ import annotations
 
 import functools
 import os
+import threading
+from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 import numpy as np
@@ -33,6 +37,46 @@ def ensure_proj_data() -> None:
             return
 
 
+#: WGS84 (EPSG:7030): semi-major axis (m) and flattening; e² and e'² derived.
+WGS84_A = 6378137.0
+WGS84_F = 1.0 / 298.257223563
+_B = WGS84_A * (1.0 - WGS84_F)
+_E2 = WGS84_F * (2.0 - WGS84_F)
+_EP2 = _E2 / (1.0 - WGS84_F) ** 2
+
+_proj_executor: ThreadPoolExecutor | None = None
+_proj_executor_lock = threading.Lock()
+
+
+def _thread_made_by_python() -> bool:
+    # Threads Python did not start (Qt's thread pools, QThread, QgsTask) appear as dummy threads.
+    return not isinstance(threading.current_thread(), threading._DummyThread)
+
+
+def on_python_thread(fn):
+    """Run ``fn`` on a thread Python created when it is called from one Python did not.
+
+    pyproj 3.7 keeps its PROJ context in thread-specific storage that needs a Python thread state, which
+    threads started by Qt (the review dock's pool, Processing's QgsTask) lack: PROJ calls there crash
+    QGIS (pyproj#1509, fixed by pyproj#1539; 3.7.1 and 3.7.2 crash here, Debian 12's 3.4 does not).
+    Every function that uses pyproj is wrapped here (tests/unit/geometry/test_geodesy_closed_form.py
+    checks), so it runs on one dedicated Python thread instead; on threads Python made (the main thread,
+    ``threading``) it runs in place, and on that dedicated thread nested calls do too.
+    """
+    @functools.wraps(fn)
+    def wrapper(*args, **kwargs):
+        if _thread_made_by_python():
+            return fn(*args, **kwargs)
+        global _proj_executor
+        with _proj_executor_lock:
+            if _proj_executor is None:
+                _proj_executor = ThreadPoolExecutor(max_workers=1, thread_name_prefix="birdseye-proj")
+        return _proj_executor.submit(fn, *args, **kwargs).result()
+
+    return wrapper
+
+
+@on_python_thread
 @functools.lru_cache(maxsize=None)
 def _transformer(src: str, dst: str):
     ensure_proj_data()
@@ -41,18 +85,48 @@ def _transformer(src: str, dst: str):
     return pyproj.Transformer.from_crs(src, dst, always_xy=True)
 
 
+@on_python_thread
+def proj_version() -> str:
+    """pyproj's version (importing pyproj the first time already calls PROJ)."""
+    ensure_proj_data()
+    import pyproj
+
+    return pyproj.__version__
+
+
 def geodetic_to_ecef(lat, lon, h) -> np.ndarray:
-    """ECEF coordinates (N, 3) in metres of WGS84 latitude/longitude (deg) and ellipsoidal height (m)."""
-    x, y, z = _transformer("EPSG:4979", "EPSG:4978").transform(
-        np.asarray(lon, dtype=float), np.asarray(lat, dtype=float), np.asarray(h, dtype=float))
+    """ECEF coordinates (N, 3) in metres of WGS84 latitude/longitude (deg) and ellipsoidal height (m).
+
+    Closed form, the same numbers as PROJ's EPSG:4979 → EPSG:4978 to well under a millimetre
+    (tests/unit/geometry/test_geodesy_closed_form.py), and free of pyproj on any thread."""
+    la = np.radians(np.asarray(lat, dtype=float))
+    lo = np.radians(np.asarray(lon, dtype=float))
+    h = np.asarray(h, dtype=float)
+    sla = np.sin(la)
+    n = WGS84_A / np.sqrt(1.0 - _E2 * sla * sla)
+    x = (n + h) * np.cos(la) * np.cos(lo)
+    y = (n + h) * np.cos(la) * np.sin(lo)
+    z = (n * (1.0 - _E2) + h) * sla
     return np.stack(np.broadcast_arrays(x, y, z), axis=-1)
 
 
 def ecef_to_geodetic(xyz: np.ndarray):
-    """(lat, lon, h) arrays from ECEF coordinates (..., 3)."""
+    """(lat, lon, h) arrays from ECEF coordinates (..., 3), the inverse of :func:`geodetic_to_ecef`.
+
+    Bowring's latitude iterated three times, which round-trips :func:`geodetic_to_ecef` to nanometres
+    from the geoid to orbital heights (PROJ's own inverse is off by up to 0.1 mm at 100 km); the height
+    comes from a form that is stable at the poles."""
     xyz = np.asarray(xyz, dtype=float)
-    lon, lat, h = _transformer("EPSG:4978", "EPSG:4979").transform(xyz[..., 0], xyz[..., 1], xyz[..., 2])
-    return np.asarray(lat), np.asarray(lon), np.asarray(h)
+    x, y, z = xyz[..., 0], xyz[..., 1], xyz[..., 2]
+    p = np.hypot(x, y)
+    beta = np.arctan2(z, (1.0 - WGS84_F) * p)
+    for _ in range(3):
+        sb, cb = np.sin(beta), np.cos(beta)
+        lat = np.arctan2(z + _EP2 * _B * sb ** 3, p - _E2 * WGS84_A * cb ** 3)
+        beta = np.arctan2((1.0 - WGS84_F) * np.sin(lat), np.cos(lat))
+    sla, cla = np.sin(lat), np.cos(lat)
+    h = p * cla + z * sla - WGS84_A * np.sqrt(1.0 - _E2 * sla * sla)
+    return np.degrees(lat), np.degrees(np.arctan2(y, x)), h
 
 
 def rotation_ecef_enu(lat, lon) -> np.ndarray:
@@ -123,6 +197,7 @@ def utm_epsg(lat: float, lon: float) -> int:
 class ProjectedCRS:
     """Conversions between WGS84 and a projected output CRS given as ``EPSG:nnnn`` or WKT."""
 
+    @on_python_thread
     def __init__(self, crs: str | int):
         self.crs = f"EPSG:{crs}" if isinstance(crs, int) else str(crs)
         self._fwd = _transformer("EPSG:4326", self.crs)
@@ -133,15 +208,18 @@ class ProjectedCRS:
         lat, lon = np.asarray(lat, dtype=float), np.asarray(lon, dtype=float)
         return cls(utm_epsg(float(np.nanmedian(lat)), float(np.nanmedian(lon))))
 
+    @on_python_thread
     def from_geodetic(self, lat, lon):
         x, y = self._fwd.transform(np.asarray(lon, dtype=float), np.asarray(lat, dtype=float))
         return np.asarray(x), np.asarray(y)
 
+    @on_python_thread
     def to_geodetic(self, x, y):
         lon, lat = self._inv.transform(np.asarray(x, dtype=float), np.asarray(y, dtype=float))
         return np.asarray(lat), np.asarray(lon)
 
 
+@on_python_thread
 def meridian_convergence_deg(lat, lon, crs: str | int) -> np.ndarray:
     """Meridian convergence γ (deg) of ``crs`` at (lat, lon), as PROJ reports it.
 

@@ -67,7 +67,14 @@ import numpy as np
 
 from ..errors import Cancelled, InputError
 from ..geometry.camera import CameraModel, write_kalibr_yaml
-from ..geometry.geodesy import LocalFrame, ensure_proj_data, meridian_convergence_deg, utm_epsg
+from ..geometry.geodesy import (
+    LocalFrame,
+    ensure_proj_data,
+    meridian_convergence_deg,
+    on_python_thread,
+    proj_version,
+    utm_epsg,
+)
 from ..geometry.poses import FrameGeometry, FramePoses
 from ..geometry.projection import footprints
 from ..geometry.rotations import quat_to_rotmat, rotmat_to_euler_zyx, rotmat_to_quat, so3_exp
@@ -265,13 +272,14 @@ def deployed_camera(width: int = 1920, height: int = 1200) -> CameraModel:
                        DEPLOYED_DISTORTION, t_cam_imu, tuple(RADAR_LEVER_ARM_M), source="simulated")
 
 
+@on_python_thread
 def geoid_undulation(lat: float, lon: float) -> float:
     """EGM96 geoid height N (m) at a site, from PROJ's grid (Debian's proj-data ships it)."""
     ensure_proj_data()
     import pyproj
 
     transformer = pyproj.Transformer.from_crs("EPSG:4979", "EPSG:4326+5773", always_xy=True)
-    _, _, h_msl = transformer.transform(lon, lat, 0.0)
+    _, _, h_msl = transformer.transform(float(lon), float(lat), 0.0)
     if not math.isfinite(h_msl) or h_msl == 0.0:
         raise InputError("the EGM96 geoid grid (egm96_15.gtx) is not installed with PROJ; "
                          "set GEOID_UNDULATION_M", field="GEOID_UNDULATION_M")
@@ -733,9 +741,6 @@ def _campaign_record(cfg, camera, local, undulation, plan, scene, n_frames, n_po
     import cv2
     import scipy
 
-    ensure_proj_data()
-    import pyproj
-
     params = asdict(cfg)
     params["sigmas"] = list(cfg.sigmas)
     params["side_overlap"] = cfg.effective_side_overlap
@@ -779,7 +784,7 @@ def _campaign_record(cfg, camera, local, undulation, plan, scene, n_frames, n_po
         "counts": {"frames": n_frames, "pose_rows": n_poses, "targets": cfg.n_targets,
                    "geotags": n_geotags, "missed": cfg.n_missed, "spurious": cfg.n_spurious},
         "versions": {"python": platform.python_version(), "numpy": np.__version__, "scipy": scipy.__version__,
-                     "opencv": cv2.__version__, "pyproj": pyproj.__version__, "birdseye": _plugin_version()},
+                     "opencv": cv2.__version__, "pyproj": proj_version(), "birdseye": _plugin_version()},
     }
 
 
