@@ -2,6 +2,9 @@
 conventions, and each format's *own* projection formula, evaluated independently of the plugin's readers.
 
 A small block of nadir-ish cameras over a site at Brighton; ground points within ±1 m of the site height.
+
+Numbers are written with ``str``, not ``repr``: under numpy 2 ``repr(np.float64(x))`` is ``np.float64(x)``,
+while ``str`` gives the shortest digits that read back exactly under numpy 1 and 2 alike.
 """
 import json
 import xml.etree.ElementTree as ET
@@ -98,17 +101,19 @@ def write_metashape(path, r_enu_cam, centres, cal=MS_CAL, kind="frame", unaligne
 
 def write_metashape_ecef(path, r_ecef_cam, centres_ecef, labels, cal, width, height, kind="frame", unaligned=(),
                          components=True):
-    """Cameras in component coordinates, a component similarity, and a chunk similarity to ECEF."""
+    """Cameras in the chunk's internal coordinates and one similarity to ECEF, as real files hold it.
+
+    With ``components`` the similarity is the component's ``<transform>`` and the chunk's ``<transform>``
+    repeats it (the real Metashape 1.7 and 2.1 files in shared/data do); without, only the chunk has it.
+    """
     rng = np.random.default_rng(5)
-    chunk_s, chunk_r = 7.5, so3_exp(rng.normal(size=3))
-    chunk_t = np.mean(centres_ecef, axis=0) + rng.normal(size=3) * 100
-    comp_s, comp_r, comp_t = (0.6, so3_exp(rng.normal(size=3)), rng.normal(size=3)) if components else \
-        (1.0, np.eye(3), np.zeros(3))
-    chunk = np.eye(4)
-    chunk[:3, :3], chunk[:3, 3] = chunk_s * chunk_r, chunk_t
-    comp = np.eye(4)
-    comp[:3, :3], comp[:3, 3] = comp_s * comp_r, comp_t
-    to_internal = np.linalg.inv(chunk @ comp)
+    sim_s, sim_r = 7.5, so3_exp(rng.normal(size=3))
+    sim_t = np.mean(centres_ecef, axis=0) + rng.normal(size=3) * 100
+    similarity = np.eye(4)
+    similarity[:3, :3], similarity[:3, 3] = sim_s * sim_r, sim_t
+    to_internal = np.linalg.inv(similarity)
+    chunk_s, chunk_r, chunk_t = sim_s, sim_r, sim_t
+    comp_s, comp_r, comp_t = sim_s, sim_r, sim_t
     doc = ET.Element("document", version="2.0.0")
     ch = ET.SubElement(doc, "chunk", label="Chunk 1", enabled="true")
     sensors = ET.SubElement(ch, "sensors")
@@ -117,14 +122,14 @@ def write_metashape_ecef(path, r_ecef_cam, centres_ecef, labels, cal, width, hei
     calib = ET.SubElement(sensor, "calibration", type=kind, **{"class": "adjusted"})
     ET.SubElement(calib, "resolution", width=str(width), height=str(height))
     for key, value in cal.items():
-        ET.SubElement(calib, key).text = repr(float(value))
+        ET.SubElement(calib, key).text = str(float(value))
     if components:
         comps = ET.SubElement(ch, "components", active_id="0")
         c = ET.SubElement(comps, "component", id="0", label="Component 1")
         t = ET.SubElement(c, "transform")
-        ET.SubElement(t, "rotation", locked="true").text = " ".join(map(repr, comp_r.ravel()))
-        ET.SubElement(t, "translation", locked="true").text = " ".join(map(repr, comp_t))
-        ET.SubElement(t, "scale", locked="true").text = repr(comp_s)
+        ET.SubElement(t, "rotation", locked="true").text = " ".join(map(str, comp_r.ravel()))
+        ET.SubElement(t, "translation", locked="true").text = " ".join(map(str, comp_t))
+        ET.SubElement(t, "scale", locked="true").text = str(comp_s)
         part = ET.SubElement(c, "partition")
         ET.SubElement(part, "camera_ids").text = " ".join(str(i) for i in range(len(centres_ecef)))
     cams = ET.SubElement(ch, "cameras")
@@ -132,14 +137,14 @@ def write_metashape_ecef(path, r_ecef_cam, centres_ecef, labels, cal, width, hei
         cam_to_ecef = np.eye(4)
         cam_to_ecef[:3, :3], cam_to_ecef[:3, 3] = r, c
         camera = ET.SubElement(cams, "camera", id=str(i), sensor_id="0", label=label)
-        ET.SubElement(camera, "transform").text = " ".join(map(repr, (to_internal @ cam_to_ecef).ravel()))
+        ET.SubElement(camera, "transform").text = " ".join(map(str, (to_internal @ cam_to_ecef).ravel()))
     for k, name in enumerate(unaligned):
         ET.SubElement(cams, "camera", id=str(100 + k), sensor_id="0", label=name)
     ET.SubElement(ch, "reference").text = 'GEOGCS["WGS 84",DATUM["World Geodetic System 1984"]]'
     t = ET.SubElement(ch, "transform")
-    ET.SubElement(t, "rotation").text = " ".join(map(repr, chunk_r.ravel()))
-    ET.SubElement(t, "translation").text = " ".join(map(repr, chunk_t))
-    ET.SubElement(t, "scale").text = repr(chunk_s)
+    ET.SubElement(t, "rotation").text = " ".join(map(str, chunk_r.ravel()))
+    ET.SubElement(t, "translation").text = " ".join(map(str, chunk_t))
+    ET.SubElement(t, "scale").text = str(chunk_s)
     ET.ElementTree(doc).write(path)
 
 
@@ -220,13 +225,13 @@ def write_colmap_text(folder, r_enu_cam, centres, ground, frame="enu"):
     folder.mkdir(parents=True, exist_ok=True)
     to_model = (lambda v: v) if frame == "enu" else to_ecef
     rot_model = (lambda r: r) if frame == "enu" else (lambda r: R_ECEF_ENU @ r)
-    (folder / "cameras.txt").write_text(f"# Camera list\n1 OPENCV {W} {H} {' '.join(map(repr, COLMAP_PARAMS))}\n")
+    (folder / "cameras.txt").write_text(f"# Camera list\n1 OPENCV {W} {H} {' '.join(map(str, COLMAP_PARAMS))}\n")
     lines = []
     for i, (r, c) in enumerate(zip(r_enu_cam, centres)):
         r_cw = rot_model(r).T
         t = -r_cw @ to_model(c)
-        lines += [" ".join(map(repr, [i + 1, *quaternion_wxyz(r_cw), *t])) + f" 1 frame_{i:03d}.jpg", ""]
+        lines += [" ".join(map(str, [i + 1, *quaternion_wxyz(r_cw), *t])) + f" 1 frame_{i:03d}.jpg", ""]
     (folder / "images.txt").write_text("# Image list\n" + "\n".join(lines) + "\n")
     pts = to_model(ground[:500])
-    (folder / "points3D.txt").write_text("".join(f"{k + 1} {p[0]!r} {p[1]!r} {p[2]!r} 0 0 0 0.5\n"
+    (folder / "points3D.txt").write_text("".join(f"{k + 1} {p[0]} {p[1]} {p[2]} 0 0 0 0.5\n"
                                                  for k, p in enumerate(pts)))

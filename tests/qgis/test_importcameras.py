@@ -67,3 +67,35 @@ def test_unreferenced_solution_is_refused_naming_the_file(birdseye_provider, tmp
     tree.write(tmp_path / "local.xml")
     with pytest.raises(QgsProcessingException, match="local.xml.*names no geographic reference"):
         run("importcameras", {"CAMERAS": str(tmp_path / "local.xml"), "OUTPUT": "TEMPORARY_OUTPUT"})
+
+
+@pytest.fixture
+def pix4d_params() -> Path:
+    """Real PIX4Dmapper output (../shared/data beside the clone, as in CI: missing data is a failure)."""
+    path = (Path(__file__).resolve().parents[2].parent / "shared" / "data" / "real_solutions" / "pix4d_phantom4pro"
+            / "test_calibrated_camera_parameters.txt")
+    assert path.is_file(), f"{path} is missing: the shared data must lie beside the repository"
+    return path
+
+
+def test_pix4d_solution_in_its_project_crs(birdseye_provider, pix4d_params):
+    result = run("importcameras", {"CAMERAS": str(pix4d_params), "SOLUTION_CRS": "EPSG:32654",
+                                   "GROUND_HEIGHT_M": 96.0, "OUTPUT": "TEMPORARY_OUTPUT"})
+    assert result["FRAME_COUNT"] == 168 and result["NOT_ALIGNED_COUNT"] == 0
+    frames = result["OUTPUT"]
+    assert frames.crs().authid() == "EPSG:32654"  # the UTM zone of the site, as the Pix4D project's
+    assert {f["flags"] for f in frames.getFeatures()} == {"camera_solution"}  # heights not known to be ellipsoidal
+    # Footprints ~14 m under the cameras (±9 m wide) centre on the solved positions: offset + the middle of the
+    # cameras' t range (0.94, −4.83).
+    centre = frames.extent().center()
+    assert abs(centre.x() - 368109.94) < 3 and abs(centre.y() - 3956038.17) < 3
+
+
+@pytest.mark.parametrize("crs, message", [(None, "set SOLUTION_CRS to that projected CRS"),
+                                          ("EPSG:4326", "SOLUTION_CRS: EPSG:4326 is not a projected CRS in metres")])
+def test_pix4d_solution_without_a_projected_crs_is_refused(birdseye_provider, pix4d_params, crs, message):
+    params = {"CAMERAS": str(pix4d_params), "OUTPUT": "TEMPORARY_OUTPUT"}
+    if crs:
+        params["SOLUTION_CRS"] = crs
+    with pytest.raises(QgsProcessingException, match=message):
+        run("importcameras", params)

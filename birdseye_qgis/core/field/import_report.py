@@ -27,10 +27,14 @@ class ImportReport:
 
 @dataclass
 class FlightImport:
+    """What an importer returns; a camera solution with control points adds them and their mark check."""
+
     frames: Frames
     footprints: Footprints
     track: list
     report: ImportReport
+    control_points: object = None
+    mark_check: object = None
 
 
 def name_list(paths, limit=3) -> str:

@@ -49,6 +49,19 @@ def test_metashape_export_lands_within_a_hundredth_of_a_pixel(tmp_path, componen
     np.testing.assert_allclose(result.frames.height, SITE[2] + c[:, 2], atol=1e-3)
 
 
+def test_metashape_camera_takes_its_components_similarity_once(tmp_path):
+    """A camera in a component is placed by that component's similarity alone: a chunk transform that
+    differs from it (a stale one) changes nothing, and it is never composed with the component's."""
+    r, c, g = truth()
+    write_metashape(tmp_path / "cameras.xml", r, c, components=True)
+    tree = ET.parse(tmp_path / "cameras.xml")
+    tree.getroot().find("chunk").find("transform").find("scale").text = "3.0"
+    tree.write(tmp_path / "cameras.xml")
+    result = import_camera_solution(tmp_path / "cameras.xml")
+    expected = [metashape_pixel(camera_coordinates(r[f], c[f], g)) for f in range(len(c))]
+    assert_same_pixels(expected, imported_pixels(result, r, c, g))
+
+
 def test_metashape_fisheye_sensor(tmp_path):
     r, c, g = truth(seed=3)
     cal = {**MS_CAL, "p1": 0.0, "p2": 0.0, "b1": 0.0, "b2": 0.0, "f": 1300.0}

@@ -2,7 +2,7 @@
 
 A camera solution is what a bundle adjustment knows about each aligned image: the calibrated camera and
 its exact pose in a georeferenced frame. Each format's reader (:mod:`.metashape`, :mod:`.opensfm`,
-:mod:`.colmap`) converts its package's conventions — which way a transform points, where the principal
+:mod:`.colmap`, :mod:`.pix4d`) converts its package's conventions — which way a transform points, where the principal
 point is measured from, the order of the tangential terms — into one :class:`CameraSolution`: OpenCV
 cameras (pixel-centre origin, ``k1 k2 p1 p2 k3`` plus ``k4``/skew/fisheye where the package has them)
 and camera → ECEF poses. :func:`import_camera_solution` turns that into a frame layer with the same
@@ -13,9 +13,10 @@ ellipsoidal for certain — Metashape's geocentric export, a COLMAP model in ECE
 labels use the geotags' own surveyed heights (flag ``geotag_heights``;
 :func:`..labels.training_set.project_labels`). Where they are whatever the images' GPS tags said (an
 OpenSfM/ODM reference, a COLMAP model aligned to the images' GPS: usually above mean sea level, and
-biased as the drone's GNSS is), the geotags are placed on the ground the solution itself saw: the median
-height of its tie points in each frame's view, a datum-free reference. Frames without tie points in view
-take the DEM, else ``ground_height`` (a level plane).
+biased as the drone's GNSS is) or in a reference the files do not state (a Pix4D project's), the
+geotags are placed on the ground the solution itself saw: the median height of its tie points in each
+frame's view, a datum-free reference. Frames without tie points in view take the DEM, else
+``ground_height`` (a level plane).
 """
 from __future__ import annotations
 
@@ -33,6 +34,7 @@ from ...geometry.rotations import R_ENU_NED, rotmat_to_quat
 from ..dji import T_CAM_GIMBAL
 from ..frame_records import GEOTAG_HEIGHTS_FLAG
 from ..frames import Frames, compute_footprints, dem_ground_for
+from ..geotags import Geotags
 from ..import_report import FlightImport, ImportReport
 from ..pose_log import RTK_NONE
 
@@ -55,8 +57,27 @@ class SolvedCamera:
 
 
 @dataclass
+class ControlMarks:
+    """Surveyed control points of a solution and where a person marked them in its images.
+
+    ``points``: the surveyed positions (WGS 84, ellipsoidal heights; ids 1..). Mark ``k`` is point
+    ``point_idx[k]`` seen in the solution's camera ``camera[k]`` at ``uv[k]`` (px, OpenCV's pixel-centre
+    origin).
+    """
+
+    points: Geotags
+    point_idx: np.ndarray
+    camera: list
+    uv: np.ndarray
+
+
+@dataclass
 class CameraSolution:
-    """Every image of a solution file; ``unaligned`` holds (name, reason) of images without a pose."""
+    """Every image of a solution file; ``unaligned`` holds (name, reason) of images without a pose.
+
+    ``marks``: control points with image marks, where the solution has them; ``photos``: camera name →
+    image file the solution itself names (where it exists).
+    """
 
     format: str
     source: str
@@ -65,6 +86,8 @@ class CameraSolution:
     points_ecef: np.ndarray | None = None
     notes: list = field(default_factory=list)
     ellipsoidal: bool = False
+    marks: ControlMarks | None = None
+    photos: dict = field(default_factory=dict)
 
     @property
     def height_datum(self) -> str:
@@ -72,32 +95,39 @@ class CameraSolution:
         return "ellipsoidal" if self.ellipsoidal else "msl"
 
 
-def read_camera_solution(path, images_folder=None, colmap_reference: str = "gps") -> CameraSolution:
-    """Read a Metashape camera XML, an OpenSfM/OpenDroneMap reconstruction or a COLMAP model.
+def read_camera_solution(path, images_folder=None, colmap_reference: str = "gps",
+                         solution_crs: ProjectedCRS | None = None) -> CameraSolution:
+    """Read a Metashape camera XML, an OpenSfM/OpenDroneMap reconstruction, a COLMAP model or Pix4D's
+    calibrated camera parameters.
 
     ``path`` is the file, or a folder holding one (an ODM project's ``opensfm/``, a COLMAP ``sparse/0``).
-    ``colmap_reference`` tells where a COLMAP model's frame is (:func:`.colmap.read_colmap`).
+    ``colmap_reference`` tells where a COLMAP model's frame is (:func:`.colmap.read_colmap`);
+    ``solution_crs`` is the projected CRS a Pix4D project's coordinates are in (:func:`.pix4d.read_pix4d`).
     """
-    from . import colmap, metashape, opensfm
+    from . import colmap, metashape, opensfm, pix4d
 
     path = Path(path)
     if not path.exists():
         raise InputError("camera solution not found", source=str(path))
     if path.is_dir():
-        found = opensfm.find_reconstruction(path) or colmap.find_model(path) or metashape.find_xml(path)
+        found = (opensfm.find_reconstruction(path) or colmap.find_model(path) or metashape.find_xml(path)
+                 or pix4d.find_parameters(path))
         if found is None:
-            raise InputError("holds no camera solution: expected a Metashape cameras XML, an OpenSfM/ODM "
-                             "reconstruction.json, or a COLMAP model (cameras.bin/images.bin or .txt)",
-                             source=str(path))
+            raise InputError("holds no camera solution: expected a Metashape project (.psx, .psz) or cameras XML, "
+                             "an OpenSfM/ODM reconstruction.json, a COLMAP model (cameras.bin/images.bin or "
+                             ".txt), or Pix4D's <project>_calibrated_camera_parameters.txt", source=str(path))
         path = found
     if path.is_dir() or path.name in colmap.MODEL_FILES:
         return colmap.read_colmap(path if path.is_dir() else path.parent, images_folder, colmap_reference)
-    if path.suffix.lower() == ".xml":
-        return metashape.read_metashape_xml(path)
+    if path.suffix.lower() in metashape.SUFFIXES:
+        return metashape.read_metashape(path)
     if path.suffix.lower() == ".json":
         return opensfm.read_reconstruction(path)
-    raise InputError("is not a camera solution this plugin reads (Metashape .xml, OpenSfM/ODM .json, COLMAP "
-                     "cameras/images .bin or .txt)", source=str(path))
+    if path.name.endswith(pix4d.PARAMETERS_SUFFIX):
+        return pix4d.read_pix4d(path, solution_crs)
+    raise InputError("is not a camera solution this plugin reads (Metashape .psx, .psz or cameras .xml, "
+                     "OpenSfM/ODM .json, COLMAP cameras/images .bin or .txt, Pix4D "
+                     "<project>_calibrated_camera_parameters.txt)", source=str(path))
 
 
 def match_images(names, folder) -> dict:
@@ -189,18 +219,20 @@ def _tie_point_ground(solution, lat, lon, h, r_ned_body, cameras) -> np.ndarray:
 
 
 def import_camera_solution(path, images_folder=None, crs: ProjectedCRS | None = None, dem: DemRaster | None = None,
-                           ground_height: float | None = None, colmap_reference: str = "gps", progress=None,
+                           ground_height: float | None = None, colmap_reference: str = "gps",
+                           solution_crs: ProjectedCRS | None = None, progress=None,
                            is_canceled=None) -> FlightImport:
     """Frames with footprints from a camera solution; what cannot be placed is reported, not guessed."""
-    solution = read_camera_solution(path, images_folder, colmap_reference)
+    solution = read_camera_solution(path, images_folder, colmap_reference, solution_crs)
     if is_canceled is not None and is_canceled():
         raise Cancelled()
     report = ImportReport(solution.source)
     report.notes.extend(solution.notes)
     if not solution.cameras:
         raise InputError(f"has no aligned camera ({len(solution.unaligned)} not aligned)", source=solution.source)
-    images = match_images([c.name for c in solution.cameras], images_folder)
-    frames = solution_frames(solution, images, ground_height)
+    images = {**solution.photos, **match_images([c.name for c in solution.cameras], images_folder)}
+    surveyed = _control_ground(solution) if ground_height is None else None
+    frames = solution_frames(solution, images, ground_height if surveyed is None else surveyed)
     report.counts.update({"format": solution.format, "aligned": len(solution.cameras),
                           "not_aligned": len(solution.unaligned)})
     if solution.unaligned:
@@ -214,6 +246,10 @@ def import_camera_solution(path, images_folder=None, crs: ProjectedCRS | None = 
                                 f"file name or stem): {', '.join(missing[:5])}; their frames keep the name only")
     n_ground = int(np.count_nonzero(np.isfinite(frames.ground_h)))
     report.counts["frames_with_ground"] = n_ground
+    if surveyed is not None:
+        report.notes.append(f"Frames without tie points in view stand on the control points' median surveyed "
+                            f"height, {surveyed:.2f} m (ellipsoidal), for their footprints; give a DEM or "
+                            "GROUND_HEIGHT_M on uneven ground")
     if n_ground < len(frames) and dem is None:
         report.notes.append(f"{len(frames) - n_ground} frame(s) have no ground height: the solution has no tie "
                             "points in their view and neither DEM nor GROUND_HEIGHT_M was given: they get no footprint "
@@ -225,4 +261,37 @@ def import_camera_solution(path, images_folder=None, crs: ProjectedCRS | None = 
     sub = None if progress is None else (lambda f: progress(0.3 + 0.7 * f))
     ground = dem_ground_for(frames, dem, solution.height_datum, "altimeter")
     fp = compute_footprints(frames, crs, progress=sub, is_canceled=is_canceled, ground=ground)
-    return FlightImport(frames, fp, [], report)
+    control = solution.marks
+    check = _check_marks(control, solution, frames, fp, report) if control is not None else None
+    return FlightImport(frames, fp, [], report, control.points if control is not None else None, check)
+
+
+def _control_ground(solution: CameraSolution) -> float | None:
+    """The median surveyed height of the solution's control points (its ground), if it has any."""
+    if solution.marks is None or not solution.ellipsoidal:
+        return None
+    heights = solution.marks.points.h_ellipsoid
+    heights = heights[np.isfinite(heights)]
+    return float(np.median(heights)) if len(heights) else None
+
+
+def _check_marks(control: ControlMarks, solution: CameraSolution, frames: Frames, fp, report: ImportReport):
+    """Labels of the control points against their pinned marks (:mod:`...labels.mark_check`), reported."""
+    from ...labels.mark_check import check_marks, describe
+    from ..frames import frame_records
+
+    frame_of = {c.name: i for i, c in enumerate(solution.cameras)}
+    on_aligned = np.array([name in frame_of for name in control.camera], dtype=bool)
+    report.counts["control_points"] = len(control.points)
+    if (~on_aligned).any():
+        report.notes.append(f"{int((~on_aligned).sum())} image mark(s) are in cameras the solution did not align "
+                            "and cannot be checked")
+    if not on_aligned.any():
+        return None
+    check = check_marks(list(frame_records(frames, fp)), control.points, control.point_idx[on_aligned],
+                        [frame_of[name] for name, ok in zip(control.camera, on_aligned) if ok],
+                        control.uv[on_aligned])
+    summary = check.summary()
+    report.counts.update({k if k == "marks" else f"marks_{k}": v for k, v in summary.items()})
+    report.notes.extend(describe(check, frames.frame_id))
+    return check

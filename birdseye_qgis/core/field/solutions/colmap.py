@@ -23,7 +23,7 @@ import numpy as np
 from ...errors import InputError
 from ...geometry.camera import CameraModel
 from ...geometry.geodesy import geodetic_to_ecef, rotation_ecef_enu
-from ...geometry.similarity import fit_similarity
+from ...geometry.similarity import fit_similarity_robust
 from . import CameraSolution, SolvedCamera, match_images
 
 MODEL_FILES = ("cameras.bin", "images.bin", "points3D.bin", "cameras.txt", "images.txt", "points3D.txt")
@@ -154,6 +154,7 @@ def _gps_alignment(names, centres, images_folder, source):
     idx = np.array([k for k, _ in pairs])
     gps = np.array([g for _, g in pairs])
     target = geodetic_to_ecef(gps[:, 0], gps[:, 1], gps[:, 2])
-    sim = fit_similarity(centres[idx], target)
-    residual = float(np.sqrt(np.mean(np.sum((sim.apply(centres[idx]) - target) ** 2, axis=1))))
-    return sim, residual, len(idx)
+    # Consumer GPS tags hold the odd jump of tens of metres; the robust fit leaves those images out.
+    fit = fit_similarity_robust(centres[idx], target)
+    residual = float(np.sqrt(np.mean(fit.residual[fit.inliers] ** 2)))
+    return fit.similarity, residual, int(fit.inliers.sum())

@@ -12,7 +12,8 @@ Conventions converted here (OpenSfM's documentation and ``opensfm/types``, ``geo
   ``u = s·x_n + w/2 − 0.5``. So ``fx = focal_x·s`` and ``cx = w/2 − 0.5 + c_x·s`` in OpenCV's convention.
 * ``brown``: ``k1 k2 k3`` radial and ``p1 p2`` tangential in OpenCV's order; ``perspective``: one
   focal, ``k1 k2``; ``fisheye``: equidistant with ``k1 k2`` (OpenCV fisheye k1, k2);
-  ``fisheye_opencv``: ``k1…k4``; ``radial``/``simple_radial``: ``k1 (k2)`` with an aspect ratio.
+  ``fisheye_opencv``: ``k1…k4``; ``radial``/``simple_radial``: ``k1 (k2)``. ``perspective`` and
+  ``fisheye`` have one ``focal``, the others ``focal_x`` and ``focal_y``.
 """
 from __future__ import annotations
 
@@ -48,14 +49,11 @@ def _camera(key: str, spec: dict, source: str) -> CameraModel:
             return float(spec.get(name, default))
 
         if kind in ("perspective", "fisheye"):
-            fx = fy = get("focal") * size
+            fx = fy = float(spec["focal"]) * size
             cx, cy = width / 2.0 - 0.5, height / 2.0 - 0.5
         elif kind in ("brown", "fisheye_opencv", "radial", "simple_radial"):
-            if kind == "brown":
-                fx, fy = get("focal_x") * size, get("focal_y") * size
-            else:
-                fx = get("focal") * size
-                fy = fx * get("aspect_ratio", 1.0)
+            # OpenSfM writes focal_x and focal_y for all four (opensfm/io.py, camera_to_json).
+            fx, fy = float(spec["focal_x"]) * size, float(spec["focal_y"]) * size
             cx, cy = width / 2.0 - 0.5 + get("c_x") * size, height / 2.0 - 0.5 + get("c_y") * size
         else:
             raise InputError(f"camera '{key}' has projection_type '{kind}'; supported: perspective, brown, "
