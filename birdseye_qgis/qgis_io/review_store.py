@@ -406,7 +406,8 @@ def read_review_inputs(detection_layers, frame_layer, geotag_layer) -> ReviewInp
     if not detection_layers:
         raise InputError("choose at least one detection layer to review")
     if frame_layer is None:
-        raise InputError("choose the frame layer of the flight (Import flight log or Import DJI images)")
+        raise InputError("choose the frame layer of the flight (Import flight log, Import drone images or Import "
+                         "camera solution)")
     if geotag_layer is None:
         raise InputError("choose the geotag layer (the survey points)")
     names = [layer.name() for layer in detection_layers]

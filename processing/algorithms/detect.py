@@ -40,7 +40,7 @@ class Detect(DemParametersMixin, BirdsEyeAlgorithm):
 
     def initAlgorithm(self, config=None):
         self.addParameter(QgsProcessingParameterFeatureSource(
-            self.FRAMES, self.tr("Frames (from Import flight log or Import DJI images)"),
+            self.FRAMES, self.tr("Frames (from Import flight log, Import drone images or Import camera solution)"),
             [SOURCE_VECTOR_POLYGON, SOURCE_VECTOR_POINT]))
         self.addParameter(QgsProcessingParameterFile(
             self.MODEL, self.tr("ONNX heatmap model (empty: the bundled demo model)"),

@@ -1,4 +1,5 @@
-"""birdseye:importdjiimages — a folder of DJI drone JPEGs → frame footprints from their own metadata."""
+"""birdseye:importdjiimages — a folder of drone JPEGs (DJI or any other) → frame footprints from their own
+metadata. The id keeps its DJI name: saved models and scripts call it."""
 from __future__ import annotations
 
 from qgis.core import (
@@ -6,12 +7,13 @@ from qgis.core import (
     QgsProcessingParameterCrs,
     QgsProcessingParameterFeatureSink,
     QgsProcessingParameterFile,
+    QgsProcessingParameterNumber,
 )
 from qgis.PyQt.QtCore import QT_TRANSLATE_NOOP
 
-from ...birdseye_qgis.core.field.dji import import_dji_images
+from ...birdseye_qgis.core.field.drone_images import import_drone_images
 from ...birdseye_qgis.core.geometry.camera import load_calibration
-from ...birdseye_qgis.qgis_enums import FILE_BEHAVIOR_FOLDER, SOURCE_VECTOR_POLYGON
+from ...birdseye_qgis.qgis_enums import FILE_BEHAVIOR_FOLDER, NUMBER_DOUBLE, SOURCE_VECTOR_POLYGON
 from ...birdseye_qgis.qgis_io import layers
 from ..parameters.dem import DemParametersMixin
 from .base import BirdsEyeAlgorithm
@@ -19,26 +21,30 @@ from .base import BirdsEyeAlgorithm
 
 class ImportDjiImages(DemParametersMixin, BirdsEyeAlgorithm):
     ALG_ID = "importdjiimages"
-    DISPLAY_NAME = QT_TRANSLATE_NOOP("ImportDjiImages", "Import DJI images")
+    DISPLAY_NAME = QT_TRANSLATE_NOOP("ImportDjiImages", "Import drone images")
     GROUP = "field"
     IMAGES = "IMAGES"
     CALIBRATION = "CALIBRATION"
     OUTPUT_CRS = "OUTPUT_CRS"
+    FLIGHT_HEIGHT_M = "FLIGHT_HEIGHT_M"
     OUTPUT = "OUTPUT"
     FRAME_COUNT = "FRAME_COUNT"
     UNPLACED_COUNT = "UNPLACED_COUNT"
 
     def initAlgorithm(self, config=None):
         self.addParameter(QgsProcessingParameterFile(
-            self.IMAGES, self.tr("Folder of DJI images (JPEG)"), behavior=FILE_BEHAVIOR_FOLDER))
+            self.IMAGES, self.tr("Folder of drone images (JPEG)"), behavior=FILE_BEHAVIOR_FOLDER))
         self.addParameter(QgsProcessingParameterFile(
             self.CALIBRATION, self.tr("Camera calibration (optional; Kalibr or OpenCV YAML)"), optional=True,
             fileFilter="Calibration (*.yaml *.yml);;All files (*)"))
         self.addParameter(QgsProcessingParameterCrs(
             self.OUTPUT_CRS, self.tr("Output CRS (empty: UTM zone of the site)"), optional=True))
+        self.addParameter(QgsProcessingParameterNumber(
+            self.FLIGHT_HEIGHT_M, self.tr("Flight height above the take-off ground (m; for images without a "
+                                          "relative altitude)"), NUMBER_DOUBLE, None, optional=True, minValue=0.5))
         self.add_dem_parameters()
         self.addParameter(QgsProcessingParameterFeatureSink(
-            self.OUTPUT, self.tr("DJI frames"), SOURCE_VECTOR_POLYGON))
+            self.OUTPUT, self.tr("Drone frames"), SOURCE_VECTOR_POLYGON))
         self.addOutput(QgsProcessingOutputNumber(self.FRAME_COUNT, self.tr("Frames written")))
         self.addOutput(QgsProcessingOutputNumber(self.UNPLACED_COUNT, self.tr("Images that cannot be placed")))
 
@@ -47,11 +53,13 @@ class ImportDjiImages(DemParametersMixin, BirdsEyeAlgorithm):
         calibration_path = self.parameterAsFile(parameters, self.CALIBRATION, context)
         chosen = self.run_core(layers.chosen_projected_crs, self.parameterAsCrs(parameters, self.OUTPUT_CRS, context))
         calibration = self.run_core(load_calibration, calibration_path) if calibration_path else None
+        flight_height = (self.parameterAsDouble(parameters, self.FLIGHT_HEIGHT_M, context)
+                         if parameters.get(self.FLIGHT_HEIGHT_M) not in (None, "") else None)
         dem = self.read_dem(parameters, context)
         self.report_dem(feedback, dem)
         progress, is_canceled = self.progress_callbacks(feedback, 0.0, 80.0)
-        result = self.run_core(import_dji_images, folder, calibration, chosen, progress=progress,
-                               is_canceled=is_canceled, dem=dem)
+        result = self.run_core(import_drone_images, folder, calibration, chosen, progress=progress,
+                               is_canceled=is_canceled, dem=dem, flight_height_m=flight_height)
         layers.report_to_feedback(feedback, result.report)
         for error in result.report.unplaced[5:]:
             feedback.pushInfo(self.tr("Not placed: {error}").format(error=error))

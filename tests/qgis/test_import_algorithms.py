@@ -23,6 +23,7 @@ from qgis.core import (
 )
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "data"))
+from strip_xmp import strip_xmp
 from synthetic_flight import HEADER, make_flight
 
 from birdseye.birdseye_qgis.core.field.flight_track import TRACK_FIELDS
@@ -251,3 +252,29 @@ def test_import_dji_images_brighton_beach(birdseye_provider, tmp_path):
     assert any("IMG_0001.jpg" in e for e in feedback.errors)
     (folder / "DJI_0018.JPG").unlink()
     assert "none of its 1 JPEG" in run_failing("importdjiimages", {"IMAGES": str(folder)})
+
+
+def test_import_drone_images_exif_only(birdseye_provider, tmp_path):
+    """The Brighton frames without their XMP (a drone writing only EXIF): placed with FLIGHT_HEIGHT_M."""
+    from qgis.core import QgsApplication
+
+    alg = QgsApplication.processingRegistry().algorithmById("birdseye:importdjiimages")
+    assert alg.displayName() == "Import drone images"
+    folder = tmp_path / "exif"
+    folder.mkdir()
+    for path in sorted(BRIGHTON.glob("*.JPG")):
+        strip_xmp(path, folder / path.name)
+    message = run_failing("importdjiimages", {"IMAGES": str(folder)})
+    assert "none of its 6 JPEG" in message and "FLIGHT_HEIGHT_M" in message
+    feedback = Recorder()
+    result = run("importdjiimages", {"IMAGES": str(folder), "FLIGHT_HEIGHT_M": 40.0}, feedback)
+    assert result["FRAME_COUNT"] == 6 and result["UNPLACED_COUNT"] == 0
+    features = list(result["OUTPUT"].getFeatures())
+    assert all({"attitude_from_track", "approx_intrinsics", "ground_from_flight_height"}
+               <= set(f["flags"].split(",")) for f in features)
+    # Nadir, heading from DJI_0018 towards DJI_0019 (the gimbal said 45.0°); 40 m above the median.
+    first = features[0]
+    assert first["pitch_deg"] == -90.0 and first["yaw_deg"] == pytest.approx(47.43, abs=0.01)
+    heights = sorted(f["height_m"] for f in features)
+    assert first["depth_m"] == pytest.approx(first["height_m"] - (heights[2] + heights[3]) / 2 + 40.0)
+    assert any("attitude_from_track" in w for w in feedback.warnings)

@@ -21,9 +21,13 @@ the take-off point and the field passes while a datum mix-up larger than the rel
 Intrinsics, best first: a calibration file; ``DewarpData`` (:func:`.camera.camera_from_dji_dewarp`);
 ``CalibratedFocalLength`` + ``CalibratedOpticalCenterX/Y`` (pixels); EXIF ``FocalLength`` (mm) with
 ``FocalPlaneXResolution`` (the sensor size); EXIF ``FocalLengthIn35mmFilm``, read like OpenSfM/ODM
-as relative to the 36 mm long side of the 35 mm frame (fx = f35 · max(W, H) / 36 px). The last is a
-nominal value, a few per cent off (frames flagged ``approx_intrinsics``). A resized copy of an image
-(fewer pixels than EXIF ``ExifImageWidth``) has its pixel intrinsics scaled to its size.
+as relative to the 36 mm long side of the 35 mm frame (fx = f35 · max(W, H) / 36 px); EXIF
+``FocalLength`` with the sensor width the caller knows for the camera model
+(:data:`.drone_images.SENSOR_WIDTH_MM`). The last three are nominal values, a few per cent off (frames
+flagged ``approx_intrinsics``). A resized copy of an image (fewer pixels than EXIF ``ExifImageWidth``)
+has its pixel intrinsics scaled to its size.
+
+Images without DJI tags are read by :mod:`.drone_images`, which also holds the folder importer.
 
 One camera, one model. The frames of one camera — same model, serial number (XMP
 ``CameraSerialNumber``, else EXIF ``BodySerialNumber``) and ``DewarpData`` — share one
@@ -44,13 +48,12 @@ from pathlib import Path
 
 import numpy as np
 
-from ..errors import Cancelled, InputError
+from ..errors import InputError
 from ..geometry.camera import CalibrationError, CameraModel, camera_from_dji_dewarp
 from ..geometry.dem import DemRaster
 from ..geometry.geodesy import ProjectedCRS
 from ..geometry.rotations import euler_zyx_to_rotmat, rotmat_to_quat
-from .frames import Frames, compute_footprints, dem_ground_for
-from .import_report import FlightImport, ImportReport
+from .import_report import FlightImport
 from .pose_log import RTK_FIXED, RTK_FLOAT, RTK_NONE
 
 #: Gimbal frame (x optical axis, y image right, z image down) → OpenCV camera frame.
@@ -96,6 +99,7 @@ class DjiMetadata:
     focal_plane_px_per_mm: float | None = None
     orientation: int = 1
     serial: str = ""
+    xmp_text: str = ""
 
     def tag(self, *names) -> float | None:
         """First of the XMP tags ``names`` present, as a number (None if absent or not a number)."""
@@ -136,7 +140,7 @@ class DjiMetadata:
     @property
     def camera_name(self) -> str:
         """Model and serial number: the same for every frame of one camera."""
-        return " ".join(part for part in (self.make, self.model, self.serial) if part) or "DJI camera"
+        return " ".join(part for part in (self.make, self.model, self.serial) if part) or "unnamed camera"
 
 
 def _jpeg_segments(path: Path):
@@ -181,7 +185,7 @@ def read_dji_metadata(path) -> DjiMetadata:
         raise InputError(f"cannot be read as an image ({exc})", source=str(path)) from exc
     ifd = exif.get_ifd(0x8769)
     gps = exif.get_ifd(0x8825)
-    meta = DjiMetadata(str(path), int(width), int(height), xmp)
+    meta = DjiMetadata(str(path), int(width), int(height), xmp, xmp_text=xmp_text)
     meta.make = _text(exif.get(0x010F))
     meta.model = _text(exif.get(0x0110))
     meta.orientation = int(exif.get(0x0112, 1) or 1)
@@ -252,16 +256,19 @@ def _exif_time(original, subsec, offset) -> float:
 
 
 # ---------------------------------------------------------------------------------------- camera
-def dji_camera(meta: DjiMetadata, calibration: CameraModel | None = None) -> tuple[CameraModel, list]:
+def dji_camera(meta: DjiMetadata, calibration: CameraModel | None = None,
+               sensor_width_mm: float | None = None) -> tuple[CameraModel, list]:
     """Camera model of a DJI image (mounted by :data:`T_CAM_GIMBAL`) and flags about its origin; an
-    image the drone already undistorted (``DewarpFlag`` 1) gets zero distortion."""
-    cam, flags = _lens_camera(meta, calibration)
+    image the drone already undistorted (``DewarpFlag`` 1) gets zero distortion. ``sensor_width_mm``
+    (the long side of the sensor) is the last resort for the focal length in pixels."""
+    cam, flags = _lens_camera(meta, calibration, sensor_width_mm)
     if meta.dewarped:
         return replace(cam, dist=(0.0,) * 5, source=f"{cam.source} (dewarped)"), flags + ["dewarped"]
     return cam, flags
 
 
-def _lens_camera(meta: DjiMetadata, calibration: CameraModel | None) -> tuple[CameraModel, list]:
+def _lens_camera(meta: DjiMetadata, calibration: CameraModel | None,
+                 sensor_width_mm: float | None) -> tuple[CameraModel, list]:
     w, h = meta.width, meta.height
     full_w, full_h = meta.exif_width or w, meta.exif_height or h
     flags = ["resized"] if (full_w, full_h) != (w, h) else []
@@ -296,16 +303,21 @@ def _lens_camera(meta: DjiMetadata, calibration: CameraModel | None) -> tuple[Ca
     if meta.focal_mm and meta.focal_plane_px_per_mm:
         f = meta.focal_mm * meta.focal_plane_px_per_mm
         cam = CameraModel(full_w, full_h, f, f, (full_w - 1) / 2.0, (full_h - 1) / 2.0, T_cam_imu=T_CAM_GIMBAL,
-                          source="exif:FocalLength+FocalPlaneXResolution")
+                          source=f"exif:FocalLength+FocalPlaneXResolution {meta.camera_name}")
         return cam.resized(w, h), flags + ["approx_intrinsics"]
     if meta.focal_35mm:
         f = meta.focal_35mm * max(w, h) / FILM_LONG_SIDE_MM
         cam = CameraModel(w, h, f, f, (w - 1) / 2.0, (h - 1) / 2.0, T_cam_imu=T_CAM_GIMBAL,
-                          source="exif:FocalLengthIn35mmFilm")
+                          source=f"exif:FocalLengthIn35mmFilm {meta.camera_name}")
         return cam, flags + ["approx_intrinsics"]
+    if meta.focal_mm and sensor_width_mm:
+        f = meta.focal_mm * max(full_w, full_h) / sensor_width_mm
+        cam = CameraModel(full_w, full_h, f, f, (full_w - 1) / 2.0, (full_h - 1) / 2.0, T_cam_imu=T_CAM_GIMBAL,
+                          source=f"exif:FocalLength+sensor width {sensor_width_mm:g} mm {meta.camera_name}")
+        return cam.resized(w, h), flags + ["approx_intrinsics"]
     raise InputError("has no camera intrinsics: no DewarpData, CalibratedFocalLength, EXIF FocalLength "
-                     "with FocalPlaneXResolution or FocalLengthIn35mmFilm; give a CALIBRATION file",
-                     source=meta.path, field="FocalLengthIn35mmFilm")
+                     "with FocalPlaneXResolution or a known sensor width, or FocalLengthIn35mmFilm; give a "
+                     "CALIBRATION file", source=meta.path, field="FocalLengthIn35mmFilm")
 
 
 # ---------------------------------------------------------------------------------------- pose
@@ -333,17 +345,23 @@ def _wrap180(angle: float) -> float:
     return (angle + 180.0) % 360.0 - 180.0
 
 
-def dji_pose(meta: DjiMetadata) -> DjiPose:
-    """Position, level ground and gimbal attitude of a DJI image; InputError if it cannot be placed."""
-    if not meta.has_dji_tags:
-        raise InputError("has no DJI XMP tags (drone-dji:RelativeAltitude, GimbalPitchDegree, …); is it a "
-                         "DJI drone image with its metadata intact?", source=meta.path, field="XMP drone-dji")
+def gps_position(meta: DjiMetadata) -> tuple[float, float]:
+    """(lat, lon) of an image (XMP, else EXIF GPS); InputError without a GPS fix."""
     lat, lon = meta.gps_lat_lon
     if lat is None or lon is None:
         raise InputError("has no GPS position (XMP GpsLatitude/GpsLongitude or EXIF GPS)", source=meta.path,
                          field="GPSLatitude")
     if (lat == 0.0 and lon == 0.0) or abs(lat) > 90 or abs(lon) > 180:
         raise InputError(f"GPS position ({lat}, {lon}) is not a fix", source=meta.path, field="GPSLatitude")
+    return lat, lon
+
+
+def dji_pose(meta: DjiMetadata) -> DjiPose:
+    """Position, level ground and gimbal attitude of a DJI image; InputError if it cannot be placed."""
+    if not meta.has_dji_tags:
+        raise InputError("has no DJI XMP tags (drone-dji:RelativeAltitude, GimbalPitchDegree, …); is it a "
+                         "DJI drone image with its metadata intact?", source=meta.path, field="XMP drone-dji")
+    lat, lon = gps_position(meta)
     relative = meta.tag("RelativeAltitude")
     if relative is None:
         raise InputError("has no RelativeAltitude: the height above the ground is unknown", source=meta.path,
@@ -390,70 +408,11 @@ def list_jpegs(folder) -> list[Path]:
 
 
 def import_dji_images(folder, calibration: CameraModel | None = None, crs: ProjectedCRS | None = None,
-                      progress=None, is_canceled=None, dem: DemRaster | None = None) -> FlightImport:
-    """Frames with footprints from a folder of DJI JPEGs; images that cannot be placed are reported.
+                      progress=None, is_canceled=None, dem: DemRaster | None = None,
+                      flight_height_m: float | None = None) -> FlightImport:
+    """Frames with footprints from a folder of drone JPEGs, DJI or not: the name callers and saved
+    Processing models know; see :func:`.drone_images.import_drone_images`."""
+    from .drone_images import import_drone_images
 
-    ``frame_id`` is the image's index in the name-sorted folder listing (stable across re-imports).
-    With a ``dem`` the footprints drape on the terrain; its vertical reference is checked once against
-    the whole flight's take-off height (heights in :data:`DJI_HEIGHT_DATUM`).
-    """
-    paths = list_jpegs(folder)
-    if not paths:
-        raise InputError("holds no JPEG images (.jpg/.jpeg)", source=str(folder))
-    report = ImportReport(str(folder))
-    cameras: dict[str, CameraModel] = {}
-    rows, unplaced = [], []
-    for i, path in enumerate(paths):
-        if is_canceled is not None and is_canceled():
-            raise Cancelled()
-        try:
-            meta = read_dji_metadata(path)
-            if meta.orientation not in (0, 1):
-                raise InputError(f"EXIF Orientation is {meta.orientation} (a rotated image); only unrotated "
-                                 "drone images are supported", source=str(path), field="Orientation")
-            pose = dji_pose(meta)
-            camera, cam_flags = dji_camera(meta, calibration)
-        except InputError as exc:
-            unplaced.append(exc)
-            continue
-        camera = cameras.setdefault(camera.to_json(), camera)
-        rows.append((i, str(path.resolve()), meta.time_s, pose, camera, pose.flags + cam_flags))
-        if progress is not None:
-            progress(0.5 * (i + 1) / len(paths))
-    report.counts.update(images=len(paths), placed=len(rows), unplaced=len(unplaced))
-    report.unplaced = unplaced
-    if unplaced:
-        report.errors.append(f"{len(unplaced)} of {len(paths)} image(s) cannot be placed: "
-                             + "; ".join(str(e) for e in unplaced[:5]))
-    if not rows:
-        raise InputError(f"none of its {len(paths)} JPEG image(s) can be placed; the first: {unplaced[0]}",
-                         source=str(folder))
-    ids, images, times, poses, cams, flags = zip(*rows)
-    frames = Frames(
-        frame_id=np.asarray(ids, dtype=np.int64), image=list(images), time_s=np.asarray(times, dtype=float),
-        lat=np.array([p.lat for p in poses]), lon=np.array([p.lon for p in poses]),
-        height=np.array([p.height for p in poses]), quat=np.array([p.quat for p in poses]),
-        ground_h=np.array([p.ground_h for p in poses]), rtk_status=np.array([p.rtk_status for p in poses]),
-        sync_offset_s=np.full(len(rows), np.nan), cameras=list(cams), flags=[list(f) for f in flags],
-        euler_deg=np.array([[p.roll_deg, p.pitch_deg, p.yaw_deg] for p in poses]),
-        extra={name: np.array([p.rtk_std[k] for p in poses])
-               for k, name in enumerate(("rtk_std_lon_m", "rtk_std_lat_m", "rtk_std_hgt_m"))})
-    for flag, text in (("yaw_mismatch", f"gimbal and flight yaw differ by more than {YAW_MISMATCH_DEG:g}°"),
-                       ("dewarped", "the drone already removed the lens distortion (DewarpFlag 1); no distortion "
-                                    "is applied to them"),
-                       ("non_nadir", f"gimbal pitch above {NADIR_PITCH_LIMIT_DEG:g}° (not looking down)"),
-                       ("yaw_from_flight", "no gimbal yaw; the flight yaw was used"),
-                       ("approx_intrinsics", "intrinsics from the nominal focal length; give a CALIBRATION "
-                                             "for precise labels")):
-        n = sum(flag in f for f in frames.flags)
-        report.counts[flag] = n
-        if n:
-            report.notes.append(f"{n} frame(s) flagged {flag}: {text}")
-    crs = crs or ProjectedCRS.for_site(frames.lat, frames.lon)
-    sub = None if progress is None else (lambda f: progress(0.5 + 0.5 * f))
-    ground = dem_ground_for(frames, dem, DJI_HEIGHT_DATUM, "takeoff")
-    fp = compute_footprints(frames, crs, progress=sub, is_canceled=is_canceled, ground=ground)
-    n = sum("footprint_unbounded" in f for f in frames.flags)
-    if n:
-        report.notes.append(f"{n} frame(s) look above the horizon and have no footprint (flag footprint_unbounded)")
-    return FlightImport(frames, fp, [], report)
+    return import_drone_images(folder, calibration, crs, progress=progress, is_canceled=is_canceled, dem=dem,
+                               flight_height_m=flight_height_m)

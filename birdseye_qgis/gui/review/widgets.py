@@ -207,8 +207,8 @@ def build_setup_box(dock):
     dock.frames_combo = QgsMapLayerComboBox()
     dock.frames_combo.setFilters(FILTER_VECTOR_LAYER)
     dock.frames_combo.setAllowEmptyLayer(True)
-    dock.frames_combo.setToolTip(tr("The flight's frame layer (Import flight log or Import DJI images): "
-                                    "poses, camera and image of every frame."))
+    dock.frames_combo.setToolTip(tr("The flight's frame layer (Import flight log, Import drone images or Import "
+                                    "camera solution): poses, camera and image of every frame."))
     form.addRow(tr("Frames"), dock.frames_combo)
     dock.geotags_combo = QgsMapLayerComboBox()
     dock.geotags_combo.setFilters(FILTER_POINT_LAYER)

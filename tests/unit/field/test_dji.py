@@ -194,13 +194,13 @@ def test_flags_and_fallbacks(tmp_path):
 
 def test_images_that_cannot_be_placed_are_listed(tmp_path):
     write_jpeg(tmp_path / "DJI_0001.JPG", xmp=RTK_TAGS)
-    write_jpeg(tmp_path / "phone.jpg", f35=26)                       # a JPEG with no DJI tags
+    write_jpeg(tmp_path / "phone.jpg", f35=26)                       # no DJI tags, no height above ground
     (tmp_path / "broken.jpg").write_bytes(b"not a jpeg at all")
     (tmp_path / "notes.txt").write_text("ignored")
     result = import_dji_images(tmp_path)
     assert result.frames.frame_id.tolist() == [0]
     reasons = {Path(e.source).name: str(e) for e in result.report.unplaced}
-    assert "no DJI XMP tags" in reasons["phone.jpg"] and "not a JPEG" in reasons["broken.jpg"]
+    assert "no height above the ground" in reasons["phone.jpg"] and "not a JPEG" in reasons["broken.jpg"]
     assert "2 of 3 image(s) cannot be placed" in result.report.errors[0]
     (tmp_path / "DJI_0001.JPG").unlink()
     with pytest.raises(InputError, match="none of its 2 JPEG image"):
