@@ -1,8 +1,10 @@
 """Benchmark: refineposes on the six real Brighton Beach DJI frames (4000 × 2250 px).
 
 Uses ``../shared/data/brighton_beach`` when it is there (the original images), else the 960 × 540
-copies in ``tests/data/brighton_beach_960``, and says which. Reported: frames registered, mean
-reprojection error, images per minute, peak resident memory of the refinement. Baseline: pycolmap
+copies in ``tests/data/brighton_beach_960``, and says which. Their camera is only nominal (no
+DewarpData): refineposes estimates it and fixes the focal length by the flying height. Reported: frames
+registered, mean reprojection error, images per minute, peak resident memory of the refinement, the
+focal lengths. Baseline: pycolmap
 with its default options on the same images (SIFT at COLMAP's default 3,200 px, every intrinsic
 self-calibrated), as one would run it first; the ratio is refineposes' images per minute over the
 baseline's.
@@ -59,6 +61,12 @@ def main():
         print(f"refineposes: {refinement.n_registered}/{len(frames)} registered, mean reprojection "
               f"{np.mean(rms):.2f} px, {ours:.1f} s = {60 * len(frames) / ours:.1f} images/min ("
               + ", ".join(f"{k} {v:.1f} s" for k, v in refinement.seconds.items()) + f"), peak {peak_mb:.0f} MB RSS")
+        if refinement.focal is not None:
+            fix = refinement.focal
+            print(f"nominal camera: focal {fix.nominal_px:.1f} px nominal, {fix.adjusted_px:.1f} px from the bundle "
+                  f"adjustment, {fix.final_px:.1f} px " + ("fixed by the flying height" if fix.determined else
+                                                          "kept nominal (the block cannot tell)")
+                  + f"; depth ratio after {refinement.depth_ratio:.4f}")
         (Path(tmp) / "base").mkdir()
         n_base, rms_base, base = baseline(images, Path(tmp) / "base")
         print(f"baseline (pycolmap defaults): {n_base}/{len(frames)} registered, mean reprojection {rms_base:.2f} px, "

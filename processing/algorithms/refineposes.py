@@ -4,6 +4,7 @@ from __future__ import annotations
 import tempfile
 from pathlib import Path
 
+import numpy as np
 from qgis.core import (
     QgsProcessingException,
     QgsProcessingOutputNumber,
@@ -23,7 +24,7 @@ from ...birdseye_qgis.core.field.refinement import (
     refine_frames,
     refinement_report_html,
 )
-from ...birdseye_qgis.qgis_enums import NUMBER_INTEGER, SOURCE_VECTOR_POLYGON
+from ...birdseye_qgis.qgis_enums import NUMBER_INTEGER, SOURCE_VECTOR_POINT, SOURCE_VECTOR_POLYGON
 from ...birdseye_qgis.qgis_io import layers
 from .base import BirdsEyeAlgorithm
 
@@ -36,13 +37,14 @@ class RefinePoses(BirdsEyeAlgorithm):
     MATCH_SIZE_PX = "MATCH_SIZE_PX"
     MAX_FEATURES = "MAX_FEATURES"
     REFINE_INTRINSICS = "REFINE_INTRINSICS"
+    GEOTAGS = "GEOTAGS"
     OUTPUT = "OUTPUT"
     OUTPUT_REPORT = "OUTPUT_REPORT"
     REGISTERED_COUNT = "REGISTERED_COUNT"
 
     def initAlgorithm(self, config=None):
         self.addParameter(QgsProcessingParameterFeatureSource(
-            self.FRAMES, self.tr("Frames (from Import DJI images, Import flight log or Import camera solution)"),
+            self.FRAMES, self.tr("Frames (from Import drone images, Import flight log or Import camera solution)"),
             [SOURCE_VECTOR_POLYGON]))
         self.addParameter(QgsProcessingParameterNumber(
             self.MATCH_SIZE_PX, self.tr("Image size for feature extraction (px, longer side)"),
@@ -53,6 +55,10 @@ class RefinePoses(BirdsEyeAlgorithm):
         self.addParameter(QgsProcessingParameterBoolean(
             self.REFINE_INTRINSICS, self.tr("Refine focal length and distortion (only with relief, oblique views or "
                                             "ground control)"), defaultValue=False))
+        self.addParameter(QgsProcessingParameterFeatureSource(
+            self.GEOTAGS, self.tr("Geotags with surveyed heights (optional: the ground that fixes the focal length "
+                                  "of a nominal camera; else the frames' ground heights)"),
+            [SOURCE_VECTOR_POINT], optional=True))
         self.addParameter(QgsProcessingParameterFeatureSink(
             self.OUTPUT, self.tr("Refined frames"), SOURCE_VECTOR_POLYGON))
         self.addParameter(QgsProcessingParameterFileDestination(
@@ -71,9 +77,15 @@ class RefinePoses(BirdsEyeAlgorithm):
                                 refine_intrinsics=self.parameterAsBoolean(parameters, self.REFINE_INTRINSICS, context))
         feedback.pushInfo(self.tr("{n} frames; SIFT features at {size} px, at most {features} per image").format(
             n=len(frames), size=options.match_size_px, features=options.max_features))
+        geotag_source = self.parameterAsSource(parameters, self.GEOTAGS, context)
+        heights = None if geotag_source is None else self.run_core(self._geotag_heights, geotag_source, context)
+        if heights is not None and np.isfinite(heights).any():
+            feedback.pushInfo(self.tr("{n} geotags with a surveyed height: the ground plane at {h:.2f} m").format(
+                n=int(np.isfinite(heights).sum()), h=float(np.nanmedian(heights))))
         progress, is_canceled = self.progress_callbacks(feedback, 0.0, 85.0)
         with tempfile.TemporaryDirectory(prefix="birdseye-sfm-") as workdir:
-            refined, refinement, values = self.run_core(refine_frames, frames, workdir, options, progress, is_canceled)
+            refined, refinement, values = self.run_core(refine_frames, frames, workdir, options, progress, is_canceled,
+                                                        heights)
         feedback.pushInfo(self.tr("Registered {n} of {total} frames in {seconds:.0f} s ({rate:.1f} images per "
                                   "minute); intrinsics {intrinsics}").format(
                               n=refinement.n_registered, total=len(frames), seconds=sum(refinement.seconds.values()),
@@ -81,6 +93,9 @@ class RefinePoses(BirdsEyeAlgorithm):
         if refinement.similarity is not None:
             feedback.pushInfo(self.tr("Aligned to the GNSS positions: residual RMS {rms:.3f} m").format(
                 rms=refinement.alignment_rms_m))
+        if np.isfinite(refinement.depth_ratio):
+            feedback.pushInfo(self.tr("Camera-to-ground distance of the block / (GNSS height − ground height): "
+                                      "{ratio:.4f}").format(ratio=refinement.depth_ratio))
         for note in refinement.notes:
             feedback.pushWarning(note)
         missing = [(frames.image[i], r.reason) for i, r in enumerate(refinement.frames) if not r.registered]
@@ -105,3 +120,13 @@ class RefinePoses(BirdsEyeAlgorithm):
                     path=report_path, error=exc)) from exc
             outputs[self.OUTPUT_REPORT] = report_path
         return outputs
+
+    @staticmethod
+    def _geotag_heights(source, context):
+        """Surveyed ellipsoidal heights (m): an ``h_ellipsoid`` field (Import geotags) else the points' Z."""
+        has_field = "h_ellipsoid" in source.fields().names()
+        cols = layers.read_point_layer(source, context.transformContext(), ["h_ellipsoid"] if has_field else [],
+                                       source.sourceName())
+        if has_field:
+            return np.array([np.nan if v is None else float(v) for v in cols["attributes"]["h_ellipsoid"]])
+        return np.asarray(cols["z"], dtype=float)

@@ -1,26 +1,35 @@
 """A local stand-in for a NodeODM node: the API endpoints pyodm calls (NodeODM's REST API: /info,
 /task/new/init, /task/new/upload/<uuid>, /task/new/commit/<uuid>, /task/<uuid>/info,
-/task/<uuid>/download/all.zip, /task/cancel), answering with a prepared OpenSfM reconstruction instead
-of running OpenDroneMap. It records what it received, so tests can check the upload."""
+/task/<uuid>/download/all.zip, /task/cancel, /task/remove), answering with a prepared OpenSfM
+reconstruction instead of running OpenDroneMap. Like NodeODM, it takes the task id a client proposes
+(header ``set-uuid``) and refuses to commit an upload without images. It records what it received, so
+tests can check the upload; ``upload_delay_s`` makes each image's upload take that long."""
 from __future__ import annotations
 
 import io
 import json
 import re
 import threading
+import time
 import uuid as uuidlib
 import zipfile
 from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
+from urllib.parse import parse_qs
 
 QUEUED, RUNNING, FAILED, COMPLETED, CANCELED = 10, 20, 30, 40, 50
 
 
 class NodeOdmStub:
-    def __init__(self, archive_files: dict, polls_until_done: int = 2, fail: bool = False):
+    def __init__(self, archive_files: dict, polls_until_done: int = 2, fail: bool = False,
+                 upload_delay_s: float = 0.0):
         self.archive_files = archive_files  # path inside all.zip -> bytes
         self.polls_until_done = polls_until_done
         self.fail = fail
+        self.upload_delay_s = upload_delay_s
         self.tasks: dict[str, dict] = {}
+        self.cancelled: list[str] = []
+        self.removed: list[str] = []
+        self.downloads = 0
         self.uploaded: list[str] = []
         self.init_fields = b""
         stub = self
@@ -57,6 +66,7 @@ class NodeOdmStub:
                                        "progress": 100 if task["code"] == COMPLETED else 50})
                 m = re.fullmatch(r"/task/([\w-]+)/download/all.zip", path)
                 if m and m.group(1) in stub.tasks:
+                    stub.downloads += 1
                     buffer = io.BytesIO()
                     with zipfile.ZipFile(buffer, "w") as archive:
                         for name, data in stub.archive_files.items():
@@ -75,20 +85,34 @@ class NodeOdmStub:
                 body = self._body()
                 if path == "/task/new/init":
                     stub.init_fields = body
-                    task_id = str(uuidlib.uuid4())
-                    stub.tasks[task_id] = {"code": QUEUED, "polls": 0}
+                    task_id = self.headers.get("set-uuid") or str(uuidlib.uuid4())
+                    stub.tasks[task_id] = {"code": None, "polls": 0, "images": 0}
                     return self._json({"uuid": task_id})
                 m = re.fullmatch(r"/task/new/upload/([\w-]+)", path)
                 if m:
-                    stub.uploaded += re.findall(rb'filename="([^"]+)"', body)
+                    time.sleep(stub.upload_delay_s)
+                    names = re.findall(rb'filename="([^"]+)"', body)
+                    stub.uploaded += names
+                    stub.tasks[m.group(1)]["images"] += len(names)
                     return self._json({"success": True})
                 m = re.fullmatch(r"/task/new/commit/([\w-]+)", path)
                 if m:
-                    stub.tasks[m.group(1)]["code"] = RUNNING
+                    task = stub.tasks[m.group(1)]
+                    if not task["images"]:
+                        del stub.tasks[m.group(1)]
+                        return self._json({"error": "Need at least 1 file."})
+                    task["code"] = RUNNING
                     return self._json({"uuid": m.group(1)})
-                if path == "/task/cancel":
-                    for task in stub.tasks.values():
-                        task["code"] = CANCELED
+                if path in ("/task/cancel", "/task/remove"):
+                    task_id = parse_qs(body.decode()).get("uuid", [""])[0]
+                    if stub.tasks.get(task_id, {}).get("code") is None:
+                        return self._json({"error": "Invalid uuid"})
+                    if path == "/task/cancel":
+                        stub.tasks[task_id]["code"] = CANCELED
+                        stub.cancelled.append(task_id)
+                    else:
+                        stub.removed.append(task_id)
+                        del stub.tasks[task_id]
                     return self._json({"success": True})
                 return self._json({"error": f"no route {path}"}, 404)
 

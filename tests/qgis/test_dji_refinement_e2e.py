@@ -6,8 +6,16 @@ three lines, 80 % forward and 70 % side overlap; the metadata's heading, tilt an
 → importdjiimages → writelabels (metadata: tens of pixels off) → refineposes → writelabels (refined:
 median ≤ 1 px, 95 % ≤ 3 px). Geotags are exact (RTK_SIGMA_M 0, fixed solutions only), so only the
 poses move the labels.
+
+Real frames: the six Brighton Beach DJI Phantom 3 images (960 px copies in tests/data; no DewarpData, so
+the camera is only nominal): all registered, sub-pixel, the focal length fixed by the flying height (or
+by surveyed geotag heights), the attitude fields of the refined nadir frames not flipped.
 """
 from __future__ import annotations
+
+import json
+import shutil
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -24,7 +32,6 @@ def summary(errors) -> str:
 @pytest.mark.slow
 @pytest.mark.timeout(3600)
 def test_refined_poses_bring_dji_labels_onto_the_rendered_holes(birdseye_provider, tmp_path):
-    pytest.importorskip("pycolmap")
     folder = tmp_path / "dji"
     result = simulate(folder, **E2E_FLIGHT)
     assert result["FRAME_COUNT"] >= 45
@@ -43,3 +50,74 @@ def test_refined_poses_bring_dji_labels_onto_the_rendered_holes(birdseye_provide
     print(f"labels from the refined poses vs rendered holes: {summary(after)}")
     assert len(after) >= 0.9 * len(metadata)
     assert np.median(after) <= 1.0 and np.quantile(after, 0.95) <= 3.0
+
+
+BRIGHTON = Path(__file__).resolve().parents[1] / "data" / "brighton_beach_960"
+
+
+def flat_geotags(lat, lon, height):
+    from qgis.core import QgsFeature, QgsGeometry, QgsPoint, QgsVectorLayer
+
+    layer = QgsVectorLayer("PointZ?crs=EPSG:4326", "geotags", "memory")
+    features = []
+    for y, x in zip(lat, lon):
+        feature = QgsFeature(layer.fields())
+        feature.setGeometry(QgsGeometry(QgsPoint(float(x), float(y), float(height))))
+        features.append(feature)
+    layer.dataProvider().addFeatures(features)
+    return layer
+
+
+@pytest.mark.timeout(900)
+def test_real_dji_frames_with_a_nominal_camera_all_register_below_a_pixel(birdseye_provider, tmp_path):
+    images = tmp_path / "images"
+    shutil.copytree(BRIGHTON, images, ignore=shutil.ignore_patterns("*.md", "LICENSE"))
+    frames = run("importdjiimages", {"IMAGES": str(images), "OUTPUT": "TEMPORARY_OUTPUT"})["OUTPUT"]
+    before = list(frames.getFeatures())
+    assert all("approx_intrinsics" in f["flags"] for f in before)
+    nominal = json.loads(before[0]["camera"])["fx"]
+    result = run("refineposes", {"FRAMES": frames, "OUTPUT": "TEMPORARY_OUTPUT",
+                                 "OUTPUT_REPORT": str(tmp_path / "report.html")})
+    rows = list(result["OUTPUT"].getFeatures())
+    assert result["REGISTERED_COUNT"] == len(rows) == 6
+    rms = [f["reprojection_rms_px"] for f in rows]
+    print(f"Brighton, nominal camera: 6/6 registered, mean reprojection {np.mean(rms):.3f} px")
+    assert np.mean(rms) <= 1.0
+    focal = json.loads(rows[0]["camera"])["fx"]
+    report = (tmp_path / "report.html").read_text(encoding="utf-8")
+    assert "fixed so that the block" in report and f"{focal:.1f} px fixed" in report
+    assert abs(focal / nominal - 1.0) > 0.01  # the EXIF focal length is not the camera's
+    # Nadir gimbals, refined a few degrees off the vertical: heading stays in yaw, roll stays small.
+    for old, new in zip(before, rows):
+        assert abs(new["roll_deg"]) < 15 and abs((new["yaw_deg"] - old["yaw_deg"] + 180) % 360 - 180) < 15
+
+    # Surveyed ground 2 m below the frames' own: the camera-to-ground distance grows by 2 m, the focal length
+    # by the same factor.
+    ground = before[0]["ground_h_m"]
+    depth = np.median([f["height_m"] for f in before]) - ground
+    geotags = flat_geotags([f["lat"] for f in before], [f["lon"] for f in before], ground - 2.0)
+    again = run("refineposes", {"FRAMES": frames, "GEOTAGS": geotags, "OUTPUT": "TEMPORARY_OUTPUT"})["OUTPUT"]
+    lower = json.loads(next(again.getFeatures())["camera"])["fx"]
+    assert lower / focal == pytest.approx((depth + 2.0) / depth, rel=0.01)
+
+
+@pytest.mark.timeout(900)
+def test_real_frames_with_exif_only_are_imported_and_all_register_below_a_pixel(birdseye_provider, tmp_path):
+    """The same real frames with their XMP stripped (what most other drones and JPEG-rewriting tools leave):
+    placed from EXIF GPS, a nominal camera and a heading along the track, then refined."""
+    from strip_xmp import strip_xmp
+
+    images = tmp_path / "images"
+    images.mkdir()
+    for path in sorted(BRIGHTON.glob("*.JPG")):
+        strip_xmp(path, images / path.name)
+    frames = run("importdjiimages", {"IMAGES": str(images), "FLIGHT_HEIGHT_M": 40.0,
+                                     "OUTPUT": "TEMPORARY_OUTPUT"})["OUTPUT"]
+    before = list(frames.getFeatures())
+    assert len(before) == 6
+    assert all({"approx_intrinsics", "attitude_from_track"} <= set(f["flags"].split(",")) for f in before)
+    result = run("refineposes", {"FRAMES": frames, "OUTPUT": "TEMPORARY_OUTPUT"})
+    rows = list(result["OUTPUT"].getFeatures())
+    rms = [f["reprojection_rms_px"] for f in rows]
+    print(f"Brighton, EXIF only: {result['REGISTERED_COUNT']}/6 registered, mean reprojection {np.mean(rms):.3f} px")
+    assert result["REGISTERED_COUNT"] == 6 and np.mean(rms) <= 1.0

@@ -25,9 +25,9 @@ FRAME_FIELDS = [
     ("qx", "double", "attitude quaternion x"),
     ("qy", "double", "attitude quaternion y"),
     ("qz", "double", "attitude quaternion z"),
-    ("roll_deg", "double", "roll (deg, ZYX)"),
-    ("pitch_deg", "double", "pitch (deg, ZYX)"),
-    ("yaw_deg", "double", "yaw from true north (deg, ZYX)"),
+    ("roll_deg", "double", "roll (deg, ZYX; yaw-roll-pitch when looking down)"),
+    ("pitch_deg", "double", "pitch (deg, ZYX; yaw-roll-pitch when looking down)"),
+    ("yaw_deg", "double", "yaw from true north (deg, ZYX; yaw-roll-pitch when looking down)"),
     ("ground_h_m", "double", "ellipsoidal height of the level ground under the frame (m)"),
     ("depth_m", "double", "camera height above that ground (m)"),
     ("rtk_status", "int", "3 fixed, 2 float, 1 none"),
@@ -40,8 +40,20 @@ FRAME_FIELD_NAMES = [f[0] for f in FRAME_FIELDS]
 
 
 def euler_degrees(quat) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """(roll, pitch, yaw) in degrees of body → NED quaternions (N, 4)."""
-    roll, pitch, yaw = rotmat_to_euler_zyx(quat_to_rotmat(quat))
+    """(roll, pitch, yaw) in degrees of body → NED quaternions (N, 4), the frame layer's attitude fields.
+
+    ZYX (yaw, pitch, roll), except for a body looking more than 45° down (a gimbal camera): there the
+    gimbal's own order, yaw, roll, pitch (``Rz(yaw)·Rx(roll)·Ry(pitch)``, DJI's motor order; the two agree
+    whenever roll is 0). ZYX is singular at pitch −90°: a nadir camera refined half a degree off the vertical
+    would read yaw 4°, roll 40° for a heading of 44°, the split set by the direction of that half degree.
+    The gimbal order keeps the heading in yaw and is singular only at roll ±90°.
+    """
+    r = quat_to_rotmat(quat)
+    roll, pitch, yaw = rotmat_to_euler_zyx(r)
+    down = r[..., 2, 0] > np.sqrt(0.5)
+    roll = np.where(down, np.arcsin(np.clip(r[..., 2, 1], -1.0, 1.0)), roll)
+    pitch = np.where(down, np.arctan2(-r[..., 2, 0], r[..., 2, 2]), pitch)
+    yaw = np.where(down, np.arctan2(-r[..., 0, 1], r[..., 1, 1]), yaw)
     return np.degrees(roll), np.degrees(pitch), np.degrees(yaw) % 360.0
 
 
@@ -66,8 +78,8 @@ def poses_from_records(records, source: str = "frame layer") -> list[tuple[Frame
     missing = [n for n in ("frame_id", "lat", "lon", "height_m", "qw", "qx", "qy", "qz", "ground_h_m",
                            "camera") if n not in records[0]]
     if missing:
-        raise InputError(f"is not a BirdsEye frame layer: missing field(s) {', '.join(missing)} "
-                         "(make it with Import flight log or Import DJI images)", source=source)
+        raise InputError(f"is not a BirdsEye frame layer: missing field(s) {', '.join(missing)} (make it with "
+                         "Import flight log, Import drone images or Import camera solution)", source=source)
     groups: dict[str, list[int]] = {}
     for i, rec in enumerate(records):
         cam = rec["camera"]

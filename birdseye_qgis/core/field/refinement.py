@@ -11,11 +11,13 @@ fraction of a pixel, but only up to a similarity transform. So (docs/design.md#r
    calibration file, an earlier solution): a flat nadir block cannot separate focal length from flying
    height, and a wrong focal with GNSS-fixed camera heights scales every label. ``refine_intrinsics``
    lets the block estimate focal length and distortion where relief, oblique views or ground control
-   determine them;
-4. a weighted similarity (1/σ² of each frame's GNSS accuracy) from the reconstruction onto the frames'
-   metadata camera centres; when those lie on one line, the metadata attitudes fix the rotation about
-   it. Frames whose position disagrees with the block by more than :data:`OUTLIER_FACTOR` times the
-   median residual (and more than 5 σ) are left out of the fit and reported.
+   determine them. A camera that is only nominal (flag ``approx_intrinsics``: EXIF focal length, no
+   calibration) is estimated, its focal length fixed by the flying height (:func:`_fix_focal`);
+4. the robust weighted similarity (1/σ² of each frame's GNSS accuracy; :func:`.fit_similarity_robust`)
+   from the reconstruction onto the frames' metadata camera centres; when those lie on one line, the
+   metadata attitudes fix the rotation about it. Frames whose position disagrees with the block by more
+   than :data:`OUTLIER_FACTOR` times the median residual (and more than 5 σ) are left out of the fit,
+   which is redone until that set settles, and reported.
 
 Frames the mapper cannot register keep their metadata pose; nothing is replaced silently.
 """
@@ -33,16 +35,25 @@ import numpy as np
 
 from ..errors import Cancelled, InputError
 from ..geometry.camera import CameraModel
-from ..geometry.similarity import Similarity, fit_similarity, is_collinear
+from ..geometry.similarity import OUTLIER_FACTOR, Similarity, fit_similarity_robust
 from .pose_log import RTK_FIXED, RTK_FLOAT, RTK_NONE
 from .solutions.colmap import colmap_camera
 
 #: GNSS standard deviation (m) assumed per rtk_status when the frame states none.
 SIGMA_BY_RTK_STATUS = {RTK_FIXED: 0.03, RTK_FLOAT: 0.5, RTK_NONE: 3.0}
-#: A frame whose aligned position is this many times the median residual away (and > 5 σ) is an outlier.
-OUTLIER_FACTOR = 5.0
 #: Tie points a frame must observe for its ground height to come from them.
 MIN_GROUND_POINTS = 20
+#: Frames (with a surveyed ground and tie points under them) needed to fix a focal length by the flying height.
+MIN_FOCAL_FRAMES = 2
+#: Below this camera-to-ground distance (m) a GNSS height error of decimetres is too large a share of it.
+MIN_FOCAL_DEPTH_M = 3.0
+#: Passes of fixing a focal length by the flying height, and the depth ratio off 1 that ends them.
+FOCAL_PASSES, FOCAL_TOLERANCE = 4, 0.002
+#: How the bundle adjustment treats the intrinsics: fixed, refined by the block alone, or nominal (estimated,
+#: then the focal length fixed by the flying height or kept nominal).
+FIXED, REFINED, NOMINAL = "fixed", "refined", "nominal"
+#: Flag of a frame whose camera is nominal (EXIF focal length, no calibration).
+APPROX_INTRINSICS_FLAG = "approx_intrinsics"
 
 
 @dataclass
@@ -57,13 +68,30 @@ class RefineOptions:
 
 @dataclass
 class FrameInput:
-    """One frame as the metadata has it: camera centre and camera → local rotation, GNSS σ (m)."""
+    """One frame as the metadata has it: camera centre and camera → local rotation, GNSS σ (m); the
+    surveyed ground height under it (local z, NaN if unknown); whether its camera is only nominal."""
 
     image: Path | None
     camera: CameraModel
     centre: np.ndarray
     r_local_cam: np.ndarray
     sigma_m: float
+    ground_z: float = math.nan
+    approx_intrinsics: bool = False
+
+
+@dataclass
+class FocalFix:
+    """A nominal camera's focal length (px): nominal, as the bundle adjustment left it, as used in the end;
+    the block's and the GNSS camera-to-ground distances (m, medians) it was fixed by, or why it was not."""
+
+    nominal_px: float
+    adjusted_px: float
+    final_px: float
+    determined: bool
+    block_depth_m: float = math.nan
+    gnss_depth_m: float = math.nan
+    reason: str = ""
 
 
 @dataclass
@@ -90,6 +118,9 @@ class Refinement:
     alignment_rms_m: float = math.nan
     collinear: bool = False
     intrinsics: str = ""
+    focal: FocalFix | None = None
+    #: After alignment: the block's camera-to-ground distance over GNSS height minus ground height (median).
+    depth_ratio: float = math.nan
     notes: list = field(default_factory=list)
     seconds: dict = field(default_factory=dict)
 
@@ -176,12 +207,18 @@ def refine_poses(frames: list[FrameInput], workdir, options: RefineOptions | Non
     extraction.max_image_size = int(options.match_size_px)
     extraction.num_threads = options.num_threads
     extraction.sift.max_num_features = int(options.max_features)
+    mode = REFINED if options.refine_intrinsics else NOMINAL if any(frames[k].approx_intrinsics for k in usable) \
+        else FIXED
     by_camera: dict[str, list[int]] = {}
     for k in usable:
         by_camera.setdefault(frames[k].camera.to_json(), []).append(k)
     with _CancelWatch(token, is_canceled):
         for members in by_camera.values():
-            model, params = colmap_camera(frames[members[0]].camera)
+            camera = frames[members[0]].camera
+            # SIFT's first octave −1 doubles the image first: on a copy downscaled for speed it only chases
+            # the detail the downscaling removed, at 4× the work (Brighton: 25 s → 7 s, 0.55 → 0.58 px).
+            extraction.sift.first_octave = 0 if max(camera.width, camera.height) > options.match_size_px else -1
+            model, params = _mapping_camera(camera, mode)
             reader = pycolmap.ImageReaderOptions()
             reader.camera_model = model
             reader.camera_params = ",".join(repr(float(p)) for p in params)
@@ -212,8 +249,8 @@ def refine_poses(frames: list[FrameInput], workdir, options: RefineOptions | Non
     start = time.perf_counter()
     mapping = pycolmap.IncrementalPipelineOptions()
     mapping.num_threads = options.num_threads
-    mapping.ba_refine_focal_length = options.refine_intrinsics
-    mapping.ba_refine_extra_params = options.refine_intrinsics
+    mapping.ba_refine_focal_length = mode != FIXED
+    mapping.ba_refine_extra_params = mode != FIXED
     mapping.ba_refine_principal_point = False
     registered = [0]
 
@@ -228,7 +265,7 @@ def refine_poses(frames: list[FrameInput], workdir, options: RefineOptions | Non
     seconds["mapping"] = time.perf_counter() - start
     refinement = Refinement(result, seconds=seconds, intrinsics=(
         "refined by the bundle adjustment (focal length and distortion; principal point fixed)"
-        if options.refine_intrinsics else
+        if mode == REFINED else
         "fixed to the frame layer's calibration: a flat nadir block cannot separate focal length from flying "
         "height, and a wrong focal length with GNSS-fixed camera heights would scale every label"))
     if not models:
@@ -240,13 +277,171 @@ def refine_poses(frames: list[FrameInput], workdir, options: RefineOptions | Non
         refinement.notes.append(f"the images formed {len(models)} separate blocks; the largest "
                                 f"({largest.num_reg_images()} images) was kept, the others do not overlap it")
     _collect(largest, frames, names, result)
+    if mode == NOMINAL:
+        start = time.perf_counter()
+        with _CancelWatch(token, is_canceled):
+            refinement.focal = _fix_focal(largest, frames, names, result, token)
+        _collect(largest, frames, names, result)
+        refinement.intrinsics = _focal_text(refinement.focal)
+        if not refinement.focal.determined:
+            refinement.notes.append(refinement.intrinsics)
+        seconds["focal"] = time.perf_counter() - start
     for k in usable:
         if not result[k].registered and not result[k].reason:
             result[k].reason = ("not registered: too few matches with the block (blurred, featureless or "
                                 "not overlapping)")
     align_to_gnss(refinement, frames)
+    if mode != FIXED:
+        done = [k for k, f in enumerate(result) if f.registered]
+        refinement.depth_ratio = _depth_ratio([result[k].centre[2] for k in done],
+                                              [result[k].ground_z_local for k in done], [frames[k] for k in done])
     report(1.0)
     return refinement
+
+
+def _depth_ratio(camera_z, ground_z, frames) -> float:
+    """Median over frames of the block's camera-to-ground distance (aligned camera height minus the median
+    height of its tie points) over the GNSS one (GNSS height minus the surveyed ground); NaN if fewer than
+    :data:`MIN_FOCAL_FRAMES` frames have both."""
+    ratios = [(c - g) / (f.centre[2] - f.ground_z) for c, g, f in zip(camera_z, ground_z, frames)
+              if math.isfinite(g) and math.isfinite(f.ground_z) and f.centre[2] - f.ground_z >= MIN_FOCAL_DEPTH_M]
+    return float(np.median(ratios)) if len(ratios) >= MIN_FOCAL_FRAMES else math.nan
+
+
+def _fix_focal(rec, frames, names, result, token) -> FocalFix:
+    """The focal length of a nominal camera, from the flying height; the reconstruction re-adjusted to it.
+
+    A flat nadir block images the same if focal length and every camera-to-ground distance grow by one
+    factor k, while the horizontal baselines stay: the bundle adjustment cannot tell, and the similarity
+    onto the GNSS positions takes its scale from those baselines. So, aligned, the block's camera-to-ground
+    distance is k times the true one (GNSS height minus surveyed ground height) and the focal length is k
+    times too long: f = f_adjusted / k. The block is then stretched along the vertical by 1/k (the
+    image-preserving change for nadir frames; distortion coefficients rescaled for the normalised
+    coordinates, which grow by k) and bundle-adjusted with the focal length fixed, and again while k
+    stays off 1 by more than :data:`FOCAL_TOLERANCE` (tilts and distortion make one step inexact). Without
+    a surveyed ground under enough frames k is unknown: the focal length goes back to the nominal one.
+    """
+    index_of = {n: k for k, n in enumerate(names) if n is not None}
+    camera_of = {index_of[image.name]: image.camera_id for image in rec.images.values()
+                 if image.has_pose and image.name in index_of}
+    done = sorted(camera_of)
+    nominal = {camera_of[k]: frames[k].camera.fx for k in done}
+    adjusted = {cid: float(rec.cameras[cid].params[0]) for cid in nominal}
+    first = next(iter(nominal))
+    fix = None
+    for _ in range(FOCAL_PASSES):
+        ratio, block, gnss, sim = _provisional_depths(frames, result, done)
+        if fix is None:
+            fix = FocalFix(nominal[first], adjusted[first], math.nan, math.isfinite(ratio), block, gnss)
+        if fix.determined:
+            factor = {cid: ratio for cid in nominal}
+        else:
+            factor = {cid: adjusted[cid] / nominal[cid] for cid in nominal}
+        if max(abs(f - 1.0) for f in factor.values()) <= FOCAL_TOLERANCE:
+            break
+        _readjust(rec, factor, sim, np.mean([result[k].centre for k in done], axis=0),
+                  float(np.median([factor[camera_of[k]] for k in done])), token)
+        _collect(rec, frames, names, result)
+        if not fix.determined:
+            break
+    fix.final_px = float(rec.cameras[first].params[0])
+    if not fix.determined:
+        fix.reason = (f"fewer than {MIN_FOCAL_FRAMES} registered frames have a surveyed ground height (the frames' "
+                      f"ground heights, or geotags) at least {MIN_FOCAL_DEPTH_M:g} m below the camera and "
+                      f"{MIN_GROUND_POINTS} tie points under them")
+    return fix
+
+
+def _provisional_depths(frames, result, done):
+    """The depth ratio (:func:`_depth_ratio`) of the block as it stands, the median block and GNSS
+    camera-to-ground distances (m), and the similarity onto the GNSS positions it was measured with."""
+    if len(done) < 2:
+        return math.nan, math.nan, math.nan, None
+    fit = fit_similarity_robust(np.array([result[k].centre for k in done]), np.array([frames[k].centre for k in done]),
+                                np.array([frames[k].sigma_m for k in done]),
+                                rotation_pairs=(np.array([result[k].r_local_cam for k in done]),
+                                                np.array([frames[k].r_local_cam for k in done])))
+    sim = fit.similarity
+    use = [k for j, k in enumerate(done) if fit.inliers[j] and len(result[k].tie_points) >= MIN_GROUND_POINTS
+           and math.isfinite(frames[k].ground_z)]
+    camera_z = np.array([sim.apply(result[k].centre)[2] for k in use])
+    ground_z = np.array([np.median(sim.apply(result[k].tie_points)[:, 2]) for k in use])
+    ratio = _depth_ratio(camera_z, ground_z, [frames[k] for k in use])
+    if not math.isfinite(ratio):
+        return ratio, math.nan, math.nan, sim
+    return (ratio, float(np.median(camera_z - ground_z)),
+            float(np.median([frames[k].centre[2] - frames[k].ground_z for k in use])), sim)
+
+
+def _readjust(rec, factor: dict, sim, origin, stretch: float, token) -> None:
+    """Depths divided by ``factor[camera_id]``: cameras rescaled, the block stretched, bundle-adjusted."""
+    import pycolmap
+
+    if sim is not None:
+        _stretch_vertically(rec, sim.rotation.T @ np.array([0.0, 0.0, 1.0]), origin, 1.0 / stretch)
+    for cid, k in factor.items():
+        camera = rec.cameras[cid]
+        camera.params = _rescaled_params(camera.model.name, np.asarray(camera.params, dtype=float), k)
+    adjust = pycolmap.BundleAdjustmentOptions()
+    adjust.refine_focal_length = False
+    adjust.refine_principal_point = False
+    adjust.refine_extra_params = True
+    pycolmap.bundle_adjustment(rec, adjust, cancellation_token=token)
+
+
+def _stretch_vertically(rec, up: np.ndarray, origin: np.ndarray, factor: float) -> None:
+    """Scale every height above ``origin`` along ``up`` (unit, SfM frame) by ``factor``: points and camera
+    centres move, camera orientations stay."""
+    import pycolmap
+
+    def moved(x):
+        return x + (factor - 1.0) * float(np.dot(x - origin, up)) * up
+
+    for point in rec.points3D.values():
+        point.xyz = moved(np.asarray(point.xyz, dtype=float))
+    for frame in rec.frames.values():
+        if not frame.has_pose:
+            continue
+        pose = frame.rig_from_world
+        r = pose.rotation.matrix()
+        centre = moved(-r.T @ np.asarray(pose.translation, dtype=float))
+        frame.rig_from_world = pycolmap.Rigid3d(pose.rotation, -r @ centre)
+
+
+def _rescaled_params(model: str, params: np.ndarray, k: float) -> np.ndarray:
+    """COLMAP camera parameters for depths divided by ``k``: focal length / k; the normalised coordinates
+    grow by k, so a term of order n in them is divided by kⁿ⁻¹ (an equidistant fisheye's angles do not
+    scale that way: the bundle adjustment refines its coefficients from where they were)."""
+    out = params.copy()
+    if model == "RADIAL":
+        out[0] /= k
+        out[3:5] /= np.array([k ** 2, k ** 4])
+    else:
+        out[:2] /= k
+    if model in ("OPENCV", "FULL_OPENCV"):
+        out[4:8] /= np.array([k ** 2, k ** 4, k, k])
+        if model == "FULL_OPENCV":
+            out[8] /= k ** 6
+    return out
+
+
+def _focal_text(fix: FocalFix) -> str:
+    if fix.determined:
+        return (f"estimated (the camera is only nominal): distortion by the bundle adjustment; the focal length, "
+                f"which a flat block cannot separate from the flying height, fixed so that the block's "
+                f"camera-to-ground distance ({fix.block_depth_m:.2f} m before) matches GNSS height minus ground "
+                f"height ({fix.gnss_depth_m:.2f} m): {fix.nominal_px:.1f} px nominal, {fix.adjusted_px:.1f} px "
+                f"from the bundle adjustment, {fix.final_px:.1f} px fixed")
+    return (f"the camera is only nominal and this block cannot determine its focal length ({fix.reason}): the "
+            f"nominal {fix.nominal_px:.1f} px was kept, distortion estimated by the bundle adjustment")
+
+
+def _mapping_camera(camera: CameraModel, mode: str) -> tuple[str, list]:
+    """COLMAP camera model and parameters to map with. A nominal camera maps as RADIAL (one focal length,
+    k1 k2): a free aspect ratio and tangential terms would only give a weak block more ways to bend."""
+    if mode == NOMINAL and not camera.fisheye and not any(camera.dist[2:]) and not camera.k4:
+        return "RADIAL", [camera.fx, camera.cx + 0.5, camera.cy + 0.5, *camera.dist[:2]]
+    return colmap_camera(camera)
 
 
 def _write_position_priors(database: Path, centres: dict) -> None:
@@ -316,17 +511,9 @@ def align_to_gnss(refinement: Refinement, frames) -> None:
     sigma = np.array([frames[k].sigma_m for k in done])
     pairs = (np.array([refinement.frames[k].r_local_cam for k in done]),
              np.array([frames[k].r_local_cam for k in done]))
-    refinement.collinear = is_collinear(source)
-    use = np.ones(len(done), dtype=bool)
-    for _ in range(2):
-        sim = fit_similarity(source[use], target[use], 1.0 / sigma[use] ** 2,
-                             rotation_pairs=(pairs[0][use], pairs[1][use]))
-        residual = np.linalg.norm(sim.apply(source) - target, axis=1)
-        limit = np.maximum(OUTLIER_FACTOR * np.median(residual[use]), 5.0 * sigma)
-        new_use = residual <= limit
-        if new_use.sum() < 3 or np.array_equal(new_use, use):
-            break
-        use = new_use
+    fit = fit_similarity_robust(source, target, sigma, rotation_pairs=pairs)
+    refinement.collinear = fit.line
+    sim, residual, use = fit.similarity, fit.residual, fit.inliers
     refinement.similarity = sim
     refinement.alignment_rms_m = float(np.sqrt(np.mean(residual[use] ** 2)))
     if (~use).any():
@@ -370,9 +557,14 @@ def gnss_sigma_m(frames) -> np.ndarray:
     return np.where(np.isfinite(stated) & (stated > 0), np.maximum(stated, 0.01), by_status)
 
 
-def refine_frames(frames, workdir, options: RefineOptions | None = None, progress=None, is_canceled=None):
+def refine_frames(frames, workdir, options: RefineOptions | None = None, progress=None, is_canceled=None,
+                  geotag_heights=None):
     """Refined :class:`.frames.Frames` (registered frames moved, flagged ``refined``; the others unchanged,
-    flagged ``not_refined``), the :class:`Refinement`, and per-frame :data:`REFINE_FIELDS` values."""
+    flagged ``not_refined``), the :class:`Refinement`, and per-frame :data:`REFINE_FIELDS` values.
+
+    The surveyed ground that fixes a nominal camera's focal length: a level plane at the median of
+    ``geotag_heights`` (ellipsoidal, m) when given, else each frame's own ground height.
+    """
     from dataclasses import replace
 
     from ..geometry.geodesy import LocalFrame
@@ -389,8 +581,15 @@ def refine_frames(frames, workdir, options: RefineOptions | None = None, progres
                                             frames.quat[idx], frames.ground_h[idx], frames.cameras[idx[0]]), local)
         centres[idx], rotations[idx] = geometry.C, geometry.R_local_cam
     sigma = gnss_sigma_m(frames)
+    surveyed = None if geotag_heights is None else np.asarray(geotag_heights, dtype=float)
+    if surveyed is not None and np.isfinite(surveyed).any():
+        ground_h = np.full(len(frames), float(np.nanmedian(surveyed)))
+    else:
+        ground_h = frames.ground_h
+    ground_z = local.from_geodetic(frames.lat, frames.lon, ground_h)[:, 2]
     inputs = [FrameInput(Path(frames.image[i]) if frames.image[i] else None, frames.cameras[i], centres[i],
-                         rotations[i], float(sigma[i])) for i in range(len(frames))]
+                         rotations[i], float(sigma[i]), float(ground_z[i]), APPROX_INTRINSICS_FLAG in frames.flags[i])
+              for i in range(len(frames))]
     refinement = refine_poses(inputs, workdir, options, progress, is_canceled)
     out = replace(frames, lat=frames.lat.copy(), lon=frames.lon.copy(), height=frames.height.copy(),
                   quat=frames.quat.copy(), ground_h=frames.ground_h.copy(), cameras=list(frames.cameras),
@@ -441,11 +640,16 @@ def refinement_report_html(refinement: Refinement, frames, values, source: str =
             + f". {refinement.images_per_minute:.1f} images per minute "
             + "(" + ", ".join(f"{k} {v:.1f} s" for k, v in refinement.seconds.items()) + ").</p>",
             f"<p>Intrinsics: {html.escape(refinement.intrinsics)}.</p>"]
+    if math.isfinite(refinement.depth_ratio):
+        body.append(f"<p>Check of the focal length against the flying height: the block's camera-to-ground distance "
+                    f"is {refinement.depth_ratio:.4f} × GNSS height minus ground height (median over frames; 1 when "
+                    "the two agree, a focal length off by the same factor otherwise).</p>")
     if sim is not None:
         body.append(f"<p>Alignment to the frames' GNSS positions (weighted by their accuracy): scale "
                     f"{sim.scale:.6f}, residual RMS {refinement.alignment_rms_m:.3f} m"
-                    + ("; the camera centres lie on one line, so the metadata attitudes fixed the rotation about "
-                       "it" if refinement.collinear else "") + ".</p>")
+                    + ("; the camera centres lie on one line (or stray from it by less than their GNSS accuracy "
+                       "resolves), so the metadata attitudes fixed the rotation about it" if refinement.collinear
+                       else "") + ".</p>")
     body += [f"<p class='note'>{html.escape(n)}</p>" for n in refinement.notes]
     rows = []
     for i, (r, v) in enumerate(zip(refinement.frames, values)):

@@ -96,12 +96,25 @@ def euler_zyx_to_rotmat(roll, pitch, yaw) -> np.ndarray:
     return r
 
 
+#: Below this cos(pitch) the attitude is in gimbal lock (pitch ±90°, a nadir gimbal): roll and yaw turn about
+#: the same axis, and the entries that would split them are rounding noise (float32 quaternions: ~1e-7).
+GIMBAL_LOCK_COS = 1e-6
+
+
 def rotmat_to_euler_zyx(r: np.ndarray):
-    """(roll, pitch, yaw) in radians from body → NED rotation matrices (..., 3, 3)."""
+    """(roll, pitch, yaw) in radians from body → NED rotation matrices (..., 3, 3).
+
+    At gimbal lock (|pitch| = 90° within :data:`GIMBAL_LOCK_COS`) the whole turn about the vertical is yaw
+    and roll is 0, as DJI writes a nadir gimbal: only yaw ± roll is defined there, and splitting it from
+    noise would turn a heading of 30° into, say, yaw 90°, roll 60°.
+    """
     r = np.asarray(r, dtype=float)
-    pitch = -np.arcsin(np.clip(r[..., 2, 0], -1.0, 1.0))
-    roll = np.arctan2(r[..., 2, 1], r[..., 2, 2])
-    yaw = np.arctan2(r[..., 1, 0], r[..., 0, 0])
+    cos_pitch = np.hypot(r[..., 0, 0], r[..., 1, 0])
+    pitch = np.arctan2(-r[..., 2, 0], cos_pitch)
+    locked = cos_pitch < GIMBAL_LOCK_COS
+    roll = np.where(locked, 0.0, np.arctan2(r[..., 2, 1], r[..., 2, 2]))
+    # Locked: R = Rz(yaw ± roll)·Ry(±90°), whose first and second rows give that angle as atan2(−r01, r11).
+    yaw = np.where(locked, np.arctan2(-r[..., 0, 1], r[..., 1, 1]), np.arctan2(r[..., 1, 0], r[..., 0, 0]))
     return roll, pitch, yaw
 
 

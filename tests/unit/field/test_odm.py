@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import sys
+import time
 from pathlib import Path
 
 import numpy as np
@@ -56,13 +57,57 @@ def test_a_failed_task_and_an_unreachable_node_say_so(flight, tmp_path):
         process_on_node(images, "http://127.0.0.1:9", tmp_path / "odm")
 
 
-def test_cancel_cancels_the_task_on_the_node(flight, tmp_path):
+def removed_within(node, seconds=10.0):
+    """The stub's removed tasks, once it has removed one (the upload's thread cleans up after the return)."""
+    deadline = time.monotonic() + seconds
+    while not node.removed and time.monotonic() < deadline:
+        time.sleep(0.05)
+    return node.removed
+
+
+def test_cancel_while_processing_cancels_and_removes_the_task_on_the_node(flight, tmp_path):
     images, archive = flight
     with NodeOdmStub(archive, polls_until_done=100) as node:
         with pytest.raises(Cancelled):
             process_on_node(images, node.url, tmp_path / "odm", progress=lambda f: None,
-                            is_canceled=lambda: any(t["polls"] >= 1 for t in node.tasks.values()))
-        assert [t["code"] for t in node.tasks.values()] == [50]
+                            is_canceled=lambda: any(t["polls"] >= 1 for t in list(node.tasks.values())))
+        assert len(node.cancelled) == 1 and node.removed == node.cancelled and not node.tasks
+
+
+def test_cancel_during_the_upload_returns_at_once_and_removes_the_task(flight, tmp_path):
+    """pyodm looks at its callback only between images; cancel must not wait for the images in flight,
+    and the half-uploaded task must not stay on the node."""
+    images, archive = flight
+    with NodeOdmStub(archive, upload_delay_s=1.5) as node:
+        start = time.monotonic()
+        with pytest.raises(Cancelled):
+            process_on_node(images, node.url, tmp_path / "odm", is_canceled=lambda: bool(node.tasks))
+        assert time.monotonic() - start < 1.0
+        assert len(removed_within(node)) == 1 and node.cancelled == node.removed
+        assert not node.tasks and node.downloads == 0
+
+
+def test_cancel_stops_sending_images(flight, tmp_path):
+    """More images than pyodm uploads at once: those not yet sent never are."""
+    _, archive = flight
+    many = tmp_path / "many"
+    many.mkdir()
+    for i in range(30):
+        (many / f"DJI_{i:04d}.JPG").write_bytes(b"\xff\xd8 " + bytes([i]))
+    with NodeOdmStub(archive, upload_delay_s=0.5) as node:
+        with pytest.raises(Cancelled):
+            process_on_node(many, node.url, tmp_path / "odm", is_canceled=lambda: bool(node.tasks))
+        assert len(removed_within(node)) == 1 and not node.tasks
+        assert len(node.uploaded) < 30
+
+
+def test_cancel_during_the_download_removes_the_task_and_leaves_no_archive(flight, tmp_path):
+    images, archive = flight
+    with NodeOdmStub(archive, polls_until_done=1) as node:
+        with pytest.raises(Cancelled):
+            process_on_node(images, node.url, tmp_path / "odm", is_canceled=lambda: node.downloads > 0)
+        assert node.downloads == 1 and len(node.removed) == 1 and not node.tasks
+    assert not list((tmp_path / "odm").rglob("*"))
 
 
 def test_options_parse_as_the_node_expects():

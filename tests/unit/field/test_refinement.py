@@ -1,5 +1,6 @@
-"""Pose refinement without QGIS: the alignment onto GNSS positions (synthetic, closed form) and the
-pycolmap run on real DJI frames (cancel, missing images)."""
+"""Pose refinement without QGIS: the alignment onto GNSS positions (synthetic, closed form), a nominal
+camera's focal length fixed by the flying height (a synthetic COLMAP model where the answer is known) and
+the pycolmap run on real DJI frames (cancel, missing images)."""
 from __future__ import annotations
 
 import math
@@ -149,3 +150,89 @@ def test_large_blocks_match_spatially_on_the_metadata_positions(tmp_path):
     finally:
         database.close()
     assert refinement.n_registered == 6
+
+
+F_TRUE, K1_TRUE, W, H = 1000.0, -0.05, 1200, 900
+NADIR = np.array([[1.0, 0.0, 0.0], [0.0, -1.0, 0.0], [0.0, 0.0, -1.0]]).T  # camera → ENU: x east, z down
+
+
+def quaternion_wxyz(r):
+    from scipy.spatial.transform import Rotation
+
+    x, y, z, w = Rotation.from_matrix(r).as_quat()
+    return w, x, y, z
+
+
+def ambiguous_block(folder, focal, depth_factor, seed=0):
+    """A flat nadir block (15 frames, 40 m up, ground ±0.5 m) as a bundle adjustment could leave it with a
+    nominal camera: the focal length ``focal`` and every height above the cameras' plane × ``depth_factor``
+    (the images barely change), in an SfM frame of its own. Observations from the true camera (f 1000 px).
+    Returns the true centres and rotations (local ENU)."""
+    rng = np.random.default_rng(seed)
+    gx, gy = np.meshgrid(np.arange(-30.0, 31.0, 15.0), [-20.0, 0.0, 20.0])
+    centres = np.column_stack([gx.ravel(), gy.ravel(), 40.0 + rng.normal(scale=0.2, size=gx.size)])
+    rotations = np.stack([so3_exp(rng.normal(scale=0.02, size=3)) @ NADIR for _ in centres])
+    ground = np.column_stack([rng.uniform(-55, 55, 3000), rng.uniform(-45, 45, 3000), rng.uniform(-0.5, 0.5, 3000)])
+    tracks = {p: [] for p in range(len(ground))}
+    points2d = []
+    for i, (c, r) in enumerate(zip(centres, rotations)):
+        cam = (ground - c) @ r
+        xn = cam[:, :2] / cam[:, 2:]
+        uv = F_TRUE * xn * (1 + K1_TRUE * np.sum(xn ** 2, axis=1))[:, None] + [W / 2, H / 2]
+        seen = np.flatnonzero((cam[:, 2] > 0) & (uv[:, 0] > 0) & (uv[:, 0] < W) & (uv[:, 1] > 0) & (uv[:, 1] < H))
+        points2d.append([(uv[p], p) for p in seen])
+        for j, p in enumerate(seen):
+            tracks[p].append((i + 1, j))
+    zc = centres[:, 2].mean()
+    stretch = np.array([1.0, 1.0, depth_factor])
+    sfm_rot, sfm_scale, sfm_t = so3_exp(np.array([0.4, -0.3, 2.0])), 0.25, np.array([3.0, -1.0, 7.0])
+
+    def to_sfm(x):
+        return sfm_scale * ((x - [0, 0, zc]) * stretch + [0, 0, zc]) @ sfm_rot.T + sfm_t
+
+    folder.mkdir(parents=True)
+    k1 = K1_TRUE * depth_factor ** 2
+    (folder / "cameras.txt").write_text(f"1 RADIAL {W} {H} {focal} {W / 2} {H / 2} {k1} 0.0\n")
+    lines = []
+    for i, (c, r) in enumerate(zip(centres, rotations)):
+        r_cw = (sfm_rot @ r).T
+        t = -r_cw @ to_sfm(c)
+        lines.append(" ".join(map(str, [i + 1, *quaternion_wxyz(r_cw), *t])) + f" 1 img{i:02d}.jpg")
+        lines.append(" ".join(f"{uv[0]} {uv[1]} {p + 1 if len(tracks[p]) >= 2 else -1}" for uv, p in points2d[i]))
+    (folder / "images.txt").write_text("\n".join(lines) + "\n")
+    xyz = to_sfm(ground)
+    (folder / "points3D.txt").write_text("".join(
+        f"{p + 1} {xyz[p][0]} {xyz[p][1]} {xyz[p][2]} 0 0 0 0.5 "
+        + " ".join(f"{i} {j}" for i, j in track) + "\n" for p, track in tracks.items() if len(track) >= 2))
+    return centres, rotations
+
+
+@pytest.mark.parametrize("surveyed", [True, False])
+def test_a_nominal_focal_length_is_fixed_by_the_flying_height(tmp_path, surveyed):
+    """The block left the focal length 15 % long and every depth 15 % deep; GNSS height minus the surveyed
+    ground (z = 0) brings both back: f within 0.3 % of the truth, the ground within 5 cm. Without a surveyed
+    ground the block cannot tell, and the nominal focal length (1100 px) is kept, said so."""
+    pycolmap = pytest.importorskip("pycolmap")
+    from birdseye.birdseye_qgis.core.field.refinement import _collect, _fix_focal
+
+    centres, rotations = ambiguous_block(tmp_path / "model", 1150.0, 1.15)
+    rec = pycolmap.Reconstruction(str(tmp_path / "model"))
+    nominal = CameraModel(W, H, 1100.0, 1100.0, W / 2 - 0.5, H / 2 - 0.5)
+    inputs = [FrameInput(None, nominal, c, r, 0.03, 0.0 if surveyed else math.nan, True)
+              for c, r in zip(centres, rotations)]
+    names = [f"img{i:02d}.jpg" for i in range(len(centres))]
+    result = [RefinedFrame(False) for _ in names]
+    _collect(rec, inputs, names, result)
+    fix = _fix_focal(rec, inputs, names, result, None)
+    assert fix.determined == surveyed and fix.adjusted_px == pytest.approx(1150.0)
+    refinement = Refinement(result)
+    align_to_gnss(refinement, inputs)
+    if surveyed:
+        assert fix.block_depth_m == pytest.approx(1.15 * fix.gnss_depth_m, rel=0.01)
+        assert fix.final_px == pytest.approx(F_TRUE, rel=0.003)
+        assert all(abs(f.ground_z_local) < 0.05 for f in refinement.frames)
+    else:
+        assert fix.final_px == 1100.0 and "surveyed ground height" in fix.reason
+        # Nominal focal 10 % long: the block's ground lies ~10 % too deep, as a nominal camera must leave it.
+        assert np.median([f.ground_z_local for f in refinement.frames]) == pytest.approx(-4.0, abs=0.5)
+    assert max(f.reprojection_rms_px for f in refinement.frames) < 0.1

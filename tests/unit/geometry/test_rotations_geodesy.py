@@ -99,3 +99,50 @@ def test_meridian_convergence_near_zone_edge_matches_closed_form():
     x, y = crs.from_geodetic(45.0, 11.9)
     lat, lon = crs.to_geodetic(x, y)
     assert (float(lat), float(lon)) == pytest.approx((45.0, 11.9), abs=1e-9)
+
+
+def test_quaternion_euler_quaternion_round_trips_including_nadir_gimbals():
+    rng = np.random.default_rng(7)
+    q = rng.normal(size=(500, 4))
+    nadir = rotmat_to_quat(euler_zyx_to_rotmat(rng.uniform(-np.pi, np.pi, 50), -np.pi / 2,
+                                               rng.uniform(-np.pi, np.pi, 50)))
+    up = rotmat_to_quat(euler_zyx_to_rotmat(0.3, np.pi / 2, 1.0))
+    q = np.vstack([q / np.linalg.norm(q, axis=1, keepdims=True), nadir, up[None],
+                   nadir.astype(np.float32).astype(float)])
+    roll, pitch, yaw = rotmat_to_euler_zyx(quat_to_rotmat(q))
+    back = rotmat_to_quat(euler_zyx_to_rotmat(roll, pitch, yaw))
+    np.testing.assert_allclose(np.abs(np.einsum("ni,ni->n", back, q / np.linalg.norm(q, axis=1, keepdims=True))),
+                               1.0, atol=1e-12)
+
+
+def test_a_nadir_frame_heading_30_degrees_reads_yaw_30_roll_0():
+    from birdseye.birdseye_qgis.core.field.frame_records import euler_degrees
+
+    q = rotmat_to_quat(euler_zyx_to_rotmat(0.0, np.radians(-90.0), np.radians(30.0)))
+    for quat in (q, q.astype(np.float32).astype(float)):  # float32: how many tools store attitudes
+        roll, pitch, yaw = (a[0] for a in euler_degrees(quat[None]))
+        assert (roll, pitch, yaw) == pytest.approx((0.0, -90.0, 30.0), abs=1e-5)
+    # Roll and yaw of a nadir gimbal turn about the same (vertical) axis: the sum is the heading.
+    q = rotmat_to_quat(euler_zyx_to_rotmat(np.radians(12.0), np.radians(-90.0), np.radians(30.0)))
+    assert [a[0] for a in euler_degrees(q[None])] == pytest.approx([0.0, -90.0, 42.0], abs=1e-9)
+
+
+def test_a_gimbal_refined_off_nadir_keeps_its_heading_in_yaw():
+    """Refined nadir frames tilt a few tenths of a degree either way; the frame layer's fields must keep the
+    heading in yaw and roll small, in the gimbal's order yaw–roll–pitch, and rebuild the quaternion."""
+    from birdseye.birdseye_qgis.core.field.frame_records import euler_degrees
+
+    rng = np.random.default_rng(3)
+    roll, pitch, yaw = rng.uniform(-5, 5, 60), rng.uniform(-96, -84, 60), rng.uniform(0, 360, 60)
+    pitch[:20] = -90.0 + rng.uniform(-0.5, 0.5, 20)
+    q = Rotation.from_euler("ZXY", np.column_stack([yaw, roll, pitch]), degrees=True).as_quat()[:, [3, 0, 1, 2]]
+    got = np.column_stack(euler_degrees(q))
+    np.testing.assert_allclose(got, np.column_stack([roll, pitch, yaw]), atol=1e-6)
+    # Half a degree off nadir, heading 44°: ZYX alone would split it into some yaw and a large roll.
+    q = Rotation.from_euler("ZXY", [44.0, 0.3, -90.4], degrees=True).as_quat()[[3, 0, 1, 2]]
+    zyx_roll = np.degrees(rotmat_to_euler_zyx(quat_to_rotmat(q))[0])
+    assert abs(zyx_roll) > 30
+    assert [a[0] for a in euler_degrees(q[None])] == pytest.approx([0.3, -90.4, 44.0], abs=1e-9)
+    # Level bodies (pose logs) keep aerospace ZYX.
+    q = rotmat_to_quat(euler_zyx_to_rotmat(*np.radians([3.0, -2.0, 120.0])))
+    assert [a[0] for a in euler_degrees(q[None])] == pytest.approx([3.0, -2.0, 120.0], abs=1e-9)
