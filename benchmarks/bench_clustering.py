@@ -61,7 +61,7 @@ def million_detections(seed=0, n=1_000_000):
 
 def bench_million():
     xy, frame, score = million_detections()
-    cluster_detections(xy[:20_000], frame[:20_000], score[:20_000])  # imports (scikit-learn) and caches
+    cluster_detections(xy[:20_000], frame[:20_000], score[:20_000])  # imports (scipy) and caches
     cpu0 = time.process_time()
     t0 = time.perf_counter()
     points = deduplicate(xy, 0.03)

@@ -1,18 +1,27 @@
 """The Python packages BirdsEye needs at run time: which are missing, and installing them with pip.
 
 QGIS runs its own Python (on Windows and macOS a copy shipped inside QGIS) with numpy, GDAL and often
-scipy and matplotlib, but without onnxruntime, OpenCV, scikit-learn and the rest of ``requirements.txt``.
-This module knows those packages — the pins come from the plugin's ``requirements.txt``, shipped in the
-zip, the versions the tests ran with; :data:`USES` says which algorithms need each — and installs the
-missing ones with QGIS's own interpreter::
+scipy and matplotlib, but without onnxruntime, OpenCV and the rest of ``requirements.txt``. This module
+knows those packages — the version ranges come from the plugin's ``requirements.txt``, shipped in the
+zip (lower bounds the tests ran with, environment markers for a package that has no release for some
+Python); :data:`USES` says which algorithms need each — and installs the missing ones with QGIS's own
+interpreter::
 
     python -m pip install --target <profile>/python/birdseye-dependencies/python3.X --no-deps name==version …
 
 into a folder of the QGIS profile (it survives plugin updates, which replace the plugin folder). The
 plugin adds that folder at the *end* of ``sys.path`` when it starts (:func:`activate`), so a package
-QGIS already has is never shadowed; pip first resolves the pins against what QGIS's Python already has
-(``--dry-run --report``), and the installer refuses a plan that needs another version of one of QGIS's
-own packages (numpy above all: GDAL's bindings are built against it).
+QGIS already has is never shadowed. The rules:
+
+* only what is missing is installed: a package importable at a version inside its range stays, and
+  one QGIS itself ships is used as it is even outside the range (replacing it could break QGIS);
+* pip first resolves the missing requirements against what QGIS's Python already has
+  (``--dry-run --report``), so the versions suit that Python and its numpy (1.x or 2.x);
+* of pip's plan only BirdsEye's own closure counts (:func:`read_plan`): a conflict among packages QGIS
+  ships that no BirdsEye package needs is not ours to fix;
+* when that closure would replace one of QGIS's packages (numpy above all: GDAL's bindings are built
+  against it), pip resolves again with QGIS's version held, which picks older releases of ours that
+  work with it; only when none exists does the installer refuse, naming the package.
 
 No QGIS and no Qt here: the dialog (``gui/dependencies.py``) and the Processing algorithms
 (``processing/algorithms/base.py``) use it, and it is tested without QGIS.
@@ -23,6 +32,7 @@ import importlib
 import importlib.metadata
 import importlib.util
 import json
+import operator
 import os
 import queue
 import re
@@ -64,11 +74,9 @@ USES: dict[str, Use] = {
     "onnxruntime": Use("onnxruntime", always=("detect", "screencheckpoints"), sometimes=("sweepoperatingpoints",)),
     "opencv-python-headless": Use("cv2", always=("detect", "screencheckpoints", "simulatecampaign"),
                                   sometimes=("sweepoperatingpoints", "writelabels")),
-    "scikit-learn": Use("sklearn", always=("clusterdetections", "evaluatedetections", "screencheckpoints",
-                                           "sweepoperatingpoints")),
-    "scipy": Use("scipy", always=("clusterdetections", "evaluatedetections", "importgeotags", "montecarlobound",
-                                  "planflight", "screencheckpoints", "sensorbound", "simulatecampaign",
-                                  "sweepoperatingpoints", "writelabels"),
+    "scipy": Use("scipy", always=("clusterdetections", "comparedetectors", "evaluatedetections", "importgeotags",
+                                  "montecarlobound", "planflight", "screencheckpoints", "sensorbound",
+                                  "simulatecampaign", "sweepoperatingpoints", "writelabels"),
                  sometimes=("detect", "importcameras", "importdjiimages", "importflightlog")),
     "fast-tsp": Use("fast_tsp", always=("planflight",)),
     "PyYAML": Use("yaml", always=("simulatecampaign",),
@@ -83,19 +91,28 @@ USES: dict[str, Use] = {
 
 @dataclass(frozen=True)
 class RuntimePackage:
-    """One line of ``requirements.txt`` with what the plugin knows about it."""
+    """A package of ``requirements.txt`` with what the plugin knows about it: the versions it accepts
+    (``specifier``, such as ``>=1.13.1``) and whether requirements.txt offers it to the running Python
+    at all (``available``: False where its environment markers leave it out, for want of wheels)."""
 
     distribution: str
-    version: str
+    specifier: str
     use: Use
+    available: bool = True
 
     @property
     def requirement(self) -> str:
-        return f"{self.distribution}=={self.version}"
+        return f"{self.distribution}{self.specifier}"
 
     @property
     def module(self) -> str:
         return self.use.module
+
+    def allows(self, version: str) -> bool:
+        """Whether ``version`` is inside the range (a version that cannot be read is taken as inside:
+        there is no telling, and reinstalling would not help)."""
+        key = version_key(version)
+        return key is None or all(_COMPARE[op](key, version_key(bound)) for op, bound in _clauses(self.specifier))
 
 
 @dataclass(frozen=True)
@@ -112,11 +129,18 @@ class PackageStatus:
 
     @property
     def needs_install(self) -> bool:
-        """Missing, or installed by BirdsEye at another version than the pin (a plugin update moved
-        it). A version QGIS itself ships is used as it is: replacing it could break QGIS."""
+        """Missing, or installed by BirdsEye at a version outside the range (a plugin update moved it).
+        A version QGIS itself ships is used as it is: replacing it could break QGIS. A package with no
+        release for this Python cannot be installed."""
+        if not self.package.available:
+            return False
         if self.installed_version is None:
             return True
-        return self.in_folder and self.installed_version != self.package.version
+        return self.in_folder and not self.package.allows(self.installed_version)
+
+    @property
+    def in_range(self) -> bool:
+        return self.installed_version is not None and self.package.allows(self.installed_version)
 
 
 def normalized(name: str) -> str:
@@ -124,31 +148,86 @@ def normalized(name: str) -> str:
     return re.sub(r"[-_.]+", "-", name).lower()
 
 
-_PIN = re.compile(r"^([A-Za-z0-9][A-Za-z0-9._-]*)==([A-Za-z0-9.+!_-]+)$")
+# requirements.txt is read here without `packaging` (QGIS's Python may lack it), so its lines keep to
+# a subset of PEP 508 that this module fully understands: a name, comma-separated version clauses, and
+# optionally `; python_version <op> "X.Y"` conditions joined by `and`.
+_NAME = re.compile(r"^([A-Za-z0-9][A-Za-z0-9._-]*)\s*(.*)$")
+_CLAUSE = re.compile(r"^(==|!=|>=|<=|<|>)\s*([0-9][A-Za-z0-9.+!_-]*)$")
+_PYTHON_CONDITION = re.compile(r"""^python_version\s*(==|!=|>=|<=|<|>)\s*["']([0-9.]+)["']$""")
+_COMPARE = {"==": operator.eq, "!=": operator.ne, ">=": operator.ge, "<=": operator.le, "<": operator.lt,
+            ">": operator.gt}
+_VERSION = re.compile(r"^v?(\d+(?:\.\d+)*)(?:[-_.]?(a|b|c|rc|alpha|beta|pre|preview|dev|post|rev|r)[-_.]?(\d*))?",
+                      re.IGNORECASE)
 
 
-def read_requirements(path: Path = REQUIREMENTS_FILE) -> list[RuntimePackage]:
-    """The pinned packages of ``requirements.txt`` (``name==version`` lines; ``#`` comments)."""
+def version_key(version: str) -> tuple | None:
+    """A PEP 440 version as a comparable key: the release numbers (trailing zeros dropped, 1.13 = 1.13.0),
+    then pre- and dev-releases before the release and post-releases after it; local labels (Debian's
+    ``+dfsg``) ignored. None when ``version`` is not one."""
+    match = _VERSION.match(version.strip())
+    if match is None:
+        return None
+    release = tuple(int(part) for part in match.group(1).split("."))
+    while len(release) > 1 and release[-1] == 0:
+        release = release[:-1]
+    tag = (match.group(2) or "").lower()
+    phase = 1 if not tag else 2 if tag in ("post", "rev", "r") else 0
+    return release, phase, int(match.group(3) or 0)
+
+
+def _clauses(specifier: str) -> list[tuple[str, str]]:
+    return [_CLAUSE.match(clause.strip()).groups() for clause in specifier.split(",")]
+
+
+def _python_holds(marker: str, python: Sequence[int]) -> bool:
+    here = version_key(f"{python[0]}.{python[1]}")
+    return all(_COMPARE[op](here, version_key(bound))
+               for op, bound in (_PYTHON_CONDITION.match(part.strip()).groups() for part in marker.split(" and ")))
+
+
+def _parse_requirement(text: str) -> tuple[str, str, str] | None:
+    """(name, specifier, marker) of a requirements.txt line in the subset this module reads, else None."""
+    requirement, _, marker = text.partition(";")
+    match = _NAME.match(requirement.strip())
+    if match is None:
+        return None
+    name, specifier = match.group(1), re.sub(r"\s+", "", match.group(2))
+    if not specifier or not all(_CLAUSE.match(c) for c in specifier.split(",")):
+        return None
+    marker = marker.strip()
+    if marker and not all(_PYTHON_CONDITION.match(part.strip()) for part in marker.split(" and ")):
+        return None
+    return name, specifier, marker
+
+
+def read_requirements(path: Path = REQUIREMENTS_FILE, python: Sequence[int] = sys.version_info) -> list[RuntimePackage]:
+    """The packages of ``requirements.txt`` for Python ``python``: lines ``name<clauses>[; python_version
+    conditions]`` and ``#`` comments; per package the first line whose conditions hold, or, when none does,
+    the package marked not available."""
     path = Path(path)
     try:
         lines = path.read_text(encoding="utf-8").splitlines()
     except OSError as exc:
         raise InputError(f"cannot be read ({exc.strerror})", source=str(path)) from exc
     uses = {normalized(name): (name, use) for name, use in USES.items()}
-    packages = []
-    # A pin USES does not know yet (tests/unit/test_dependencies.py fails on it) is still installed;
+    chosen: dict[str, RuntimePackage] = {}
+    # A package USES does not know yet (tests/unit/test_dependencies.py fails on it) is still installed;
     # its module is guessed from its name and no algorithm is refused for it.
     for row, line in enumerate(lines, start=1):
         text = line.split("#", 1)[0].strip()
         if not text:
             continue
-        match = _PIN.match(text)
-        if match is None:
-            raise InputError(f"'{text}' is not a pin 'name==version'", source=str(path), row=row)
-        name, version = match.groups()
+        parsed = _parse_requirement(text)
+        if parsed is None:
+            raise InputError(f"'{text}' is not a requirement 'name>=version' with optional "
+                             "'; python_version >= \"3.X\"' conditions", source=str(path), row=row)
+        name, specifier, marker = parsed
         known_name, use = uses.get(normalized(name), (name, Use(normalized(name).replace("-", "_"))))
-        packages.append(RuntimePackage(known_name, version, use))
-    return packages
+        holds = not marker or _python_holds(marker, python)
+        previous = chosen.get(normalized(name))
+        if previous is None or (holds and not previous.available):
+            chosen[normalized(name)] = RuntimePackage(known_name, specifier, use, holds)
+    return list(chosen.values())
 
 
 def package_folder(profile_dir: Path | str, version: Sequence[int] = sys.version_info) -> Path:
@@ -198,7 +277,8 @@ def statuses(packages: Iterable[RuntimePackage] | None = None, folder: Path | No
 
 
 def missing_for(algorithm_id: str, packages: Iterable[RuntimePackage] | None = None) -> list[RuntimePackage]:
-    """The packages ``algorithm_id`` needs on every run that cannot be imported."""
+    """The packages ``algorithm_id`` needs on every run that cannot be imported (those with no release
+    for this Python included: the message says so)."""
     needed = [p for p in (read_requirements() if packages is None else packages) if algorithm_id in p.use.always]
     return [p for p in needed if package_status(p).installed_version is None]
 
@@ -358,7 +438,7 @@ def _pip_version(python: str, env: dict[str, str], cwd: Path) -> tuple[int, ...]
 
 @dataclass(frozen=True)
 class Planned:
-    """A distribution pip will put in BirdsEye's folder (a pin or one of its dependencies)."""
+    """A distribution pip will put in BirdsEye's folder (one of ours or one they depend on)."""
 
     name: str
     version: str
@@ -374,18 +454,48 @@ def host_distributions(folder: Path, search_path: Sequence[str] = tuple(sys.path
     return {normalized(d.metadata["Name"] or ""): d.version for d in importlib.metadata.distributions(path=path)}
 
 
-def read_plan(report: dict, host: dict[str, str]) -> list[Planned]:
-    """What pip's installation report says to install, refused when that would replace one of QGIS's
-    own packages: BirdsEye's folder comes last on ``sys.path``, so the new version would never load
-    and the package that asked for it would run against the old one."""
-    plan = [Planned(item["metadata"]["name"], item["metadata"]["version"]) for item in report.get("install", [])]
-    clashes = [f"{p.name} {host[normalized(p.name)]} (needed: {p.version})" for p in plan
-               if normalized(p.name) in host]
-    if clashes:
-        raise InstallError("Installing would replace packages of the Python QGIS runs: " + ", ".join(clashes)
-                           + ". BirdsEye does not change QGIS's own packages; update QGIS, or install the "
-                           "versions BirdsEye needs with your Python's package manager.")
-    return plan
+def _requirement_class():
+    """PEP 508 parsing for the dependencies pip reports: `packaging` where QGIS's Python has it, else
+    the copy inside pip (which the installer needs anyway)."""
+    try:
+        from packaging.requirements import Requirement
+    except ImportError:
+        from pip._vendor.packaging.requirements import Requirement
+    return Requirement
+
+
+def read_plan(report: dict) -> list[Planned]:
+    """What pip's installation report plans for BirdsEye: the requested packages and, through the
+    packages the plan installs, what they depend on (in the running Python's environment, no extras).
+
+    A dependency that is already installed ends the walk there. So a downgrade pip plans only because
+    of packages QGIS ships — Debian's sympy 1.14 wants mpmath < 1.4 and Debian has mpmath 1.4.1 — is
+    not BirdsEye's to make: nothing we install needs it, and the folder, last on ``sys.path``, could not
+    change what sympy loads anyway."""
+    requirement = _requirement_class()
+    environment = report.get("environment", {})
+    items = {normalized(item["metadata"]["name"]): item for item in report.get("install", [])}
+    todo = [name for name, item in items.items() if item.get("requested")]
+    needed: set[str] = set()
+    while todo:
+        name = todo.pop()
+        if name in needed or name not in items:
+            continue
+        needed.add(name)
+        for line in items[name]["metadata"].get("requires_dist", []):
+            dependency = requirement(line)
+            if dependency.marker is None or dependency.marker.evaluate({**environment, "extra": ""}):
+                todo.append(normalized(dependency.name))
+    return [Planned(item["metadata"]["name"], item["metadata"]["version"]) for name, item in items.items()
+            if name in needed]
+
+
+def clash_message(clashes: dict[str, tuple[str, str]]) -> str:
+    """``clashes``: {name: (QGIS's version, the version BirdsEye's packages need)}."""
+    named = ", ".join(f"{name} {have} (needed: {want})" for name, (have, want) in clashes.items())
+    return (f"Installing would replace packages of the Python QGIS runs: {named}; no release of BirdsEye's "
+            "packages works with QGIS's version. BirdsEye does not change QGIS's own packages; update QGIS, "
+            "or install the versions BirdsEye needs with your Python's package manager.")
 
 
 class Installer:
@@ -427,7 +537,9 @@ class Installer:
             raise InstallError(f"pip stopped with exit status {status}.", "\n".join(self.output))
 
     def install(self, packages: Sequence[RuntimePackage]) -> list[Planned]:
-        """Install ``packages`` at their pins with what they depend on; returns what was installed."""
+        """Install ``packages`` (those with a release for this Python) with what they depend on, at
+        versions that keep QGIS's own packages; returns what was installed."""
+        packages = [p for p in packages if p.available]
         self.progress(0.0)
         if self.python is None:
             self.python = find_python()
@@ -442,11 +554,7 @@ class Installer:
                 raise InstallError(f"pip {'.'.join(map(str, pip))} in {self.python} is too old; BirdsEye needs "
                                    f"pip {'.'.join(map(str, MIN_PIP))} or newer ({self.python} -m pip install "
                                    "--upgrade pip).")
-            report_path = self.scratch / "report.json"
-            self._pip(["install", "--dry-run", "--no-input", "--only-binary=:all:", "--report", str(report_path),
-                       *(p.requirement for p in packages)], env)
-            report = json.loads(report_path.read_text(encoding="utf-8"))
-            plan = read_plan(report, host_distributions(self.folder, self.search_path))
+            plan = self._resolve(packages, env)
             self.progress(0.1)
             if plan:
                 self._install_plan(plan, env)
@@ -455,6 +563,35 @@ class Installer:
         activate(self.folder)
         self.progress(1.0)
         return plan
+
+    def _resolve(self, packages: Sequence[RuntimePackage], env: dict[str, str]) -> list[Planned]:
+        """pip's plan for ``packages`` (:func:`read_plan`), resolved again with QGIS's version of each
+        package the plan would replace held by a constraint, until the plan replaces none or pip finds
+        no versions that keep them all (a held package is never planned again, so each round holds one
+        more and this ends)."""
+        host = host_distributions(self.folder, self.search_path)
+        held: dict[str, str] = {}
+        clashes: dict[str, tuple[str, str]] = {}
+        while True:
+            constraints = self.scratch / "qgis-packages.txt"
+            constraints.write_text("".join(f"{name}=={version}\n" for name, version in held.items()),
+                                   encoding="utf-8")
+            report_path = self.scratch / "report.json"
+            try:
+                self._pip(["install", "--dry-run", "--no-input", "--only-binary=:all:", "--report", str(report_path),
+                           "-c", str(constraints), *(p.requirement for p in packages)], env)
+            except InstallError as exc:
+                if not clashes:
+                    raise
+                raise InstallError(clash_message(clashes), exc.log) from None
+            plan = read_plan(json.loads(report_path.read_text(encoding="utf-8")))
+            replaced = {normalized(p.name): p for p in plan if normalized(p.name) in host}
+            if not replaced:
+                return plan
+            clashes.update({p.name: (host[name], p.version) for name, p in replaced.items()})
+            self._log("Holding QGIS's " + ", ".join(f"{name} {host[name]}" for name in replaced)
+                      + ": resolving again")
+            held.update({name: host[name] for name in replaced})
 
     def _install_plan(self, plan: list[Planned], env: dict[str, str]) -> None:
         fetched = 0

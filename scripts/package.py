@@ -2,7 +2,7 @@
 
 The zip holds one top folder, ``birdseye/`` (the name QGIS installs the plugin under), with only what
 the plugin needs at run time: the files and folders in :data:`INCLUDED` (the bundled ONNX model and
-the pins of ``requirements.txt`` included) and the compiled translations ``i18n/*.qm``. Tests,
+the ranges of ``requirements.txt`` included) and the compiled translations ``i18n/*.qm``. Tests,
 benchmarks, scripts, the venv, build output, caches and hidden files stay out. The zip is then checked
 as plugins.qgis.org's upload validator checks it (:func:`repository_problems`); any problem fails the
 build. Runs with Debian's python3 (no QGIS needed).
@@ -22,7 +22,7 @@ from urllib.parse import urlparse
 
 REPO_ROOT = Path(__file__).resolve().parents[1]
 PLUGIN_FOLDER = "birdseye"
-# requirements.txt: the pins BirdsEye › Install dependencies… installs (birdseye_qgis/dependencies.py)
+# requirements.txt: the ranges BirdsEye › Install dependencies… installs from (birdseye_qgis/dependencies.py)
 INCLUDED = ["__init__.py", "metadata.txt", "LICENSE", "README.md", "requirements.txt",
             "birdseye_qgis", "processing", "models", "resources"]
 INCLUDED_PATTERNS = ["i18n/*.qm"]  # translations the plugin loads; the .ts sources stay in the repository

@@ -1,5 +1,5 @@
 """Pure geometry and data code of BirdsEye.
 
 Nothing in this package imports ``qgis`` or ``PyQt``; heavy optional packages (cv2, onnxruntime,
-sklearn) are imported inside the functions that need them.
+scipy) are imported inside the functions that need them.
 """

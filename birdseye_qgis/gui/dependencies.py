@@ -9,6 +9,7 @@ listed but not ticked.
 """
 from __future__ import annotations
 
+import sys
 import traceback
 from pathlib import Path
 from typing import Callable, Sequence
@@ -67,12 +68,17 @@ def needed_by(package: RuntimePackage, title: Callable[[str], str] = algorithm_t
 
 
 def state_text(status: PackageStatus) -> str:
+    if not status.package.available and status.installed_version is None:
+        return tr("no release for Python {version}").format(version="%d.%d" % sys.version_info[:2])
     if status.installed_version is None:
         return tr("missing")
     if status.needs_install:
         return tr("update from {version}").format(version=status.installed_version)
     if status.in_folder:
         return tr("installed by BirdsEye ({version})").format(version=status.installed_version)
+    if not status.in_range:
+        return tr("installed ({version}; untested outside {versions})").format(
+            version=status.installed_version, versions=status.package.specifier)
     return tr("installed ({version})").format(version=status.installed_version)
 
 
@@ -132,7 +138,7 @@ class DependenciesDialog(QDialog):
         self.table.setObjectName("packageTable")
         self.table.setRootIsDecorated(False)
         self.table.setSelectionMode(QAbstractItemView.SelectionMode.NoSelection)
-        self.table.setHeaderLabels([tr("Package"), tr("Version"), tr("State"), tr("Needed by")])
+        self.table.setHeaderLabels([tr("Package"), tr("Versions"), tr("State"), tr("Needed by")])
         header = self.table.header()
         for column in (PACKAGE_COLUMN, VERSION_COLUMN, STATE_COLUMN):
             header.setSectionResizeMode(column, QHeaderView.ResizeMode.ResizeToContents)
@@ -175,7 +181,7 @@ class DependenciesDialog(QDialog):
         self.statuses = statuses(self.packages, self.folder)
         self.table.clear()
         for status in self.statuses:
-            item = QTreeWidgetItem([status.package.distribution, status.package.version, state_text(status),
+            item = QTreeWidgetItem([status.package.distribution, status.package.specifier, state_text(status),
                                     needed_by(status.package, self.title)])
             item.setData(PACKAGE_COLUMN, Qt.ItemDataRole.UserRole, status.package.distribution)
             if status.needs_install:
@@ -190,10 +196,11 @@ class DependenciesDialog(QDialog):
         if needed:
             self.intro.setText(tr(
                 "BirdsEye's algorithms need {count} Python package(s) that the Python QGIS runs does not have. "
-                "Tick the ones to install and press Install: pip installs them at the versions BirdsEye was "
-                "tested with, with what they depend on, into a folder of your QGIS profile:\n{folder}\n"
-                "QGIS's own packages are not changed. pip downloads them from the Python Package Index "
-                "(or the index your pip is set up to use).").format(count=len(needed), folder=self.folder))
+                "Tick the ones to install and press Install: pip installs them, at versions that suit this "
+                "Python and the packages QGIS already has, with what they depend on, into a folder of your "
+                "QGIS profile:\n{folder}\nQGIS's own packages are not changed. pip downloads them from the "
+                "Python Package Index (or the index your pip is set up to use).").format(count=len(needed),
+                                                                                      folder=self.folder))
         else:
             self.intro.setText(tr("Every Python package BirdsEye's algorithms need is installed in the Python "
                                   "QGIS runs."))

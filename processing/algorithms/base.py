@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import functools
+import sys
 
 from qgis.core import QgsProcessingAlgorithm, QgsProcessingException
 from qgis.PyQt.QtCore import QT_TRANSLATE_NOOP, QCoreApplication
@@ -104,12 +105,23 @@ class BirdsEyeAlgorithm(QgsProcessingAlgorithm):
 
 
 def missing_packages_message(packages) -> str:
-    return QCoreApplication.translate(
-        "BirdsEyeAlgorithm",
-        "This algorithm needs the Python package(s) {names}, which the Python QGIS runs does not have. In "
-        "QGIS, choose BirdsEye › Install dependencies… to install them; or install them yourself: "
-        "python -m pip install {pins}").format(names=", ".join(p.distribution for p in packages),
-                                               pins=" ".join(p.requirement for p in packages))
+    installable = [p for p in packages if p.available]
+    unavailable = [p for p in packages if not p.available]
+    parts = []
+    if installable:
+        parts.append(QCoreApplication.translate(
+            "BirdsEyeAlgorithm",
+            "This algorithm needs the Python package(s) {names}, which the Python QGIS runs does not have. In "
+            "QGIS, choose BirdsEye › Install dependencies… to install them; or install them yourself: "
+            "python -m pip install {pins}").format(names=", ".join(p.distribution for p in installable),
+                                                   pins=" ".join(f'"{p.requirement}"' for p in installable)))
+    if unavailable:
+        parts.append(QCoreApplication.translate(
+            "BirdsEyeAlgorithm",
+            "This algorithm needs the Python package(s) {names}, which have no release for the Python QGIS "
+            "runs (Python {version}); it runs in a QGIS with a newer Python.").format(
+                names=", ".join(p.distribution for p in unavailable), version="%d.%d" % sys.version_info[:2]))
+    return " ".join(parts)
 
 
 def _explaining_missing_packages(process_algorithm):

@@ -29,8 +29,8 @@ REPO_ROOT = Path(__file__).resolve().parents[2]
 SCREENSHOT = REPO_ROOT / "build" / "screenshots" / "dependencies_dialog.png"
 
 
-def pin(name: str, version: str, always=(), sometimes=()) -> deps.RuntimePackage:
-    return deps.RuntimePackage(name, version, deps.Use(name, tuple(always), tuple(sometimes)))
+def package(name: str, specifier: str, always=(), sometimes=(), available=True) -> deps.RuntimePackage:
+    return deps.RuntimePackage(name, specifier, deps.Use(name, tuple(always), tuple(sometimes)), available)
 
 
 @pytest.fixture
@@ -53,10 +53,12 @@ def wheelhouse(tmp_path, monkeypatch):
     return house
 
 
-PACKAGES = [pin("birdseyefake_app", "1.0", always=("detect",), sometimes=("importcameras",)),
-            pin("birdseyefake_tool", "1.0"),
-            pin("pytest", "0.1", always=("planflight",))]  # installed here, at another version
-TITLES = {"detect": "Detect targets", "importcameras": "Import camera solution", "planflight": "Plan flight"}
+PACKAGES = [package("birdseyefake_app", ">=1.0", always=("detect",), sometimes=("importcameras",)),
+            package("birdseyefake_tool", ">=1.0"),
+            package("pytest", ">=99", always=("planflight",)),  # installed here, below the range
+            package("birdseyefake_sfm", ">=4.2", always=("refineposes",), available=False)]
+TITLES = {"detect": "Detect targets", "importcameras": "Import camera solution", "planflight": "Plan flight",
+          "refineposes": "Refine frame poses"}
 
 
 def rows(dialog):
@@ -83,13 +85,15 @@ def dialog(qgis_app, qtbot, tmp_path, clean_path):
 def test_lists_what_is_missing_and_why(dialog):
     import pytest as installed_pytest
 
+    python = "%d.%d" % sys.version_info[:2]
     assert rows(dialog) == [
-        ["birdseyefake_app", "1.0", "missing", "Detect targets; for some inputs: Import camera solution"],
-        ["birdseyefake_tool", "1.0", "missing", "no algorithm (developer tools only)"],
-        ["pytest", "0.1", f"installed ({installed_pytest.__version__})", "Plan flight"],
+        ["birdseyefake_app", ">=1.0", "missing", "Detect targets; for some inputs: Import camera solution"],
+        ["birdseyefake_tool", ">=1.0", "missing", "no algorithm (developer tools only)"],
+        ["pytest", ">=99", f"installed ({installed_pytest.__version__}; untested outside >=99)", "Plan flight"],
+        ["birdseyefake_sfm", ">=4.2", f"no release for Python {python}", "Refine frame poses"],
     ]
-    assert checks(dialog) == [(True, True), (False, True), (False, False)], \
-        "missing and used: ticked; missing, unused: offered unticked; installed: greyed"
+    assert checks(dialog) == [(True, True), (False, True), (False, False), (False, False)], \
+        "missing and used: ticked; missing, unused: offered unticked; QGIS's own or not for this Python: greyed"
     assert "algorithms need 1 Python package(s)" in dialog.intro.text() and str(dialog.folder) in dialog.intro.text()
     assert dialog.install_button.isEnabled() and not dialog.log.isVisible() and not dialog.progress.isVisible()
 
@@ -117,7 +121,7 @@ def test_install_on_consent_streams_pip_and_makes_the_package_importable(dialog,
 
 def test_a_failure_opens_the_log_with_pips_message(qgis_app, qtbot, tmp_path, clean_path, wheelhouse):
     widget = dialog_module.DependenciesDialog(folder=tmp_path / "packages", python=sys.executable,
-                                              packages=[pin("birdseyefake_app", "9.9", always=("detect",))],
+                                              packages=[package("birdseyefake_app", "==9.9", always=("detect",))],
                                               title=TITLES.get)
     qtbot.addWidget(widget)
     widget.show()
@@ -143,7 +147,7 @@ def test_cancel_stops_pip_and_installs_nothing(dialog, qtbot, wheelhouse):
 
 def test_needed_by_names_algorithms_as_the_toolbox_does(birdseye_provider):
     detect = birdseye_provider.algorithm("detect")
-    text = dialog_module.needed_by(pin("x", "1", always=("detect",)))
+    text = dialog_module.needed_by(package("x", ">=1", always=("detect",)))
     assert text == detect.displayName()
 
 
@@ -206,7 +210,7 @@ def test_an_algorithm_that_needs_a_missing_package_says_so(birdseye_provider, mo
     ok, message = detect.canExecute()
     assert not ok
     assert message.startswith("This algorithm needs the Python package(s) onnxruntime, which the Python QGIS")
-    assert "BirdsEye › Install dependencies…" in message and "onnxruntime==" in message
+    assert "BirdsEye › Install dependencies…" in message and 'python -m pip install "onnxruntime>=' in message
     assert birdseye_provider.algorithm("selectarms").canExecute() == (True, "")
     frames = QgsVectorLayer("Polygon?crs=EPSG:32756", "frames", "memory")
     with pytest.raises(QgsProcessingException) as info:  # processing.run does not ask canExecute itself
@@ -227,3 +231,16 @@ def test_a_package_needed_for_some_inputs_is_named_when_reached(birdseye_provide
         processing.run("birdseye:importcameras", {"CAMERAS": str(model), "GROUND_HEIGHT_M": 0.0,
                                                   "OUTPUT": "memory:"})
     assert str(info.value).startswith("This algorithm needs the Python package(s) pycolmap, which")
+
+
+def test_an_algorithm_whose_package_has_no_release_for_this_python_says_so(birdseye_provider, monkeypatch):
+    """pycolmap has no wheels for Python 3.9: there refineposes is refused with that reason, not sent to
+    the installer."""
+    real = deps.read_requirements(python=(3, 9))
+    assert not next(p for p in real if p.distribution == "pycolmap").available
+    monkeypatch.setattr(deps, "read_requirements", lambda *args, **kwargs: real)
+    monkeypatch.setitem(sys.modules, "pycolmap", None)
+    ok, message = birdseye_provider.algorithm("refineposes").canExecute()
+    python = "%d.%d" % sys.version_info[:2]
+    assert not ok and message == ("This algorithm needs the Python package(s) pycolmap, which have no release for "
+                                  f"the Python QGIS runs (Python {python}); it runs in a QGIS with a newer Python.")

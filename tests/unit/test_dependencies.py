@@ -1,4 +1,4 @@
-"""birdseye_qgis/dependencies.py without QGIS: the pins, what is missing, the interpreter, pip.
+"""birdseye_qgis/dependencies.py without QGIS: the ranges, what is missing, the interpreter, pip.
 
 The installer runs the real pip of this Python against a wheel folder made here (tiny hand-built
 wheels, no network): what it installs, what it refuses, how it reports progress and stops on cancel.
@@ -26,12 +26,31 @@ REPO_ROOT = Path(__file__).resolve().parents[2]
 ALGORITHM_IDS = {p.stem for p in (REPO_ROOT / "processing" / "algorithms").glob("*.py")} - {"__init__", "base"}
 
 
-# ------------------------------------------------------------------------------ the pins and their uses
+# ------------------------------------------------------------------------------ the ranges and their uses
 def test_requirements_and_uses_list_the_same_packages():
-    """requirements.txt is the one list of pins; USES must say something about each, and nothing else."""
-    pinned = {deps.normalized(p.distribution) for p in deps.read_requirements()}
-    assert pinned == {deps.normalized(name) for name in deps.USES}
-    assert all(p.version[0].isdigit() for p in deps.read_requirements())
+    """requirements.txt is the one list of packages; USES must say something about each, and nothing else."""
+    listed = {deps.normalized(p.distribution) for p in deps.read_requirements()}
+    assert listed == {deps.normalized(name) for name in deps.USES}
+
+
+@pytest.mark.parametrize("minor", range(9, 15))
+def test_requirements_give_every_python_from_3_9_to_3_14_a_tested_lower_bound(minor):
+    """Ranges with a lower bound and no exact pin, for every Python QGIS runs; only pycolmap (no wheels
+    for 3.9) is left out anywhere (the wheels themselves: README.md, "Dependencies")."""
+    packages = deps.read_requirements(python=(3, minor))
+    assert all(">=" in p.specifier and "==" not in p.specifier for p in packages)
+    unavailable = {p.distribution for p in packages if not p.available}
+    assert unavailable == ({"pycolmap"} if minor == 9 else set())
+    onnxruntime = next(p for p in packages if p.distribution == "onnxruntime")
+    assert onnxruntime.specifier == (">=1.19.2" if minor == 9 else ">=1.20.1")
+
+
+def test_constraints_hold_the_development_venv_at_the_lower_bounds():
+    """.venv (make test) runs the versions requirements.txt names as tested: each range's lower bound."""
+    pins = dict(line.split("==") for line in (REPO_ROOT / "constraints.txt").read_text().splitlines()
+                if "==" in line and not line.startswith("#"))
+    for package in deps.read_requirements(python=(3, 11)):
+        assert package.specifier == ">=" + pins[package.distribution], package.distribution
 
 
 def test_uses_name_existing_algorithms_once():
@@ -104,36 +123,55 @@ def write(path: Path, text: str) -> Path:
     return path
 
 
-def test_read_requirements_keeps_pins_and_skips_comments(tmp_path):
+def test_read_requirements_keeps_ranges_and_the_line_for_this_python(tmp_path):
     path = write(tmp_path / "requirements.txt", """\
         # runtime
-        onnxruntime==1.20.1   # the detector
+        onnxruntime >= 1.20.1 ; python_version >= "3.10"   # the detector
+        onnxruntime>=1.19.2; python_version < '3.10'
 
-        scikit_learn==1.5.2
+        scipy>=1.13.1,<3,!=1.14.0
+        pycolmap>=4.2.1; python_version >= "3.10" and python_version < "3.15"
         """)
-    packages = deps.read_requirements(path)
-    assert [(p.distribution, p.version, p.module) for p in packages] == [
-        ("onnxruntime", "1.20.1", "onnxruntime"), ("scikit-learn", "1.5.2", "sklearn")]
-    assert packages[1].requirement == "scikit-learn==1.5.2"
+    packages = deps.read_requirements(path, python=(3, 12))
+    assert [(p.distribution, p.specifier, p.module, p.available) for p in packages] == [
+        ("onnxruntime", ">=1.20.1", "onnxruntime", True), ("scipy", ">=1.13.1,<3,!=1.14.0", "scipy", True),
+        ("pycolmap", ">=4.2.1", "pycolmap", True)]
+    assert packages[1].requirement == "scipy>=1.13.1,<3,!=1.14.0"
+    old = deps.read_requirements(path, python=(3, 9))
+    assert [(p.distribution, p.specifier, p.available) for p in old] == [
+        ("onnxruntime", ">=1.19.2", True), ("scipy", ">=1.13.1,<3,!=1.14.0", True), ("pycolmap", ">=4.2.1", False)]
+    assert not deps.read_requirements(path, python=(3, 15))[2].available
 
 
-@pytest.mark.parametrize("line, expected", [
-    ("onnxruntime>=1.20", "is not a pin 'name==version'"),
-    ("onnxruntime", "is not a pin"),
-    ("onnxruntime==1.20.1 ; python_version<'4'", "is not a pin"),
+@pytest.mark.parametrize("line", [
+    "onnxruntime",                                   # no range: every release, untested ones included
+    "onnxruntime>=1.20; sys_platform == 'linux'",    # only python_version conditions are read here
+    "onnxruntime>=1.20; python_version >= '3.10' or python_version < '3'",
+    "onnxruntime[cuda]>=1.20",
+    "onnxruntime~=1.20",
 ])
-def test_read_requirements_names_the_bad_row(tmp_path, line, expected):
-    path = write(tmp_path / "requirements.txt", f"# pins\nscipy==1.13.1\n{line}\n")
+def test_read_requirements_names_the_bad_row(tmp_path, line):
+    path = write(tmp_path / "requirements.txt", f"# ranges\nscipy>=1.13.1\n{line}\n")
     with pytest.raises(InputError) as info:
         deps.read_requirements(path)
-    assert str(info.value).startswith(f"{path}, row 3: ") and expected in str(info.value)
+    assert str(info.value).startswith(f"{path}, row 3: ") and "is not a requirement 'name>=version'" in str(info.value)
 
 
-def test_a_pin_uses_does_not_know_is_still_installed(tmp_path):
-    path = write(tmp_path / "requirements.txt", "Some.New_Package==2.0\n")
+def test_a_package_uses_does_not_know_is_still_installed(tmp_path):
+    path = write(tmp_path / "requirements.txt", "Some.New_Package>=2.0\n")
     [package] = deps.read_requirements(path)
-    assert (package.requirement, package.module, package.use.always) == ("Some.New_Package==2.0",
+    assert (package.requirement, package.module, package.use.always) == ("Some.New_Package>=2.0",
                                                                           "some_new_package", ())
+
+
+def test_versions_compare_as_pip_compares_them():
+    ordered = ["1.9", "1.13.0rc1", "1.13", "1.13.1.dev0", "1.13.1", "1.13.1.post1", "2.0.0", "10.0"]
+    keys = [deps.version_key(v) for v in ordered]
+    assert keys == sorted(keys) and len(set(keys)) == len(keys)
+    assert deps.version_key("1.13") == deps.version_key("1.13.0") == deps.version_key("1.13.0+dfsg")
+    package = deps.RuntimePackage("scipy", ">=1.13.1,<2,!=1.14.0", deps.Use("scipy"))
+    assert [package.allows(v) for v in ("1.13.0", "1.13.1", "1.14.0", "1.15.2", "2.0", "unknown")] == [
+        False, True, False, True, False, True]
 
 
 def test_unreadable_requirements_name_the_file(tmp_path):
@@ -142,12 +180,13 @@ def test_unreadable_requirements_name_the_file(tmp_path):
 
 
 # ------------------------------------------------------------------------------ what is missing
-def make_package(site: Path, name: str, version: str) -> None:
+def make_package(site: Path, name: str, version: str, requires: tuple[str, ...] = ()) -> None:
     (site / name).mkdir(parents=True)
     (site / name / "__init__.py").write_text(f"VERSION = '{version}'\n")
     info = site / f"{name}-{version}.dist-info"
     info.mkdir()
-    (info / "METADATA").write_text(f"Metadata-Version: 2.1\nName: {name}\nVersion: {version}\n")
+    (info / "METADATA").write_text(f"Metadata-Version: 2.1\nName: {name}\nVersion: {version}\n"
+                                   + "".join(f"Requires-Dist: {r}\n" for r in requires))
 
 
 @pytest.fixture
@@ -164,28 +203,42 @@ def clean_path(monkeypatch):
 
 def test_status_before_and_after_the_folder_is_activated(tmp_path, clean_path):
     folder = tmp_path / "birdseye-dependencies" / "python3.x"
-    package = deps.RuntimePackage("birdseyefake-a", "1.0", deps.Use("birdseyefake_a"))
+    package = deps.RuntimePackage("birdseyefake-a", ">=1.0", deps.Use("birdseyefake_a"))
     missing = deps.package_status(package, folder)
     assert (missing.installed_version, missing.in_folder, missing.needs_install) == (None, False, True)
 
-    make_package(folder, "birdseyefake_a", "1.0")
+    make_package(folder, "birdseyefake_a", "1.2")
     deps.activate(folder)
     assert sys.path[-1] == str(folder), "the folder goes last: QGIS's own packages win"
     found = deps.package_status(package, folder)
-    assert (found.installed_version, found.in_folder, found.needs_install) == ("1.0", True, False)
-    newer_pin = deps.RuntimePackage("birdseyefake-a", "2.0", deps.Use("birdseyefake_a"))
-    assert deps.package_status(newer_pin, folder).needs_install, "installed by BirdsEye at an old pin: update"
+    assert (found.installed_version, found.in_folder, found.needs_install) == ("1.2", True, False)
+    assert not deps.package_status(deps.RuntimePackage("birdseyefake-a", ">=1.1,<2", deps.Use("birdseyefake_a")),
+                                   folder).needs_install, "inside the range: not installed again"
+    raised = deps.RuntimePackage("birdseyefake-a", ">=2.0", deps.Use("birdseyefake_a"))
+    assert deps.package_status(raised, folder).needs_install, "installed by BirdsEye below a raised bound: update"
 
 
 def test_a_version_qgis_ships_is_used_as_it_is(tmp_path, clean_path):
-    """QGIS's own copy at another version than the pin is not 'missing' (replacing it could break QGIS)."""
+    """QGIS's own copy, inside the range or not, is not 'missing' (replacing it could break QGIS)."""
     host = tmp_path / "host-site"
     make_package(host, "birdseyefake_b", "0.9")
     sys.path.insert(0, str(host))
     importlib.invalidate_caches()
-    status = deps.package_status(deps.RuntimePackage("birdseyefake-b", "1.0", deps.Use("birdseyefake_b")),
+    status = deps.package_status(deps.RuntimePackage("birdseyefake-b", ">=1.0", deps.Use("birdseyefake_b")),
                                  tmp_path / "folder")
-    assert (status.installed_version, status.in_folder, status.needs_install) == ("0.9", False, False)
+    assert (status.installed_version, status.in_folder, status.needs_install, status.in_range) == (
+        "0.9", False, False, False)
+    inside = deps.package_status(deps.RuntimePackage("birdseyefake-b", ">=0.8", deps.Use("birdseyefake_b")),
+                                 tmp_path / "folder")
+    assert (inside.needs_install, inside.in_range) == (False, True)
+
+
+def test_a_package_with_no_release_for_this_python_is_not_offered(tmp_path):
+    package = deps.RuntimePackage("birdseyefake-c", ">=4.2", deps.Use("birdseyefake_c", always=("refineposes",)),
+                                  available=False)
+    status = deps.package_status(package, tmp_path)
+    assert (status.installed_version, status.needs_install) == (None, False)
+    assert deps.missing_for("refineposes", [package]) == [package], "the algorithm still says it lacks it"
 
 
 def test_missing_for_lists_only_what_an_algorithm_always_needs(monkeypatch):
@@ -201,8 +254,9 @@ def test_missing_for_lists_only_what_an_algorithm_always_needs(monkeypatch):
 def test_package_for_module():
     packages = deps.read_requirements()
     assert deps.package_for_module("cv2.dnn", packages).distribution == "opencv-python-headless"
-    assert deps.package_for_module("sklearn", packages).distribution == "scikit-learn"
+    assert deps.package_for_module("scipy.spatial", packages).distribution == "scipy"
     assert deps.package_for_module("numpy", packages) is None
+    assert deps.package_for_module("sklearn", packages) is None, "clustering does without scikit-learn"
 
 
 def test_package_folder_is_per_python_version(tmp_path):
@@ -254,8 +308,10 @@ def test_find_python_keeps_the_first_that_is_this_python(tmp_path):
 # ------------------------------------------------------------------------------ streaming and cancel
 def test_run_streaming_passes_every_line_and_the_status():
     lines = []
-    status = deps.run_streaming([sys.executable, "-c", "import sys\nprint('one')\nprint('two', file=sys.stderr)\n"
-                                 "sys.exit(3)"], dict(os.environ), lines.append)
+    # flush: a child's stdout into a pipe is block-buffered, and 'one' would arrive after 'two'
+    # (unless PYTHONUNBUFFERED is set, as it is on some machines).
+    status = deps.run_streaming([sys.executable, "-c", "import sys\nprint('one', flush=True)\n"
+                                 "print('two', file=sys.stderr)\nsys.exit(3)"], dict(os.environ), lines.append)
     assert (lines, status) == (["one", "two"], 3)
 
 
@@ -271,20 +327,34 @@ def test_run_streaming_stops_the_process_on_cancel():
 
 
 # ------------------------------------------------------------------------------ the plan
-def report(*items):
-    return {"install": [{"metadata": {"name": name, "version": version}} for name, version in items]}
+def report(*items, environment=None):
+    """A pip installation report: items (name, version, requested, requires_dist)."""
+    return {"environment": environment or {"python_version": "3.11", "sys_platform": "linux"},
+            "install": [{"metadata": {"name": name, "version": version, "requires_dist": list(requires)},
+                         "requested": requested} for name, version, requested, requires in items]}
 
 
-def test_read_plan_installs_what_pip_reports():
-    plan = deps.read_plan(report(("onnxruntime", "1.20.1"), ("coloredlogs", "15.0.1")), {"numpy": "1.24.2"})
-    assert [p.requirement for p in plan] == ["onnxruntime==1.20.1", "coloredlogs==15.0.1"]
+def test_read_plan_installs_what_our_packages_need():
+    plan = deps.read_plan(report(("onnxruntime", "1.20.1", True, ["coloredlogs", "numpy>=1.21.6"]),
+                                 ("coloredlogs", "15.0.1", False, ["humanfriendly>=9.1"]),
+                                 ("humanfriendly", "10.0", False, [])))
+    assert [p.requirement for p in plan] == ["onnxruntime==1.20.1", "coloredlogs==15.0.1", "humanfriendly==10.0"]
 
 
-def test_read_plan_refuses_to_replace_a_package_of_qgis():
-    with pytest.raises(deps.InstallError) as info:
-        deps.read_plan(report(("onnxruntime", "1.20.1"), ("NumPy", "2.1.0")), {"numpy": "1.24.2"})
-    assert "numpy" not in str(info.value).split(":")[0]
-    assert "NumPy 1.24.2 (needed: 2.1.0)" in str(info.value)
+def test_read_plan_leaves_out_what_only_qgis_packages_ask_for():
+    """Debian unstable: onnxruntime needs sympy, which Debian ships (1.14, wanting mpmath < 1.4) beside
+    mpmath 1.4.1; pip plans an older mpmath for sympy's sake. sympy is installed, so the walk ends there."""
+    plan = deps.read_plan(report(("onnxruntime", "1.20.1", True, ["sympy", "numpy>=1.21.6"]),
+                                 ("mpmath", "1.3.0", False, [])))
+    assert [p.requirement for p in plan] == ["onnxruntime==1.20.1"]
+
+
+def test_read_plan_follows_only_dependencies_whose_markers_hold():
+    plan = deps.read_plan(report(
+        ("matplotlib", "3.9.2", True, ['importlib-resources>=3.2.0; python_version < "3.10"', "pillow>=8",
+                                       'pytest; extra == "dev"']),
+        ("importlib-resources", "6.4.0", False, []), ("pillow", "11.0.0", False, []), ("pytest", "8.3.3", False, [])))
+    assert [p.name for p in plan] == ["matplotlib", "pillow"]
 
 
 def test_pip_environment_puts_the_folder_last(tmp_path):
@@ -313,7 +383,7 @@ def wheelhouse(tmp_path, monkeypatch):
 
 
 def fake_pin(name: str, version: str) -> deps.RuntimePackage:
-    return deps.RuntimePackage(name, version, deps.Use(name))
+    return deps.RuntimePackage(name, f"=={version}", deps.Use(name))
 
 
 def test_installer_installs_the_pins_and_their_dependencies(tmp_path, wheelhouse, clean_path):
@@ -338,10 +408,54 @@ def test_installer_refuses_to_shadow_a_host_package(tmp_path, wheelhouse, clean_
     make_package(host, "birdseyefake_host", "1.0")
     (host / "birdseyefake_host-1.0.dist-info" / "INSTALLER").write_text("pip\n")
     folder = tmp_path / "folder"
-    installer = deps.Installer(folder, python=sys.executable, search_path=[str(host), *sys.path])
-    with pytest.raises(deps.InstallError, match=r"birdseyefake_host 1.0 \(needed: 9.0\)"):
+    lines = []
+    installer = deps.Installer(folder, python=sys.executable, search_path=[str(host), *sys.path], log=lines.append)
+    with pytest.raises(deps.InstallError, match=r"birdseyefake_host 1.0 \(needed: 9.0\); no release") as info:
         installer.install([fake_pin("birdseyefake_greedy", "1.0")])
+    assert "Holding QGIS's birdseyefake-host 1.0: resolving again" in lines
+    assert "ResolutionImpossible" in info.value.log or "conflict" in info.value.log
     assert not (folder / "birdseyefake_greedy").exists()
+
+
+def test_installer_picks_a_release_that_keeps_the_host_package(tmp_path, wheelhouse, clean_path):
+    """The newest release wants a newer version of a package QGIS ships (OpenCV 4.12 wants numpy 2 beside
+    QGIS's numpy 1.x); an older one in the range works with QGIS's: that one is installed."""
+    make_wheel(wheelhouse, "birdseyefake_picky", "2.0", ("birdseyefake_host>=9",))
+    make_wheel(wheelhouse, "birdseyefake_picky", "1.5", ("birdseyefake_host>=1",))
+    host = tmp_path / "host-site"
+    make_package(host, "birdseyefake_host", "1.0")
+    folder = tmp_path / "folder"
+    installer = deps.Installer(folder, python=sys.executable, search_path=[str(host), *sys.path])
+    plan = installer.install([deps.RuntimePackage("birdseyefake_picky", ">=1.0", deps.Use("birdseyefake_picky"))])
+    assert [p.requirement for p in plan] == ["birdseyefake_picky==1.5"]
+    assert not (folder / "birdseyefake_host").exists()
+
+
+def test_installer_ignores_a_conflict_among_host_packages_we_do_not_need(tmp_path, wheelhouse, clean_path):
+    """The Debian-unstable case with fake wheels: our app needs hostlib (installed, wanting dep < 1.4)
+    and the host has dep 1.4.1; pip plans dep 1.3.0 for hostlib's sake. We neither need nor install it."""
+    make_wheel(wheelhouse, "birdseyefake_app2", "1.0", ("birdseyefake_hostlib",))
+    make_wheel(wheelhouse, "birdseyefake_dep", "1.3.0")
+    host = tmp_path / "host-site"
+    make_package(host, "birdseyefake_hostlib", "1.14", ("birdseyefake_dep<1.4",))
+    make_package(host, "birdseyefake_dep", "1.4.1")
+    folder = tmp_path / "folder"
+    lines = []
+    installer = deps.Installer(folder, python=sys.executable, search_path=[str(host), *sys.path], log=lines.append)
+    plan = installer.install([deps.RuntimePackage("birdseyefake_app2", ">=1.0", deps.Use("birdseyefake_app2"))])
+    assert [p.requirement for p in plan] == ["birdseyefake_app2==1.0"]
+    assert any("birdseyefake_dep-1.3.0" in line or "birdseyefake_dep 1.3.0" in line for line in lines), \
+        "pip did plan the downgrade: the test covers the case"
+    assert (folder / "birdseyefake_app2").is_dir() and not (folder / "birdseyefake_dep").exists()
+
+
+def test_installer_installs_only_what_is_missing(tmp_path, wheelhouse, clean_path):
+    """A dependency already there in range (here: in the folder) is neither planned nor replaced."""
+    folder = tmp_path / "folder"
+    deps.Installer(folder, python=sys.executable).install([fake_pin("birdseyefake_lib", "2.1")])
+    plan = deps.Installer(folder, python=sys.executable).install(
+        [deps.RuntimePackage("birdseyefake_app", ">=1.0", deps.Use("birdseyefake_app"))])
+    assert [p.requirement for p in plan] == ["birdseyefake_app==1.0"]
 
 
 def test_installer_reports_a_wheel_that_does_not_load(tmp_path, wheelhouse, clean_path):

@@ -10,7 +10,8 @@ The chain (docs/design.md#workflow, step 6):
    point at the mean position of its detections. A burrow seen by 40 frames at the same spot gives a
    few cells, not 40 points, which bounds the neighbourhood sizes DBSCAN meets.
 2. **Cluster** the de-duplicated points with DBSCAN (``eps_m``, ``min_samples``; scikit-learn's
-   :class:`~sklearn.cluster.DBSCAN` on a precomputed radius graph): a point is *core* when at least
+   DBSCAN rules, computed with scipy's connected components on a radius graph, so the plugin needs
+   no scikit-learn): a point is *core* when at least
    ``min_samples`` de-duplicated points (itself included) lie within ``eps_m``; clusters are the
    core points connected through ``eps_m`` plus the non-core points within ``eps_m`` of them;
    the rest is noise (label −1). The radius graph is built once (:func:`neighbour_graph`) and can
@@ -90,28 +91,16 @@ class NeighbourGraph:
     j: np.ndarray
     d: np.ndarray
 
-    def degree(self, eps_m: float) -> np.ndarray:
-        """Number of points within ``eps_m`` of each point, the point itself included."""
-        keep = self.d <= eps_m
-        return 1 + np.bincount(self.i[keep], minlength=self.n) + np.bincount(self.j[keep], minlength=self.n)
-
-    def csr(self, eps_m: float):
-        """Symmetric sparse distance matrix at ``eps_m`` with explicit zero diagonal, each row sorted
-        by distance (the form scikit-learn's precomputed radius neighbours read without re-sorting)."""
-        from scipy import sparse
-
+    def within(self, eps_m: float) -> np.ndarray:
+        """Mask of the pairs within ``eps_m`` (≤ the radius the graph was built for)."""
         if eps_m > self.radius_m * (1 + _RADIUS_SLACK):
             raise ValueError(f"graph built for {self.radius_m} m cannot answer eps {eps_m} m")
-        keep = self.d <= eps_m
-        i, j, d = self.i[keep], self.j[keep], self.d[keep]
-        self_idx = np.arange(self.n, dtype=np.int64)
-        rows = np.concatenate([self_idx, i, j])
-        cols = np.concatenate([self_idx, j, i])
-        data = np.concatenate([np.zeros(self.n), d, d])
-        order = np.lexsort((data, rows))
-        indptr = np.zeros(self.n + 1, dtype=np.int64)
-        np.cumsum(np.bincount(rows, minlength=self.n), out=indptr[1:])
-        return sparse.csr_matrix((data[order], cols[order], indptr), shape=(self.n, self.n))
+        return self.d <= eps_m
+
+    def degree(self, eps_m: float) -> np.ndarray:
+        """Number of points within ``eps_m`` of each point, the point itself included."""
+        keep = self.within(eps_m)
+        return 1 + np.bincount(self.i[keep], minlength=self.n) + np.bincount(self.j[keep], minlength=self.n)
 
 
 def neighbour_graph(xy, radius_m: float) -> NeighbourGraph:
@@ -143,24 +132,45 @@ class Dbscan:
 
 
 def dbscan(graph: NeighbourGraph, eps_m: float, min_samples: int) -> Dbscan:
-    """scikit-learn's DBSCAN over a precomputed :class:`NeighbourGraph` (built for a radius ≥ eps_m).
+    """DBSCAN over a :class:`NeighbourGraph` (built for a radius ≥ eps_m), with scikit-learn's results.
 
-    Clusters are numbered in order of their first core point; a border point reachable from two
-    clusters joins the first (scikit-learn's rule).
+    Clusters are the connected components of the core points (core pairs within ``eps_m``), numbered in
+    order of their first core point; a border point within ``eps_m`` of several clusters joins the
+    lowest-numbered one — scikit-learn grows its clusters one by one in that order and never relabels a
+    point (tests/unit/detect/test_clustering.py compares both).
     """
-    from sklearn.cluster import DBSCAN
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
 
     min_samples = int(min_samples)
     if min_samples < 1:
         raise InputError(f"DBSCAN needs at least 1 sample per neighbourhood (got {min_samples})",
                          field="MIN_SAMPLES")
-    if graph.n == 0:
+    n = graph.n
+    if n == 0:
         return Dbscan(np.empty(0, np.int64), np.empty(0, bool), 0)
-    fit = DBSCAN(eps=float(eps_m), min_samples=min_samples, metric="precomputed").fit(graph.csr(eps_m))
-    core = np.zeros(graph.n, dtype=bool)
-    core[fit.core_sample_indices_] = True
-    labels = fit.labels_.astype(np.int64)
-    return Dbscan(labels, core, int(labels.max()) + 1 if len(labels) else 0)
+    keep = graph.within(eps_m)
+    i, j = graph.i[keep], graph.j[keep]
+    core = graph.degree(eps_m) >= min_samples
+    both = core[i] & core[j]
+    n_parts, part = connected_components(coo_matrix((np.ones(int(both.sum()), np.int8), (i[both], j[both])),
+                                                    shape=(n, n)), directed=False)
+    core_idx = np.flatnonzero(core)
+    first = np.full(n_parts, n, dtype=np.int64)
+    np.minimum.at(first, part[core_idx], core_idx)
+    clusters = np.flatnonzero(first < n)
+    clusters = clusters[np.argsort(first[clusters])]
+    number = np.full(n_parts, -1, dtype=np.int64)
+    number[clusters] = np.arange(len(clusters))
+    labels = np.full(n, -1, dtype=np.int64)
+    labels[core_idx] = number[part[core_idx]]
+    border = np.full(n, len(clusters), dtype=np.int64)
+    for a, b in ((i, j), (j, i)):
+        reach = core[a] & ~core[b]
+        np.minimum.at(border, b[reach], labels[a[reach]])
+    reached = ~core & (border < len(clusters))
+    labels[reached] = border[reached]
+    return Dbscan(labels, core, len(clusters))
 
 
 # ------------------------------------------------------------------------------ summaries

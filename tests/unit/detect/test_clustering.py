@@ -114,7 +114,7 @@ def test_graph_degree_counts_self_and_neighbours_within_eps():
     np.testing.assert_array_equal(g.degree(0.2), [3, 3, 3, 1])
     np.testing.assert_array_equal(g.degree(0.1), [2, 3, 2, 1])
     with pytest.raises(ValueError):
-        g.csr(0.3)
+        g.degree(0.3)
 
 
 def test_single_point_hull_is_the_circumscribed_polygon_of_the_buffer():
@@ -184,3 +184,18 @@ def distance_to_convex(x, vertices):
 def polygon_area(ring):
     x, y = ring[:, 0], ring[:, 1]
     return 0.5 * float(np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y))
+
+
+def test_a_border_point_between_two_clusters_joins_the_first_as_in_scikit_learn():
+    from sklearn.cluster import DBSCAN
+
+    # Two groups of four 0.3 m apart; the point between them is no core point but lies within eps of
+    # a core point of each.
+    x = [0.0, 0.003, 0.006, 0.02, 0.15, 0.28, 0.294, 0.297, 0.30, 5.0]
+    xy = np.column_stack([x, np.zeros(len(x))])
+    for order in (np.arange(len(x)), np.array([5, 6, 7, 8, 4, 0, 1, 2, 3, 9])):
+        ours = dbscan(neighbour_graph(xy[order], 0.14), 0.14, 4)
+        ref = DBSCAN(eps=0.14, min_samples=4).fit(xy[order])
+        np.testing.assert_array_equal(ours.labels, ref.labels_)
+        middle = list(order).index(4)
+        assert not ours.core[middle] and ours.labels[middle] == 0 and ours.n_clusters == 2

@@ -45,7 +45,10 @@ def test_undistort_agrees_with_opencv_where_it_converges():
     rng = np.random.default_rng(0)
     uv = np.column_stack([rng.uniform(0, cam.width, 200), rng.uniform(0, cam.height, 200)])
     crit = (cv2.TERM_CRITERIA_COUNT | cv2.TERM_CRITERIA_EPS, 200, 1e-14)
-    ref = cv2.undistortPointsIter(uv[:, None, :], cam.K, np.array(cam.dist), None, None, crit)[:, 0, :]
+    if hasattr(cv2, "undistortPointsIter"):  # OpenCV 4; OpenCV 5 folded it into undistortPoints
+        ref = cv2.undistortPointsIter(uv[:, None, :], cam.K, np.array(cam.dist), None, None, crit)[:, 0, :]
+    else:
+        ref = cv2.undistortPoints(uv[:, None, :], cam.K, np.array(cam.dist), criteria=crit)[:, 0, :]
     np.testing.assert_allclose(cam.pixel_to_normalized(uv), ref, atol=1e-9)
 
 
