@@ -3,7 +3,7 @@
 SHELL := /bin/bash
 .SHELLFLAGS := -eu -o pipefail -c
 .DEFAULT_GOAL := help
-.PHONY: help setup lint test test-unit test-integration demo bench package qgis-process chain-model translations clean \
+.PHONY: help setup lint test test-unit test-integration test-qgis-lts test-qgis-sid demo bench package qgis-process chain-model translations clean \
 	distclean
 
 VENV := .venv
@@ -17,6 +17,8 @@ ALLOW_EMPTY := || { rc=$$?; [[ $$rc == 5 ]] || exit $$rc; }
 help:
 	@echo "make demo          set up, then run the whole chain on a simulated campaign -> birdseye-demo/"
 	@echo "make test          set up, then run every test suite (unit, QGIS, desktop under Xvfb, qgis_process)"
+	@echo "make test-qgis-lts the QGIS suites on QGIS 3.40 LTR, in a Debian 13 chroot (root; CI runs it too)"
+	@echo "make test-qgis-sid the QGIS suites on Debian unstable's QGIS (3.44), in a chroot (root)"
 	@echo "make setup         install missing Debian packages and the pinned Python packages into $(VENV)"
 	@echo "make lint          ruff, flake8-qgis and the Qt 6 / QGIS API name check (run by make test)"
 	@echo "make bench         run each benchmarks/bench_*.py and print its figures and ratios"
@@ -46,6 +48,14 @@ test-unit:
 # tests/gui starts its own Xvfb for the real desktop; everything else is headless.
 test-integration:
 	QT_QPA_PLATFORM=offscreen $(PYTEST) -q tests/qgis tests/gui tests/e2e $(ALLOW_EMPTY)
+
+# The same QGIS suites on the QGIS releases users run (scripts/qgis_chroot.sh builds the chroot under
+# build/chroots once, from the Debian archive in this machine's apt sources); needs root.
+test-qgis-lts:
+	scripts/qgis_chroot.sh trixie
+
+test-qgis-sid:
+	scripts/qgis_chroot.sh sid
 
 # DEMO_ARGS, e.g. "--size small" for a quick check or "--out elsewhere" (see scripts/demo.py --help).
 demo: setup
@@ -79,8 +89,12 @@ translations: setup
 		[[ $$ts == i18n/birdseye_en.ts ]] || lrelease -silent "$$ts" -qm "$${ts%.ts}.qm"; \
 	done
 
+# While scripts/qgis_chroot.sh runs, this tree and /dev are mounted inside build/chroots: removing build
+# then would reach them.
 clean:
-	rm -rf build birdseye-demo .pytest_cache .hypothesis .qgis-settings
+	@! awk '{print $$2}' /proc/self/mounts | grep -q '^$(CURDIR)/build/' || \
+		{ echo "make clean: build/chroots is in use (scripts/qgis_chroot.sh); try again once it ends" >&2; exit 1; }
+	rm -rf --one-file-system build birdseye-demo .pytest_cache .hypothesis .qgis-settings
 	find . -path ./$(VENV) -prune -o \( -name __pycache__ -o -name '*.pyc' \) -exec rm -rf {} +
 
 distclean: clean

@@ -440,8 +440,7 @@ def finish_project(project, farm_layers: list) -> None:
         draw_rank(layer), -workflow_position.get(root.findLayer(layer.id()).parent().name(), -1)))
     root.setHasCustomLayerOrder(True)
     root.setCustomLayerOrder(ordered)
-    extent = QgsRectangle()
-    extent.setMinimal()
+    extent = QgsRectangle()  # null on 3.22 and later: the first combine takes that extent (no setMinimal)
     for layer in farm_layers:
         extent.combineExtentWith(layer.extent())
     if not extent.isEmpty():

@@ -25,7 +25,7 @@ venv="${BIRDSEYE_VENV_DIR:-$repo/.venv}"
 stamp="$venv/.requirements.sha256"
 qt6_venv="${BIRDSEYE_QT6_VENV_DIR:-$repo/.venv-qt6}"
 qt6_stamp="$qt6_venv/.requirements.sha256"
-requirement_files=(requirements.txt requirements-dev.txt requirements-train.txt constraints.txt)
+requirement_files=(requirements.txt requirements-test.txt requirements-dev.txt requirements-train.txt constraints.txt)
 
 say() { echo "setup: $*"; }
 

@@ -113,12 +113,15 @@ class _IfaceUiPatches:
 
     The stub's ``addDockWidget``/``removeDockWidget`` do nothing and ``addToolBar(QToolBar)`` only
     records the toolbar; plugins and docks under test need them to act as in the desktop, so their
-    widgets can be found, shown and removed.
+    widgets can be found, shown and removed. Its ``layerTreeView()`` is a MagicMock, which QGIS 3.44's
+    Processing hands to C++ when it loads an algorithm's results (``QgsProcessingGuiUtils.addResultLayers``)
+    and which C++ refuses: here it is a real view of the project's layer tree.
     """
 
     def __init__(self, iface):
         self.iface = iface
         self.plugin_menus = {}
+        self.layer_tree_view = None
 
     def addDockWidget(self, area, dock):
         self.iface.mainWindow().addDockWidget(area, dock)
@@ -136,6 +139,16 @@ class _IfaceUiPatches:
             toolbar.setObjectName(toolbar.windowTitle())
         main_window.addToolBar(area if area is not None else Qt.TopToolBarArea, toolbar)
         return toolbar
+
+    def layerTreeView(self):
+        if self.layer_tree_view is None:
+            from qgis.core import QgsLayerTreeModel, QgsProject
+            from qgis.gui import QgsLayerTreeView
+
+            self.layer_tree_view = QgsLayerTreeView(self.iface.mainWindow())
+            self.layer_tree_view.setModel(QgsLayerTreeModel(QgsProject.instance().layerTreeRoot(),
+                                                            self.layer_tree_view))
+        return self.layer_tree_view
 
     def pluginMenu(self):
         from qgis.PyQt.QtWidgets import QMenu
@@ -168,7 +181,7 @@ class _IfaceUiPatches:
 def _iface_acts_on_main_window(qgis_iface):
     """Install :class:`_IfaceUiPatches` on the session's iface stub (instance attributes)."""
     patches = _IfaceUiPatches(qgis_iface)
-    names = ["addDockWidget", "removeDockWidget", "addToolBar", "pluginMenu", "addPluginToMenu",
+    names = ["addDockWidget", "removeDockWidget", "addToolBar", "layerTreeView", "pluginMenu", "addPluginToMenu",
              "removePluginMenu"]
     with pytest.MonkeyPatch.context() as monkeypatch:
         for name in names:

@@ -22,7 +22,7 @@ import pytest
 
 REPO_ROOT = Path(__file__).resolve().parents[2]
 DEMO = REPO_ROOT / "scripts" / "demo.py"
-PYTHON = REPO_ROOT / ".venv" / "bin" / "python"
+PYTHON = sys.executable  # the test venv's Python: the host's .venv, or a QGIS chroot's (scripts/qgis_chroot.sh)
 STYLES = REPO_ROOT / "resources" / "styles"
 GROUPS = ["survey", "flight", "labels", "detections", "clusters", "plan", "farm map"]
 FLIGHT_KEYS = {"train1": "training flight 1", "train2": "training flight 2", "heldout": "held-out flight"}
@@ -99,8 +99,12 @@ def open_project(path: Path):
 
 
 def renderer_signature(element) -> tuple:
-    """Renderer type, its classification field and the colour of each symbol's first layer."""
-    colours = [opt.get("value") for sym in element.iter("symbol")
+    """Renderer type, its classification field and the colour of each symbol's first layer (r, g, b, a).
+
+    QGIS 3.22 writes a colour as ``r,g,b,a``; 3.40 appends the same colour at full precision
+    (``r,g,b,a,rgb:…``), so only the leading 8-bit components are compared.
+    """
+    colours = [tuple(int(c) for c in opt.get("value").split(",")[:4]) for sym in element.iter("symbol")
                for layer in sym.findall("layer")[:1]
                for opt in layer.iter("Option") if opt.get("name") == "color"]
     return element.get("type"), element.get("attr"), tuple(colours)

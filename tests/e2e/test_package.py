@@ -24,7 +24,7 @@ import pytest
 
 REPO_ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(REPO_ROOT / "tests" / "gui"))
-from test_desktop import QGIS_BIN, grab_screen, xvfb_display  # noqa: E402  (the desktop test's X helpers)
+from test_desktop import OFFLINE_SETTINGS, QGIS_BIN, grab_screen, xvfb_display  # noqa: E402  (the desktop test's X helpers)
 
 _spec = importlib.util.spec_from_file_location("birdseye_package_script", REPO_ROOT / "scripts" / "package.py")
 package_script = importlib.util.module_from_spec(_spec)
@@ -254,7 +254,8 @@ import json, os, sys, traceback
 from qgis.core import QgsApplication, QgsSettings
 from qgis.PyQt.QtCore import QTimer
 from qgis.PyQt.QtWidgets import QTabWidget, QWidget
-from qgis.utils import active_plugins, home_plugin_path, iface, plugins
+import qgis.utils
+from qgis.utils import active_plugins, iface, plugins
 
 result = {"errors": []}
 
@@ -276,6 +277,8 @@ def install():
         result["loaded_before"] = "birdseye" in plugins
         # What Plugins > Manage and Install Plugins > Install from ZIP runs on "Install Plugin".
         pyplugin_installer.instance().installFromZipFile(os.environ["BIRDSEYE_ZIP"])
+        # QGIS 3.22 sets qgis.utils.home_plugin_path; later releases renamed it HOME_PLUGIN_PATH.
+        home_plugin_path = getattr(qgis.utils, "HOME_PLUGIN_PATH", None) or qgis.utils.home_plugin_path
         result["installed_to"] = os.path.join(home_plugin_path, "birdseye")
         result["metadata_installed"] = os.path.isfile(os.path.join(home_plugin_path, "birdseye", "metadata.txt"))
         result["loaded"] = "birdseye" in plugins
@@ -312,7 +315,7 @@ def test_install_from_zip_in_the_desktop(package, tmp_path):
     profiles = tmp_path / "profiles"
     ini = profiles / "profiles" / "default" / "QGIS" / "QGIS3.ini"
     ini.parent.mkdir(parents=True)
-    ini.write_text("[PythonPlugins]\nprocessing=true\n\n[core]\nNewsFeed\\httpsfeedqgisorg\\disabled=true\n")
+    ini.write_text("[PythonPlugins]\nprocessing=true\n\n" + OFFLINE_SETTINGS)
     probe = tmp_path / "install_probe.py"
     probe.write_text(INSTALL_PROBE, encoding="utf-8")
     env = {k: v for k, v in os.environ.items() if k not in {"QGIS_CUSTOM_CONFIG_PATH", "QGIS_PLUGINPATH",
@@ -423,17 +426,22 @@ def run_bare(env: dict[str, str], *args: str, timeout: float = 300) -> subproces
 def wheelhouse() -> Path:
     """detect's packages and what they need beyond QGIS's Python, as wheels in build/wheelhouse.
 
-    The list comes from pip's own resolution in the bare Python (what the installer will ask for);
-    the wheels are downloaded once from the package index and kept for later runs."""
+    The list comes from pip's own resolution in the bare Python, with its numpy held as the installer
+    holds QGIS's (the newest OpenCV wants numpy 2); the wheels are downloaded once from the package index
+    and kept for later runs."""
     from birdseye.birdseye_qgis.dependencies import read_requirements
 
     pins = [p.requirement for p in read_requirements() if p.distribution in DETECT_PACKAGES]
     WHEELHOUSE.mkdir(parents=True, exist_ok=True)
     report = WHEELHOUSE / "plan.json"
     env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
+    numpy = subprocess.run([BARE_PYTHON, "-c", "import numpy; print(numpy.__version__)"], env=env,
+                           capture_output=True, text=True, check=True).stdout.strip()
+    held = WHEELHOUSE / "qgis-numpy.txt"
+    held.write_text(f"numpy=={numpy}\n", encoding="utf-8")
     resolved = subprocess.run([BARE_PYTHON, "-m", "pip", "install", "--dry-run", "--quiet", "--only-binary=:all:",
-                               "--report", str(report), *pins], env=env, capture_output=True, text=True,
-                              timeout=600, check=False)
+                               "--report", str(report), "-c", str(held), *pins], env=env, capture_output=True,
+                              text=True, timeout=600, check=False)
     assert resolved.returncode == 0, f"pip could not resolve {pins} for {BARE_PYTHON}:\n{resolved.stderr}"
     plan = [f"{i['metadata']['name']}=={i['metadata']['version']}"
             for i in json.loads(report.read_text(encoding="utf-8"))["install"]]
@@ -464,7 +472,7 @@ def test_installer_brings_a_bare_profile_to_a_working_detect(package, wheelhouse
         zf.extractall(profile / "python" / "plugins")
     ini = profile / "QGIS" / "QGIS3.ini"
     ini.parent.mkdir(parents=True)
-    ini.write_text("[PythonPlugins]\nbirdseye=true\nprocessing=true\n\n[core]\nNewsFeed\\httpsfeedqgisorg\\disabled=true\n")
+    ini.write_text("[PythonPlugins]\nbirdseye=true\nprocessing=true\n\n" + OFFLINE_SETTINGS)
     env = bare_qgis_env(profiles, tmp_path)
     campaign = tmp_path / "campaign"
     simulate = ["birdseye:simulatecampaign", "--", "SEED=7", f"OUTPUT_FOLDER={campaign}", "N_TARGETS=3",

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import os
 import subprocess
+import sys
 from pathlib import Path
 
 import pytest
@@ -33,7 +34,7 @@ def demo_project(tmp_path_factory) -> Path:
     out = tmp_path_factory.mktemp("e2e") / "birdseye-demo"
     env = {k: v for k, v in os.environ.items() if k not in {"QGIS_CUSTOM_CONFIG_PATH", "PYTHONPATH"}}
     env["QT_QPA_PLATFORM"] = "offscreen"
-    result = subprocess.run([str(REPO_ROOT / ".venv" / "bin" / "python"), str(REPO_ROOT / "scripts" / "demo.py"),
+    result = subprocess.run([sys.executable, str(REPO_ROOT / "scripts" / "demo.py"),
                              "--size", "small", "--out", str(out)], cwd=REPO_ROOT, env=env, capture_output=True,
                             text=True, timeout=240, check=False)
     assert result.returncode == 0, f"the small demo failed:\n{result.stdout[-3000:]}\n{result.stderr[-3000:]}"

@@ -340,8 +340,9 @@ def onnx_model(path, bias=None):
         inits.append(helper.make_tensor("b", TensorProto.FLOAT, [1], [bias]))
         inputs.append("b")
     node = helper.make_node("Conv", inputs, ["heat"])
+    # IR 8 is opset 17's: a newer onnx stamps its own, which older onnxruntime releases refuse.
     model = helper.make_model(helper.make_graph([node], "m", [x], [y], inits),
-                              opset_imports=[helper.make_opsetid("", 17)])
+                              opset_imports=[helper.make_opsetid("", 17)], ir_version=8)
     embed_metadata(model, ModelMetadata(resolution_cm=1.0, tile_size=32, tiles_overlap_pct=25.0,
                                         output_kind="probability", default_threshold=0.3))
     onnx.save(model, str(path))

@@ -42,7 +42,9 @@ def identity_model(path, threshold=0.3, **changes):
     y = helper.make_tensor_value_info("heat", TensorProto.FLOAT, ["n", 1, "h", "w"])
     w = helper.make_tensor("k", TensorProto.FLOAT, [1, 3, 1, 1], [1 / 3] * 3)
     graph = helper.make_graph([helper.make_node("Conv", ["image", "k"], ["heat"])], "g", [x], [y], [w])
-    model = helper.make_model(graph, opset_imports=[helper.make_opsetid("", 17)])
+    # IR 8 is opset 17's: left to itself, a newer onnx stamps its own IR version, which onnxruntime
+    # releases older than it refuse (onnx 1.20 writes 13, onnxruntime 1.20 reads up to 10).
+    model = helper.make_model(graph, opset_imports=[helper.make_opsetid("", 17)], ir_version=8)
     embed_metadata(model, ModelMetadata(**{**dict(resolution_cm=1.0, tile_size=64, tiles_overlap_pct=12.5,
                                                   output_kind="probability", default_threshold=threshold), **changes}))
     onnx.save(model, str(path))
