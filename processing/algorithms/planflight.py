@@ -57,10 +57,11 @@ from ...birdseye_qgis.qgis_enums import (
     WKB_POINT_Z,
 )
 from ...birdseye_qgis.qgis_io import layers
+from ..parameters.review import ReviewParametersMixin
 from .base import BirdsEyeAlgorithm
 
 
-class PlanFlight(BirdsEyeAlgorithm):
+class PlanFlight(ReviewParametersMixin, BirdsEyeAlgorithm):
     ALG_ID = "planflight"
     DISPLAY_NAME = QT_TRANSLATE_NOOP("PlanFlight", "Plan the survey flight")
     GROUP = "plan"
@@ -86,6 +87,7 @@ class PlanFlight(BirdsEyeAlgorithm):
     FOOTPRINT_MARGIN_PX = "FOOTPRINT_MARGIN_PX"
     DRONE = "DRONE"
     PAYLOAD = "PAYLOAD"
+    UNRESOLVED_ONLY = "UNRESOLVED_ONLY"
 
     CAPTURE_OPTIONS = [(CAPTURE_PHOTO, "Photo at each waypoint"), (CAPTURE_TIMED, "Timed capture (interval)")]
     #: Mission file outputs: parameter, core format key, label, file filter.
@@ -129,6 +131,10 @@ class PlanFlight(BirdsEyeAlgorithm):
             self.FORCE, self.tr("Plan even if the points spread over more than 10 km"), defaultValue=False)
         force.setFlags(force.flags() | PARAMETER_ADVANCED)
         self.addParameter(force)
+        self.add_review_parameters(with_frames=True, edge_buffer=True)
+        self.addParameter(QgsProcessingParameterBoolean(
+            self.UNRESOLVED_ONLY, self.tr("With REVIEW: fly only to the unresolved clusters (the geotags then "
+                                          "only tell which clusters they match)"), defaultValue=False))
         crs = QgsProcessingParameterCrs(self.OUTPUT_CRS, self.tr("Output CRS (empty: UTM zone of the site)"),
                                         optional=True)
         crs.setFlags(crs.flags() | PARAMETER_ADVANCED)
@@ -142,7 +148,8 @@ class PlanFlight(BirdsEyeAlgorithm):
                 name, self.tr(label), file_filter, optional=True, createByDefault=False))
         for name, label in (("ROUTE_LENGTH_M", "Route length [m]"), ("FLIGHT_TIME_MIN", "Estimated flight time [min]"),
                             ("WAYPOINT_COUNT", "Waypoints"), ("MISSION_COUNT", "Missions"),
-                            ("GEOTAG_COUNT", "Geotags")):
+                            ("GEOTAG_COUNT", "Geotags"),
+                            ("UNRESOLVED_COUNT", "Unresolved clusters of the review")):
             self.addOutput(QgsProcessingOutputNumber(name, self.tr(label)))
         self.addOutput(QgsProcessingOutputString(self.MISSION_FILES, self.tr("Mission files written")))
 
@@ -176,8 +183,6 @@ class PlanFlight(BirdsEyeAlgorithm):
             source = layer.materialize(QgsFeatureRequest().setFilterFids(layer.selectedFeatureIds()))
         id_field = self.parameterAsString(parameters, self.ID_FIELD, context) or (
             "id" if "id" in layer.fields().names() else "")
-        # Ground heights only feed the uneven-ground warning; a geotag layer's h_ellipsoid is NULL where
-        # unknown, while its Z is then 0, so the field is preferred.
         height_field = "h_ellipsoid" if "h_ellipsoid" in layer.fields().names() else ""
         columns = self.run_core(layers.read_point_layer, source, context.transformContext(),
                                 [a for a in (id_field, height_field) if a], layer.name())
@@ -186,6 +191,29 @@ class PlanFlight(BirdsEyeAlgorithm):
                                                  " over.").format(layer.name()))
         ids = (columns["attributes"][id_field] if id_field else columns["row"].tolist())
         ids = [str(columns["row"][k]) if v is None else str(v) for k, v in enumerate(ids)]
+        # Ground heights only feed the uneven-ground warning; a geotag layer's h_ellipsoid is NULL where
+        # unknown, while its Z is then 0, so the field is preferred.
+        heights = (np.array([np.nan if v is None else float(v) for v in columns["attributes"][height_field]])
+                   if height_field else columns["z"])
+        lat, lon, origins = columns["lat"], columns["lon"], ["survey"] * len(ids)
+        # Every geotag of the layer, selected or not, settles the clusters it matches.
+        reviewed = self.read_reviewed_clusters(parameters, context, feedback, layer, None, 0.0, 30.0)
+        unresolved = [c for c in reviewed or [] if c.is_unresolved]
+        if self.parameterAsBool(parameters, self.UNRESOLVED_ONLY, context):
+            if reviewed is None:
+                raise QgsProcessingException(self.tr("UNRESOLVED_ONLY needs a review: give REVIEW and the "
+                                                     "detection layers it judged (REVIEW_DETECTIONS)."))
+            if not unresolved:
+                raise QgsProcessingException(self.tr("The review left no cluster unresolved (uncertain, "
+                                                     "unreviewed or with conflicting verdicts): there is "
+                                                     "nothing to fly back to."))
+            lat, lon, ids, heights, origins = np.empty(0), np.empty(0), [], np.empty(0), []
+        if unresolved:
+            lat = np.append(lat, [c.lat for c in unresolved])
+            lon = np.append(lon, [c.lon for c in unresolved])
+            ids = ids + [c.key for c in unresolved]
+            heights = np.append(heights, np.full(len(unresolved), np.nan))
+            origins = origins + [f"review:{c.outcome}" for c in unresolved]
 
         point = self.parameterAsPoint(parameters, self.HOME, context, QgsCoordinateReferenceSystem(layers.WGS84))
         home = None if point.isEmpty() else (point.y(), point.x())
@@ -212,11 +240,9 @@ class PlanFlight(BirdsEyeAlgorithm):
                      for name, fmt, _, _ in self.FILE_OUTPUTS}
         requested = {fmt: path for fmt, path in requested.items() if path}
 
-        heights = (np.array([np.nan if v is None else float(v) for v in columns["attributes"][height_field]])
-                   if height_field else columns["z"])
-        progress, is_canceled = self.progress_callbacks(feedback, 0.0, 80.0)
-        plan = self.run_core(plan_flight, columns["lat"], columns["lon"], ids, home, settings, camera,
-                             layer.name(), progress, is_canceled, ground_heights=heights)
+        progress, is_canceled = self.progress_callbacks(feedback, 30.0 if reviewed is not None else 0.0, 80.0)
+        plan = self.run_core(plan_flight, lat, lon, ids, home, settings, camera,
+                             layer.name(), progress, is_canceled, ground_heights=heights, origins=origins)
         for message in plan.warnings:
             feedback.pushWarning(message)
         if plan.suggested_interval_s is not None:
@@ -229,13 +255,13 @@ class PlanFlight(BirdsEyeAlgorithm):
         specs = {fmt: plan.mission_specs(Path(path).stem) for fmt, path in requested.items()}
         for fmt, fmt_specs in specs.items():
             self.run_core(check_waypoint_limits, fmt_specs, [fmt])
-        crs_core, crs = self.run_core(layers.output_crs, chosen_crs, columns["lat"], columns["lon"])
+        crs_core, crs = self.run_core(layers.output_crs, chosen_crs, lat, lon)
         outputs = self._write_layers(parameters, context, feedback, plan, crs_core, crs)
         outputs.update(self._write_mission_files(specs, requested, parameters, context, feedback))
         outputs.update({"ROUTE_LENGTH_M": plan.total_length_m, "FLIGHT_TIME_MIN": plan.total_time_s / 60.0,
                         "WAYPOINT_COUNT": plan.waypoint_count, "MISSION_COUNT": len(plan.missions),
-                        "GEOTAG_COUNT": len(ids)})
-        self._log_summary(feedback, plan, len(ids))
+                        "GEOTAG_COUNT": len(ids) - len(unresolved), "UNRESOLVED_COUNT": len(unresolved)})
+        self._log_summary(feedback, plan, len(ids) - len(unresolved), len(unresolved))
         feedback.setProgress(100)
         return outputs
 
@@ -287,8 +313,11 @@ class PlanFlight(BirdsEyeAlgorithm):
         outputs[self.MISSION_FILES] = ";".join(written)
         return outputs
 
-    def _log_summary(self, feedback, plan, geotag_count):
+    def _log_summary(self, feedback, plan, geotag_count, unresolved_count):
         s = plan.settings
+        if unresolved_count:
+            feedback.pushInfo(self.tr("{u} unresolved cluster(s) of the review are targets too (waypoint field "
+                                      "provenance: review).").format(u=unresolved_count))
         feedback.pushInfo(self.tr(
             "{g} geotag(s) → {w} waypoint(s) in {m} mission(s); route {km:.2f} km; estimated flight time"
             " {t:.1f} min at {v:g} m/s and {alt:g} m.").format(

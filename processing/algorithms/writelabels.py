@@ -31,11 +31,13 @@ from ...birdseye_qgis.core.labels.training_set import (
     LabelWriter,
     frames_without_ground,
     project_labels,
+    review_label_inputs,
 )
 from ...birdseye_qgis.qgis_enums import NUMBER_DOUBLE, NUMBER_INTEGER, SOURCE_VECTOR_POINT, SOURCE_VECTOR_POLYGON
 from ...birdseye_qgis.qgis_io import layers
 from ...birdseye_qgis.qgis_io.project_settings import read_sigma_label_px
 from ..parameters.dem import DemParametersMixin
+from ..parameters.review import ReviewParametersMixin
 from .base import BirdsEyeAlgorithm
 
 
@@ -57,7 +59,7 @@ def sigma_from_bound_json(path: str) -> float:
     return tolerance / 3.0
 
 
-class WriteLabels(DemParametersMixin, BirdsEyeAlgorithm):
+class WriteLabels(ReviewParametersMixin, DemParametersMixin, BirdsEyeAlgorithm):
     ALG_ID = "writelabels"
     DISPLAY_NAME = QT_TRANSLATE_NOOP("WriteLabels", "Write training labels")
     GROUP = "labels"
@@ -80,7 +82,7 @@ class WriteLabels(DemParametersMixin, BirdsEyeAlgorithm):
         self.addParameter(QgsProcessingParameterFeatureSource(
             self.GEOTAGS, self.tr("Geotags (surveyed targets)"), [SOURCE_VECTOR_POINT]))
         self.addParameter(QgsProcessingParameterFeatureSource(
-            self.FRAMES, self.tr("Frames (from Import flight log or Import DJI images)"),
+            self.FRAMES, self.tr("Frames (from Import flight log, Import drone images or Import camera solution)"),
             [SOURCE_VECTOR_POLYGON]))
         self.addParameter(QgsProcessingParameterNumber(
             self.SIGMA_PX, self.tr("Soft-label σ (px); empty: the sensor-bound dock's value, else 10"),
@@ -107,6 +109,7 @@ class WriteLabels(DemParametersMixin, BirdsEyeAlgorithm):
             0, minValue=0))
         self.addParameter(QgsProcessingParameterBoolean(
             self.WRITE_COCO, self.tr("Write COCO-keypoints JSON"), defaultValue=False))
+        self.add_review_parameters(with_frames=False, edge_buffer=False)
         self.addParameter(QgsProcessingParameterFolderDestination(self.OUTPUT_FOLDER, self.tr("Label folder")))
         self.addParameter(QgsProcessingParameterFeatureSink(
             self.OUTPUT_FRAMES, self.tr("Frames with label counts"), SOURCE_VECTOR_POLYGON,
@@ -115,7 +118,9 @@ class WriteLabels(DemParametersMixin, BirdsEyeAlgorithm):
             self.OUTPUT_GEOTAGS, self.tr("Geotags with frames seen"), SOURCE_VECTOR_POINT,
             optional=True, createByDefault=True))
         for name, text in (("LABEL_COUNT", "Labels written"), ("FRAMES_WITH_LABELS", "Frames with labels"),
-                           ("GEOTAGS_NEVER_IN_VIEW", "Geotags never in view"), ("SIGMA_USED_PX", "σ used (px)")):
+                           ("GEOTAGS_NEVER_IN_VIEW", "Geotags never in view"), ("SIGMA_USED_PX", "σ used (px)"),
+                           ("REVIEW_TARGETS", "Review targets (confirmed clusters no geotag matches)"),
+                           ("HARD_NEGATIVES", "Hard-negative clusters")):
             self.addOutput(QgsProcessingOutputNumber(name, self.tr(text)))
 
     def sigma(self, parameters, context, feedback) -> float:
@@ -134,7 +139,7 @@ class WriteLabels(DemParametersMixin, BirdsEyeAlgorithm):
         return 10.0
 
     def processAlgorithm(self, parameters, context, feedback):
-        steps = QgsProcessingMultiStepFeedback(3, feedback)
+        steps = QgsProcessingMultiStepFeedback(4, feedback)
         geotag_source = self.parameterAsSource(parameters, self.GEOTAGS, context)
         frame_source = self.parameterAsSource(parameters, self.FRAMES, context)
         if geotag_source is None or frame_source is None:
@@ -145,6 +150,15 @@ class WriteLabels(DemParametersMixin, BirdsEyeAlgorithm):
         geotags = self.run_core(self._read_geotags, geotag_source, context)
         records = self.run_core(layers.read_frame_layer, frame_source)
         groups = self.run_core(poses_from_records, records, frame_source.sourceName())
+        survey = geotags
+        reviewed = self.read_reviewed_clusters(parameters, context, steps, geotag_source,
+                                               [poses for poses, _ in groups])
+        review_targets, hard = review_label_inputs(reviewed or [], survey)
+        geotags = survey + review_targets
+        if reviewed is not None:
+            feedback.pushInfo(self.tr("From the review: {targets} target(s) nobody surveyed are labelled "
+                                      "(provenance review); {hard} hard negative(s) put their tiles first "
+                                      "in the negative sample.").format(targets=len(review_targets), hard=len(hard)))
         request = LabelRequest(
             sigma_px=sigma, edge_buffer_px=self.parameterAsDouble(parameters, self.EDGE_BUFFER_PX, context),
             write_rasters=self.parameterAsBoolean(parameters, self.WRITE_RASTERS, context),
@@ -185,27 +199,32 @@ class WriteLabels(DemParametersMixin, BirdsEyeAlgorithm):
                                          "get no labels; first: {items}").format(
                                      n_no_ground=len(no_ground), items=', '.join(str(i) for i in no_ground[:5])))
         label_counts = np.zeros(len(records), dtype=np.int64)
-        steps.setCurrentStep(0)
+        steps.setCurrentStep(1)
         projected = [self.run_core(project_labels, poses, geotags, request.edge_buffer_px, local,
                                    self.dem_ground(dem), own) for (poses, _), own in zip(groups, geotag_heights)]
-        steps.setCurrentStep(1)
+        hard_projected = [self.run_core(project_labels, poses, hard, request.edge_buffer_px, local,
+                                        self.dem_ground(dem), own) if len(hard) else None
+                          for (poses, _), own in zip(groups, geotag_heights)]
+        steps.setCurrentStep(2)
         done = 0
-        with LabelWriter(out_dir, geotags, request) as writer:
-            for (poses, idx), frame_labels in zip(groups, projected):
+        with LabelWriter(out_dir, geotags, request, hard) as writer:
+            for (poses, idx), frame_labels, hard_labels in zip(groups, projected, hard_projected):
                 images = [records[i].get("image") or "" for i in idx]
                 progress, is_canceled = self.progress_callbacks(
                     steps, 100.0 * done / len(records), 100.0 * (done + len(idx)) / len(records))
                 label_counts[idx] = self.run_core(writer.add_frames, poses, images, frame_labels, progress,
-                                                  is_canceled)
+                                                  is_canceled, hard_labels)
                 done += len(idx)
         summary = writer.result.summary
-        steps.setCurrentStep(2)
+        steps.setCurrentStep(3)
         self._log_summary(feedback, summary)
         results = {"OUTPUT_FOLDER": out_dir, "LABEL_COUNT": summary["n_labels"],
                    "FRAMES_WITH_LABELS": summary["n_frames_with_labels"],
-                   "GEOTAGS_NEVER_IN_VIEW": len(summary["geotags_never_in_view"]), "SIGMA_USED_PX": sigma}
+                   "GEOTAGS_NEVER_IN_VIEW": len(summary["geotags_never_in_view"]), "SIGMA_USED_PX": sigma,
+                   "REVIEW_TARGETS": len(review_targets), "HARD_NEGATIVES": len(hard)}
         results.update(self._write_frames(parameters, context, frame_source, label_counts))
-        results.update(self._write_geotags(parameters, context, geotag_source, writer.result.frames_per_geotag))
+        results.update(self._write_geotags(parameters, context, geotag_source,
+                                           writer.result.frames_per_geotag[:len(survey)]))
         return results
 
     @staticmethod
@@ -237,6 +256,16 @@ class WriteLabels(DemParametersMixin, BirdsEyeAlgorithm):
                 n_frames=summary['n_frames'], mean=lpf['mean'], max=lpf['max'],
                 n_geotags_in_view=summary['n_geotags_in_view'], n_geotags=summary['n_geotags'], mean2=fpg['mean'],
                 max2=fpg['max']))
+        review = summary["provenance"]["review"]
+        if review["n_targets"]:
+            feedback.pushInfo(tr("Of these, review targets: {n_in_view} of {n_targets} in view, {n_labels} "
+                                 "labels.").format(**review))
+        hard = summary["hard_negatives"]
+        if hard["n_clusters"]:
+            tiles = summary.get("tiles")
+            feedback.pushInfo(tr("Hard negatives: {n_in_view} of {n_clusters} in view, in {n_frames} frame(s); "
+                                 "{n_tiles} hard-negative tile(s) written.").format(
+                                     n_tiles=tiles["hard_negative"] if tiles else 0, **hard))
         if summary["n_occluded"]:
             feedback.pushInfo(tr("{n_occluded} projections were hidden behind terrain (not "
                                  "written)").format(n_occluded=summary['n_occluded']))

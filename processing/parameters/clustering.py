@@ -7,7 +7,7 @@ from qgis.core import QgsProcessingException, QgsProcessingParameterNumber
 from ...birdseye_qgis.core.detect.clustering import DEFAULT_DEDUP_CM, DEFAULT_EPS_M, DEFAULT_MIN_SAMPLES
 from ...birdseye_qgis.core.scoring.evaluation import Flight
 from ...birdseye_qgis.core.scoring.operating_point import DEFAULT_EDGE_BUFFER_PX, DEFAULT_EPS_PRED_M, OperatingPoint
-from ...birdseye_qgis.qgis_enums import NUMBER_DOUBLE, NUMBER_INTEGER
+from ...birdseye_qgis.qgis_enums import NUMBER_DOUBLE, NUMBER_INTEGER, PARAMETER_ADVANCED
 from ...birdseye_qgis.qgis_io.detections import read_detections, read_pose_groups
 
 
@@ -20,28 +20,35 @@ class ClusteringParametersMixin:
     EPS_PRED_M = "EPS_PRED_M"
     EDGE_BUFFER_PX = "EDGE_BUFFER_PX"
 
-    def add_clustering_parameters(self, with_prediction: bool = True) -> None:
+    def add_clustering_parameters(self, with_prediction: bool = True, advanced: bool = False) -> None:
         """DEDUP_CM, EPS_M, MIN_SAMPLES (and EPS_PRED_M, EDGE_BUFFER_PX) with the method's defaults."""
-        self.addParameter(QgsProcessingParameterNumber(
+        self._add_number(QgsProcessingParameterNumber(
             self.DEDUP_CM, self.tr("De-duplication grid cell (cm)"), NUMBER_DOUBLE,
-            DEFAULT_DEDUP_CM, minValue=0.1, maxValue=100.0))
-        self.addParameter(QgsProcessingParameterNumber(
+            DEFAULT_DEDUP_CM, minValue=0.1, maxValue=100.0), advanced)
+        self._add_number(QgsProcessingParameterNumber(
             self.EPS_M, self.tr("DBSCAN radius EPS (m)"), NUMBER_DOUBLE, DEFAULT_EPS_M,
-            minValue=0.001, maxValue=50.0))
-        self.addParameter(QgsProcessingParameterNumber(
+            minValue=0.001, maxValue=50.0), advanced)
+        self._add_number(QgsProcessingParameterNumber(
             self.MIN_SAMPLES, self.tr("DBSCAN minimum points per neighbourhood (itself included)"),
-            NUMBER_INTEGER, DEFAULT_MIN_SAMPLES, minValue=1, maxValue=1000))
+            NUMBER_INTEGER, DEFAULT_MIN_SAMPLES, minValue=1, maxValue=1000), advanced)
         if with_prediction:
-            self.add_matching_parameters()
+            self.add_matching_parameters(advanced=advanced)
 
-    def add_matching_parameters(self) -> None:
-        """EPS_PRED_M and EDGE_BUFFER_PX: when a geotag counts as seen and as matched by a cluster."""
-        self.addParameter(QgsProcessingParameterNumber(
+    def add_matching_parameters(self, edge_buffer: bool = True, advanced: bool = False) -> None:
+        """EPS_PRED_M and EDGE_BUFFER_PX: when a geotag counts as seen and as matched by a cluster.
+        ``edge_buffer=False`` where the algorithm has its own EDGE_BUFFER_PX (Write labels)."""
+        self._add_number(QgsProcessingParameterNumber(
             self.EPS_PRED_M, self.tr("Match radius geotag ↔ cluster core points EPS_PRED (m)"),
-            NUMBER_DOUBLE, DEFAULT_EPS_PRED_M, minValue=0.001, maxValue=50.0))
-        self.addParameter(QgsProcessingParameterNumber(
-            self.EDGE_BUFFER_PX, self.tr("Edge buffer of the in-view test (px)"), NUMBER_DOUBLE,
-            DEFAULT_EDGE_BUFFER_PX, minValue=0.0, maxValue=1000.0))
+            NUMBER_DOUBLE, DEFAULT_EPS_PRED_M, minValue=0.001, maxValue=50.0), advanced)
+        if edge_buffer:
+            self._add_number(QgsProcessingParameterNumber(
+                self.EDGE_BUFFER_PX, self.tr("Edge buffer of the in-view test (px)"), NUMBER_DOUBLE,
+                DEFAULT_EDGE_BUFFER_PX, minValue=0.0, maxValue=1000.0), advanced)
+
+    def _add_number(self, param, advanced: bool) -> None:
+        if advanced:
+            param.setFlags(param.flags() | PARAMETER_ADVANCED)
+        self.addParameter(param)
 
     def read_operating_point(self, parameters, context, threshold=None) -> OperatingPoint:
         """The operating point the dialog's clustering and matching parameters describe."""

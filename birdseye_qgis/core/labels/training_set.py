@@ -2,16 +2,19 @@
 
 One output folder per run (docs/design.md#labels) holds
 
-* ``labels.csv`` — ``frame_id, image, geotag_id, label, u, v, sigma_px, margin_px``: u, v in the
-  original (distorted) image, OpenCV pixel-centre convention; one row per geotag per frame in view;
+* ``labels.csv`` — ``frame_id, image, geotag_id, label, u, v, sigma_px, margin_px, provenance``: u, v
+  in the original (distorted) image, OpenCV pixel-centre convention; one row per target per frame in
+  view; ``provenance`` says where the target came from: ``survey`` (a geotag) or ``review`` (a cluster
+  the review confirmed real that no geotag matches, :mod:`..scoring.reviewed_clusters`);
 * ``labels.txt`` — the reference payload's line format ``idx path u,v,cls [u,v,cls ...]``, one line
   per frame with labels (``cls`` = index of the label in ``summary.json``'s ``classes``);
 * ``rasters/<frame_id>.png`` — one soft-label raster per frame, the image's size, 8-bit:
   ``round(255 · exp(−r² / 2σ²))`` drawn out to r = 3σ, overlapping humps combined by max;
-* optionally ``tiles/images`` + ``tiles/labels`` (image and label tiles side by side) and
+* optionally ``tiles/images`` + ``tiles/labels`` (image and label tiles side by side; negative tiles
+  that hold a hard negative — a cluster the review rejected — are drawn before the others) and
   ``coco_keypoints.json`` (COCO keypoints, one "centre" keypoint per label, pixel-centre coordinates);
 * ``summary.json`` — counts: frames with labels, labels per frame, frames per geotag, geotags never
-  in view, edge cases.
+  in view, edge cases; targets and labels per provenance; hard negatives and their tiles.
 
 A geotag whose projection lies inside the image but within ``edge_buffer_px`` of its border is
 reported as "edge" and not written as a positive. Writing streams frame by frame: memory does not
@@ -33,27 +36,59 @@ from ..geometry.poses import FrameGeometry, FramePoses
 from ..geometry.projection import Projection, project_in_view
 from .sparse_png import encode_gray_png
 
-LABELS_CSV_FIELDS = ["frame_id", "image", "geotag_id", "label", "u", "v", "sigma_px", "margin_px"]
+LABELS_CSV_FIELDS = ["frame_id", "image", "geotag_id", "label", "u", "v", "sigma_px", "margin_px", "provenance"]
+SURVEY, REVIEW = "survey", "review"
+PROVENANCES = (SURVEY, REVIEW)
 
 
 @dataclass
 class Geotags:
-    """Surveyed targets: ids, labels and WGS84 positions (ellipsoidal heights)."""
+    """Targets to label: ids, labels, WGS84 positions (ellipsoidal heights, NaN: on the ground) and
+    where each came from (``provenance``: survey or review; default survey)."""
 
     ids: np.ndarray
     labels: np.ndarray
     lat: np.ndarray
     lon: np.ndarray
     height: np.ndarray
+    provenance: np.ndarray | None = None
 
     def __post_init__(self):
         self.ids = np.asarray(self.ids)
         self.labels = np.asarray(self.labels, dtype=object)
         for name in ("lat", "lon", "height"):
             setattr(self, name, np.asarray(getattr(self, name), dtype=float).reshape(-1))
+        self.provenance = np.asarray([SURVEY] * len(self.lat) if self.provenance is None else self.provenance,
+                                     dtype=object).reshape(-1)
 
     def __len__(self) -> int:
         return len(self.lat)
+
+    def __add__(self, other: "Geotags") -> "Geotags":
+        return Geotags(np.concatenate([self.ids.astype(object), other.ids.astype(object)]),
+                       np.concatenate([self.labels, other.labels]), np.concatenate([self.lat, other.lat]),
+                       np.concatenate([self.lon, other.lon]), np.concatenate([self.height, other.height]),
+                       np.concatenate([self.provenance, other.provenance]))
+
+
+def review_label_inputs(clusters, survey: Geotags) -> tuple[Geotags, Geotags]:
+    """What a review adds to a label set, from :class:`..scoring.reviewed_clusters.ReviewedCluster`
+    objects: the targets (clusters confirmed real that no geotag matches; provenance review) and the
+    hard negatives, each at its cluster's centroid and on the ground each frame sees (no height).
+
+    A review target takes the survey's class when the survey has one; with several classes the
+    cluster's is unknown and it is labelled ``target``.
+    """
+    classes = sorted({str(x) for x in survey.labels})
+    label = classes[0] if len(classes) == 1 else "target"
+
+    def spots(chosen, name, provenance):
+        return Geotags(np.asarray([c.key for c in chosen], dtype=object), [name] * len(chosen),
+                       [c.lat for c in chosen], [c.lon for c in chosen], np.full(len(chosen), np.nan),
+                       [provenance] * len(chosen))
+
+    return (spots([c for c in clusters if c.is_target], label, REVIEW),
+            spots([c for c in clusters if c.is_hard_negative], "hard_negative", REVIEW))
 
 
 @dataclass
@@ -184,20 +219,24 @@ def tile_origins(length: int, tile: int) -> list[int]:
 
 
 def write_label_set(poses: FramePoses, images, geotags: Geotags, frame_labels: list[FrameLabels],
-                    out_dir, request: LabelRequest, progress=None, is_canceled=None) -> "LabelSetResult":
+                    out_dir, request: LabelRequest, progress=None, is_canceled=None,
+                    hard_negatives: Geotags | None = None,
+                    hard_negative_labels: list[FrameLabels] | None = None) -> "LabelSetResult":
     """Write labels.csv, labels.txt, rasters, tiles and COCO for the projected labels of one camera."""
-    with LabelWriter(out_dir, geotags, request) as writer:
-        writer.add_frames(poses, images, frame_labels, progress, is_canceled)
+    with LabelWriter(out_dir, geotags, request, hard_negatives) as writer:
+        writer.add_frames(poses, images, frame_labels, progress, is_canceled, hard_negative_labels)
     return writer.result
 
 
 class LabelWriter:
     """Streams frames into one label folder; frames of several cameras can be added in turn.
 
-    Use as a context manager; ``result`` holds the summary once it is closed.
+    Use as a context manager; ``result`` holds the summary once it is closed. ``hard_negatives`` are
+    spots the review rejected; their projections (``add_frames``' ``hard_negative_labels``) only decide
+    which negative tiles are drawn first.
     """
 
-    def __init__(self, out_dir, geotags: Geotags, request: LabelRequest):
+    def __init__(self, out_dir, geotags: Geotags, request: LabelRequest, hard_negatives: Geotags | None = None):
         self.out = Path(out_dir)
         self.out.mkdir(parents=True, exist_ok=True)
         self.geotags, self.request = geotags, request
@@ -215,6 +254,10 @@ class LabelWriter:
                                      "keypoints": ["centre"], "skeleton": []}
                                     for i, c in enumerate(self.classes)]} if request.coco else None
         self.frames_per_geotag = np.zeros(len(geotags), dtype=np.int64)
+        self.hard_negatives = hard_negatives
+        self.frames_per_hard_negative = np.zeros(0 if hard_negatives is None else len(hard_negatives), np.int64)
+        self.n_tiles_hard = self.n_frames_hard = 0
+        self.labels_by_provenance = dict.fromkeys(PROVENANCES, 0)
         self.seen_at_edge = np.zeros(len(geotags), dtype=bool)
         self.labels_per_frame: list[int] = []
         self.missing_images: list[str] = []
@@ -235,18 +278,21 @@ class LabelWriter:
             self.result = self._finish()
 
     def add_frames(self, poses: FramePoses, images, frame_labels: list[FrameLabels], progress=None,
-                   is_canceled=None) -> np.ndarray:
-        """Write the frames of one camera; returns the number of labels written per frame."""
+                   is_canceled=None, hard_negative_labels: list[FrameLabels] | None = None) -> np.ndarray:
+        """Write the frames of one camera; returns the number of labels written per frame.
+
+        ``hard_negative_labels``: the hard negatives projected like the targets (same frame order)."""
         counts = np.zeros(len(frame_labels), dtype=np.int64)
         for k, fl in enumerate(frame_labels):
             if is_canceled is not None and is_canceled():
                 raise Cancelled()
-            counts[k] = self._add_frame(poses, str(images[fl.frame_index]), fl)
+            hard = hard_negative_labels[k] if hard_negative_labels is not None else None
+            counts[k] = self._add_frame(poses, str(images[fl.frame_index]), fl, hard)
             if progress is not None:
                 progress((k + 1) / max(1, len(frame_labels)))
         return counts
 
-    def _add_frame(self, poses: FramePoses, image: str, fl: FrameLabels) -> int:
+    def _add_frame(self, poses: FramePoses, image: str, fl: FrameLabels, hard: FrameLabels | None) -> int:
         request, geotags, cam = self.request, self.geotags, poses.camera
         pos = ~fl.edge
         self.n_edge += int(fl.edge.sum())
@@ -257,10 +303,12 @@ class LabelWriter:
         idx = len(self.labels_per_frame)
         self.labels_per_frame.append(len(gi))
         self.frames_per_geotag[gi] += 1
+        for p in geotags.provenance[gi]:
+            self.labels_by_provenance[p] += 1
         names = [str(geotags.labels[g]) for g in gi]
         for g, (u, v), m, name in zip(gi, uv, margin, names):
             self._csv.writerow([frame_id, image, geotags.ids[g], name, f"{u:.3f}", f"{v:.3f}",
-                                f"{request.sigma_px:g}", f"{m:.1f}"])
+                                f"{request.sigma_px:g}", f"{m:.1f}", geotags.provenance[g]])
         if len(gi):
             self._txt_file.write(f"{idx} {image} " + " ".join(
                 f"{u:.2f},{v:.2f},{self.class_index[n]}" for (u, v), n in zip(uv, names)) + "\n")
@@ -269,13 +317,19 @@ class LabelWriter:
             raster = soft_label_raster(cam.width, cam.height, uv, request.sigma_px)
         if request.write_rasters:
             (self.raster_dir / f"{frame_id}.png").write_bytes(encode_gray_png(raster))
+        # Edge projections of a hard negative still lie in the image: its tile is still a hard one.
+        hard_uv = np.empty((0, 2)) if hard is None else hard.uv
+        if hard is not None and len(hard.geotag_index):
+            self.frames_per_hard_negative[np.unique(hard.geotag_index)] += 1
+            self.n_frames_hard += 1
         if request.tile_size:
-            tiles = _write_tiles(self.out / "tiles", frame_id, image, raster, uv, request, self.rng)
+            tiles = _write_tiles(self.out / "tiles", frame_id, image, raster, uv, request, self.rng, hard_uv)
             if tiles is None:
                 self.missing_images.append(image)
             else:
                 self.n_tiles_pos += tiles[0]
                 self.n_tiles_neg += tiles[1]
+                self.n_tiles_hard += tiles[2]
         if self.coco is not None:
             _add_coco(self.coco, frame_id, image, cam, uv, names, self.class_index, request.sigma_px)
         return len(gi)
@@ -303,7 +357,14 @@ class LabelWriter:
             "classes": self.classes,
             "sigma_px": request.sigma_px,
             "edge_buffer_px": request.edge_buffer_px,
+            "provenance": {p: {"n_targets": int((geotags.provenance == p).sum()),
+                               "n_in_view": int(((fpg > 0) & (geotags.provenance == p)).sum()),
+                               "n_labels": int(self.labels_by_provenance[p])} for p in PROVENANCES},
+            "hard_negatives": {"n_clusters": len(self.frames_per_hard_negative),
+                               "n_in_view": int((self.frames_per_hard_negative > 0).sum()),
+                               "n_frames": int(self.n_frames_hard)},
             "tiles": {"size": request.tile_size, "positive": self.n_tiles_pos, "negative": self.n_tiles_neg,
+                      "hard_negative": self.n_tiles_hard,
                       "missing_images": self.missing_images} if request.tile_size else None,
             "raster_encoding": "uint8 PNG, 255·exp(−r²/2σ²) to r = 3σ, max-combined",
         }
@@ -311,10 +372,19 @@ class LabelWriter:
         return LabelSetResult(summary, fpg, lpf)
 
 
-def _write_tiles(tile_dir: Path, frame_id, image, raster, uv, request: LabelRequest, rng):
+def _inside(uv, x0, y0, t) -> np.ndarray:
+    if not len(uv):
+        return np.zeros(0, bool)
+    return (uv[:, 0] >= x0 - 0.5) & (uv[:, 0] < x0 + t - 0.5) & (uv[:, 1] >= y0 - 0.5) & (uv[:, 1] < y0 + t - 0.5)
+
+
+def _write_tiles(tile_dir: Path, frame_id, image, raster, uv, request: LabelRequest, rng, hard_uv=()):
     """Cut image and raster into tiles: every positive tile, a seeded sample of negatives.
 
-    Returns (positives, negatives) written, or None when the image cannot be read.
+    Negative tiles holding a hard negative (``hard_uv``) fill the sample first, since they teach what the
+    detector got wrong; the rest of the sample is drawn from the other negatives.
+    Returns (positives, negatives, hard negatives among them) written, or None when the image cannot be
+    read.
     """
     import cv2
 
@@ -323,19 +393,24 @@ def _write_tiles(tile_dir: Path, frame_id, image, raster, uv, request: LabelRequ
         return None
     t = request.tile_size
     h, w = raster.shape
-    positives, negatives = [], []
+    hard_uv = np.asarray(hard_uv, dtype=float).reshape(-1, 2)
+    positives, hard, negatives = [], [], []
     for y0 in tile_origins(h, t):
         for x0 in tile_origins(w, t):
-            inside = ((uv[:, 0] >= x0 - 0.5) & (uv[:, 0] < x0 + t - 0.5)
-                      & (uv[:, 1] >= y0 - 0.5) & (uv[:, 1] < y0 + t - 0.5)) if len(uv) else np.zeros(0, bool)
-            (positives if inside.any() else negatives).append((y0, x0))
-    n_neg = min(len(negatives), int(round(request.negative_ratio * max(1, len(positives)))))
-    keep_neg = [negatives[i] for i in sorted(rng.choice(len(negatives), n_neg, replace=False))] if n_neg else []
-    for y0, x0 in positives + keep_neg:
+            if _inside(uv, x0, y0, t).any():
+                positives.append((y0, x0))
+            else:
+                (hard if _inside(hard_uv, x0, y0, t).any() else negatives).append((y0, x0))
+    n_neg = min(len(hard) + len(negatives), int(round(request.negative_ratio * max(1, len(positives)))))
+    n_hard = min(len(hard), n_neg)
+    keep_hard = [hard[i] for i in sorted(rng.choice(len(hard), n_hard, replace=False))] if n_hard else []
+    n_plain = n_neg - n_hard
+    keep_neg = [negatives[i] for i in sorted(rng.choice(len(negatives), n_plain, replace=False))] if n_plain else []
+    for y0, x0 in positives + keep_hard + keep_neg:
         name = f"{frame_id}_{y0}_{x0}.png"
         cv2.imwrite(str(tile_dir / "images" / name), img[y0:y0 + t, x0:x0 + t])
         cv2.imwrite(str(tile_dir / "labels" / name), raster[y0:y0 + t, x0:x0 + t])
-    return len(positives), len(keep_neg)
+    return len(positives), len(keep_hard) + len(keep_neg), len(keep_hard)
 
 
 def _add_coco(coco: dict, frame_id, image, cam, uv, names, class_index, sigma_px) -> None:

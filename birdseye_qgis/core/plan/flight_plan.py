@@ -63,6 +63,7 @@ NADIR_T_CAM_BODY = np.array([[0.0, 1.0, 0.0, 0.0], [-1.0, 0.0, 0.0, 0.0], [0.0, 
                              [0.0, 0.0, 0.0, 1.0]])
 #: fast-tsp works on unsigned 16-bit distances.
 _TSP_INT_MAX = 65535
+SURVEY_ORIGIN = "survey"
 
 
 @dataclass(frozen=True)
@@ -151,6 +152,16 @@ class FlightPlan:
     suggested_interval_s: float | None = None
     footprint_radius_m: float | None = None
     warnings: list = field(default_factory=list)
+    #: Where each target came from: ``survey`` (a geotag) or ``review:<outcome>`` (a cluster the review
+    #: left unresolved, ``core.scoring.reviewed_clusters``); None: every target is a geotag.
+    geotag_origins: list | None = None
+
+    def waypoint_origins(self, w: int) -> tuple[str, str]:
+        """(provenance, review outcomes) of a waypoint's targets, each ';'-joined and sorted."""
+        origins = [SURVEY_ORIGIN if self.geotag_origins is None else self.geotag_origins[g] for g in self.members[w]]
+        provenance = sorted({o.split(":", 1)[0] for o in origins})
+        outcomes = sorted({o.split(":", 1)[1] for o in origins if ":" in o})
+        return ";".join(provenance), ";".join(outcomes)
 
     @property
     def waypoint_count(self) -> int:
@@ -212,6 +223,10 @@ WAYPOINT_FIELDS = [
     ("max_offset_m", "double", "ground distance from the waypoint to its farthest geotag (m)"),
     ("lat", "double", "latitude, WGS84 (deg), as written to the mission files"),
     ("lon", "double", "longitude, WGS84 (deg), as written to the mission files"),
+    ("provenance", "string", "where its targets came from: survey (geotags), review (unresolved clusters), "
+                             "';'-separated"),
+    ("review_outcomes", "string", "what the review left open at its clusters: conflicting, uncertain, "
+                                  "unreviewed (';'-separated; empty for geotags)"),
 ]
 ROUTE_FIELDS = [
     ("mission", "int", "mission number, 1.."),
@@ -227,12 +242,14 @@ def waypoint_records(plan: "FlightPlan") -> list[dict]:
     records = []
     for mission in plan.missions:
         for w in mission.waypoints:
+            provenance, outcomes = plan.waypoint_origins(w)
             records.append({
                 "mission": int(numbers[w, 0]), "order": int(numbers[w, 1]),
                 "altitude": float(plan.settings.altitude_m), "geotag_count": len(plan.members[w]),
                 "geotag_ids": ";".join(plan.geotag_ids[g] for g in plan.members[w]),
                 "max_offset_m": round(float(offsets[w]), 4),
-                "lat": float(plan.waypoint_lat[w]), "lon": float(plan.waypoint_lon[w])})
+                "lat": float(plan.waypoint_lat[w]), "lon": float(plan.waypoint_lon[w]),
+                "provenance": provenance, "review_outcomes": outcomes})
     return records
 
 
@@ -611,13 +628,14 @@ def _split_or_explain(seq_xy, home_xy, settings: FlightSettings, describe):
 # ---------------------------------------------------------------------- the whole plan
 def plan_flight(lat, lon, ids=None, home=None, settings: FlightSettings | None = None,
                 camera: CameraModel | None = None, source: str = "geotags",
-                progress=None, is_canceled=None, ground_heights=None) -> FlightPlan:
+                progress=None, is_canceled=None, ground_heights=None, origins=None) -> FlightPlan:
     """Plan the survey flight over geotags at WGS84 ``lat``/``lon`` (degrees).
 
     ``ids`` name the geotags in messages and outputs (default: 1, 2, …); ``home`` is an optional
     (lat, lon) take-off and landing point; ``camera`` enables the footprint check and the
     capture-interval suggestion; ``ground_heights`` (m, NaN where unknown) only feed a warning when
     the ground is far from level, since altitudes are relative to take-off over a level field.
+    ``origins`` says where each target came from (:attr:`FlightPlan.geotag_origins`).
     """
     settings = settings or FlightSettings()
     settings.validate()
@@ -710,7 +728,8 @@ def plan_flight(lat, lon, ids=None, home=None, settings: FlightSettings | None =
                       waypoint_lon=np.atleast_1d(wlon), members=members, missions=missions,
                       home_xy=home_xy, home_latlon=None if home is None else (float(home[0]), float(home[1])),
                       capture_interval_s=interval, suggested_interval_s=suggested,
-                      footprint_radius_m=fp_radius, warnings=warnings)
+                      footprint_radius_m=fp_radius, warnings=warnings,
+                      geotag_origins=None if origins is None else [str(o) for o in origins])
 
 
 def _enforce_footprint(local, camera, settings, centres, labels, xy, enu, warnings):

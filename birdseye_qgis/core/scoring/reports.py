@@ -165,3 +165,31 @@ def screen_figure(screens: Sequence[CheckpointScreen]):
     return frontier_figure(((s.counts.gmcf_pre, s.counts.recall_pre,
                              "front" if s.frontier else ("eligible" if s.healthy else "excluded"), s.checkpoint)
                             for s in screens), "Checkpoints at one threshold")
+
+
+def comparison_report_html(comparison) -> str:
+    """The HTML report of comparedetectors: the figures side by side and the changes
+    (:class:`.compare.Comparison`)."""
+    import html
+
+    from .compare import CHANGES
+
+    d = comparison.to_dict()
+    before, after = html.escape(d["before"]["name"]), html.escape(d["after"]["name"])
+    rows = [[r["figure"], r["before"], r["after"], r["difference"]] for r in d["side_by_side"]]
+    counts = d["changes"]
+    body = [f"<p>Before: <b>{before}</b> (model {html.escape(d['before'].get('model') or '–')}); after: "
+            f"<b>{after}</b>. Both scored as Evaluate detections scores them, on the same frames and geotags.</p>",
+            "<h2>Figures side by side</h2>",
+            html_table(["figure", "before", "after", "after − before"], rows),
+            "<p class='note'>recall_pre = recovered / geotags in view; gmcf_pre = hit clusters / clusters, a lower "
+            "bound on precision, not precision; f1_geo = 2·recall·GMCF / (recall + GMCF); detections per frame = "
+            "detections / processed frames (the review load). POST figures appear when a review is given.</p>",
+            "<h2>What changed</h2>",
+            html_table(["change", "count"], [[name, counts[name]] for name in CHANGES]),
+            "<p class='note'>Targets: each in-view geotag by whether each detector recovered it. False clusters: "
+            "clusters no in-view geotag matches; two clusters are the same spot when a core point of one lies "
+            "within EPS_PRED of a core point of the other. The change layer shows each on the map.</p>",
+            "<p class='note'>" + ", ".join(f"{k} = {v}" for k, v in d["parameters"].items() if v is not None)
+            + "</p>"]
+    return html_page("BirdsEye — detectors compared", "".join(body))

@@ -198,3 +198,42 @@ def test_geotags_without_height_go_onto_the_flight_ground_of_the_surveyed_ones()
     labels = project_labels(no_distortion, geotags, local=local, geotag_heights=True)
     k = labels[0].geotag_index.tolist().index(1)
     np.testing.assert_allclose(labels[0].uv[k], [319.5 - 1400 * 1.0 / 10, 199.5 + 1400 * 0.5 / 10], atol=0.05)
+
+
+def test_review_targets_are_labelled_with_their_provenance_and_hard_negatives_fill_the_negative_sample(tmp_path):
+    """A confirmed cluster nobody surveyed is a label like a geotag (provenance review); a rejected one
+    (hard negative) puts its tile first in the negative sample, label all zero."""
+    cv2 = pytest.importorskip("cv2")
+    poses, survey, local = small_campaign()
+    # Frame 101 (centre 0, 0) alone sees the review target; frame 102 (centre 2, 0) alone the hard negative.
+    r_lat, r_lon, r_h = local.to_geodetic(np.array([[-1.5, 0.5, 400.0], [3.5, -1.0, 400.0]]))
+    targets = survey + Geotags(["det#7"], ["burrow"], r_lat[:1], r_lon[:1], [np.nan], ["review"])
+    hard = Geotags(["det#9"], ["hard_negative"], r_lat[1:], r_lon[1:], [np.nan])
+    images = []
+    for fid in poses.frame_id:
+        path = tmp_path / f"{fid}.png"
+        cv2.imwrite(str(path), np.full((400, 640, 3), 90, np.uint8))
+        images.append(str(path))
+    labels = project_labels(poses, targets, local=local)
+    hard_labels = project_labels(poses, hard, local=local)
+    assert [fl.geotag_index.tolist() for fl in hard_labels] == [[], [0], []]
+    for seed in (0, 1, 2):
+        out = tmp_path / f"seed{seed}"
+        result = write_label_set(poses, images, targets, labels, out,
+                                 LabelRequest(sigma_px=3.0, write_rasters=False, tile_size=128, seed=seed),
+                                 hard_negatives=hard, hard_negative_labels=hard_labels)
+        rows = list(csv.DictReader(open(out / "labels.csv")))
+        assert [(r["frame_id"], r["geotag_id"], r["provenance"]) for r in rows] == [
+            ("101", "1", "survey"), ("101", "2", "survey"), ("101", "det#7", "review"), ("102", "1", "survey")]
+        s = result.summary
+        assert s["provenance"] == {"survey": {"n_targets": 3, "n_in_view": 2, "n_labels": 3},
+                                   "review": {"n_targets": 1, "n_in_view": 1, "n_labels": 1}}
+        assert s["hard_negatives"] == {"n_clusters": 1, "n_in_view": 1, "n_frames": 1}
+        assert json.loads((out / "summary.json").read_text())["tiles"]["hard_negative"] == 1
+        # Frame 102 has one positive tile, so ratio 1 keeps one negative: whatever the seed, the hard one.
+        u, v = hard_labels[1].uv[0]
+        tiles = {p.name: cv2.imread(str(p), cv2.IMREAD_UNCHANGED) for p in (out / "tiles" / "labels").glob("102_*")}
+        negative = [name for name, label in tiles.items() if label.max() == 0]
+        assert len(tiles) == 2 and len(negative) == 1
+        y0, x0 = (int(k) for k in negative[0][:-4].split("_")[1:])
+        assert x0 - 0.5 <= u < x0 + 127.5 and y0 - 0.5 <= v < y0 + 127.5

@@ -336,6 +336,19 @@ def test_waypoint_records_list_every_geotag_once_in_flight_order():
     assert max(r["max_offset_m"] for r in records) <= 8.0 + 1e-4
 
 
+def test_waypoints_say_where_their_targets_came_from():
+    """A geotag and an unresolved cluster 1 m apart share a waypoint that names both origins; a lone
+    cluster's waypoint is review only, with the review's outcome."""
+    lat, lon = to_latlon(np.array([[0.0, 0.0], [1.0, 0.0], [40.0, 0.0], [80.0, 0.0]]))
+    plan = plan_flight(lat, lon, ids=["g1", "det#0", "det#1", "g2"], settings=FlightSettings(merge_radius_m=2.0),
+                       origins=["survey", "review:uncertain", "review:conflicting", "survey"])
+    by_ids = {r["geotag_ids"]: (r["provenance"], r["review_outcomes"]) for r in waypoint_records(plan)}
+    assert by_ids == {"g1;det#0": ("review;survey", "uncertain"), "det#1": ("review", "conflicting"),
+                      "g2": ("survey", "")}
+    plain = waypoint_records(plan_flight(lat[:1], lon[:1]))
+    assert (plain[0]["provenance"], plain[0]["review_outcomes"]) == ("survey", "")
+
+
 def test_uneven_ground_is_flagged():
     lat, lon = to_latlon(np.array([[0.0, 0.0], [30.0, 0.0]]))
     plan = plan_flight(lat, lon, settings=FlightSettings(altitude_m=10.0), ground_heights=[40.0, 42.5])
