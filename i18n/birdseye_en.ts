@@ -64,11 +64,6 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="210"/>
-        <source>The flight&apos;s frame layer (Import flight log or Import DJI images): poses, camera and image of every frame.</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
         <location filename="../birdseye_qgis/gui/review/widgets.py" line="212"/>
         <source>Frames</source>
         <translation type="unfinished"></translation>
@@ -685,37 +680,37 @@ error</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="48"/>
+        <location filename="../processing/algorithms/writelabels.py" line="50"/>
         <source>{path}: not a sensorbound result (expected inputs.tolerance_px): {exc}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="53"/>
+        <location filename="../processing/algorithms/writelabels.py" line="55"/>
         <source>{path}: the pose-noise budget is rejected at {items}; labels of σ = {value:g} px would not contain the projection error there</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="231"/>
+        <location filename="../processing/algorithms/writelabels.py" line="251"/>
         <source>{n_labels} labels in {n_frames_with_labels} of {n_frames} frames (labels per labelled frame: mean {mean:g}, max {max}); {n_geotags_in_view} of {n_geotags} geotags in view (frames per geotag: mean {mean2:g}, max {max2})</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="240"/>
+        <location filename="../processing/algorithms/writelabels.py" line="270"/>
         <source>{n_occluded} projections were hidden behind terrain (not written)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="243"/>
+        <location filename="../processing/algorithms/writelabels.py" line="273"/>
         <source>{n_edge} projections fell within the edge buffer (not written)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="248"/>
+        <location filename="../processing/algorithms/writelabels.py" line="278"/>
         <source>{n_never} geotag(s) never in view of any frame: {shown}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="252"/>
+        <location filename="../processing/algorithms/writelabels.py" line="282"/>
         <source>{value} image(s) could not be read for tiles; first: {value2}</source>
         <translation type="unfinished"></translation>
     </message>
@@ -725,125 +720,113 @@ error</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/dependencies.py" line="63"/>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="64"/>
         <source>{always}; for some inputs: {sometimes}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/dependencies.py" line="65"/>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="66"/>
         <source>for some inputs: {sometimes}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/dependencies.py" line="66"/>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="67"/>
         <source>no algorithm (developer tools only)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/dependencies.py" line="71"/>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="74"/>
         <source>missing</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/dependencies.py" line="73"/>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="76"/>
         <source>update from {version}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/dependencies.py" line="75"/>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="78"/>
         <source>installed by BirdsEye ({version})</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/dependencies.py" line="76"/>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="82"/>
         <source>installed ({version})</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/dependencies.py" line="120"/>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="126"/>
         <source>BirdsEye — Python packages</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/dependencies.py" line="134"/>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="141"/>
         <source>Package</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/dependencies.py" line="134"/>
-        <source>Version</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../birdseye_qgis/gui/dependencies.py" line="134"/>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="141"/>
         <source>State</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/dependencies.py" line="134"/>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="141"/>
         <source>Needed by</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/dependencies.py" line="152"/>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="159"/>
         <source>Install</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/dependencies.py" line="156"/>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="163"/>
         <source>Show pip&apos;s log</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/dependencies.py" line="253"/>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="264"/>
         <source>Close</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/dependencies.py" line="190"/>
-        <source>BirdsEye&apos;s algorithms need {count} Python package(s) that the Python QGIS runs does not have. Tick the ones to install and press Install: pip installs them at the versions BirdsEye was tested with, with what they depend on, into a folder of your QGIS profile:
-{folder}
-QGIS&apos;s own packages are not changed. pip downloads them from the Python Package Index (or the index your pip is set up to use).</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../birdseye_qgis/gui/dependencies.py" line="197"/>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="205"/>
         <source>Every Python package BirdsEye&apos;s algorithms need is installed in the Python QGIS runs.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/dependencies.py" line="219"/>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="229"/>
         <source>Installing {names}…</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/dependencies.py" line="222"/>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="232"/>
         <source>Cancel</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/dependencies.py" line="238"/>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="249"/>
         <source>Installed: {names}. The algorithms can use them now; no restart needed.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/dependencies.py" line="238"/>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="249"/>
         <source>nothing new</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/dependencies.py" line="243"/>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="254"/>
         <source>The installation failed: {message}
 pip&apos;s log is below; the packages already there are unchanged.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/dependencies.py" line="249"/>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="260"/>
         <source>Cancelled; nothing was installed.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/dependencies.py" line="260"/>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="272"/>
         <source>Cancelling…</source>
         <translation type="unfinished"></translation>
     </message>
@@ -907,47 +890,89 @@ pip&apos;s log is below; the packages already there are unchanged.</source>
         <source>{GROUND_MODEL}: the method&apos;s plane stands in for the level ground; with a terrain model ({DEM}) the terrain is the ground. Give one or the other.</source>
         <translation type="unfinished"></translation>
     </message>
+    <message>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="72"/>
+        <source>no release for Python {version}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="80"/>
+        <source>installed ({version}; untested outside {versions})</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="141"/>
+        <source>Versions</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="197"/>
+        <source>BirdsEye&apos;s algorithms need {count} Python package(s) that the Python QGIS runs does not have. Tick the ones to install and press Install: pip installs them, at versions that suit this Python and the packages QGIS already has, with what they depend on, into a folder of your QGIS profile:
+{folder}
+QGIS&apos;s own packages are not changed. pip downloads them from the Python Package Index (or the index your pip is set up to use).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="210"/>
+        <source>The flight&apos;s frame layer (Import flight log, Import drone images or Import camera solution): poses, camera and image of every frame.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/writelabels.py" line="261"/>
+        <source>Of these, review targets: {n_in_view} of {n_targets} in view, {n_labels} labels.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/writelabels.py" line="266"/>
+        <source>Hard negatives: {n_in_view} of {n_clusters} in view, in {n_frames} frame(s); {n_tiles} hard-negative tile(s) written.</source>
+        <translation type="unfinished"></translation>
+    </message>
 </context>
 <context>
     <name>BirdsEyeAlgorithm</name>
     <message>
-        <location filename="../processing/algorithms/base.py" line="103"/>
+        <location filename="../processing/algorithms/base.py" line="104"/>
         <source>Cancelled by the user.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/base.py" line="15"/>
+        <location filename="../processing/algorithms/base.py" line="16"/>
         <source>1 · Field data</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/base.py" line="16"/>
+        <location filename="../processing/algorithms/base.py" line="17"/>
         <source>2 · Flight planning</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/base.py" line="17"/>
+        <location filename="../processing/algorithms/base.py" line="18"/>
         <source>3 · Training labels</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/base.py" line="18"/>
+        <location filename="../processing/algorithms/base.py" line="19"/>
         <source>4 · Detection and review</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/base.py" line="19"/>
+        <location filename="../processing/algorithms/base.py" line="20"/>
         <source>5 · Platform design</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/base.py" line="20"/>
+        <location filename="../processing/algorithms/base.py" line="21"/>
         <source>6 · Simulation</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/base.py" line="107"/>
+        <location filename="../processing/algorithms/base.py" line="112"/>
         <source>This algorithm needs the Python package(s) {names}, which the Python QGIS runs does not have. In QGIS, choose BirdsEye › Install dependencies… to install them; or install them yourself: python -m pip install {pins}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/base.py" line="119"/>
+        <source>This algorithm needs the Python package(s) {names}, which have no release for the Python QGIS runs (Python {version}); it runs in a QGIS with a newer Python.</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
@@ -1042,28 +1067,106 @@ pip&apos;s log is below; the packages already there are unchanged.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/clustering.py" line="39"/>
+        <location filename="../processing/parameters/clustering.py" line="40"/>
         <source>Match radius geotag ↔ cluster core points EPS_PRED (m)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/clustering.py" line="42"/>
+        <location filename="../processing/parameters/clustering.py" line="44"/>
         <source>Edge buffer of the in-view test (px)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/clustering.py" line="59"/>
+        <location filename="../processing/parameters/clustering.py" line="66"/>
         <source>{name}: give at least one detection layer.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/clustering.py" line="62"/>
+        <location filename="../processing/parameters/clustering.py" line="69"/>
         <source>{name}: give one frame layer per detection layer, in the same order (got {detections} detection layer(s) and {frames} frame layer(s)).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/clustering.py" line="70"/>
+        <location filename="../processing/parameters/clustering.py" line="77"/>
         <source>{layer}: {n} detection(s) without a position or score left out</source>
+        <translation type="unfinished"></translation>
+    </message>
+</context>
+<context>
+    <name>CompareDetectors</name>
+    <message>
+        <location filename="../processing/algorithms/comparedetectors.py" line="36"/>
+        <source>Compare detectors</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/comparedetectors.py" line="48"/>
+        <source>Detections of the old detector (before)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/comparedetectors.py" line="50"/>
+        <source>Detections of the new detector (after), same flight</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/comparedetectors.py" line="53"/>
+        <source>Frames of the flight (both detectors ran on them)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/comparedetectors.py" line="55"/>
+        <source>Geotags</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/comparedetectors.py" line="58"/>
+        <source>Review verdicts (optional: adds the POST scores of both)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/comparedetectors.py" line="61"/>
+        <source>What changed</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/comparedetectors.py" line="63"/>
+        <source>Comparison (JSON)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/comparedetectors.py" line="65"/>
+        <source>Report (HTML)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/comparedetectors.py" line="79"/>
+        <source>{name}: the layer cannot be read.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/comparedetectors.py" line="84"/>
+        <source>{name}: {n} detection(s) without a position or score left out</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/comparedetectors.py" line="89"/>
+        <source>Both layers come from the same model file (model_digest) at the same threshold: the comparison shows no change of detector.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/comparedetectors.py" line="94"/>
+        <source>GEOTAGS: the layer holds no point with a position.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/comparedetectors.py" line="121"/>
+        <source>OUTPUT: the change layer cannot be created.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/comparedetectors.py" line="149"/>
+        <source>{name}: cannot write {path} ({exc})</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
@@ -1171,11 +1274,6 @@ pip&apos;s log is below; the packages already there are unchanged.</source>
 <context>
     <name>Detect</name>
     <message>
-        <location filename="../processing/algorithms/detect.py" line="42"/>
-        <source>Frames (from Import flight log or Import DJI images)</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
         <location filename="../processing/algorithms/detect.py" line="45"/>
         <source>ONNX heatmap model (empty: the bundled demo model)</source>
         <translation type="unfinished"></translation>
@@ -1228,6 +1326,11 @@ pip&apos;s log is below; the packages already there are unchanged.</source>
     <message>
         <location filename="../processing/algorithms/detect.py" line="31"/>
         <source>Detect targets (ONNX heatmap model)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/detect.py" line="42"/>
+        <source>Frames (from Import flight log, Import drone images or Import camera solution)</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
@@ -1312,131 +1415,176 @@ pip&apos;s log is below; the packages already there are unchanged.</source>
 <context>
     <name>ImportCameras</name>
     <message>
-        <location filename="../processing/algorithms/importcameras.py" line="23"/>
+        <location filename="../processing/algorithms/importcameras.py" line="36"/>
         <source>Align to the images&apos; GPS tags (needs IMAGES)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importcameras.py" line="23"/>
+        <location filename="../processing/algorithms/importcameras.py" line="36"/>
         <source>Already georegistered in ECEF (model_aligner --alignment_type ecef)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importcameras.py" line="23"/>
+        <location filename="../processing/algorithms/importcameras.py" line="36"/>
         <source>East-north-up at the origin given in ENU_ORIGIN</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importcameras.py" line="32"/>
-        <source>Import camera solution (Metashape, OpenDroneMap, COLMAP)</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../processing/algorithms/importcameras.py" line="45"/>
-        <source>Camera solution (Metashape cameras .xml, OpenSfM/ODM reconstruction.json, or a COLMAP model folder)</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../processing/algorithms/importcameras.py" line="50"/>
+        <location filename="../processing/algorithms/importcameras.py" line="69"/>
         <source>Folder of the images (optional; matched by file name)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importcameras.py" line="53"/>
+        <location filename="../processing/algorithms/importcameras.py" line="72"/>
         <source>Ground height for frames without tie points (m, same reference as the solution; optional)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importcameras.py" line="57"/>
+        <location filename="../processing/algorithms/importcameras.py" line="76"/>
         <source>A COLMAP model&apos;s frame</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importcameras.py" line="60"/>
+        <location filename="../processing/algorithms/importcameras.py" line="79"/>
         <source>ENU origin of a COLMAP model: lat, lon, ellipsoidal height</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importcameras.py" line="62"/>
+        <location filename="../processing/algorithms/importcameras.py" line="84"/>
         <source>Output CRS (empty: UTM zone of the site)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importcameras.py" line="65"/>
+        <location filename="../processing/algorithms/importcameras.py" line="87"/>
         <source>Solved frames</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importcameras.py" line="67"/>
+        <location filename="../processing/algorithms/importcameras.py" line="95"/>
         <source>Frames written</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importcameras.py" line="68"/>
+        <location filename="../processing/algorithms/importcameras.py" line="96"/>
         <source>Cameras the solution did not align</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importcameras.py" line="87"/>
+        <location filename="../processing/algorithms/importcameras.py" line="120"/>
         <source>Camera: {width}×{height} px, fx {fx:.2f}, fy {fy:.2f}, cx {cx:.2f}, cy {cy:.2f} ({source})</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importcameras.py" line="91"/>
+        <location filename="../processing/algorithms/importcameras.py" line="124"/>
         <source>Output CRS: {value}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/importcameras.py" line="45"/>
+        <source>Import camera solution (Metashape, OpenDroneMap, COLMAP, Pix4D)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/importcameras.py" line="64"/>
+        <source>Camera solution (Metashape cameras .xml, OpenSfM/ODM reconstruction.json, a COLMAP model folder, or Pix4D&apos;s calibrated_camera_parameters.txt)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/importcameras.py" line="81"/>
+        <source>CRS of a Pix4D project&apos;s coordinates (its output CRS: projected, metres)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/importcameras.py" line="89"/>
+        <source>Control points (surveyed markers, a geotag layer)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/importcameras.py" line="92"/>
+        <source>Label check: each pinned image mark and its label&apos;s distance</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/importcameras.py" line="98"/>
+        <source>Median distance of the control points&apos; labels from their marks (px)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/importcameras.py" line="100"/>
+        <source>90th percentile of that distance (px)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/importcameras.py" line="137"/>
+        <source>SOLUTION_CRS: {crs} is not a projected CRS in metres; give the Pix4D project&apos;s output CRS (easting, northing and height in metres)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/importcameras.py" line="152"/>
+        <source>Control points</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/importcameras.py" line="166"/>
+        <source>Label check (pinned marks)</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
 <context>
     <name>ImportDjiImages</name>
     <message>
-        <location filename="../processing/algorithms/importdjiimages.py" line="32"/>
-        <source>Folder of DJI images (JPEG)</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../processing/algorithms/importdjiimages.py" line="34"/>
+        <location filename="../processing/algorithms/importdjiimages.py" line="37"/>
         <source>Camera calibration (optional; Kalibr or OpenCV YAML)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importdjiimages.py" line="37"/>
+        <location filename="../processing/algorithms/importdjiimages.py" line="40"/>
         <source>Output CRS (empty: UTM zone of the site)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importdjiimages.py" line="40"/>
-        <source>DJI frames</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../processing/algorithms/importdjiimages.py" line="42"/>
+        <location filename="../processing/algorithms/importdjiimages.py" line="48"/>
         <source>Frames written</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importdjiimages.py" line="43"/>
+        <location filename="../processing/algorithms/importdjiimages.py" line="49"/>
         <source>Images that cannot be placed</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importdjiimages.py" line="57"/>
+        <location filename="../processing/algorithms/importdjiimages.py" line="65"/>
         <source>Not placed: {error}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importdjiimages.py" line="60"/>
+        <location filename="../processing/algorithms/importdjiimages.py" line="68"/>
         <source>Camera: {width}×{height} px, fx {fx:.1f}, fy {fy:.1f} ({source})</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importdjiimages.py" line="64"/>
+        <location filename="../processing/algorithms/importdjiimages.py" line="72"/>
         <source>Output CRS: {value}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importdjiimages.py" line="22"/>
-        <source>Import DJI images</source>
+        <location filename="../processing/algorithms/importdjiimages.py" line="24"/>
+        <source>Import drone images</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/importdjiimages.py" line="35"/>
+        <source>Folder of drone images (JPEG)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/importdjiimages.py" line="42"/>
+        <source>Flight height above the take-off ground (m; for images without a relative altitude)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/importdjiimages.py" line="46"/>
+        <source>Drone frames</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
@@ -1662,98 +1810,118 @@ pip&apos;s log is below; the packages already there are unchanged.</source>
 <context>
     <name>PlanFlight</name>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="98"/>
+        <location filename="../processing/algorithms/planflight.py" line="100"/>
         <source>Geotags (point layer)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="100"/>
+        <location filename="../processing/algorithms/planflight.py" line="102"/>
         <source>Selected geotags only</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="102"/>
+        <location filename="../processing/algorithms/planflight.py" line="104"/>
         <source>Geotag id field (empty: &apos;id&apos; if present, else the feature number)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="105"/>
+        <location filename="../processing/algorithms/planflight.py" line="107"/>
         <source>Home: take-off and landing point (optional)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="112"/>
+        <location filename="../processing/algorithms/planflight.py" line="114"/>
         <source>Camera calibration (Kalibr or OpenCV YAML; optional)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="118"/>
+        <location filename="../processing/algorithms/planflight.py" line="120"/>
         <source>Capture</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="128"/>
+        <location filename="../processing/algorithms/planflight.py" line="130"/>
         <source>Plan even if the points spread over more than 10 km</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="132"/>
+        <location filename="../processing/algorithms/planflight.py" line="138"/>
         <source>Output CRS (empty: UTM zone of the site)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="136"/>
+        <location filename="../processing/algorithms/planflight.py" line="142"/>
         <source>Waypoints</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="138"/>
+        <location filename="../processing/algorithms/planflight.py" line="144"/>
         <source>Route</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="147"/>
+        <location filename="../processing/algorithms/planflight.py" line="154"/>
         <source>Mission files written</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="169"/>
+        <location filename="../processing/algorithms/planflight.py" line="176"/>
         <source>GEOTAGS: the geotag layer could not be opened.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="173"/>
+        <location filename="../processing/algorithms/planflight.py" line="180"/>
         <source>SELECTED_ONLY is set but no geotag of layer &apos;{}&apos; is selected: select the geotags of the partition to fly, or clear SELECTED_ONLY.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="185"/>
+        <location filename="../processing/algorithms/planflight.py" line="190"/>
         <source>GEOTAGS: layer &apos;{}&apos; has no features: there is nothing to fly over.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="223"/>
+        <location filename="../processing/algorithms/planflight.py" line="249"/>
         <source>With this camera at {alt:g} m and {v:g} m/s, one photo every {s:.2f} s gives {o:g} % forward overlap.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="285"/>
+        <location filename="../processing/algorithms/planflight.py" line="311"/>
         <source>{fmt}: {files}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="292"/>
+        <location filename="../processing/algorithms/planflight.py" line="321"/>
         <source>{g} geotag(s) → {w} waypoint(s) in {m} mission(s); route {km:.2f} km; estimated flight time {t:.1f} min at {v:g} m/s and {alt:g} m.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="298"/>
+        <location filename="../processing/algorithms/planflight.py" line="327"/>
         <source>  mission {n}: {w} waypoint(s), {l:.0f} m, {t:.1f} min</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="65"/>
+        <location filename="../processing/algorithms/planflight.py" line="66"/>
         <source>Plan the survey flight</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/planflight.py" line="135"/>
+        <source>With REVIEW: fly only to the unresolved clusters (the geotags then only tell which clusters they match)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/planflight.py" line="204"/>
+        <source>UNRESOLVED_ONLY needs a review: give REVIEW and the detection layers it judged (REVIEW_DETECTIONS).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/planflight.py" line="207"/>
+        <source>The review left no cluster unresolved (uncertain, unreviewed or with conflicting verdicts): there is nothing to fly back to.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/planflight.py" line="319"/>
+        <source>{u} unresolved cluster(s) of the review are targets too (waypoint field provenance: review).</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
@@ -1813,73 +1981,126 @@ pip&apos;s log is below; the packages already there are unchanged.</source>
 <context>
     <name>RefinePoses</name>
     <message>
-        <location filename="../processing/algorithms/refineposes.py" line="33"/>
+        <location filename="../processing/algorithms/refineposes.py" line="34"/>
         <source>Refine frame poses (structure from motion)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/refineposes.py" line="44"/>
-        <source>Frames (from Import DJI images, Import flight log or Import camera solution)</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../processing/algorithms/refineposes.py" line="47"/>
+        <location filename="../processing/algorithms/refineposes.py" line="49"/>
         <source>Image size for feature extraction (px, longer side)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/refineposes.py" line="50"/>
+        <location filename="../processing/algorithms/refineposes.py" line="52"/>
         <source>Features per image (at most)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/refineposes.py" line="53"/>
+        <location filename="../processing/algorithms/refineposes.py" line="55"/>
         <source>Refine focal length and distortion (only with relief, oblique views or ground control)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/refineposes.py" line="56"/>
+        <location filename="../processing/algorithms/refineposes.py" line="62"/>
         <source>Refined frames</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/refineposes.py" line="58"/>
+        <location filename="../processing/algorithms/refineposes.py" line="64"/>
         <source>Report (HTML)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/refineposes.py" line="60"/>
+        <location filename="../processing/algorithms/refineposes.py" line="66"/>
         <source>Frames registered</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/refineposes.py" line="65"/>
+        <location filename="../processing/algorithms/refineposes.py" line="71"/>
         <source>FRAMES is required.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/refineposes.py" line="72"/>
+        <location filename="../processing/algorithms/refineposes.py" line="78"/>
         <source>{n} frames; SIFT features at {size} px, at most {features} per image</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/refineposes.py" line="77"/>
+        <location filename="../processing/algorithms/refineposes.py" line="89"/>
         <source>Registered {n} of {total} frames in {seconds:.0f} s ({rate:.1f} images per minute); intrinsics {intrinsics}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/refineposes.py" line="82"/>
+        <location filename="../processing/algorithms/refineposes.py" line="94"/>
         <source>Aligned to the GNSS positions: residual RMS {rms:.3f} m</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/refineposes.py" line="88"/>
+        <location filename="../processing/algorithms/refineposes.py" line="103"/>
         <source>{n} frame(s) keep their metadata pose (flag not_refined); first: {items}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/refineposes.py" line="104"/>
+        <location filename="../processing/algorithms/refineposes.py" line="119"/>
         <source>OUTPUT_REPORT: cannot write {path} ({error})</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/refineposes.py" line="46"/>
+        <source>Frames (from Import drone images, Import flight log or Import camera solution)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/refineposes.py" line="58"/>
+        <source>Geotags with surveyed heights (optional: the ground that fixes the focal length of a nominal camera; else the frames&apos; ground heights)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/refineposes.py" line="83"/>
+        <source>{n} geotags with a surveyed height: the ground plane at {h:.2f} m</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/refineposes.py" line="97"/>
+        <source>Camera-to-ground distance of the block / (GNSS height − ground height): {ratio:.4f}</source>
+        <translation type="unfinished"></translation>
+    </message>
+</context>
+<context>
+    <name>ReviewParametersMixin</name>
+    <message>
+        <location filename="../processing/parameters/review.py" line="30"/>
+        <source>Review verdicts (the review dock&apos;s birdseye_verdicts table; optional)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/parameters/review.py" line="33"/>
+        <source>Detection layers the review judged (with REVIEW)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/parameters/review.py" line="37"/>
+        <source>Frame layers of those detections (one per layer, same order)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/parameters/review.py" line="55"/>
+        <source>REVIEW_DETECTIONS is given without REVIEW: give the review&apos;s verdict table too, or leave REVIEW_DETECTIONS empty.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/parameters/review.py" line="60"/>
+        <source>REVIEW: give the detection layer(s) the review judged (REVIEW_DETECTIONS): the verdicts name spots, the clusters come from those detections.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/parameters/review.py" line="72"/>
+        <source>{layer}: {n} detection(s) without a position or score left out</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/parameters/review.py" line="82"/>
+        <source>Review ({review}): {n} cluster(s) in {layers} detection layer(s); {hit} match a geotag; of the others {confirmed} confirmed real, {hard} hard negative, {conflicting} with conflicting verdicts, {uncertain} uncertain, {unreviewed} unreviewed.</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
@@ -2452,113 +2673,118 @@ pip&apos;s log is below; the packages already there are unchanged.</source>
 <context>
     <name>WriteLabels</name>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="80"/>
+        <location filename="../processing/algorithms/writelabels.py" line="82"/>
         <source>Geotags (surveyed targets)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="82"/>
-        <source>Frames (from Import flight log or Import DJI images)</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../processing/algorithms/writelabels.py" line="85"/>
+        <location filename="../processing/algorithms/writelabels.py" line="87"/>
         <source>Soft-label σ (px); empty: the sensor-bound dock's value, else 10</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="88"/>
+        <location filename="../processing/algorithms/writelabels.py" line="90"/>
         <source>…or σ from a sensorbound result (JSON): r / 3</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="91"/>
+        <location filename="../processing/algorithms/writelabels.py" line="93"/>
         <source>Edge buffer (px): geotags this close to the border are &apos;edge&apos;, not labels</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="95"/>
+        <location filename="../processing/algorithms/writelabels.py" line="97"/>
         <source>Write one soft-label raster per frame</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="97"/>
+        <location filename="../processing/algorithms/writelabels.py" line="99"/>
         <source>Write a tiled training set (image and label tiles)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="99"/>
+        <location filename="../processing/algorithms/writelabels.py" line="101"/>
         <source>Tile size (px)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="102"/>
+        <location filename="../processing/algorithms/writelabels.py" line="104"/>
         <source>Negative tiles kept per positive tile</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="105"/>
+        <location filename="../processing/algorithms/writelabels.py" line="107"/>
         <source>Random seed for the negative-tile sample</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="108"/>
+        <location filename="../processing/algorithms/writelabels.py" line="110"/>
         <source>Write COCO-keypoints JSON</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="110"/>
+        <location filename="../processing/algorithms/writelabels.py" line="113"/>
         <source>Label folder</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="111"/>
+        <location filename="../processing/algorithms/writelabels.py" line="114"/>
         <source>Frames with label counts</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="114"/>
+        <location filename="../processing/algorithms/writelabels.py" line="117"/>
         <source>Geotags with frames seen</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="141"/>
+        <location filename="../processing/algorithms/writelabels.py" line="146"/>
         <source>GEOTAGS and FRAMES are both required.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="125"/>
+        <location filename="../processing/algorithms/writelabels.py" line="130"/>
         <source>SIGMA_PX is given: SENSOR_BOUND_JSON is ignored</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="131"/>
+        <location filename="../processing/algorithms/writelabels.py" line="136"/>
         <source>σ = {value:g} px from the project (sensor-bound calculator)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="160"/>
+        <location filename="../processing/algorithms/writelabels.py" line="174"/>
         <source>{n_records} frames ({n_groups} camera(s)), {n_geotags} geotags, σ = {sigma:g} px, edge buffer {edge_buffer_px:g} px</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="176"/>
+        <location filename="../processing/algorithms/writelabels.py" line="191"/>
         <source>{n_steep} frame(s) lie on terrain steeper than the level plane's 10° envelope (flag steep_terrain; first: {items}): their labels drift off target — give the DEM (parameter DEM)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="182"/>
+        <location filename="../processing/algorithms/writelabels.py" line="197"/>
         <source>{n_no_ground} frame(s) have no ground height (no usable altimeter reading, flag no_ground_height) and get no labels; first: {items}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="62"/>
+        <location filename="../processing/algorithms/writelabels.py" line="64"/>
         <source>Write training labels</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="170"/>
+        <location filename="../processing/algorithms/writelabels.py" line="185"/>
         <source>{n} frame(s) could not be refined and keep their metadata pose (flag not_refined; first: {items}): their labels are only as good as the drone&apos;s metadata. Leave them out with a filter such as &quot;flags&quot; NOT LIKE &apos;%not_refined%&apos;</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/writelabels.py" line="84"/>
+        <source>Frames (from Import flight log, Import drone images or Import camera solution)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/writelabels.py" line="159"/>
+        <source>From the review: {targets} target(s) nobody surveyed are labelled (provenance review); {hard} hard negative(s) put their tiles first in the negative sample.</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
