@@ -97,8 +97,8 @@ class CameraSolution:
 
 def read_camera_solution(path, images_folder=None, colmap_reference: str = "gps",
                          solution_crs: ProjectedCRS | None = None) -> CameraSolution:
-    """Read a Metashape camera XML, an OpenSfM/OpenDroneMap reconstruction, a COLMAP model or Pix4D's
-    calibrated camera parameters.
+    """Read a Metashape project (.psx, .psz) or camera XML, an OpenSfM/OpenDroneMap reconstruction, a COLMAP
+    model or Pix4D's calibrated camera parameters.
 
     ``path`` is the file, or a folder holding one (an ODM project's ``opensfm/``, a COLMAP ``sparse/0``).
     ``colmap_reference`` tells where a COLMAP model's frame is (:func:`.colmap.read_colmap`);

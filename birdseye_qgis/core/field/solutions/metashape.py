@@ -52,6 +52,7 @@ _WGS84_NAMES = ("WGS 84", "WGS84", "World Geodetic System 1984")
 
 
 def find_xml(folder: Path) -> Path | None:
+    """The one Metashape export, else project, else archive in ``folder`` (None when none or several)."""
     found = sorted(folder.glob("*.xml")) or sorted(folder.glob("*.psx")) or sorted(folder.glob("*.psz"))
     return found[0] if len(found) == 1 else None
 
