@@ -96,8 +96,16 @@ class ClusterDetections(ClusteringParametersMixin, BirdsEyeAlgorithm):
             h = np.where(np.isfinite(geotags.height), geotags.height, local.h0)
             g_local = local.from_geodetic(geotags.lat, geotags.lon, h)
             if groups:
-                visible = self.run_core(in_view, groups, local, g_local,
-                                        self.parameterAsDouble(parameters, self.EDGE_BUFFER_PX, context)).mask
+                view = self.run_core(in_view, groups, local, g_local,
+                                     self.parameterAsDouble(parameters, self.EDGE_BUFFER_PX, context))
+                visible = view.mask
+                if view.n_frames_without_ground:
+                    # Their geotags leave the recall denominator: say so rather than score them silently.
+                    ids = [fid for poses in groups for fid in poses.frame_id[~np.isfinite(poses.ground_height)]]
+                    feedback.pushWarning(self.tr("{n} frame(s) without a ground height (flag no_ground_height; "
+                                                 "first: {items}) were not counted as processed: the geotags "
+                                                 "only they see are not in view.").format(
+                                             n=view.n_frames_without_ground, items=", ".join(map(str, ids[:5]))))
             else:
                 feedback.pushWarning(self.tr("No FRAMES given: every geotag is treated as in "
                                              "view."))

@@ -10,7 +10,15 @@ import json
 
 import numpy as np
 import pytest
-from qgis.core import QgsFeature, QgsGeometry, QgsPointXY, QgsProcessingException, QgsVectorLayer
+from qgis.core import (
+    QgsFeature,
+    QgsGeometry,
+    QgsPointXY,
+    QgsProcessingException,
+    QgsProcessingFeedback,
+    QgsRasterLayer,
+    QgsVectorLayer,
+)
 
 from birdseye.birdseye_qgis.core.detect.model_metadata import ModelMetadata, embed_metadata
 from birdseye.birdseye_qgis.core.field.frame_records import FRAME_FIELDS, euler_degrees
@@ -204,3 +212,136 @@ def test_the_bundled_model_finds_simulated_burrows_end_to_end(birdseye_provider,
     d = np.hypot(tx[:, None] - points[None, :, 0], ty[:, None] - points[None, :, 1]).min(axis=1)
     assert in_view.sum() >= 4
     assert (d[in_view] <= 0.2).mean() >= 0.8
+
+
+class WarningsKept(QgsProcessingFeedback):
+    """A Processing feedback that keeps the warnings it is given."""
+
+    def __init__(self):
+        super().__init__()
+        self.warnings = []
+
+    def pushWarning(self, text):
+        self.warnings.append(text)
+        super().pushWarning(text)
+
+
+def without_ground_height(layer):
+    """The frame layer with every frame's ground height gone, as a camera solution with no tie points
+    in view writes it."""
+    out = layer.clone()
+    out.startEditing()
+    for f in out.getFeatures():
+        out.changeAttributeValue(f.id(), out.fields().indexOf("ground_h_m"), None)
+        out.changeAttributeValue(f.id(), out.fields().indexOf("flags"), "no_ground_height")
+    assert out.commitChanges()
+    return out
+
+
+def flat_dem_layer(scene_layer, height_m, path):
+    from test_writelabels import write_geotiff
+
+    from birdseye.birdseye_qgis.core.sim.terrain import synthetic_terrain
+
+    first = next(scene_layer.getFeatures())
+    dem = synthetic_terrain(first["lat"], first["lon"], kind="plane", base_height_m=height_m, size_m=40.0,
+                            cell_m=0.5, crs=UTM, vertical_datum="ellipsoidal")
+    return QgsRasterLayer(write_geotiff(dem, path), path.stem)
+
+
+def test_frames_without_a_ground_height_are_placed_on_a_dem_or_named_as_skipped(birdseye_provider, scene, tmp_path,
+                                                                                monkeypatch):
+    import processing
+
+    from birdseye.birdseye_qgis.core.detect import detector
+
+    model = identity_model(tmp_path / "m.onnx")
+    frames = without_ground_height(scene["layer"])
+    level_gsd = {f["frame_id"]: f["gsd_cm"] for f in scene["layer"].getFeatures()}  # cm/px at ground 400 m
+
+    # Without a DEM nothing can be placed: each frame is named in a warning, no traceback.
+    feedback = WarningsKept()
+    result = processing.run("birdseye:detect", {"FRAMES": frames, "MODEL": model, "OUTPUT": "TEMPORARY_OUTPUT"},
+                            feedback=feedback)
+    assert result["FRAMES_SKIPPED"] == 3 and result["FRAMES_PROCESSED"] == 0 and result["DETECTION_COUNT"] == 0
+    for fid in level_gsd:
+        assert any(w.startswith(f"Frame {fid}: the frame has no ground height") and "give a DEM" in w
+                   for w in feedback.warnings)
+
+    # With a DEM at the true ground every frame is detected at the level run's places, resampled at the
+    # DEM's ground resolution (camera to DEM under the image centre).
+    seen = []
+    real_model_size = detector.model_size
+
+    def model_size(width, height, gsd_cm, resolution_cm):
+        seen.append(gsd_cm)
+        return real_model_size(width, height, gsd_cm, resolution_cm)
+
+    monkeypatch.setattr(detector, "model_size", model_size)
+    result = run({"FRAMES": frames, "MODEL": model, "DEM": flat_dem_layer(frames, 400.0, tmp_path / "at.tif"),
+                  "DEM_VERTICAL_DATUM": 0, "OUTPUT": "TEMPORARY_OUTPUT"})
+    assert result["FRAMES_PROCESSED"] == 3 and result["FRAMES_SKIPPED"] == 0
+    assert seen == pytest.approx(list(level_gsd.values()), rel=1e-4)
+    feats = list(result["OUTPUT"].getFeatures())
+    assert len(feats) == sum(len(v) for v in scene["views"].values())
+    for f in feats:
+        p = f.geometry().constGet()
+        assert np.linalg.norm(scene["targets_xyz"] - [p.x(), p.y(), p.z()], axis=1).min() < 0.002
+
+    # A DEM 10 m lower doubles the ground resolution (10 m → 20 m below the camera): the coarse-frame
+    # warning names the frames, which only a GSD taken from the DEM can give them.
+    seen.clear()
+    feedback = WarningsKept()
+    processing.run("birdseye:detect", {"FRAMES": frames, "MODEL": model, "DEM_VERTICAL_DATUM": 0,
+                                       "DEM": flat_dem_layer(frames, 390.0, tmp_path / "low.tif"),
+                                       "OUTPUT": "TEMPORARY_OUTPUT"}, feedback=feedback)
+    depth = [g / 100.0 * 1000.0 for g in level_gsd.values()]  # m, f = 1000 px
+    assert seen == pytest.approx([(d + 10.0) / 1000.0 * 100.0 for d in depth], rel=1e-4)
+    assert any("coarser than 1.5× the model's resolution" in w and "7, 8, 9" in w for w in feedback.warnings)
+
+
+def geotag_layer(targets_xyz):
+    from qgis.core import QgsField, QgsPoint
+    from qgis.PyQt.QtCore import QVariant
+
+    layer = QgsVectorLayer(f"PointZ?crs={UTM}", "geotags", "memory")
+    layer.dataProvider().addAttributes([QgsField("id", QVariant.Int), QgsField("label", QVariant.String)])
+    layer.updateFields()
+    feats = []
+    for k, (x, y, z) in enumerate(targets_xyz):
+        f = QgsFeature(layer.fields())
+        f.setAttributes([k + 1, "burrow"])
+        f.setGeometry(QgsGeometry(QgsPoint(float(x), float(y), float(z))))
+        feats.append(f)
+    assert layer.dataProvider().addFeatures(feats)[0]
+    return layer
+
+
+def test_the_algorithms_after_detect_name_frames_without_a_ground_height(birdseye_provider, scene, tmp_path):
+    """Frames without a ground height fed to Write labels, Cluster detections and Evaluate detections
+    warn, naming the frames where they can, instead of failing with a traceback."""
+    import processing
+
+    frames = without_ground_height(scene["layer"])
+    geotags = geotag_layer(scene["targets_xyz"])
+    dem = flat_dem_layer(frames, 400.0, tmp_path / "at.tif")
+    detections = run({"FRAMES": frames, "MODEL": identity_model(tmp_path / "m.onnx"), "DEM": dem,
+                      "DEM_VERTICAL_DATUM": 0, "OUTPUT": "TEMPORARY_OUTPUT"})["OUTPUT"]
+    # Each algorithm runs to the end (a raw ValueError would fail here) and warns.
+    calls = {
+        "writelabels": ({"GEOTAGS": geotags, "FRAMES": frames, "SIGMA_PX": 4.0, "OUTPUT_FOLDER": str(tmp_path / "l"),
+                         "OUTPUT_FRAMES": "TEMPORARY_OUTPUT", "OUTPUT_GEOTAGS": "TEMPORARY_OUTPUT"},
+                        "3 frame(s) have no ground height (no usable altimeter reading, flag no_ground_height) and "
+                        "get no labels; first: 7, 8, 9"),
+        "clusterdetections": ({"DETECTIONS": detections, "GEOTAGS": geotags, "FRAMES": frames, "MIN_SAMPLES": 1,
+                               "OUTPUT": "TEMPORARY_OUTPUT"},
+                              "3 frame(s) without a ground height (flag no_ground_height; first: 7, 8, 9) were not "
+                              "counted as processed"),
+        "evaluatedetections": ({"DETECTIONS": [detections], "GEOTAGS": geotags, "FRAMES": [frames],
+                                "OUTPUT_JSON": str(tmp_path / "s.json"), "OUTPUT_REPORT": str(tmp_path / "r.html")},
+                               "3 frame(s) without a ground height were not counted as processed"),
+    }
+    for alg, (params, warning) in calls.items():
+        feedback = WarningsKept()
+        processing.run(f"birdseye:{alg}", params, feedback=feedback)
+        assert any(warning in w for w in feedback.warnings), (alg, feedback.warnings)

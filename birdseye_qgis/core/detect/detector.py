@@ -2,12 +2,12 @@
 
 Per frame (a generator, so memory does not grow with the number of frames):
 
-1. **Resample** the frame from its own ground sample distance (level ground under the frame, image
-   centre) to the model's ``resolution`` (cm/px, from the model metadata) — the JPEG decoder does the
-   power-of-two part while reading (:func:`read_reduction`), :func:`resample` the rest: scale
-   ``s = gsd_frame / resolution``, so a target covers as many pixels as in training. Pixel centres
-   map as ``u = (u' + 0.5)·W/W' − 0.5`` (OpenCV convention, pixel (0, 0) = centre of the top-left
-   pixel).
+1. **Resample** the frame from its own ground sample distance (image centre; level ground under the
+   frame, or the DEM for a frame without a ground height) to the model's ``resolution``
+   (cm/px, from the model metadata) — the JPEG decoder does the power-of-two part while reading
+   (:func:`read_reduction`), :func:`resample` the rest: scale ``s = gsd_frame / resolution``, so a
+   target covers as many pixels as in training. Pixel centres map as ``u = (u' + 0.5)·W/W' − 0.5``
+   (OpenCV convention, pixel (0, 0) = centre of the top-left pixel).
 2. **Normalise** once per frame: channel order from the metadata, ``(value/255 − mean)/std``, NCHW.
 3. **Tile** (:func:`tile_spans`, the one place for the tiling math): stride = tile − overlap, the last
    tile flush with the border, and only each tile's *core* — its part up to the middle of each
@@ -359,7 +359,9 @@ def detect_frames(model: HeatmapModel, poses: FramePoses, images, request: Detec
     ``images[k]`` is the image path of frame k, read with ``read_image(path, reduction)`` (see
     :func:`read_bgr`). Detections go onto the level plane at each frame's altimeter depth — a frame
     without a ground height is skipped (with the reason) — or, given ``ground`` (a factory
-    ``FrameGeometry -> GroundModel``, e.g. a DEM's ``DemGround.from_dem``), onto that ground.
+    ``FrameGeometry -> GroundModel``, e.g. a DEM's ``DemGround.from_dem``), onto that ground, which
+    also gives the ground sample distance of frames without a ground height (one whose image centre
+    it does not cover is skipped, with the reason).
     Progress is reported after each frame; cancel is checked before each.
     """
     request = request or DetectRequest()
@@ -389,7 +391,7 @@ def detect_frames_at_thresholds(model: HeatmapModel, poses: FramePoses, images, 
     ground = LevelPlaneGround(geom) if ground is None else ground(geom)
     geom_index = np.cumsum(has_ground) - 1
     gsd_cm = np.full(len(poses), np.nan)
-    gsd_cm[has_ground] = geom.gsd_m() * 100.0
+    gsd_cm[has_ground] = _centre_gsd_m(geom, ground) * 100.0
     cam = poses.camera
     heat_dir = Path(request.heatmap_dir) if request.heatmap_dir else None
     if heat_dir is not None:
@@ -401,7 +403,11 @@ def detect_frames_at_thresholds(model: HeatmapModel, poses: FramePoses, images, 
         image_path = str(images[k])
         skipped = None
         if not has_ground[k]:
-            skipped = "the frame has no ground height (no altimeter reading), so nothing can be placed"
+            skipped = ("the frame has no ground height (no altimeter reading, or no tie points in view), so "
+                       "nothing can be placed on the level ground: give a DEM to place it")
+        elif not np.isfinite(gsd_cm[k]):
+            skipped = ("the ground model does not cover the image centre and the frame has no ground height, "
+                       "so its ground resolution is unknown (check that the DEM covers the flight)")
         else:
             size = model_size(cam.width, cam.height, gsd_cm[k], meta.resolution_cm)
             r = read_reduction(cam.width, cam.height, size)
@@ -420,6 +426,22 @@ def detect_frames_at_thresholds(model: HeatmapModel, poses: FramePoses, images, 
             yield [found] * len(thresholds)
         if progress is not None:
             progress((k + 1) / n)
+
+
+def _centre_gsd_m(geom: FrameGeometry, ground) -> np.ndarray:
+    """Ground sample distance (m/px) at each image centre: the altimeter's level depth over the focal
+    length (:meth:`FrameGeometry.gsd_m`), the measured range, where the frame has a ground height;
+    elsewhere the camera's vertical distance to where the principal ray meets ``ground`` (a DEM), NaN
+    where it misses."""
+    gsd = geom.gsd_m()
+    missing = np.flatnonzero(~np.isfinite(gsd))
+    if len(missing):
+        cam = geom.camera
+        centre = np.tile([[cam.cx, cam.cy]], (len(missing), 1))
+        hit, valid = ground.intersect(missing, geom.C[missing], geom.rays(missing, centre))
+        depth = np.einsum("fi,fi->f", geom.C[missing] - hit, geom.up[missing])
+        gsd[missing] = np.where(valid, depth / np.sqrt(cam.fx * cam.fy), np.nan)
+    return gsd
 
 
 def _empty(k, frame_id, image, gsd_cm) -> FrameDetections:
