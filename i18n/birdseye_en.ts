@@ -715,7 +715,7 @@ error</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/dem.py" line="103"/>
+        <location filename="../processing/parameters/dem.py" line="115"/>
         <source>DEM {source}: {value}×{value2} cells of {cell_size_m:g} m, heights {value3:.1f}…{value4:.1f} m ({vertical_datum})</source>
         <translation type="unfinished"></translation>
     </message>
@@ -886,7 +886,7 @@ pip&apos;s log is below; the packages already there are unchanged.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/dem.py" line="75"/>
+        <location filename="../processing/parameters/dem.py" line="85"/>
         <source>{GROUND_MODEL}: the method&apos;s plane stands in for the level ground; with a terrain model ({DEM}) the terrain is the ground. Give one or the other.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1014,12 +1014,12 @@ QGIS&apos;s own packages are not changed. pip downloads them from the Python Pac
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="138"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="146"/>
         <source>OUTPUT: the cluster layer cannot be created.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="160"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="168"/>
         <source>OUTPUT_POINTS: the point layer cannot be created.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1029,23 +1029,28 @@ QGIS&apos;s own packages are not changed. pip downloads them from the Python Pac
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="102"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="110"/>
         <source>No FRAMES given: every geotag is treated as in view.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="109"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="117"/>
         <source>{n_hit_clusters} of {n} clusters match an in-view geotag; {n_recovered} of {n_in_view} in-view geotags recovered.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="121"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="129"/>
         <source>{n_det} detections → {n_points} de-duplicated points → {n} clusters ({NOISE_POINTS} points are noise).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
         <location filename="../processing/algorithms/clusterdetections.py" line="42"/>
         <source>Cluster detections</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/clusterdetections.py" line="105"/>
+        <source>{n} frame(s) without a ground height (flag no_ground_height; first: {items}) were not counted as processed: the geotags only they see are not in view.</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
@@ -1173,22 +1178,22 @@ QGIS&apos;s own packages are not changed. pip downloads them from the Python Pac
 <context>
     <name>DemParametersMixin</name>
     <message>
-        <location filename="../processing/parameters/dem.py" line="51"/>
+        <location filename="../processing/parameters/dem.py" line="56"/>
         <source>Terrain model (DEM/DSM raster, projected CRS in metres; empty: level ground)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/dem.py" line="54"/>
+        <location filename="../processing/parameters/dem.py" line="59"/>
         <source>DEM heights are measured from</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/dem.py" line="57"/>
+        <location filename="../processing/parameters/dem.py" line="62"/>
         <source>Geoid undulation N at the site (m; ellipsoidal = MSL + N)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/dem.py" line="61"/>
+        <location filename="../processing/parameters/dem.py" line="66"/>
         <source>Ground model without a DEM</source>
         <translation type="unfinished"></translation>
     </message>

@@ -14,6 +14,7 @@ from qgis.core import (
     Qgis,
     QgsCoordinateReferenceSystem,
     QgsCoordinateTransform,
+    QgsCsException,
     QgsFeature,
     QgsFeatureSink,
     QgsField,
@@ -305,10 +306,76 @@ def write_frames(algorithm, parameters, context, feedback, result, crs: QgsCoord
 
 
 # ------------------------------------------------------------------------------------------ rasters
-def read_dem(layer, vertical_datum: str, geoid_undulation_m: float | None = None):
+# Metres per unit of the height-unit names GDAL drivers write (band unit type) — lower case, as compared.
+# US survey foot is 1200/3937 m exactly; the international foot 0.3048 m: 2 ppm apart, 2 mm per km of height.
+_HEIGHT_UNITS = {
+    "m": 1.0, "metre": 1.0, "meter": 1.0, "metres": 1.0, "meters": 1.0,
+    "ft": 0.3048, "foot": 0.3048, "feet": 0.3048, "international foot": 0.3048,
+    "us survey foot": 1200 / 3937, "us-ft": 1200 / 3937, "ftus": 1200 / 3937, "us_survey_foot": 1200 / 3937,
+    "foot_us": 1200 / 3937, "us foot": 1200 / 3937,
+}
+# Cells kept beyond a requested extent: bilinear sampling at the extent's edge needs the next cell centre.
+_WINDOW_PAD_CELLS = 2
+
+
+def _height_unit(band, dataset, name: str) -> tuple[float, str]:
+    """Metres per height unit of the DEM and the unit's name: the band's unit type, else the vertical
+    part of a compound CRS, else metres (what DEM files without a unit almost always hold)."""
+    unit = (band.GetUnitType() or "").strip()
+    if unit:
+        factor = _HEIGHT_UNITS.get(unit.lower())
+        if factor is None:
+            raise InputError(f"has heights in '{unit}', a unit BirdsEye does not know; convert them to metres "
+                             "(Raster › Raster Calculator) and set the band's unit to 'm', then run again",
+                             source=name)
+        return factor, unit
+    srs = dataset.GetSpatialRef()
+    if srs is not None and srs.IsCompound():
+        return srs.GetTargetLinearUnits("VERT_CS"), srs.GetAttrValue("VERT_CS|UNIT") or "metre"
+    return 1.0, "metre"
+
+
+def _window(gt, size, extent) -> tuple[int, int, int, int]:
+    """(col, row, cols, rows) of the cells covering ``extent`` (xmin, ymin, xmax, ymax, DEM CRS) plus
+    a pad of cells, clipped to the raster; the whole raster when the extent misses it."""
+    cols, rows = size
+    xmin, ymin, xmax, ymax = extent
+    c = sorted(((xmin - gt[0]) / gt[1], (xmax - gt[0]) / gt[1]))
+    r = sorted(((ymin - gt[3]) / gt[5], (ymax - gt[3]) / gt[5]))
+    c0 = max(0, int(np.floor(c[0])) - _WINDOW_PAD_CELLS)
+    c1 = min(cols, int(np.ceil(c[1])) + _WINDOW_PAD_CELLS)
+    r0 = max(0, int(np.floor(r[0])) - _WINDOW_PAD_CELLS)
+    r1 = min(rows, int(np.ceil(r[1])) + _WINDOW_PAD_CELLS)
+    # An extent off the raster is read whole, so the core's "the DEM does not cover the frames" check speaks.
+    if c1 - c0 < 2 or r1 - r0 < 2:
+        return 0, 0, cols, rows
+    return c0, r0, c1 - c0, r1 - r0
+
+
+def extent_in(source, crs: QgsCoordinateReferenceSystem, context, margin: float, margin_m: float):
+    """(xmin, ymin, xmax, ymax) of a feature source's features in ``crs``, grown on every side by
+    ``margin`` × its larger side and at least ``margin_m``; None when the source has no extent."""
+    box = source.sourceExtent()
+    if box.isNull() or not source.sourceCrs().isValid():
+        return None
+    transform = QgsCoordinateTransform(source.sourceCrs(), crs, context.transformContext())
+    try:
+        box = transform.transformBoundingBox(box)
+    except QgsCsException:  # no window then: the whole raster is read, as without one
+        return None
+    grow = max(margin * max(box.width(), box.height()), margin_m)
+    return box.xMinimum() - grow, box.yMinimum() - grow, box.xMaximum() + grow, box.yMaximum() + grow
+
+
+def read_dem(layer, vertical_datum: str, geoid_undulation_m: float | None = None, extent=None,
+             feedback=None):
     """A core :class:`~.core.geometry.dem.DemRaster` from band 1 of a raster layer (read with GDAL).
 
-    A geographic DEM (degrees) is refused with the fix: warp it to the site's UTM zone first.
+    A geographic DEM (degrees), or one whose cells are not metres, is refused with the fix: warp it to
+    the site's UTM zone first. Heights in feet (band unit type, or the vertical CRS when the band has
+    none) are converted to metres, said on ``feedback``; an unknown height unit is refused. With
+    ``extent`` (xmin, ymin, xmax, ymax in the DEM's CRS, the caller's margin included) only the cells
+    covering it are read.
     """
     from osgeo import gdal
 
@@ -322,6 +389,11 @@ def read_dem(layer, vertical_datum: str, geoid_undulation_m: float | None = None
         raise InputError(f"is in a geographic CRS ({crs.authid()}, degrees); warp it to a projected CRS in "
                          "metres first (Raster › Projections › Warp, e.g. to the UTM zone of the site)",
                          source=name)
+    # Cell sizes and positions are taken as metres by the core: a CRS in feet would scale every distance.
+    if crs.mapUnits() != DISTANCE_METERS:
+        raise InputError(f"is in {crs.authid() or crs.description()}, whose cells are not metres; warp it to a "
+                         "projected CRS in metres first (Raster › Projections › Warp, e.g. to the UTM zone "
+                         "of the site)", source=name)
     dataset = gdal.Open(layer.source())
     if dataset is None:
         raise InputError("cannot be read by GDAL", source=name)
@@ -329,6 +401,20 @@ def read_dem(layer, vertical_datum: str, geoid_undulation_m: float | None = None
     if gt[2] != 0 or gt[4] != 0:
         raise InputError("is a rotated raster; warp it to a north-up grid first", source=name)
     band = dataset.GetRasterBand(1)
-    heights = band.ReadAsArray().astype(float)
-    return DemRaster(heights, (gt[0], gt[1], gt[3], gt[5]), pyproj_crs(crs), vertical_datum, geoid_undulation_m,
-                     band.GetNoDataValue(), source=name)
+    factor, unit = _height_unit(band, dataset, name)
+    if extent is None:
+        col, row, cols, rows = 0, 0, dataset.RasterXSize, dataset.RasterYSize
+    else:
+        col, row, cols, rows = _window(gt, (dataset.RasterXSize, dataset.RasterYSize), extent)
+    heights = band.ReadAsArray(col, row, cols, rows).astype(float)
+    nodata = band.GetNoDataValue()
+    if factor != 1.0:
+        # No-data is masked before the scaling, so it cannot be mistaken for a height after it.
+        if nodata is not None:
+            heights[heights == nodata] = np.nan
+        heights *= factor
+        if feedback is not None:
+            feedback.pushInfo(f"DEM {name}: heights in {unit}, converted to metres (× {factor:.10g})")
+    origin = (gt[0] + col * gt[1], gt[3] + row * gt[5])
+    return DemRaster(heights, (origin[0], gt[1], origin[1], gt[5]), pyproj_crs(crs), vertical_datum,
+                     geoid_undulation_m, nodata if factor == 1.0 else None, source=name)

@@ -110,7 +110,7 @@ class ImportCameras(DemParametersMixin, BirdsEyeAlgorithm):
             reference = "enu:" + self.parameterAsString(parameters, self.ENU_ORIGIN, context)
         chosen = self.run_core(layers.chosen_projected_crs, self.parameterAsCrs(parameters, self.OUTPUT_CRS, context))
         solution_crs = self._solution_crs(parameters, context)
-        dem = self.read_dem(parameters, context)
+        dem = self.read_dem(parameters, context, feedback=feedback)
         self.report_dem(feedback, dem)
         progress, is_canceled = self.progress_callbacks(feedback, 0.0, 80.0)
         result = self.run_core(import_camera_solution, path, images, chosen, dem, ground, reference,

@@ -55,7 +55,7 @@ class ImportDjiImages(DemParametersMixin, BirdsEyeAlgorithm):
         calibration = self.run_core(load_calibration, calibration_path) if calibration_path else None
         flight_height = (self.parameterAsDouble(parameters, self.FLIGHT_HEIGHT_M, context)
                          if parameters.get(self.FLIGHT_HEIGHT_M) not in (None, "") else None)
-        dem = self.read_dem(parameters, context)
+        dem = self.read_dem(parameters, context, feedback=feedback)
         self.report_dem(feedback, dem)
         progress, is_canceled = self.progress_callbacks(feedback, 0.0, 80.0)
         result = self.run_core(import_drone_images, folder, calibration, chosen, progress=progress,

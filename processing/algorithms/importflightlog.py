@@ -79,7 +79,7 @@ class ImportFlightLog(DemParametersMixin, BirdsEyeAlgorithm):
                                   "({source})").format(
                               width=camera.width, height=camera.height, fx=camera.fx, fy=camera.fy,
                               source=camera.source))
-        dem = self.read_dem(parameters, context)
+        dem = self.read_dem(parameters, context, feedback=feedback)
         self.report_dem(feedback, dem)
         progress, is_canceled = self.progress_callbacks(feedback, 0.0, 80.0)
         result = self.run_core(

@@ -145,7 +145,7 @@ class WriteLabels(ReviewParametersMixin, DemParametersMixin, BirdsEyeAlgorithm):
         if geotag_source is None or frame_source is None:
             raise QgsProcessingException(self.tr("GEOTAGS and FRAMES are both required."))
         sigma = self.sigma(parameters, context, feedback)
-        dem = self.read_dem(parameters, context)
+        dem = self.read_dem(parameters, context, frame_source, feedback)
         self.report_dem(feedback, dem)
         geotags = self.run_core(self._read_geotags, geotag_source, context)
         records = self.run_core(layers.read_frame_layer, frame_source)

@@ -33,6 +33,11 @@ GROUND_MODEL_LABELS = ("Level ground at the tilt-corrected altimeter depth",
                        "The method's plane: normal to the optical axis at the raw altimeter range")
 METHOD_PLANE = 1
 GROUND_MODEL_GROUPS = ("labels", "detect")
+# The window of the DEM read around a layer: its extent grown by this fraction of its larger side, and at
+# least by DEM_WINDOW_MARGIN_M. Footprints stored on the level plane grow where the terrain drops below
+# it, and rays of oblique frames reach past them; a generous window costs little next to the whole raster.
+DEM_WINDOW_MARGIN = 0.5
+DEM_WINDOW_MARGIN_M = 100.0
 
 
 class DemParametersMixin:
@@ -64,8 +69,13 @@ class DemParametersMixin:
             choice.setFlags(choice.flags() | PARAMETER_ADVANCED)
             self.addParameter(choice)
 
-    def read_dem(self, parameters, context) -> DemRaster | None:
-        """The DEM, or None for a plane; also reads GROUND_MODEL, which a DEM excludes."""
+    def read_dem(self, parameters, context, covering=None, feedback=None) -> DemRaster | None:
+        """The DEM, or None for a plane; also reads GROUND_MODEL, which a DEM excludes.
+
+        ``covering`` (a feature source, e.g. the frame layer's footprints) limits the read to the cells
+        around it: its extent grown by ``DEM_WINDOW_MARGIN`` (see there). ``feedback`` hears of a unit
+        conversion (heights in feet).
+        """
         self.method_plane = (self.parameterDefinition(self.GROUND_MODEL) is not None
                              and self.parameterAsEnum(parameters, self.GROUND_MODEL, context) == METHOD_PLANE)
         layer = self.parameterAsRasterLayer(parameters, self.DEM, context)
@@ -80,7 +90,9 @@ class DemParametersMixin:
         undulation = (self.parameterAsDouble(parameters, self.GEOID_UNDULATION_M, context)
                       if parameters.get(self.GEOID_UNDULATION_M) not in (None, "") else None)
         try:
-            return layers.read_dem(layer, datum, undulation)
+            extent = None if covering is None else layers.extent_in(covering, layer.crs(), context,
+                                                                    DEM_WINDOW_MARGIN, DEM_WINDOW_MARGIN_M)
+            return layers.read_dem(layer, datum, undulation, extent, feedback)
         except InputError as exc:
             raise QgsProcessingException(str(exc)) from exc
 

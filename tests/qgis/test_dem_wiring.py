@@ -116,3 +116,88 @@ def test_dji_footprints_on_a_dem_at_the_take_off_height_match_the_level_ones(bir
             depth = level[fid]["depth_m"]
             ratio = (f.geometry().area() / level[fid].geometry().area()) ** 0.5
             assert ratio == pytest.approx((depth + drop) / depth, rel=0.01)
+
+
+def unit_dem(tmp_path, name, unit, factor=1.0, crs="EPSG:32633"):
+    """A 40 × 30 GeoTIFF of 2 m cells with band unit type ``unit`` holding the heights (m) ``z`` / ``factor``,
+    one cell no-data; returns the layer and ``z`` (NaN there)."""
+    import numpy as np
+    from osgeo import gdal, osr
+
+    z = np.add.outer(np.arange(30) * 0.5, np.arange(40) * 0.25) + 100.0
+    z[3, 4] = np.nan
+    ds = gdal.GetDriverByName("GTiff").Create(str(tmp_path / f"{name}.tif"), 40, 30, 1, gdal.GDT_Float64)
+    ds.SetGeoTransform((500000.0, 2.0, 0.0, 6000060.0, 0.0, -2.0))
+    srs = osr.SpatialReference()
+    srs.SetFromUserInput(crs)
+    ds.SetProjection(srs.ExportToWkt())
+    band = ds.GetRasterBand(1)
+    band.WriteArray(np.where(np.isnan(z), -9999.0, z / factor))
+    band.SetNoDataValue(-9999.0)
+    band.SetUnitType(unit)
+    ds = None
+    return QgsRasterLayer(str(tmp_path / f"{name}.tif"), name), z
+
+
+class Notes:
+    def __init__(self):
+        self.info = []
+
+    def pushInfo(self, message):
+        self.info.append(message)
+
+
+@pytest.mark.parametrize(("unit", "crs", "factor", "said"), [
+    ("ft", "EPSG:32633", 0.3048, "ft"),
+    ("US survey foot", "EPSG:32633", 1200 / 3937, "US survey foot"),
+    ("", "EPSG:32633+8228", 0.3048, "foot"),  # no band unit: the vertical CRS's (NAVD88 height in feet)
+    ("m", "EPSG:32633", 1.0, None),
+    ("", "EPSG:32633", 1.0, None)])
+def test_dem_heights_in_feet_are_converted_to_metres(birdseye_provider, tmp_path, unit, crs, factor, said):
+    import numpy as np
+
+    from birdseye.birdseye_qgis.qgis_io.layers import read_dem
+
+    layer, z = unit_dem(tmp_path, "feet", unit, factor, crs)
+    notes = Notes()
+    dem = read_dem(layer, "ellipsoidal", feedback=notes)
+    # No-data is masked before the scaling: -9999 ft does not become a height of -3047.7 m.
+    np.testing.assert_allclose(dem.heights, z, rtol=1e-12, equal_nan=True)
+    converted = [m for m in notes.info if "converted to metres" in m]
+    assert len(converted) == (said is not None)
+    assert all(f"heights in {said}," in m for m in converted)
+
+
+def test_a_dem_in_an_unknown_height_unit_or_a_feet_crs_is_refused(birdseye_provider, tmp_path):
+    from birdseye.birdseye_qgis.core.errors import InputError
+    from birdseye.birdseye_qgis.qgis_io.layers import read_dem
+
+    layer, _ = unit_dem(tmp_path, "fathoms", "fathom")
+    with pytest.raises(InputError, match=r"fathoms.*'fathom', a unit BirdsEye does not know; convert them to metres"):
+        read_dem(layer, "ellipsoidal")
+    # Cells in US feet (California zone 3): positions and cell sizes would be read as metres.
+    layer, _ = unit_dem(tmp_path, "stateplane", "m", crs="EPSG:2227")
+    with pytest.raises(InputError, match=r"stateplane.*EPSG:2227, whose cells are not metres; warp it"):
+        read_dem(layer, "ellipsoidal")
+
+
+def test_a_windowed_read_gives_the_full_read_heights_inside_the_window(birdseye_provider, tmp_path):
+    import numpy as np
+
+    from birdseye.birdseye_qgis.qgis_io.layers import read_dem
+
+    layer, _ = unit_dem(tmp_path, "window", "m")
+    full = read_dem(layer, "ellipsoidal")
+    extent = (500020.3, 6000010.0, 500041.0, 6000030.7)
+    window = read_dem(layer, "ellipsoidal", extent=extent)
+    assert window.heights.size < full.heights.size / 3
+    # The window covers the extent with cells to spare, and samples the same heights inside it.
+    x0, dx, y0, dy = window.geotransform
+    rows, cols = window.heights.shape
+    assert x0 <= extent[0] - dx and x0 + cols * dx >= extent[2] + dx
+    assert y0 >= extent[3] - dy and y0 + rows * dy <= extent[1] + dy
+    x, y = np.meshgrid(np.linspace(extent[0], extent[2], 23), np.linspace(extent[1], extent[3], 17))
+    np.testing.assert_array_equal(window.sample(x, y), full.sample(x, y))
+    assert np.all(np.isfinite(window.sample(x, y)))
+    # An extent off the raster reads it whole, so the DEM's coverage check still speaks.
+    assert read_dem(layer, "ellipsoidal", extent=(0.0, 0.0, 10.0, 10.0)).heights.shape == full.heights.shape
