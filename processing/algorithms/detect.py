@@ -16,8 +16,8 @@ from qgis.PyQt.QtCore import QT_TRANSLATE_NOOP
 from ...birdseye_qgis.__about__ import BUNDLED_MODEL
 from ...birdseye_qgis.core.detect.detector import DetectRequest, HeatmapModel, detect_frames
 from ...birdseye_qgis.core.errors import InputError
-from ...birdseye_qgis.core.field.frame_records import poses_from_records
-from ...birdseye_qgis.core.geometry.geodesy import LocalFrame, ProjectedCRS
+from ...birdseye_qgis.core.field.frame_records import local_frame_around, poses_from_records
+from ...birdseye_qgis.core.geometry.geodesy import ProjectedCRS
 from ...birdseye_qgis.qgis_enums import NUMBER_DOUBLE, SOURCE_VECTOR_POINT, SOURCE_VECTOR_POLYGON, WKB_POINT_Z
 from ...birdseye_qgis.qgis_io import layers
 from ...birdseye_qgis.qgis_io.detections import DETECTION_FIELDS
@@ -113,9 +113,7 @@ class Detect(DemParametersMixin, BirdsEyeAlgorithm):
 
     def _detect(self, model, groups, records, request, to_crs, sink, fields, feedback) -> dict:
         """Stream every camera group's frames through the detector into the sink."""
-        all_lat = np.concatenate([p.lat for p, _ in groups])
-        all_lon = np.concatenate([p.lon for p, _ in groups])
-        local = LocalFrame.around(all_lat, all_lon, np.concatenate([p.height for p, _ in groups]))
+        local = local_frame_around(groups)
         threshold = model.metadata.default_threshold if request.threshold is None else request.threshold
         total = sum(len(p) for p, _ in groups)
         counts = dict(detections=0, processed=0, skipped=0, edge=0, no_ground=0)

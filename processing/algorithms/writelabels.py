@@ -23,8 +23,7 @@ from qgis.core import (
 from qgis.PyQt.QtCore import QT_TRANSLATE_NOOP
 
 from ...birdseye_qgis.__about__ import tr
-from ...birdseye_qgis.core.field.frame_records import poses_from_records, uses_geotag_heights
-from ...birdseye_qgis.core.geometry.geodesy import LocalFrame
+from ...birdseye_qgis.core.field.frame_records import local_frame_around, poses_from_records, uses_geotag_heights
 from ...birdseye_qgis.core.labels.training_set import (
     Geotags,
     LabelRequest,
@@ -168,9 +167,7 @@ class WriteLabels(ReviewParametersMixin, DemParametersMixin, BirdsEyeAlgorithm):
             seed=self.parameterAsInt(parameters, self.SEED, context),
             coco=self.parameterAsBoolean(parameters, self.WRITE_COCO, context))
         out_dir = self.parameterAsString(parameters, self.OUTPUT_FOLDER, context)
-        all_lat = np.concatenate([g[0].lat for g in groups] + [geotags.lat])
-        all_lon = np.concatenate([g[0].lon for g in groups] + [geotags.lon])
-        local = LocalFrame.around(all_lat, all_lon, np.concatenate([g[0].height for g in groups]))
+        local = local_frame_around(groups, geotags.lat, geotags.lon)
         feedback.pushInfo(self.tr("{n_records} frames ({n_groups} camera(s)), {n_geotags} "
                                   "geotags, σ = {sigma:g} px, edge buffer {edge_buffer_px:g} px").format(
                               n_records=len(records), n_groups=len(groups), n_geotags=len(geotags), sigma=sigma,

@@ -10,6 +10,7 @@ import numpy as np
 
 from ..errors import InputError
 from ..geometry.camera import CameraModel
+from ..geometry.geodesy import LocalFrame
 from ..geometry.poses import FramePoses
 from ..geometry.rotations import quat_to_rotmat, rotmat_to_euler_zyx
 
@@ -105,6 +106,14 @@ def poses_from_records(records, source: str = "frame layer") -> list[tuple[Frame
                            cols["height_m"], quat, cols["ground_h_m"], camera)
         out.append((poses, idx))
     return out
+
+
+def local_frame_around(groups, lat=(), lon=()):
+    """The local ENU frame of camera groups (:func:`poses_from_records`) and the points ``lat``/``lon``
+    beside them: every step that projects into those frames works in the same one."""
+    return LocalFrame.around(np.concatenate([p.lat for p, _ in groups] + [np.asarray(lat, dtype=float)]),
+                             np.concatenate([p.lon for p, _ in groups] + [np.asarray(lon, dtype=float)]),
+                             np.concatenate([p.height for p, _ in groups]))
 
 
 def _number(value) -> float:

@@ -13,8 +13,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..field.frame_records import poses_from_records, uses_geotag_heights
-from ..geometry.geodesy import LocalFrame
+from ..field.frame_records import local_frame_around, poses_from_records, uses_geotag_heights
 from ..geometry.poses import FrameGeometry
 from .training_set import Geotags, project_labels
 
@@ -96,9 +95,7 @@ def check_marks(records: list, points, point_idx, frame_idx, uv_mark) -> MarkChe
     targets = Geotags(points.number, np.asarray(points.label, dtype=object), points.lat, points.lon,
                       points.h_ellipsoid)
     groups = poses_from_records(records)
-    local = LocalFrame.around(np.concatenate([g.lat for g, _ in groups] + [targets.lat]),
-                              np.concatenate([g.lon for g, _ in groups] + [targets.lon]),
-                              np.concatenate([g.height for g, _ in groups]))
+    local = local_frame_around(groups, targets.lat, targets.lon)
     frame_idx = np.asarray(frame_idx, dtype=np.int64)
     point_idx = np.asarray(point_idx, dtype=np.int64)
     uv_mark = np.asarray(uv_mark, dtype=float).reshape(-1, 2)
