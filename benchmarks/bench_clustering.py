@@ -26,6 +26,7 @@ import _path  # noqa: F401
 import numpy as np
 
 from birdseye.birdseye_qgis.core.detect.clustering import (
+    GroundPositions,
     cluster_detections,
     cluster_hulls,
     dbscan,
@@ -45,6 +46,7 @@ from birdseye.birdseye_qgis.core.scoring.sweep import SweepFlight, SweepGrid, sw
 
 GOAL_MILLION_S = 10.0
 GOAL_SWEEP_S = 300.0
+SITE = LocalFrame(-27.55, 151.95, 400.0)
 
 
 # ------------------------------------------------------------------------------ 1. a million detections
@@ -61,10 +63,11 @@ def million_detections(seed=0, n=1_000_000):
 
 def bench_million():
     xy, frame, score = million_detections()
-    cluster_detections(xy[:20_000], frame[:20_000], score[:20_000])  # imports (scipy) and caches
+    positions = GroundPositions.from_local(SITE, xy)
+    cluster_detections(positions.subset(slice(0, 20_000)), frame[:20_000], score[:20_000])  # imports, caches
     cpu0 = time.process_time()
     t0 = time.perf_counter()
-    points = deduplicate(xy, 0.03)
+    points = deduplicate(positions, 0.03)
     t1 = time.perf_counter()
     graph = neighbour_graph(points.xy, 0.10)
     t2 = time.perf_counter()
@@ -101,7 +104,7 @@ def simulated_flight(seed=1):
     t = np.eye(4)
     t[:3, :3] = [[0, 1, 0], [-1, 0, 0], [0, 0, 1]]
     cam = CameraModel(1920, 1200, 4264.4945, 4262.8927, 958.4594, 592.5033, (-0.08, 0.12, 4e-4, -3e-4, 0.0), t)
-    local = LocalFrame(-27.55, 151.95, 400.0)
+    local = SITE
     agl, plot = 12.0, 60.0
     along = 0.2 * agl * 1200 / 4263.0        # image height (px) along track, 80 % overlap
     across = 0.3 * agl * 1920 / 4264.0       # 70 % side overlap
@@ -149,7 +152,9 @@ def bench_sweep():
     grid = SweepGrid(np.round(np.arange(0.10, 0.56, 0.05), 2), np.round(np.linspace(0.03, 0.25, 12), 3),
                      np.arange(1, 13), np.round(np.linspace(0.05, 0.50, 10), 3))
     # Each simulated detection is its own peak, so a run at threshold t keeps exactly those scored ≥ t.
-    flight = SweepFlight({t: xy[score >= t] for t in grid.thresholds}, geotags, n_frames, "simulated flight")
+    positions = GroundPositions.from_local(SITE, xy)
+    flight = SweepFlight({t: positions.subset(score >= t) for t in grid.thresholds}, geotags, n_frames,
+                         "simulated flight")
     print(f"2. simulated flight: {n_frames} frames, {len(xy):,} detections at threshold ≥ 0.1, "
           f"{len(flight.geotag_xy)} surveyed geotags in view; grid {' × '.join(map(str, grid.shape))} = "
           f"{grid.size:,} configurations")
@@ -173,7 +178,8 @@ def bench_sweep():
     t0 = time.perf_counter()
     for ti, ei, mi, pi in subset:
         keep = score >= grid.thresholds[ti]
-        c = cluster_detections(xy[keep], None, None, grid.dedup_cm, grid.eps_m[ei], int(grid.min_samples[mi]))
+        c = cluster_detections(positions.subset(keep), None, None, grid.dedup_cm, grid.eps_m[ei],
+                               int(grid.min_samples[mi]))
         k = score_flight(c, geotags, np.ones(len(geotags), bool), grid.eps_pred_m[pi]).counts
         assert_same(result, (0, ti, ei, mi, pi), k)
     t_each = (time.perf_counter() - t0) / len(subset)

@@ -20,7 +20,8 @@ import _path  # noqa: F401
 import numpy as np
 from _frames import random_frames, random_ground_points
 
-from birdseye.birdseye_qgis.core.labels.training_set import Geotags, LabelRequest, project_labels, write_label_set
+from birdseye.birdseye_qgis.core.field.geotags import Geotags
+from birdseye.birdseye_qgis.core.labels.training_set import LabelRequest, project_labels, write_label_set
 
 N_FRAMES, TARGET_LABELS = 3_976, 25_315
 BASELINE_S = 14 * 60 + 27
@@ -33,8 +34,8 @@ def partition(seed=0):
     poses, local = random_frames(rng, N_FRAMES, (side, side), height_m=(9.5, 10.5), tilt_sd_deg=1.5)
     # footprint ≈ 4.50 m × 2.81 m at 10 m ⇒ labels/frame ≈ n · 12.7 m² / side²
     n_geotags = int(round(TARGET_LABELS / N_FRAMES * side ** 2 / 12.66))
-    geotags = Geotags(np.arange(n_geotags), np.full(n_geotags, "burrow"),
-                      *random_ground_points(rng, local, n_geotags, (side, side)))
+    geotags = Geotags(np.arange(n_geotags), *random_ground_points(rng, local, n_geotags, (side, side)),
+                      np.full(n_geotags, "burrow"))
     images = [f"/data/frames/{i}.png" for i in range(N_FRAMES)]
     return poses, geotags, images
 

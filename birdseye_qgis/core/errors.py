@@ -24,3 +24,10 @@ class InputError(ValueError):
 
 class Cancelled(Exception):
     """Raised inside core loops when the caller's cancel callback returns True."""
+
+
+def check_cancel(is_canceled) -> None:
+    """Raise :class:`Cancelled` when the caller's cancel callback (None: never) says so; core loops call
+    it once per unit of work."""
+    if is_canceled is not None and is_canceled():
+        raise Cancelled()

@@ -12,7 +12,6 @@ metres above the ground.
 """
 from __future__ import annotations
 
-import math
 from pathlib import Path
 
 from qgis.core import Qgis, QgsProject
@@ -58,10 +57,10 @@ from ..core.design.sensor_bound import (
     Intrinsics,
     camera_mount,
     evaluate_bounds,
-    lambda_target,
 )
 from ..core.errors import InputError
 from ..core.geometry.camera import CALIBRATION_FILE_FILTER, load_calibration
+from ..core.labels.training_set import label_sigma_px
 from ..qgis_io.project_settings import store_sigma_label_px
 
 SENSOR_BOUND_ALG = "birdseye:sensorbound"
@@ -375,8 +374,8 @@ class SensorBoundDock(QgsDockWidget):
         return parse_altitudes(self.altitudes_edit.text(), tr("Altitudes"))
 
     def sigma_label_px(self) -> float:
-        """σ_label = √λ_target = r/3 px."""
-        return math.sqrt(lambda_target(self.tolerance_px()))
+        """σ_label = r/3 px."""
+        return label_sigma_px(self.tolerance_px())
 
     def apply_preset(self, name: str) -> None:
         """Set the inputs to a platform preset: camera, pose sigmas, mount, tolerance r and altitudes."""

@@ -3,14 +3,15 @@ detections write, and the readers every scoring algorithm and the review dock sh
 from __future__ import annotations
 
 import numpy as np
-from qgis.core import QgsCoordinateReferenceSystem, QgsCoordinateTransform, QgsFeatureRequest, QgsProject, QgsWkbTypes
+from qgis.core import QgsCoordinateReferenceSystem, QgsCoordinateTransform, QgsProject, QgsWkbTypes
 
 from ..core.errors import InputError
 from ..core.field.frame_records import poses_from_records
 from ..core.geometry.geodesy import LocalFrame, ProjectedCRS
-from ..core.scoring.evaluation import Detections, Geotags
+from ..core.geometry.ground_record import DEM, LEVEL_PLANE, GroundRecord
+from ..core.scoring.evaluation import Detections
 from ..core.scoring.verdicts import VerdictLog
-from ..qgis_enums import GEOMETRY_POINT, REQUEST_NO_GEOMETRY
+from ..qgis_enums import GEOMETRY_POINT
 from . import layers
 
 #: (name, type, description) of the detection layer.
@@ -22,7 +23,14 @@ DETECTION_FIELDS = [
     ("model", "string", "model file name"),
     ("model_digest", "string", "SHA-256 of the model file"),
     ("threshold", "double", "probability threshold of the run"),
+    # The ground model Detect placed the detection on, on every feature so it survives any format and any
+    # copy of the features (names of at most 10 characters, so a Shapefile keeps them whole).
+    ("ground", "string", "ground model the detection was placed on: level, method_plane or dem"),
+    ("dem_source", "string", "the DEM's file (ground = dem; empty otherwise)"),
+    ("dem_datum", "string", "what the DEM's heights are measured from: ellipsoidal, msl or unknown"),
+    ("dem_n_m", "double", "geoid undulation N given with the DEM (m; ellipsoidal = MSL + N), empty when none"),
 ]
+GROUND_FIELDS = ("ground", "dem_source", "dem_datum", "dem_n_m")
 CLUSTER_FIELDS = [
     ("cluster_id", "int", "cluster number, 0.. (DBSCAN order)"),
     ("centroid_x", "double", "mean position of the cluster's detections, x in the layer CRS"),
@@ -42,7 +50,7 @@ POINT_FIELDS = [
     ("score", "double", "highest score of those detections"),
 ]
 DETECTION_FIELDS_REQUIRED = ("frame_id", "score")
-DETECTION_FIELDS_OPTIONAL = ("model", "model_digest", "threshold")
+DETECTION_FIELDS_OPTIONAL = ("model", "model_digest", "threshold") + GROUND_FIELDS
 
 
 
@@ -76,22 +84,40 @@ def read_detections(source, context, name: str | None = None) -> tuple[Detection
                          "run, not a score filter: score one run per layer", source=name, field="threshold")
     det = Detections(cols["lat"][ok], cols["lon"][ok], cols["z"][ok], frame_id[ok], score[ok], name=name,
                      model=", ".join(models), model_digest=digests[0] if digests else "",
-                     threshold=max(thresholds) if thresholds else None)
+                     threshold=max(thresholds) if thresholds else None, ground=_ground_record(values, name))
     return det, int((~ok).sum())
 
 
-def read_geotags(source, context) -> Geotags:
-    """Any point layer as geotags: ids from an ``id`` field when present, else the feature ids."""
-    name = source.sourceName()
-    has_id = "id" in source.fields().names()
-    cols = layers.read_point_layer(source, context.transformContext(), ["id"] if has_id else [], name)
-    if has_id:
-        ids = [row if v is None else v for v, row in zip(cols["attributes"]["id"], cols["row"].tolist())]
-    else:
-        request = QgsFeatureRequest().setNoAttributes().setFlags(REQUEST_NO_GEOMETRY)
-        ids = [f.id() for f in source.getFeatures(request)]
-    ok = np.isfinite(cols["lat"])
-    return Geotags(np.asarray(ids, dtype=object)[ok], cols["lat"][ok], cols["lon"][ok], cols["z"][ok])
+def ground_attributes(record: GroundRecord) -> dict:
+    """The ground fields (:data:`GROUND_FIELDS`) Detect writes on every detection of a run placed on
+    ``record``'s ground."""
+    return {"ground": record.model, "dem_source": record.dem_source or None, "dem_datum": record.dem_datum or None,
+            "dem_n_m": record.geoid_undulation_m}
+
+
+def _ground_record(values: dict, name: str) -> GroundRecord:
+    """The one ground a detection layer's features were placed on; a layer without the field (made before
+    Detect recorded it) was placed on the level plane, as were features where it is empty."""
+    if "ground" not in values:
+        return GroundRecord()
+    n = len(values["ground"])
+    columns = [values.get(f, [None] * n) for f in GROUND_FIELDS]
+    found = set()
+    for model, source, datum, undulation in zip(*columns):
+        if not model or model == LEVEL_PLANE:
+            found.add(GroundRecord())
+            continue
+        try:
+            found.add(GroundRecord(str(model), str(source or ""), str(datum or ""),
+                                   None if undulation is None else float(undulation))
+                      if model == DEM else GroundRecord(str(model)))
+        except (InputError, TypeError, ValueError) as exc:
+            raise InputError(str(exc), source=name, field="ground") from exc
+    if len(found) > 1:
+        listed = "; ".join(sorted(record.describe() for record in found))
+        raise InputError(f"mixes detections placed on {len(found)} grounds ({listed}): a Detect run places all its "
+                         "detections on one ground; score each run's layer on its own", source=name, field="ground")
+    return found.pop() if found else GroundRecord()
 
 
 def read_pose_groups(source, name: str | None = None):

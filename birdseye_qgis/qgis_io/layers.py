@@ -7,6 +7,8 @@ and records for the core functions. Nothing here computes geometry.
 """
 from __future__ import annotations
 
+import functools
+import tempfile
 from pathlib import Path
 
 import numpy as np
@@ -14,8 +16,10 @@ from qgis.core import (
     Qgis,
     QgsCoordinateReferenceSystem,
     QgsCoordinateTransform,
+    QgsCoordinateTransformContext,
     QgsCsException,
     QgsFeature,
+    QgsFeatureRequest,
     QgsFeatureSink,
     QgsField,
     QgsFields,
@@ -24,16 +28,35 @@ from qgis.core import (
     QgsPoint,
     QgsPointXY,
     QgsPolygon,
+    QgsProcessingContext,
     QgsProcessingLayerPostProcessorInterface,
     QgsProject,
+    QgsVectorFileWriter,
+    QgsVectorLayer,
     QgsWkbTypes,
 )
 
-from ..__about__ import STYLE_DIR
+from ..__about__ import STYLE_DIR, tr
 from ..core.errors import InputError
-from ..core.field.frame_records import FRAME_FIELD_NAMES
+from ..core.field.frame_records import (
+    CAMERA_FIELD,
+    FRAME_FIELD_NAMES,
+    camera_cut_at,
+    camera_part_fields,
+    join_camera,
+    split_cameras,
+)
+from ..core.field.geotags import UNLABELLED, Geotags, geotag_ids
 from ..core.geometry.geodesy import ProjectedCRS, utm_epsg
-from ..qgis_enums import CRS_WKT2_2019, DISTANCE_METERS, GEOMETRY_POINT, WKB_LINE_STRING_Z, WKB_POLYGON_Z
+from ..qgis_enums import (
+    CRS_WKT2_2019,
+    DISTANCE_METERS,
+    GEOMETRY_POINT,
+    REQUEST_NO_GEOMETRY,
+    WKB_LINE_STRING_Z,
+    WKB_POINT,
+    WKB_POLYGON_Z,
+)
 
 WGS84 = "EPSG:4326"
 
@@ -242,21 +265,110 @@ def read_point_layer(source, transform_context=None, attributes=(), source_name:
             "z": np.asarray(z, dtype=float), "row": np.asarray(rows, dtype=np.int64), "attributes": values}
 
 
+def read_geotag_layer(source, transform_context=None, id_field: str = "id", selected_only: bool = False,
+                      source_name: str | None = None) -> Geotags:
+    """A point layer as :class:`Geotags`: the one reading of a geotag layer, in every algorithm and dock.
+
+    Ids: the ``id_field`` value when the layer has that field, else the feature's row (1.., the
+    layer's feature order), never the provider's feature id (a GeoPackage counts from 1, a Shapefile
+    from 0); empty or shared ids are refused (:func:`core.field.geotags.geotag_ids`). Heights: the
+    ``h_ellipsoid`` field when present (Import geotags writes Z = 0 where it is NULL), else the
+    geometry's Z; NaN where unknown. Labels: the ``label`` field, empty → ``target``. Features
+    without a position are left out (one entry each in ``problems``), the others keep their ids.
+    ``selected_only``: the selected features of a vector layer, with the ids they have in the whole layer.
+    """
+    name = source_name or (source.sourceName() if hasattr(source, "sourceName") else "geotag layer")
+    names = source.fields().names()
+    has_id = id_field in names
+    wanted = [n for n in (id_field if has_id else "", "label", "h_ellipsoid") if n in names]
+    cols = read_point_layer(source, transform_context, wanted, name)
+    values = cols["attributes"]
+    keep = np.ones(len(cols["row"]), dtype=bool)
+    if selected_only:
+        selected = set(source.selectedFeatureIds())
+        request = QgsFeatureRequest().setNoAttributes().setFlags(REQUEST_NO_GEOMETRY)
+        keep = np.array([f.id() in selected for f in source.getFeatures(request)], dtype=bool)
+    positioned = np.isfinite(cols["lat"]) & np.isfinite(cols["lon"])
+    problems = [InputError("has no position (empty geometry)", source=name, row=int(row),
+                           field="geometry") for row in cols["row"][keep & ~positioned]]
+    keep &= positioned
+    rows = cols["row"][keep]
+    ids = geotag_ids([v for v, k in zip(values[id_field], keep) if k] if has_id else None, rows, name, id_field)
+    if "h_ellipsoid" in values:
+        height = np.array([_number_or_nan(v, name, row, "h_ellipsoid")
+                           for v, row in zip(values["h_ellipsoid"], cols["row"])])
+    else:
+        height = cols["z"]
+    labels = ([(str(v).strip() if v is not None else "") or UNLABELLED for v in values["label"]]
+              if "label" in values else [UNLABELLED] * len(keep))
+    return Geotags(ids, cols["lat"][keep], cols["lon"][keep], height[keep], np.asarray(labels, dtype=object)[keep],
+                   source_row=rows, source=name, problems=problems)
+
+
+def _number_or_nan(value, source: str, row: int, field_name: str) -> float:
+    if value is None:
+        return float("nan")
+    try:
+        return float(value)
+    except (TypeError, ValueError):
+        raise InputError(f"{value!r} is not a number", source=source, row=row, field=field_name) from None
+
+
+# dBase (.dbf, the attributes of an ESRI Shapefile) keeps field names of at most 10 characters.
+_DBF_NAME_CHARS = 10
+
+
 def read_frame_layer(source, source_name: str | None = None) -> list[dict]:
     """Records (dicts with the frame-layer field names) of a BirdsEye frame layer, in feature order,
-    for :func:`core.frame_records.poses_from_records`."""
+    for :func:`core.frame_records.poses_from_records`.
+
+    A camera model split over ``camera``, ``camera_2``, … (a format with short text fields, §4.6) is
+    joined; one the layer's format cut is refused, saying what to do. A field name a Shapefile cut to 10
+    characters (``sync_offse``) is read as the field it stands for.
+    """
     name = source_name or (source.sourceName() if hasattr(source, "sourceName") else "frame layer")
-    present = [n for n in FRAME_FIELD_NAMES if n in source.fields().names()]
+    fields = source.fields()
+    names = fields.names()
+    columns = {n: n if n in names else n[:_DBF_NAME_CHARS] for n in FRAME_FIELD_NAMES}
+    columns = {n: c for n, c in columns.items() if c in names}
+    parts = [CAMERA_FIELD] + [f for f, _, _ in camera_part_fields(len(names)) if f in names] \
+        if CAMERA_FIELD in names else []
+    lengths = [fields.field(p).length() for p in parts]
+    checked = set()
     records = []
-    for feature in source.getFeatures():
-        rec = {}
-        for n in present:
-            v = feature[n]
-            rec[n] = None if v is None or (hasattr(v, "isNull") and v.isNull()) else v
+    for row, feature in enumerate(source.getFeatures(), start=1):
+        rec = {n: _attribute(feature, c) for n, c in columns.items()}
+        if CAMERA_FIELD in rec:
+            texts = tuple(_attribute(feature, p) for p in parts)
+            rec[CAMERA_FIELD] = join_camera(texts)
+            if texts not in checked:
+                _refuse_cut_camera(source, name, row, rec.get("frame_id"), texts, lengths)
+                checked.add(texts)
         records.append(rec)
     if not records:
         raise InputError("has no frames", source=name)
     return records
+
+
+def _attribute(feature, name: str):
+    v = feature[name]
+    return None if v is None or (hasattr(v, "isNull") and v.isNull()) else v
+
+
+def _refuse_cut_camera(source, name: str, row: int, frame_id, texts, lengths) -> None:
+    """Refuse a camera model the layer's format cut (``camera_cut_at``), naming the format and the fix."""
+    length = camera_cut_at(texts, lengths)
+    if length is None:
+        return
+    storage = source.storageType() if hasattr(source, "storageType") else ""
+    raise InputError(tr(
+        "the camera model of frame {frame} was cut at {length} characters: {format} keeps at most {length} "
+        "characters in a text field and a camera model needs about 500: the layer was probably saved to it after "
+        "the import (Save Features As…). Save the original frame layer as a GeoPackage (.gpkg) instead, or run "
+        "the import again with its output written to a GeoPackage (or to this format: the import then splits "
+        "the camera over fields camera, camera_2, …).").format(
+            frame=frame_id, length=length, format=storage or tr("the layer's file format (e.g. ESRI Shapefile)")),
+        source=name, row=row, field=CAMERA_FIELD)
 
 
 # ------------------------------------------------------------------------------------------ outputs
@@ -278,14 +390,26 @@ def write_frames(algorithm, parameters, context, feedback, result, crs: QgsCoord
                  extra_fields=(), extra_values=None) -> dict:
     """Write a core ``FlightImport`` (frames + footprints [+ flight line]) to the algorithm's sinks,
     styled on load; returns the outputs dict entries. ``extra_fields`` (a core schema) follow the
-    frame-layer fields, one dict of their values per frame in ``extra_values``."""
+    frame-layer fields, one dict of their values per frame in ``extra_values``. In a format whose text
+    fields are too short for the camera model (an ESRI Shapefile), it goes on in ``camera_2``, … (§4.6)."""
     from ..core.field.flight_track import TRACK_FIELDS
     from ..core.field.frames import FRAME_LAYER_FIELDS, frame_records
 
-    fields = qgs_fields(FRAME_LAYER_FIELDS + list(extra_fields))
     records = frame_records(result.frames, result.footprints)
     if extra_values is not None:
         records = ({**rec, **more} for rec, more in zip(records, extra_values))
+    # Where the output goes, asked of a scratch context: asked of the run's, Processing would load it twice.
+    scratch = QgsProcessingContext()
+    scratch.setExpressionContext(context.expressionContext())
+    max_chars = text_field_limit(algorithm.parameterAsOutputLayer(parameters, output, scratch))
+    camera_parts = []
+    if max_chars is not None:
+        camera_parts, records = split_cameras(records, max_chars)
+    if camera_parts and feedback is not None:
+        feedback.pushInfo(tr("The output's format keeps at most {n} characters in a text field: each frame's camera "
+                             "model goes on in fields {fields}; keep them with the layer.").format(
+                                 n=max_chars, fields=", ".join(f[0] for f in camera_parts)))
+    fields = qgs_fields(FRAME_LAYER_FIELDS + list(extra_fields) + camera_parts)
     sink, dest_id = algorithm.parameterAsSink(parameters, output, context, fields, WKB_POLYGON_Z, crs)
     if sink is None:
         raise InputError("the frame output cannot be created", field=output)
@@ -303,6 +427,41 @@ def write_frames(algorithm, parameters, context, feedback, result, crs: QgsCoord
             style_on_load(context, track_id, "track.qml")
             outputs[track_output] = track_id
     return outputs
+
+
+def text_field_limit(destination: str | None) -> int | None:
+    """The most characters a text field keeps in the vector file ``destination`` (a path, as Processing
+    gives an output), or None: no limit, or not a file format QGIS writes."""
+    path = Path((destination or "").split("|")[0])
+    driver = QgsVectorFileWriter.driverForExtension(path.suffix[1:]) if path.suffix else ""
+    return _driver_text_limit(driver, path.suffix) if driver else None
+
+
+@functools.lru_cache(maxsize=None)
+def _driver_text_limit(driver: str, suffix: str) -> int | None:
+    """What a text field of OGR driver ``driver`` keeps, measured once: a long text written and read back."""
+    from osgeo import gdal
+
+    probe = "x" * 4096
+    fields = qgs_fields([("text", "string", "")])
+    options = QgsVectorFileWriter.SaveVectorOptions()
+    options.driverName, options.fileEncoding = driver, "UTF-8"
+    feature = QgsFeature(fields)
+    feature.setAttributes([probe])
+    gdal.PushErrorHandler("CPLQuietErrorHandler")  # not GDAL's "truncated" warning, 4096 x's long, in the log
+    try:
+        with tempfile.TemporaryDirectory(prefix="birdseye_") as folder:
+            path = str(Path(folder) / f"probe{suffix}")
+            writer = QgsVectorFileWriter.create(path, fields, WKB_POINT, QgsCoordinateReferenceSystem(WGS84),
+                                                QgsCoordinateTransformContext(), options)
+            written = writer.addFeature(feature)
+            del writer  # closes the file
+            layer = QgsVectorLayer(path, "probe", "ogr")
+            kept = next((f["text"] for f in layer.getFeatures()), None) if written and layer.isValid() else None
+            del layer
+    finally:
+        gdal.PopErrorHandler()
+    return len(kept) if isinstance(kept, str) and len(kept) < len(probe) else None
 
 
 # ------------------------------------------------------------------------------------------ rasters

@@ -36,6 +36,7 @@ from pathlib import Path
 from typing import Sequence
 
 from ..core.errors import InputError
+from ..core.geometry.ground_record import DEM, common_ground
 from ..core.review.actions import ACTION_ADD, ACTION_UNDO, ACTION_VERDICT, Ledger, PlannedRow
 from ..core.review.digests import input_id
 from ..core.review.units import ADDED_PREFIX, ReviewParameters, ReviewUnits, UnitRef
@@ -382,7 +383,9 @@ def layer_digest(layer, role: str) -> str:
 @dataclass
 class ReviewInputs:
     """The layers of a review, read once: detection layers, frames (pose groups and image paths),
-    geotags, the local frame of the scores and the content digests."""
+    geotags, the local frame of the scores, the content digests, and the ground-model factory the
+    detections were placed with (None = the level plane). ``ground_fallback`` says why the review stands
+    on the level plane instead of the recorded DEM (empty when it stands on the recorded ground)."""
 
     layers: list
     pose_groups: list
@@ -390,6 +393,8 @@ class ReviewInputs:
     geotags: object
     local: object
     digests: dict
+    ground: object = None
+    ground_fallback: str = ""
 
 
 def read_review_inputs(detection_layers, frame_layer, geotag_layer) -> ReviewInputs:
@@ -401,7 +406,7 @@ def read_review_inputs(detection_layers, frame_layer, geotag_layer) -> ReviewInp
     from ..core.review.chips import review_local_frame
     from ..core.review.units import ReviewLayer
     from . import layers as layer_io
-    from .detections import read_detections, read_geotags, read_pose_groups
+    from .detections import read_detections, read_pose_groups
 
     if not detection_layers:
         raise InputError("choose at least one detection layer to review")
@@ -431,12 +436,41 @@ def read_review_inputs(detection_layers, frame_layer, geotag_layer) -> ReviewInp
         review_layers.append(ReviewLayer(det, u, v))
     groups, records, with_index = read_pose_groups(frame_layer, frame_layer.name())
     images = [[records[i].get("image") or "" for i in idx] for _, idx in with_index]
-    geotags = read_geotags(geotag_layer, context)
+    geotags = layer_io.read_geotag_layer(geotag_layer, context.transformContext())
     local = review_local_frame(groups, geotags)
     digests = {input_id("detections", layer.name()): layer_digest(layer, "detections") for layer in detection_layers}
     digests[input_id("frames", frame_layer.name())] = layer_digest(frame_layer, "frames")
     digests[input_id("geotags", geotag_layer.name())] = layer_digest(geotag_layer, "geotags")
-    return ReviewInputs(review_layers, groups, images, geotags, local, digests)
+    record = common_ground([layer.detections.ground for layer in review_layers], names)
+    ground, fallback = review_ground(record, groups)
+    return ReviewInputs(review_layers, groups, images, geotags, local, digests, ground, fallback)
+
+
+def review_ground(record, pose_groups) -> tuple[object, str]:
+    """The ground-model factory a review of detections placed on ``record``'s ground stands on, and why it
+    is the level plane instead (empty when it is the recorded ground).
+
+    A DEM is opened from the file the detection layer names, with the recorded vertical datum, and checked
+    against the frames as Detect checked it. The review has no DEM parameter: when the file is gone or
+    fails the check, chips and in-view counts fall back to the level plane, with the reason, rather than
+    stop the review."""
+    from qgis.core import QgsRasterLayer
+
+    from ..core.geometry.dem import check_vertical_datum
+    from . import layers as layer_io
+
+    if record.model != DEM:
+        return record.factory(None), ""
+    raster = QgsRasterLayer(record.dem_source, "DEM")
+    try:
+        if not raster.isValid():
+            raise InputError("cannot be opened (moved or deleted?)", source=record.dem_source)
+        ground = record.factory(layer_io.read_dem(raster, record.dem_datum, record.geoid_undulation_m))
+        for poses in pose_groups:
+            check_vertical_datum(ground.dem, ground.pose_heights_datum, poses, ground.tolerance_m)
+    except InputError as exc:
+        return None, str(exc)
+    return ground, ""
 
 
 def default_store_path(detection_layers, project_file: str = "") -> str:

@@ -29,15 +29,15 @@ from ...birdseye_qgis.qgis_io.detections import (
     CLUSTER_FIELDS,
     POINT_FIELDS,
     read_detections,
-    read_geotags,
     read_pose_groups,
     to_layer_xy,
 )
 from ..parameters.clustering import ClusteringParametersMixin
+from ..parameters.dem import DemParametersMixin
 from .base import BirdsEyeAlgorithm
 
 
-class ClusterDetections(ClusteringParametersMixin, BirdsEyeAlgorithm):
+class ClusterDetections(ClusteringParametersMixin, DemParametersMixin, BirdsEyeAlgorithm):
     ALG_ID = "clusterdetections"
     DISPLAY_NAME = QT_TRANSLATE_NOOP("ClusterDetections", "Cluster detections")
     GROUP = "detect"
@@ -58,6 +58,7 @@ class ClusterDetections(ClusteringParametersMixin, BirdsEyeAlgorithm):
             self.FRAMES, self.tr("Frames of the flight (optional: only in-view geotags can match)"),
             [SOURCE_VECTOR], optional=True))
         self.add_matching_parameters()
+        self.add_dem_parameters()
         self.addParameter(QgsProcessingParameterFeatureSink(
             self.OUTPUT, self.tr("Clusters"), SOURCE_VECTOR_POLYGON))
         self.addParameter(QgsProcessingParameterFeatureSink(
@@ -77,14 +78,15 @@ class ClusterDetections(ClusteringParametersMixin, BirdsEyeAlgorithm):
                                          "were left out").format(dropped=dropped))
         geotag_source = self.parameterAsSource(parameters, self.GEOTAGS, context)
         frame_source = self.parameterAsSource(parameters, self.FRAMES, context)
-        geotags = self.run_core(read_geotags, geotag_source, context) if geotag_source is not None else None
+        geotags = (self.run_core(layers.read_geotag_layer, geotag_source, context.transformContext())
+                   if geotag_source is not None else None)
         groups = self.run_core(read_pose_groups, frame_source)[0] if frame_source is not None else []
         feedback.setProgress(30)
         if len(det) == 0:
             raise QgsProcessingException(self.tr("The detection layer holds no detection with a position."))
         local = self._local_frame(det, groups, geotags)
-        xy = det.local_xy(local)
-        clustering = self.run_core(cluster_detections, xy, det.frame_id, det.score,
+        positions = det.ground_positions(local)
+        clustering = self.run_core(cluster_detections, positions, det.frame_id, det.score,
                                    self.parameterAsDouble(parameters, self.DEDUP_CM, context),
                                    self.parameterAsDouble(parameters, self.EPS_M, context),
                                    self.parameterAsInt(parameters, self.MIN_SAMPLES, context))
@@ -96,8 +98,11 @@ class ClusterDetections(ClusteringParametersMixin, BirdsEyeAlgorithm):
             h = np.where(np.isfinite(geotags.height), geotags.height, local.h0)
             g_local = local.from_geodetic(geotags.lat, geotags.lon, h)
             if groups:
+                dem = self.read_dem(parameters, context, frame_source, feedback)
+                self.report_dem(feedback, dem)
                 view = self.run_core(in_view, groups, local, g_local,
-                                     self.parameterAsDouble(parameters, self.EDGE_BUFFER_PX, context))
+                                     self.parameterAsDouble(parameters, self.EDGE_BUFFER_PX, context),
+                                     self.recorded_ground(det, dem, feedback))
                 visible = view.mask
                 if view.n_frames_without_ground:
                     # Their geotags leave the recall denominator: say so rather than score them silently.
@@ -122,8 +127,8 @@ class ClusterDetections(ClusteringParametersMixin, BirdsEyeAlgorithm):
         crs = source.sourceCrs()
         outputs = {"CLUSTER_COUNT": n, "HIT_COUNT": int(hit.sum()),
                    "NOISE_POINTS": int((clustering.dbscan.labels < 0).sum())}
-        outputs[self.OUTPUT] = self._write_clusters(parameters, context, feedback, clustering, xy, matched, hit, local,
-                                                 crs)
+        outputs[self.OUTPUT] = self._write_clusters(parameters, context, feedback, clustering, positions.xy, matched,
+                                                    hit, local, crs)
         if parameters.get(self.OUTPUT_POINTS):
             outputs[self.OUTPUT_POINTS] = self._write_points(parameters, context, feedback, clustering, det, local, crs)
         feedback.pushInfo(self.tr("{n_det} detections → {n_points} de-duplicated points → {n} "

@@ -16,22 +16,23 @@ from qgis.core import (
 )
 from qgis.PyQt.QtCore import QT_TRANSLATE_NOOP
 
+from ...birdseye_qgis.core.geometry.ground_record import common_ground
 from ...birdseye_qgis.core.scoring.compare import CHANGE_FIELDS, compare_detectors
 from ...birdseye_qgis.core.scoring.reports import comparison_report_html
 from ...birdseye_qgis.qgis_enums import SOURCE_VECTOR, SOURCE_VECTOR_POINT, WKB_POINT
 from ...birdseye_qgis.qgis_io import layers
 from ...birdseye_qgis.qgis_io.detections import (
     read_detections,
-    read_geotags,
     read_pose_groups,
     read_verdicts,
     to_layer_xy,
 )
 from ..parameters.clustering import ClusteringParametersMixin
+from ..parameters.dem import DemParametersMixin
 from .base import BirdsEyeAlgorithm
 
 
-class CompareDetectors(ClusteringParametersMixin, BirdsEyeAlgorithm):
+class CompareDetectors(ClusteringParametersMixin, DemParametersMixin, BirdsEyeAlgorithm):
     ALG_ID = "comparedetectors"
     DISPLAY_NAME = QT_TRANSLATE_NOOP("CompareDetectors", "Compare detectors")
     GROUP = "detect"
@@ -55,6 +56,7 @@ class CompareDetectors(ClusteringParametersMixin, BirdsEyeAlgorithm):
         self.addParameter(QgsProcessingParameterFeatureSource(
             self.GEOTAGS, self.tr("Geotags"), [SOURCE_VECTOR_POINT]))
         self.add_clustering_parameters()
+        self.add_dem_parameters()
         self.addParameter(QgsProcessingParameterVectorLayer(
             self.REVIEW, self.tr("Review verdicts (optional: adds the POST scores of both)"), [SOURCE_VECTOR],
             optional=True))
@@ -88,8 +90,14 @@ class CompareDetectors(ClusteringParametersMixin, BirdsEyeAlgorithm):
         if old.model_digest and old.model_digest == new.model_digest and old.threshold == new.threshold:
             feedback.pushWarning(self.tr("Both layers come from the same model file (model_digest) at the same "
                                          "threshold: the comparison shows no change of detector."))
+        # A change of ground is not a change of detector: both layers must stand on one, which the
+        # in-view test of both then uses.
+        self.run_core(common_ground, [old.ground, new.ground], [old.name, new.name])
+        dem = self.read_dem(parameters, context, sources[self.FRAMES], feedback)
+        self.report_dem(feedback, dem)
+        ground = self.recorded_ground(old, dem, feedback)
         groups = self.run_core(read_pose_groups, sources[self.FRAMES])[0]
-        geotags = self.run_core(read_geotags, sources[self.GEOTAGS], context)
+        geotags = self.run_core(layers.read_geotag_layer, sources[self.GEOTAGS], context.transformContext())
         if len(geotags) == 0:
             raise QgsProcessingException(self.tr("GEOTAGS: the layer holds no point with a position."))
         review = self.parameterAsVectorLayer(parameters, self.REVIEW, context)
@@ -97,7 +105,8 @@ class CompareDetectors(ClusteringParametersMixin, BirdsEyeAlgorithm):
         op = self.read_operating_point(parameters, context)
         feedback.setProgress(10)
         progress, is_canceled = self.progress_callbacks(feedback, 10.0, 85.0)
-        comparison = self.run_core(compare_detectors, old, new, groups, geotags, op, log, progress, is_canceled)
+        comparison = self.run_core(compare_detectors, old, new, groups, geotags, op, log, ground, progress,
+                                   is_canceled)
         for note in comparison.before.review_notes:
             feedback.pushWarning(note)
         result = comparison.to_dict()

@@ -20,7 +20,7 @@ from ...birdseye_qgis.core.field.frame_records import local_frame_around, poses_
 from ...birdseye_qgis.core.geometry.geodesy import ProjectedCRS
 from ...birdseye_qgis.qgis_enums import NUMBER_DOUBLE, SOURCE_VECTOR_POINT, SOURCE_VECTOR_POLYGON, WKB_POINT_Z
 from ...birdseye_qgis.qgis_io import layers
-from ...birdseye_qgis.qgis_io.detections import DETECTION_FIELDS
+from ...birdseye_qgis.qgis_io.detections import DETECTION_FIELDS, ground_attributes
 from ..parameters.dem import DemParametersMixin
 from .base import BirdsEyeAlgorithm
 
@@ -51,7 +51,7 @@ class Detect(DemParametersMixin, BirdsEyeAlgorithm):
         self.addParameter(QgsProcessingParameterNumber(
             self.EDGE_BUFFER_PX, self.tr("Edge buffer (px): detections closer to the image border are dropped"),
             NUMBER_DOUBLE, 0.0, minValue=0.0))
-        self.add_dem_parameters()
+        self.add_dem_parameters(ground_model=True)
         self.addParameter(QgsProcessingParameterFeatureSink(
             self.OUTPUT, self.tr("Detections"), SOURCE_VECTOR_POINT))
         self.addParameter(QgsProcessingParameterFolderDestination(
@@ -115,6 +115,8 @@ class Detect(DemParametersMixin, BirdsEyeAlgorithm):
         """Stream every camera group's frames through the detector into the sink."""
         local = local_frame_around(groups)
         threshold = model.metadata.default_threshold if request.threshold is None else request.threshold
+        # Every detection carries the ground it was placed on: scoring and the review stand on the same one.
+        placed_on = ground_attributes(self.ground_record(self.dem))
         total = sum(len(p) for p, _ in groups)
         counts = dict(detections=0, processed=0, skipped=0, edge=0, no_ground=0)
         coarse = []
@@ -138,7 +140,8 @@ class Detect(DemParametersMixin, BirdsEyeAlgorithm):
                 if len(found):
                     x, y = to_crs.from_geodetic(found.lat, found.lon)
                     rows = ({"frame_id": int(found.frame_id), "u": float(u), "v": float(v), "score": float(s),
-                             "model": model.name, "model_digest": model.digest, "threshold": threshold}
+                             "model": model.name, "model_digest": model.digest, "threshold": threshold,
+                             **placed_on}
                             for (u, v), s in zip(found.uv, found.score))
                     geoms = (layers.point_z(a, b, c) for a, b, c in zip(np.atleast_1d(x), np.atleast_1d(y),
                                                                        found.height))

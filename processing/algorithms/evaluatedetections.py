@@ -22,8 +22,10 @@ from ...birdseye_qgis.core.scoring.evaluation import evaluate_flights
 from ...birdseye_qgis.core.scoring.operating_point import OperatingPoint
 from ...birdseye_qgis.core.scoring.reports import evaluation_report_html
 from ...birdseye_qgis.qgis_enums import SOURCE_VECTOR, SOURCE_VECTOR_POINT
-from ...birdseye_qgis.qgis_io.detections import read_geotags, read_verdicts
+from ...birdseye_qgis.qgis_io.detections import read_verdicts
+from ...birdseye_qgis.qgis_io.layers import read_geotag_layer
 from ..parameters.clustering import ClusteringParametersMixin
+from ..parameters.dem import DemParametersMixin
 from .base import BirdsEyeAlgorithm
 
 
@@ -39,7 +41,7 @@ def operating_point_from_rule(path, flights, arm_name, feedback) -> tuple[Operat
                 "model_digest": arm["model_digest"]}
 
 
-class EvaluateDetections(ClusteringParametersMixin, BirdsEyeAlgorithm):
+class EvaluateDetections(ClusteringParametersMixin, DemParametersMixin, BirdsEyeAlgorithm):
     ALG_ID = "evaluatedetections"
     DISPLAY_NAME = QT_TRANSLATE_NOOP("EvaluateDetections", "Evaluate detections (recall, GMCF)")
     GROUP = "detect"
@@ -60,6 +62,7 @@ class EvaluateDetections(ClusteringParametersMixin, BirdsEyeAlgorithm):
         self.addParameter(QgsProcessingParameterMultipleLayers(
             self.FRAMES, self.tr("Frame layers (one per flight, same order)"), SOURCE_VECTOR))
         self.add_clustering_parameters()
+        self.add_dem_parameters()
         self.addParameter(QgsProcessingParameterVectorLayer(
             self.REVIEW, self.tr("Review verdicts (optional: adds the POST scores)"), [SOURCE_VECTOR],
             optional=True))
@@ -79,11 +82,14 @@ class EvaluateDetections(ClusteringParametersMixin, BirdsEyeAlgorithm):
             self.addOutput(QgsProcessingOutputNumber(name, self.tr(text)))
 
     def processAlgorithm(self, parameters, context, feedback):
-        flights = self.read_flights(parameters, context, feedback)
+        dem = self.read_dem(parameters, context, feedback=feedback)
+        self.report_dem(feedback, dem)
+        flights = self.read_flights(parameters, context, feedback,
+                                    ground_for=lambda detections: self.recorded_ground(detections, dem, feedback))
         geotag_source = self.parameterAsSource(parameters, self.GEOTAGS, context)
         if geotag_source is None:
             raise QgsProcessingException(self.tr("GEOTAGS: the geotag layer cannot be read."))
-        geotags = self.run_core(read_geotags, geotag_source, context)
+        geotags = self.run_core(read_geotag_layer, geotag_source, context.transformContext())
         if len(geotags) == 0:
             raise QgsProcessingException(self.tr("GEOTAGS: the layer holds no point with a position."))
         rule_path = self.parameterAsFile(parameters, self.PREREGISTRATION, context)

@@ -147,7 +147,7 @@ class ImportCameras(DemParametersMixin, BirdsEyeAlgorithm):
         sink, dest_id = self.parameterAsSink(parameters, self.OUTPUT_CONTROL, context, fields, WKB_POINT_Z, crs)
         if sink is not None:
             x, y = crs_core.from_geodetic(points.lat, points.lon)
-            z = np.nan_to_num(points.h_ellipsoid)
+            z = np.nan_to_num(points.height)
             layers.write_records(sink, fields, points.records(), (layers.point_z(*p) for p in zip(x, y, z)))
             layers.style_on_load(context, dest_id, "geotags.qml", self.tr("Control points"))
             outputs[self.OUTPUT_CONTROL] = dest_id
@@ -160,7 +160,7 @@ class ImportCameras(DemParametersMixin, BirdsEyeAlgorithm):
         sink, dest_id = self.parameterAsSink(parameters, self.OUTPUT_MARK_CHECK, context, fields, WKB_POINT_Z, crs)
         if sink is not None:
             x, y = crs_core.from_geodetic(check.mark_lat, check.mark_lon)
-            z = np.nan_to_num(points.h_ellipsoid)[check.point_idx]
+            z = np.nan_to_num(points.height)[check.point_idx]
             geometries = (layers.point_z(*p) if np.all(np.isfinite(p)) else None for p in zip(x, y, z))
             layers.write_records(sink, fields, check.records(result.frames.frame_id, result.frames.image), geometries)
             layers.style_on_load(context, dest_id, "mark_check.qml", self.tr("Label check (pinned marks)"))

@@ -115,7 +115,7 @@ class ImportGeotags(BirdsEyeAlgorithm):
         x, y = crs_core.from_geodetic(out.lat, out.lon)
         fields = layers.qgs_fields(GEOTAG_FIELDS)
         sink, dest_id = self.parameterAsSink(parameters, self.OUTPUT, context, fields, WKB_POINT_Z, crs)
-        z = [h if h == h else 0.0 for h in out.h_ellipsoid.tolist()]
+        z = [h if h == h else 0.0 for h in out.height.tolist()]
         n = self.run_core(layers.write_records, sink, fields, out.records(),
                           (layers.point_z(*p) for p in zip(x.tolist(), y.tolist(), z)),
                           feedback, 50.0, 100.0, len(out))

@@ -6,7 +6,6 @@ from pathlib import Path
 import numpy as np
 from qgis.core import (
     QgsCoordinateReferenceSystem,
-    QgsFeatureRequest,
     QgsGeometry,
     QgsLineString,
     QgsProcessingException,
@@ -102,7 +101,7 @@ class PlanFlight(ReviewParametersMixin, BirdsEyeAlgorithm):
         self.addParameter(QgsProcessingParameterBoolean(
             self.SELECTED_ONLY, self.tr("Selected geotags only"), defaultValue=False))
         self.addParameter(QgsProcessingParameterField(
-            self.ID_FIELD, self.tr("Geotag id field (empty: 'id' if present, else the feature number)"),
+            self.ID_FIELD, self.tr("Geotag id field (empty: 'id' if present, else the row number)"),
             parentLayerParameterName=self.GEOTAGS, optional=True))
         self.addParameter(QgsProcessingParameterPoint(
             self.HOME, self.tr("Home: take-off and landing point (optional)"), optional=True))
@@ -174,28 +173,24 @@ class PlanFlight(ReviewParametersMixin, BirdsEyeAlgorithm):
         layer = self.parameterAsVectorLayer(parameters, self.GEOTAGS, context)
         if layer is None:
             raise QgsProcessingException(self.tr("GEOTAGS: the geotag layer could not be opened."))
-        source = layer
-        if self.parameterAsBool(parameters, self.SELECTED_ONLY, context):
-            if layer.selectedFeatureCount() == 0:
-                raise QgsProcessingException(self.tr(
-                    "SELECTED_ONLY is set but no geotag of layer '{}' is selected: select the geotags"
-                    " of the partition to fly, or clear SELECTED_ONLY.").format(layer.name()))
-            source = layer.materialize(QgsFeatureRequest().setFilterFids(layer.selectedFeatureIds()))
-        id_field = self.parameterAsString(parameters, self.ID_FIELD, context) or (
-            "id" if "id" in layer.fields().names() else "")
-        height_field = "h_ellipsoid" if "h_ellipsoid" in layer.fields().names() else ""
-        columns = self.run_core(layers.read_point_layer, source, context.transformContext(),
-                                [a for a in (id_field, height_field) if a], layer.name())
-        if len(columns["lat"]) == 0:
+        selected_only = self.parameterAsBool(parameters, self.SELECTED_ONLY, context)
+        if selected_only and layer.selectedFeatureCount() == 0:
+            raise QgsProcessingException(self.tr(
+                "SELECTED_ONLY is set but no geotag of layer '{}' is selected: select the geotags"
+                " of the partition to fly, or clear SELECTED_ONLY.").format(layer.name()))
+        geotags = self.run_core(layers.read_geotag_layer, layer, context.transformContext(),
+                                self.parameterAsString(parameters, self.ID_FIELD, context) or "id", selected_only,
+                                layer.name())
+        if geotags.problems:
+            raise QgsProcessingException(self.tr("{problem}: remove the feature or give it a position, so no "
+                                                 "target is left out of the flight.").format(
+                                                     problem=geotags.problems[0]))
+        if len(geotags) == 0:
             raise QgsProcessingException(self.tr("GEOTAGS: layer '{}' has no features: there is nothing to fly"
                                                  " over.").format(layer.name()))
-        ids = (columns["attributes"][id_field] if id_field else columns["row"].tolist())
-        ids = [str(columns["row"][k]) if v is None else str(v) for k, v in enumerate(ids)]
-        # Ground heights only feed the uneven-ground warning; a geotag layer's h_ellipsoid is NULL where
-        # unknown, while its Z is then 0, so the field is preferred.
-        heights = (np.array([np.nan if v is None else float(v) for v in columns["attributes"][height_field]])
-                   if height_field else columns["z"])
-        lat, lon, origins = columns["lat"], columns["lon"], ["survey"] * len(ids)
+        # Ground heights only feed the uneven-ground warning.
+        ids, heights = [str(i) for i in geotags.ids], geotags.height
+        lat, lon, origins = geotags.lat, geotags.lon, ["survey"] * len(ids)
         # Every geotag of the layer, selected or not, settles the clusters it matches.
         reviewed = self.read_reviewed_clusters(parameters, context, feedback, layer, None, 0.0, 30.0)
         unresolved = [c for c in reviewed or [] if c.is_unresolved]

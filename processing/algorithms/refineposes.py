@@ -78,7 +78,8 @@ class RefinePoses(BirdsEyeAlgorithm):
         feedback.pushInfo(self.tr("{n} frames; SIFT features at {size} px, at most {features} per image").format(
             n=len(frames), size=options.match_size_px, features=options.max_features))
         geotag_source = self.parameterAsSource(parameters, self.GEOTAGS, context)
-        heights = None if geotag_source is None else self.run_core(self._geotag_heights, geotag_source, context)
+        heights = None if geotag_source is None else self.run_core(
+            layers.read_geotag_layer, geotag_source, context.transformContext()).height
         if heights is not None and np.isfinite(heights).any():
             feedback.pushInfo(self.tr("{n} geotags with a surveyed height: the ground plane at {h:.2f} m").format(
                 n=int(np.isfinite(heights).sum()), h=float(np.nanmedian(heights))))
@@ -120,13 +121,3 @@ class RefinePoses(BirdsEyeAlgorithm):
                     path=report_path, error=exc)) from exc
             outputs[self.OUTPUT_REPORT] = report_path
         return outputs
-
-    @staticmethod
-    def _geotag_heights(source, context):
-        """Surveyed ellipsoidal heights (m): an ``h_ellipsoid`` field (Import geotags) else the points' Z."""
-        has_field = "h_ellipsoid" in source.fields().names()
-        cols = layers.read_point_layer(source, context.transformContext(), ["h_ellipsoid"] if has_field else [],
-                                       source.sourceName())
-        if has_field:
-            return np.array([np.nan if v is None else float(v) for v in cols["attributes"]["h_ellipsoid"]])
-        return np.asarray(cols["z"], dtype=float)

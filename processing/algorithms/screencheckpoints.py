@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import json
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -18,7 +19,7 @@ from qgis.PyQt.QtCore import QT_TRANSLATE_NOOP
 
 from ...birdseye_qgis.core.detect.detector import HeatmapModel
 from ...birdseye_qgis.core.detect.flight_detections import detect_flight
-from ...birdseye_qgis.core.labels.training_set import Geotags as LabelGeotags
+from ...birdseye_qgis.core.geometry.ground import placeable_frames
 from ...birdseye_qgis.core.labels.training_set import project_labels
 from ...birdseye_qgis.core.scoring.evaluation import local_frame_for
 from ...birdseye_qgis.core.scoring.matching import in_view
@@ -33,18 +34,20 @@ from ...birdseye_qgis.core.scoring.screening import (
     screen_checkpoints,
 )
 from ...birdseye_qgis.qgis_enums import NUMBER_DOUBLE, NUMBER_INTEGER, SOURCE_FILE, SOURCE_VECTOR, SOURCE_VECTOR_POINT
-from ...birdseye_qgis.qgis_io.detections import read_geotags, read_pose_groups
+from ...birdseye_qgis.qgis_io.detections import read_pose_groups
+from ...birdseye_qgis.qgis_io.layers import read_geotag_layer
 from ...birdseye_qgis.qgis_io.outputs import write_output, write_rows_csv
 from ..parameters.clustering import ClusteringParametersMixin
+from ..parameters.dem import DemParametersMixin
 from .base import BirdsEyeAlgorithm
 
 
-def pixel_labels(poses, local, geotags, edge_buffer_px):
-    """(frame_id, uv) of every in-view geotag in every frame, as writelabels would write them."""
-    tags = LabelGeotags(geotags.ids, [""] * len(geotags), geotags.lat, geotags.lon,
-                        np.where(np.isfinite(geotags.height), geotags.height, local.h0))
+def pixel_labels(poses, local, geotags, edge_buffer_px, ground=None):
+    """(frame_id, uv) of every in-view geotag in every frame, as writelabels would write them on ``ground``
+    (a ground-model factory; None = the level plane)."""
+    tags = replace(geotags, height=np.where(np.isfinite(geotags.height), geotags.height, local.h0))
     frame_ids, uvs = [], []
-    for fl in project_labels(poses, tags, edge_buffer_px, local=local):
+    for fl in project_labels(poses, tags, edge_buffer_px, local=local, ground=ground):
         keep = ~fl.edge
         frame_ids.append(np.full(int(keep.sum()), poses.frame_id[fl.frame_index], dtype=object))
         uvs.append(fl.uv[keep])
@@ -53,7 +56,7 @@ def pixel_labels(poses, local, geotags, edge_buffer_px):
     return np.concatenate(frame_ids), np.concatenate(uvs)
 
 
-class ScreenCheckpoints(ClusteringParametersMixin, BirdsEyeAlgorithm):
+class ScreenCheckpoints(ClusteringParametersMixin, DemParametersMixin, BirdsEyeAlgorithm):
     ALG_ID = "screencheckpoints"
     DISPLAY_NAME = QT_TRANSLATE_NOOP("ScreenCheckpoints", "Screen checkpoints")
     GROUP = "detect"
@@ -90,6 +93,7 @@ class ScreenCheckpoints(ClusteringParametersMixin, BirdsEyeAlgorithm):
             self.BLOCK_FRAMES, self.tr("Frames per block (0: each flight whole; empty: the preset's)"),
             NUMBER_INTEGER, None, optional=True, minValue=0))
         self.add_clustering_parameters()
+        self.add_dem_parameters(ground_model=True)
         self.addParameter(QgsProcessingParameterNumber(
             self.PIXEL_RADIUS_PX, self.tr("Pixel F1: match radius (px)"), NUMBER_DOUBLE,
             DEFAULT_PIXEL_RADIUS_PX, minValue=0.5))
@@ -123,7 +127,7 @@ class ScreenCheckpoints(ClusteringParametersMixin, BirdsEyeAlgorithm):
         geotag_source = self.parameterAsSource(parameters, self.GEOTAGS, context)
         if geotag_source is None:
             raise QgsProcessingException(self.tr("GEOTAGS: the geotag layer cannot be read."))
-        geotags = self.run_core(read_geotags, geotag_source, context)
+        geotags = self.run_core(read_geotag_layer, geotag_source, context.transformContext())
         flights = []
         for layer in frame_layers:
             groups, records, grouped = self.run_core(read_pose_groups, layer, layer.name())
@@ -132,7 +136,11 @@ class ScreenCheckpoints(ClusteringParametersMixin, BirdsEyeAlgorithm):
         local = self.run_core(local_frame_for, [p for _, groups, _, _ in flights for p in groups], geotags)
         h = np.where(np.isfinite(geotags.height), geotags.height, local.h0)
         g_local = local.from_geodetic(geotags.lat, geotags.lon, h)
-        blocks = {name: self._blocks(name, groups, order, block_frames, local, geotags, g_local, op)
+        dem = self.read_dem(parameters, context, feedback=feedback)
+        self.report_dem(feedback, dem)
+        # One ground for the checkpoints' detections, the in-view test and the pixel labels.
+        ground = self.dem_ground(dem)
+        blocks = {name: self._blocks(name, groups, order, block_frames, local, geotags, g_local, op, ground)
                   for name, groups, _, order in flights}
         feedback.pushInfo(self.tr("{n_blocks} block(s) of {size} frames over {n_flights} flight(s); threshold "
                                   "{threshold}").format(
@@ -148,7 +156,7 @@ class ScreenCheckpoints(ClusteringParametersMixin, BirdsEyeAlgorithm):
                     95.0 * (step + 1) / (len(checkpoints) * len(flights)))
                 step += 1
                 found = self.run_core(detect_flight, model, groups, images, [used[model.name]], op.edge_buffer_px,
-                                      local, progress, is_canceled)
+                                      local, progress, is_canceled, ground)
                 if found.skipped:
                     feedback.pushWarning(self.tr("{name} on {flight_name}: {skipped} frame(s) skipped "
                                                  "(unreadable image or no ground height)").format(
@@ -194,8 +202,8 @@ class ScreenCheckpoints(ClusteringParametersMixin, BirdsEyeAlgorithm):
                                   frontier=self.tr(" (frontier)") if s.frontier else ""))
         return outputs
 
-    def _blocks(self, flight_name, groups, order, block_frames, local, geotags, g_local, op) -> list[dict]:
-        """The flight's blocks: label, frame ids, in-view geotags and pixel labels of each."""
+    def _blocks(self, flight_name, groups, order, block_frames, local, geotags, g_local, op, ground) -> list[dict]:
+        """The flight's blocks: label, frame ids, in-view geotags and pixel labels of each, on ``ground``."""
         out = []
         parts = self.run_core(frame_blocks, np.array(order, dtype=object), block_frames)
         start = 0
@@ -205,9 +213,9 @@ class ScreenCheckpoints(ClusteringParametersMixin, BirdsEyeAlgorithm):
             wanted = set(ids.tolist())
             mine = [p.subset(np.flatnonzero([f in wanted for f in p.frame_id])) for p in groups]
             mine = [p for p in mine if len(p)]
-            visible = self.run_core(in_view, mine, local, g_local, op.edge_buffer_px).mask
-            labels = [self.run_core(pixel_labels, p.subset(np.flatnonzero(np.isfinite(p.ground_height))), local,
-                                    geotags.subset(visible), op.edge_buffer_px) for p in mine]
+            visible = self.run_core(in_view, mine, local, g_local, op.edge_buffer_px, ground).mask
+            labels = [self.run_core(pixel_labels, p.subset(np.flatnonzero(placeable_frames(p, ground))), local,
+                                    geotags.subset(visible), op.edge_buffer_px, ground) for p in mine]
             out.append({"label": label, "frames": wanted, "geotag_xy": g_local[visible, :2],
                         "label_frame_id": _concat([lab[0] for lab in labels], np.empty(0, dtype=object)),
                         "label_uv": _concat([lab[1] for lab in labels], np.empty((0, 2)))})
@@ -219,8 +227,8 @@ class ScreenCheckpoints(ClusteringParametersMixin, BirdsEyeAlgorithm):
         det = found.by_threshold[0]
         inside = np.fromiter((f in block["frames"] for f in det.frame_id), dtype=bool, count=len(det))
         n_frames = sum(f in block["frames"] for f in found.processed)
-        return ScreenRun(checkpoint, block["label"], n_frames, det.frame_id[inside], det.uv[inside], det.xy[inside],
-                         block["label_frame_id"], block["label_uv"], block["geotag_xy"])
+        return ScreenRun(checkpoint, block["label"], n_frames, det.frame_id[inside], det.uv[inside],
+                         det.positions.subset(inside), block["label_frame_id"], block["label_uv"], block["geotag_xy"])
 
 
 def _concat(parts, empty):

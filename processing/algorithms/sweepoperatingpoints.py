@@ -20,6 +20,7 @@ from ...birdseye_qgis.core.detect.clustering import DEFAULT_DEDUP_CM
 from ...birdseye_qgis.core.detect.detector import HeatmapModel
 from ...birdseye_qgis.core.detect.flight_detections import detect_flight
 from ...birdseye_qgis.core.errors import InputError
+from ...birdseye_qgis.core.geometry.ground_record import common_ground
 from ...birdseye_qgis.core.scoring.evaluation import local_frame_for
 from ...birdseye_qgis.core.scoring.matching import in_view
 from ...birdseye_qgis.core.scoring.operating_point import DEFAULT_EDGE_BUFFER_PX
@@ -35,8 +36,10 @@ from ...birdseye_qgis.core.scoring.sweep import (
     sweep,
 )
 from ...birdseye_qgis.qgis_enums import NUMBER_DOUBLE, SOURCE_FILE, SOURCE_VECTOR, SOURCE_VECTOR_POINT
-from ...birdseye_qgis.qgis_io.detections import read_detections, read_geotags, read_pose_groups
+from ...birdseye_qgis.qgis_io.detections import read_detections, read_pose_groups
+from ...birdseye_qgis.qgis_io.layers import read_geotag_layer
 from ...birdseye_qgis.qgis_io.outputs import write_output, write_rows_csv
+from ..parameters.dem import DemParametersMixin
 from .base import BirdsEyeAlgorithm
 
 
@@ -67,7 +70,7 @@ def parse_list(text: str, name: str) -> list[float]:
     return values
 
 
-class SweepOperatingPoints(BirdsEyeAlgorithm):
+class SweepOperatingPoints(DemParametersMixin, BirdsEyeAlgorithm):
     ALG_ID = "sweepoperatingpoints"
     DISPLAY_NAME = QT_TRANSLATE_NOOP("SweepOperatingPoints", "Sweep operating points")
     GROUP = "detect"
@@ -106,6 +109,7 @@ class SweepOperatingPoints(BirdsEyeAlgorithm):
         self.addParameter(QgsProcessingParameterNumber(
             self.EDGE_BUFFER_PX, self.tr("Edge buffer (px) of the in-view test and of CHECKPOINTS' detections"),
             NUMBER_DOUBLE, DEFAULT_EDGE_BUFFER_PX, minValue=0.0, maxValue=1000.0))
+        self.add_dem_parameters(ground_model=True)
         self.addParameter(QgsProcessingParameterNumber(
             self.MAX_GEOTAGS_PER_HIT, self.tr("Credible: mean geotags per hit cluster at most"),
             NUMBER_DOUBLE, DEFAULT_MAX_GEOTAGS_PER_HIT, minValue=1.0))
@@ -143,7 +147,7 @@ class SweepOperatingPoints(BirdsEyeAlgorithm):
         geotag_source = self.parameterAsSource(parameters, self.GEOTAGS, context)
         if geotag_source is None:
             raise QgsProcessingException(self.tr("GEOTAGS: the geotag layer cannot be read."))
-        geotags = self.run_core(read_geotags, geotag_source, context)
+        geotags = self.run_core(read_geotag_layer, geotag_source, context.transformContext())
         flights = {}
         for layer in frame_layers:
             if layer.id() not in flights:
@@ -155,9 +159,14 @@ class SweepOperatingPoints(BirdsEyeAlgorithm):
         h = np.where(np.isfinite(geotags.height), geotags.height, local.h0)
         g_local = local.from_geodetic(geotags.lat, geotags.lon, h) if len(geotags) else np.empty((0, 3))
         edge = self.parameterAsDouble(parameters, self.EDGE_BUFFER_PX, context)
+        dem = self.read_dem(parameters, context, feedback=feedback)
+        self.report_dem(feedback, dem)
+        read = [(det_layer, frame_layer) + self.run_core(read_detections, det_layer, context, det_layer.name())
+                for det_layer, frame_layer in zip(det_layers, frame_layers)]
+        grounds = self._grounds(flights, read, dem, feedback)
         geotag_xy, n_frames = {}, {}
         for key, (_, groups, _, _) in flights.items():
-            view = self.run_core(in_view, groups, local, g_local, edge)
+            view = self.run_core(in_view, groups, local, g_local, edge, grounds[key])
             geotag_xy[flight_names[key]] = g_local[view.mask, :2]
             n_frames[flight_names[key]] = view.n_frames
             feedback.pushInfo(self.tr("{name}: {n_frames} frames, {value} geotags in view").format(
@@ -166,12 +175,11 @@ class SweepOperatingPoints(BirdsEyeAlgorithm):
         dedup = self.parameterAsDouble(parameters, self.DEDUP_CM, context)
         if det_layers:
             runs = []
-            for det_layer, frame_layer in zip(det_layers, frame_layers):
-                det, dropped = self.run_core(read_detections, det_layer, context, det_layer.name())
+            for det_layer, frame_layer, det, dropped in read:
                 if dropped:
                     feedback.pushWarning(self.tr("{layer}: {n} detection(s) without a position or score left "
                                                  "out").format(layer=det_layer.name(), n=dropped))
-                runs.append(DetectionRun(det.local_xy(local), det.threshold, flight_names[frame_layer.id()],
+                runs.append(DetectionRun(det.ground_positions(local), det.threshold, flight_names[frame_layer.id()],
                                          det.model or det_layer.name(), det.model_digest, det_layer.name()))
             sweep_flights, thresholds = self.run_core(flights_from_runs, runs, geotag_xy, n_frames)
             feedback.pushInfo(self.tr("Threshold axis: the thresholds the layers were detected at, {values} "
@@ -183,7 +191,7 @@ class SweepOperatingPoints(BirdsEyeAlgorithm):
             grid = self.run_core(SweepGrid, lists["THRESHOLDS"], lists["EPS_M"], lists["MIN_SAMPLES"],
                                  lists["EPS_PRED_M"], dedup)
             sweep_flights = self._run_checkpoints(checkpoints, flights, flight_names, grid, edge, local, geotag_xy,
-                                                  feedback)
+                                                  grounds, feedback)
         n_checkpoints = len({(f.checkpoint, f.model_digest) for f in sweep_flights})
         feedback.pushInfo(self.tr("Sweeping {n_checkpoints} checkpoint(s) × {size} configurations ({items}: "
                                   "threshold × eps × min_samples × eps_pred)").format(
@@ -234,8 +242,24 @@ class SweepOperatingPoints(BirdsEyeAlgorithm):
         feedback.setProgress(100)
         return outputs
 
-    def _run_checkpoints(self, checkpoints, flights, flight_names, grid, edge, local, geotag_xy, feedback):
-        """Every checkpoint over every flight's frames: one heatmap per frame, peaks at every threshold."""
+    def _grounds(self, flights, read, dem, feedback) -> dict:
+        """Each flight's ground-model factory, keyed like ``flights``: with CHECKPOINTS the one DEM /
+        GROUND_MODEL give, which the detections are placed on; with DETECTIONS (``read``: layer, frame layer,
+        detections, dropped) the one its layers were placed on, which must be one for all of them."""
+        if not read:
+            return {key: self.dem_ground(dem) for key in flights}
+        by_flight = {}
+        for _, frame_layer, det, _ in read:
+            by_flight.setdefault(frame_layer.id(), []).append(det)
+        grounds = {}
+        for key, detections in by_flight.items():
+            self.run_core(common_ground, [d.ground for d in detections], [d.name for d in detections])
+            grounds[key] = self.recorded_ground(detections[0], dem, feedback)
+        return grounds
+
+    def _run_checkpoints(self, checkpoints, flights, flight_names, grid, edge, local, geotag_xy, grounds, feedback):
+        """Every checkpoint over every flight's frames: one heatmap per frame, peaks at every threshold, placed
+        on the flight's ground (``grounds``)."""
         sweep_flights = []
         steps = len(checkpoints) * len(flights)
         for i, path in enumerate(checkpoints):
@@ -246,13 +270,14 @@ class SweepOperatingPoints(BirdsEyeAlgorithm):
                                                                 5.0 + 55.0 * (step + 1) / steps)
                 images = [[records[k].get("image") or "" for k in idx] for _, idx in grouped]
                 found = self.run_core(detect_flight, model, groups, images, grid.thresholds, edge, local, progress,
-                                      is_canceled)
+                                      is_canceled, grounds[key])
                 name = flight_names[key]
                 if found.skipped:
                     feedback.pushWarning(self.tr("{checkpoint} on {flight}: {n} frame(s) skipped, e.g. {frame_id}: "
                                                  "{reason}").format(checkpoint=model.name, flight=name,
                                                                     n=len(found.skipped), frame_id=found.skipped[0][0],
                                                                     reason=found.skipped[0][1]))
-                sweep_flights.append(SweepFlight({d.threshold: d.xy for d in found.by_threshold}, geotag_xy[name],
-                                                 len(found.processed), name, model.name, model.digest))
+                sweep_flights.append(SweepFlight({d.threshold: d.positions for d in found.by_threshold},
+                                                 geotag_xy[name], len(found.processed), name, model.name,
+                                                 model.digest))
         return sweep_flights

@@ -1,6 +1,7 @@
 """birdseye:writelabels — every geotag in every frame that sees it, written as a training set."""
 from __future__ import annotations
 
+import itertools
 import json
 
 import numpy as np
@@ -25,10 +26,10 @@ from qgis.PyQt.QtCore import QT_TRANSLATE_NOOP
 from ...birdseye_qgis.__about__ import tr
 from ...birdseye_qgis.core.field.frame_records import local_frame_around, poses_from_records, uses_geotag_heights
 from ...birdseye_qgis.core.labels.training_set import (
-    Geotags,
     LabelRequest,
     LabelWriter,
     frames_without_ground,
+    label_sigma_px,
     project_labels,
     review_label_inputs,
 )
@@ -54,8 +55,8 @@ def sigma_from_bound_json(path: str) -> float:
         raise QgsProcessingException(
             tr("{path}: the pose-noise budget is rejected at {items}; labels of σ = {value:g} px "
                "would not contain the projection error there").format(
-                path=path, items=', '.join(f'{a:g} m' for a in rejected), value=tolerance / 3))
-    return tolerance / 3.0
+                path=path, items=', '.join(f'{a:g} m' for a in rejected), value=label_sigma_px(tolerance)))
+    return label_sigma_px(tolerance)
 
 
 class WriteLabels(ReviewParametersMixin, DemParametersMixin, BirdsEyeAlgorithm):
@@ -92,7 +93,7 @@ class WriteLabels(ReviewParametersMixin, DemParametersMixin, BirdsEyeAlgorithm):
         self.addParameter(QgsProcessingParameterNumber(
             self.EDGE_BUFFER_PX, self.tr("Edge buffer (px): geotags this close to the border are 'edge', not labels"),
             NUMBER_DOUBLE, 0.0, minValue=0.0, maxValue=1000.0))
-        self.add_dem_parameters()
+        self.add_dem_parameters(ground_model=True)
         self.addParameter(QgsProcessingParameterBoolean(
             self.WRITE_RASTERS, self.tr("Write one soft-label raster per frame"), defaultValue=True))
         self.addParameter(QgsProcessingParameterBoolean(
@@ -146,7 +147,7 @@ class WriteLabels(ReviewParametersMixin, DemParametersMixin, BirdsEyeAlgorithm):
         sigma = self.sigma(parameters, context, feedback)
         dem = self.read_dem(parameters, context, frame_source, feedback)
         self.report_dem(feedback, dem)
-        geotags = self.run_core(self._read_geotags, geotag_source, context)
+        geotags = self.run_core(layers.read_geotag_layer, geotag_source, context.transformContext())
         records = self.run_core(layers.read_frame_layer, frame_source)
         groups = self.run_core(poses_from_records, records, frame_source.sourceName())
         survey = geotags
@@ -220,27 +221,9 @@ class WriteLabels(ReviewParametersMixin, DemParametersMixin, BirdsEyeAlgorithm):
                    "GEOTAGS_NEVER_IN_VIEW": len(summary["geotags_never_in_view"]), "SIGMA_USED_PX": sigma,
                    "REVIEW_TARGETS": len(review_targets), "HARD_NEGATIVES": len(hard)}
         results.update(self._write_frames(parameters, context, frame_source, label_counts))
-        results.update(self._write_geotags(parameters, context, geotag_source,
+        results.update(self._write_geotags(parameters, context, geotag_source, survey.source_row,
                                            writer.result.frames_per_geotag[:len(survey)]))
         return results
-
-    @staticmethod
-    def _read_geotags(source, context) -> Geotags:
-        names = source.fields().names()
-        attrs = [n for n in ("id", "label", "h_ellipsoid") if n in names]
-        cols = layers.read_point_layer(source, context.transformContext(), attrs, source.sourceName())
-        ok = np.isfinite(cols["lat"]) & np.isfinite(cols["lon"])
-        ids = np.asarray(cols["attributes"]["id"] if "id" in attrs else cols["row"], dtype=object)
-        labels = np.asarray([v if v else "target" for v in cols["attributes"]["label"]] if "label" in attrs
-                            else ["target"] * len(ok), dtype=object)
-        # Heights move labels only on frames of an ellipsoidal camera solution (flag geotag_heights);
-        # elsewhere each frame places geotags on its own ground. NaN: no surveyed height — Import geotags
-        # writes Z = 0 then, so its h_ellipsoid field (NULL) is the one to trust.
-        if "h_ellipsoid" in attrs:
-            height = np.array([np.nan if v is None else float(v) for v in cols["attributes"]["h_ellipsoid"]])
-        else:
-            height = np.asarray(cols["z"], float)
-        return Geotags(ids[ok], labels[ok], cols["lat"][ok], cols["lon"][ok], height[ok])
 
     @staticmethod
     def _log_summary(feedback, summary) -> None:
@@ -306,16 +289,10 @@ class WriteLabels(ReviewParametersMixin, DemParametersMixin, BirdsEyeAlgorithm):
                                 layers.qgs_field("n_labels", "int", "labels written in this frame"),
                                 counts.tolist(), "frames.qml")
 
-    def _write_geotags(self, parameters, context, source, frames_per_geotag):
-        # Geotags without a usable position were skipped when reading: align counts by feature order.
-        counts, k = [], 0
-        for feature in source.getFeatures():
-            geometry = feature.geometry()
-            if geometry is None or geometry.isEmpty():
-                counts.append(0)
-            else:
-                counts.append(int(frames_per_geotag[k]))
-                k += 1
+    def _write_geotags(self, parameters, context, source, rows, frames_per_geotag):
+        # Geotags without a usable position were left out when reading: each count goes to its row.
+        per_row = dict(zip(rows.tolist(), frames_per_geotag.tolist()))
+        counts = (per_row.get(row, 0) for row in itertools.count(1))
         return self._write_copy(parameters, context, self.OUTPUT_GEOTAGS, source,
                                 layers.qgs_field("frames_seen", "int", "frames whose labels include this geotag"),
                                 counts, "geotags.qml")

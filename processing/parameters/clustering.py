@@ -58,8 +58,11 @@ class ClusteringParametersMixin:
                              self.parameterAsDouble(parameters, self.EPS_PRED_M, context),
                              self.parameterAsDouble(parameters, self.EDGE_BUFFER_PX, context))
 
-    def read_flights(self, parameters, context, feedback, detections_name="DETECTIONS", frames_name="FRAMES"):
-        """Detection layers paired in order with frame layers (one flight each) as core Flights."""
+    def read_flights(self, parameters, context, feedback, detections_name="DETECTIONS", frames_name="FRAMES",
+                     ground_for=None):
+        """Detection layers paired in order with frame layers (one flight each) as core Flights, each on the
+        ground ``ground_for(detections)`` gives (a ground-model factory; without ``ground_for``, the level
+        plane)."""
         det_layers = self.parameterAsLayerList(parameters, detections_name, context)
         frame_layers = self.parameterAsLayerList(parameters, frames_name, context)
         if not det_layers:
@@ -77,5 +80,5 @@ class ClusteringParametersMixin:
                 feedback.pushWarning(self.tr("{layer}: {n} detection(s) without a position or score left out").format(
                     layer=det_layer.name(), n=dropped))
             groups = self.run_core(read_pose_groups, frame_layer, frame_layer.name())[0]
-            flights.append(Flight(det, groups, det_layer.name()))
+            flights.append(Flight(det, groups, det_layer.name(), None if ground_for is None else ground_for(det)))
         return flights

@@ -1,13 +1,15 @@
-"""The ground model, shared by writelabels, detect and the importers: an optional DEM, or the method's plane.
+"""The ground model, shared by writelabels, detect, the importers and the scoring algorithms: an optional
+DEM, or the method's plane.
 
 Parameters: ``DEM`` (raster layer, optional), ``DEM_VERTICAL_DATUM`` (what the DEM's heights are
 measured from), ``GEOID_UNDULATION_M`` (N, ellipsoidal = MSL + N, needed for an MSL DEM) and, in the
-algorithms that place labels and detections (groups ``labels`` and ``detect``), ``GROUND_MODEL``
-(advanced): without a DEM, the level plane at the tilt-corrected altimeter depth (default) or the
-method's plane, normal to the optical axis at the raw altimeter range
+algorithms that place labels and detections (writelabels, detect, and the sweep and screening, which
+detect again), ``GROUND_MODEL`` (advanced): without a DEM, the level plane at the tilt-corrected
+altimeter depth (default) or the method's plane, normal to the optical axis at the raw altimeter range
 (``core.geometry.ground.MethodPlaneGround``), to reproduce its figures. The importers (group ``field``)
 cast footprints for the map and keep the level plane: the frame layer's depth and terrain fields stay
-those of the level ground.
+those of the level ground. The algorithms that score detection layers take the ground each layer
+records (``recorded_ground``): they need the DEM only for layers Detect placed on one.
 """
 from __future__ import annotations
 
@@ -21,8 +23,9 @@ from qgis.core import (
 
 from ...birdseye_qgis.__about__ import tr
 from ...birdseye_qgis.core.errors import InputError
-from ...birdseye_qgis.core.geometry.dem import VERTICAL_DATUMS, DemGround, DemRaster
+from ...birdseye_qgis.core.geometry.dem import VERTICAL_DATUMS, DemGroundFactory, DemRaster
 from ...birdseye_qgis.core.geometry.ground import MethodPlaneGround
+from ...birdseye_qgis.core.geometry.ground_record import GroundRecord
 from ...birdseye_qgis.qgis_enums import NUMBER_DOUBLE, PARAMETER_ADVANCED
 from ...birdseye_qgis.qgis_io import layers
 
@@ -32,7 +35,6 @@ DATUM_LABELS = ("Ellipsoidal (WGS84), like RTK and INS heights",
 GROUND_MODEL_LABELS = ("Level ground at the tilt-corrected altimeter depth",
                        "The method's plane: normal to the optical axis at the raw altimeter range")
 METHOD_PLANE = 1
-GROUND_MODEL_GROUPS = ("labels", "detect")
 # The window of the DEM read around a layer: its extent grown by this fraction of its larger side, and at
 # least by DEM_WINDOW_MARGIN_M. Footprints stored on the level plane grow where the terrain drops below
 # it, and rays of oblique frames reach past them; a generous window costs little next to the whole raster.
@@ -47,12 +49,14 @@ class DemParametersMixin:
     DEM_VERTICAL_DATUM = "DEM_VERTICAL_DATUM"
     GEOID_UNDULATION_M = "GEOID_UNDULATION_M"
     GROUND_MODEL = "GROUND_MODEL"
-    # Set by read_dem for this run (Processing runs a fresh instance each time); dem_ground reads it.
+    # Set by read_dem for this run (Processing runs a fresh instance each time); dem_ground and
+    # ground_record read them.
     method_plane = False
+    dem_source = ""
 
-    def add_dem_parameters(self) -> None:
-        """DEM, DEM_VERTICAL_DATUM, GEOID_UNDULATION_M and, where labels or detections are placed,
-        GROUND_MODEL."""
+    def add_dem_parameters(self, ground_model: bool = False) -> None:
+        """DEM, DEM_VERTICAL_DATUM, GEOID_UNDULATION_M and, with ``ground_model`` (where labels or detections
+        are placed), GROUND_MODEL."""
         self.addParameter(QgsProcessingParameterRasterLayer(
             self.DEM, self.tr("Terrain model (DEM/DSM raster, projected CRS in metres; empty: level ground)"),
             optional=True))
@@ -62,7 +66,7 @@ class DemParametersMixin:
         self.addParameter(QgsProcessingParameterNumber(
             self.GEOID_UNDULATION_M, self.tr("Geoid undulation N at the site (m; ellipsoidal = MSL + N)"),
             NUMBER_DOUBLE, None, optional=True, minValue=-120.0, maxValue=120.0))
-        if self.GROUP in GROUND_MODEL_GROUPS:
+        if ground_model:
             choice = QgsProcessingParameterEnum(
                 self.GROUND_MODEL, self.tr("Ground model without a DEM"),
                 options=[self.tr(label) for label in GROUND_MODEL_LABELS], defaultValue=0)
@@ -81,6 +85,7 @@ class DemParametersMixin:
         layer = self.parameterAsRasterLayer(parameters, self.DEM, context)
         if layer is None:
             return None
+        self.dem_source = layer.source()
         if self.method_plane:
             raise QgsProcessingException(tr(
                 "{GROUND_MODEL}: the method's plane stands in for the level ground; with a terrain model "
@@ -105,7 +110,25 @@ class DemParametersMixin:
         """
         if dem is None:
             return MethodPlaneGround if self.method_plane else None
-        return lambda geometry: DemGround.from_dem(geometry, dem, pose_heights_datum, tolerance_m)
+        return DemGroundFactory(dem, pose_heights_datum, tolerance_m)
+
+    def ground_record(self, dem: DemRaster | None) -> GroundRecord:
+        """The ground this run places detections on, as the detection layer records it."""
+        return GroundRecord.of(dem, self.dem_source, self.method_plane)
+
+    def recorded_ground(self, detections, dem: DemRaster | None, feedback):
+        """The ground-model factory a detection layer's detections were placed with (``detections.ground``),
+        standing on ``dem`` where they were placed on a DEM. Refused, naming the layer and DEM, when the
+        layer was placed on a DEM and none is given, or on a plane and one is given: the in-view test would
+        stand on other ground, and the recall denominator change with it. A DEM other than the recorded
+        one (another file or vertical datum) is warned about: it may hold the same terrain."""
+        ground = self.run_core(detections.ground.factory, dem, detections.name, self.DEM)
+        given = self.ground_record(dem)
+        if dem is not None and given != detections.ground:
+            feedback.pushWarning(tr("{layer}: its detections were placed on {recorded}; {DEM} is {given}. Check "
+                                    "that both hold the same terrain in the same vertical reference.").format(
+                layer=detections.name, recorded=detections.ground.describe(), DEM=self.DEM, given=given.describe()))
+        return ground
 
     @staticmethod
     def report_dem(feedback, dem: DemRaster | None) -> None:

@@ -12,7 +12,8 @@ from qgis.core import (
 from ...birdseye_qgis.core.scoring.evaluation import Flight, evaluate_flights
 from ...birdseye_qgis.core.scoring.reviewed_clusters import outcome_counts, reviewed_clusters
 from ...birdseye_qgis.qgis_enums import SOURCE_VECTOR, SOURCE_VECTOR_POINT
-from ...birdseye_qgis.qgis_io.detections import read_detections, read_geotags, read_verdicts
+from ...birdseye_qgis.qgis_io.detections import read_detections, read_verdicts
+from ...birdseye_qgis.qgis_io.layers import read_geotag_layer
 from .clustering import ClusteringParametersMixin
 
 
@@ -61,7 +62,7 @@ class ReviewParametersMixin(ClusteringParametersMixin):
                 "REVIEW: give the detection layer(s) the review judged (REVIEW_DETECTIONS): the verdicts "
                 "name spots, the clusters come from those detections."))
         log = self.run_core(read_verdicts, review, context)
-        geotags = self.run_core(read_geotags, geotag_source, context)
+        geotags = self.run_core(read_geotag_layer, geotag_source, context.transformContext())
         if pose_groups is None:
             flights = self.read_flights(parameters, context, feedback, self.REVIEW_DETECTIONS, self.REVIEW_FRAMES)
         else:

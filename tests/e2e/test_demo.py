@@ -260,12 +260,39 @@ def test_summary_figures_agree_with_the_outputs(qgis_app, demo):
     assert by_stem["clusters"].featureCount() == figures["clusters"]
     evaluation = json.loads((out / "evaluation.json").read_text(encoding="utf-8"))
     assert figures["n_in_view"] == evaluation["n_in_view"] and figures["n_recovered"] == evaluation["n_recovered"]
-    if figures["n_in_view"]:
-        assert figures["recall_pre"] == pytest.approx(figures["n_recovered"] / figures["n_in_view"])
+    assert figures["n_in_view"] > 0, "no geotag in view of the held-out flight: the recall below was not checked"
+    assert figures["recall_pre"] == pytest.approx(figures["n_recovered"] / figures["n_in_view"])
     route = next(by_stem["route"].getFeatures()).geometry().length()
     assert figures["route_length_m"] == pytest.approx(route, rel=0.02)
     bound = json.loads((out / "sensor_bound.json").read_text(encoding="utf-8"))
     assert [a["verdict_exact"] for a in figures["sensor_bound"]] == [a["verdict_exact"] for a in bound["altitudes"]]
+
+
+# The small demo's floor on recall. Its held-out field holds 6 geotags (4 m × 3 m = 12 m²); a cluster
+# recovers a geotag within EPS_PRED_M = 0.20 m, a disc of π·0.2² = 0.126 m². The run makes about 9
+# clusters, which placed at random would cover 9 × 0.126 / 12 ≈ 9 % of the field: chance recovers each
+# geotag with p ≈ 0.09, and 3 or more of 6 with probability C(6,3)·0.09³·0.91³ + … ≈ 1.3 %. The bundled
+# model recovers 4 of 6 (0.667); 3 of 6 still passes, 2 of 6 (what a detector firing at random might
+# reach) fails.
+MIN_RECALL_SMALL = 0.5
+
+
+def test_the_detector_finds_the_targets_in_view(demo):
+    """The chain must actually detect: frames processed, detections, clusters, geotags in view, and a
+    recall a detector firing at random would not reach. Zero of any of them fails, saying which."""
+    figures = demo["summary"]
+    held_out = next(key for key, title in FLIGHT_KEYS.items() if title == figures["held_out"])
+    assert figures["frames_detected"] == figures["frames"][held_out] > 0, (
+        f"Detect processed {figures['frames_detected']} of the {figures['frames'][held_out]} held-out frames")
+    assert figures["detections"] > 0, "the bundled model detected nothing on the held-out flight"
+    assert figures["clusters"] > 0, f"{figures['detections']} detections formed no cluster"
+    # The held-out flight covers its whole field, so every geotag of it is in view of some frame.
+    assert figures["n_in_view"] == figures["geotags"][held_out] > 0, (
+        f"{figures['n_in_view']} of the {figures['geotags'][held_out]} held-out geotags in view")
+    assert figures["n_recovered"] / figures["n_in_view"] >= MIN_RECALL_SMALL, (
+        f"recall {figures['n_recovered']}/{figures['n_in_view']} is below the floor {MIN_RECALL_SMALL} "
+        f"({figures['detections']} detections, {figures['clusters']} clusters, {figures['hit_clusters']} on a geotag)")
+    assert 0 < figures["hit_clusters"] <= figures["clusters"]
 
 
 def test_missing_model_stops_before_anything_runs(tmp_path):

@@ -43,7 +43,8 @@ SCRIPT = textwrap.dedent(f'''
     from birdseye.birdseye_qgis.core.review.actions import Ledger
     from birdseye.birdseye_qgis.core.review.units import ReviewLayer, ReviewParameters, build_units
     from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame
-    from birdseye.birdseye_qgis.core.scoring.evaluation import Detections, Geotags
+    from birdseye.birdseye_qgis.core.field.geotags import Geotags
+    from birdseye.birdseye_qgis.core.scoring.evaluation import Detections
     from birdseye.birdseye_qgis.qgis_io.review_store import ReviewSession, VerdictStore
 
     SITE = LocalFrame(-27.55, 151.95, 400.0)

@@ -4,8 +4,9 @@ The campaign is simulated and imported with the importers; two detection layers 
 made by projecting the simulator's true targets and look-alikes into the imported frames (so chips show
 the real target under the circle) and back-projecting through the logged poses, as Detect would. Then
 the dock is driven as a reviewer drives it — by keyboard — and what must follow is checked: every unit
-judged, undo, an added target, the log's rows, the scores equal to ``evaluatedetections`` on the same
-verdict table, resume after reopening the project, changed inputs reported, chip latency with prefetch.
+judged, undo, an added target, the log's rows, the scores worked out by hand (the dock's and
+``evaluatedetections``' on the same verdict table), resume after reopening the project, changed inputs
+reported, chips with prefetch.
 """
 from __future__ import annotations
 
@@ -239,6 +240,14 @@ def test_a_whole_review_by_keyboard(campaign, clean_project, make_dock, qtbot, q
     assert dock.banner.isHidden()
     wait_scores(qtbot, dock)                            # before any verdict: POST = PRE, c = a = 0
     before = json.loads(json.dumps(dock.scores))
+    # By hand, from the campaign (seed 5): 6 geotags, all in view (targets 1, 2, 4, 5, 6 surveyed, target 3
+    # not, and one spurious geotag with no target); model_a fires at targets 2–6 and look-alikes 0, 1: 7
+    # clusters, 4 on a geotag (target 3 has none within 0.2 m) → recall 4/6, GMCF 4/7; model_b at targets
+    # 3–6 and look-alikes 1, 2: 6 clusters, 3 hits → recall 3/6, GMCF 3/6.
+    assert {name: (d["n_recovered"], d["n_in_view"], d["n_hit_clusters"], d["n_clusters"])
+            for name, d in before.items()} == {"model_a": (4, 6, 4, 7), "model_b": (3, 6, 3, 6)}
+    assert (before["model_a"]["recall_pre"], before["model_a"]["gmcf_pre"]) == pytest.approx((4 / 6, 4 / 7))
+    assert (before["model_b"]["recall_pre"], before["model_b"]["gmcf_pre"]) == pytest.approx((3 / 6, 3 / 6))
     for d in before.values():
         assert {(p["c"], p["a"], p["gmcf_post"]) for p in d["post"].values()} == {(0, 0, d["gmcf_pre"])}
 
@@ -274,12 +283,12 @@ def test_a_whole_review_by_keyboard(campaign, clean_project, make_dock, qtbot, q
     assert "of {n} units reviewed".format(n=len(units)) in dock.progress_label.text()
     assert f"{len(units)} of {len(units)} units reviewed" in dock.progress_label.text()
 
-    # Chips: up to four frames that detected the unit, each with a circle; latency with prefetch.
+    # Every move showed its chips. The latency is printed for benchmarks/bench_review_chips.py, which holds
+    # its goal; a test asserts no time.
     latencies = dock.chip_latencies_ms[1:]
     assert len(latencies) >= len(units) - 1
     print(f"\nchip latency with prefetch: median {statistics.median(latencies):.1f} ms, "
           f"max {max(latencies):.1f} ms over {len(latencies)} moves")
-    assert statistics.median(latencies) < 200.0
 
     # Add the target no layer detected: A, then a click on the map where it is.
     canvas = qgis_iface.mapCanvas()
@@ -315,15 +324,26 @@ def test_a_whole_review_by_keyboard(campaign, clean_project, make_dock, qtbot, q
     shown = {f["unit_key"]: f["verdict"] for f in layer.getFeatures()}
     assert shown == {**decided, added[0].key: "added"}
 
-    # Scores: identical to evaluatedetections on the same verdict table, to the last digit.
+    # Scores after the review, by hand: both layers fired at target 3, which nobody surveyed and the
+    # reviewer confirmed, so c = 1; the added target 1 has its geotag within 0.2 m, so a = 0 (n_in_view
+    # counts it already); the look-alikes are hard negatives or uncertain and change nothing. Under every
+    # convention: model_a GMCF (4 + 1)/7 = 5/7, recall ≥ (4 + 1)/(6 + 1 + 0) = 5/7; model_b GMCF
+    # (3 + 1)/6 = 4/6, recall ≥ (3 + 1)/(6 + 1) = 4/7. evaluatedetections on the same verdict table must
+    # give the same figures.
     wait_scores(qtbot, dock)
     review = QgsVectorLayer(f"{store_path}|layername={VERDICT_TABLE}", "verdicts", "ogr")
     assert review.isValid() and review.featureCount() == len(rows)
+    by_hand = {"model_a": (5 / 7, 5 / 7, "≥ 0.714"), "model_b": (4 / 6, 4 / 7, "≥ 0.571")}
     for layer in (layers.a, layers.b):
         out = tmp_path / f"scores_{layer.name()}.json"
         run("evaluatedetections", {"DETECTIONS": [layer], "GEOTAGS": layers.geotags, "FRAMES": [layers.frames],
                                    "REVIEW": review, "OUTPUT_JSON": str(out), "OUTPUT_REPORT": None})
-        assert json.loads(json.dumps(dock.scores[layer.name()])) == json.loads(out.read_text())
+        gmcf, recall, shown = by_hand[layer.name()]
+        for scores in (dock.scores[layer.name()], json.loads(out.read_text())):
+            for convention, post in scores["post"].items():
+                assert (post["c"], post["a"]) == (1, 0), convention
+                assert post["gmcf_post"] == pytest.approx(gmcf) and post["recall_post_value"] == pytest.approx(recall)
+                assert post["recall_post"] == shown, convention
     # … and they are what the verdicts say: c = confirmed units a layer fired at with no geotag near;
     # a = 0, since the target the reviewer added was surveyed (n_in_view counts it already): a counts
     # only added targets where no cluster fired and no geotag lies within EPS_PRED.
@@ -359,13 +379,15 @@ def test_chips_show_the_frames_that_detected_the_unit(campaign, clean_project, m
     assert len(dock.chips.pixmaps) == len(plans) and dock.chips.pixmaps[0].width() == widgets_module.CHIP_DISPLAY_PX
     frames_seen = {int(f) for f in dock.units.detection_frame[dock.units.detection_unit == i]}
     assert {int(p.frame_id) for p in plans} <= frames_seen
-    # Cold (no prefetch): the figure to compare the prefetched latency with.
+    # Cold (no prefetch, empty image cache): the chips still come; the time printed is the benchmark's
+    # baseline (benchmarks/bench_review_chips.py).
     dock.chip_loader.chips.clear()
     dock.chip_loader.image_cache = type(dock.chip_loader.image_cache)(24)
     t0 = time.perf_counter()
     dock.go_to(dock._neighbour(key, +1))
     wait_chips(qtbot, dock)
     print(f"\nchip latency without prefetch (cold): {(time.perf_counter() - t0) * 1000:.1f} ms")
+    assert dock.chip_loader.chips[dock.current_key][3] is None
 
 
 def test_filters_by_layer_and_verdict_and_the_map_follows(campaign, clean_project, make_dock, qtbot, qgis_iface,

@@ -8,6 +8,7 @@ and "Run in Processing…" opens the algorithm with the dock's values.
 from __future__ import annotations
 
 import json
+import math
 from pathlib import Path
 
 import numpy as np
@@ -138,6 +139,72 @@ def test_platform_preset_restores_every_value(dock, qtbot):
     before = dock.result
     wait_for_update(qtbot, dock, before)
     assert dock.result == sb.evaluate_bounds(DEPLOYED, [10.0, 20.0], DEPLOYED_SIGMAS, 30.0, PREVIEW_STRIDE)
+
+
+def enter_platform(qtbot, dock, camera, sigmas, tolerance_px, altitudes):
+    """Type a whole platform into the dock, as a user would, and wait for the numbers of exactly it."""
+    for spin, value in ((dock.fx_spin, camera.fx), (dock.fy_spin, camera.fy), (dock.cx_spin, camera.cx),
+                        (dock.cy_spin, camera.cy), (dock.width_spin, camera.width), (dock.height_spin, camera.height),
+                        *zip(dock.sigma_spins, sigmas), (dock.tolerance_spin, tolerance_px)):
+        type_into(qtbot, spin, f"{value:g}")
+    dock.altitudes_edit.selectAll()
+    qtbot.keyClicks(dock.altitudes_edit, ", ".join(f"{a:g}" for a in altitudes))
+    qtbot.waitUntil(lambda: dock.result["inputs"]["intrinsics"]["fx"] == camera.fx
+                    and dock.result["inputs"]["sigmas"] == pytest.approx(sigmas)
+                    and dock.result["inputs"]["tolerance_px"] == tolerance_px
+                    and [a["altitude_m"] for a in dock.result["altitudes"]] == list(altitudes), timeout=5000)
+
+
+# A camera and budget whose bound is worked out by hand (sensor_bound's module docstring: J(u), Σ_u = J S Jᵀ).
+# fx = fy = f = 1000 px, principal point (400, 300) in a 1000 × 800 frame; σx = σy = 0.03 m, σz = 0.1 m, no
+# roll or pitch, σ_yaw = 0.5°. With x = (u − cx)/f, y = (v − cy)/f, a = (x, y), b = (−y, x) (a ⊥ b,
+# |a|² = |b|² = r²), the x, y columns give (f/Z)²σ²·I, the z column −(f/Z)·a and the yaw column f·b, so
+#   Σ_u = (f/Z)²·σxy²·I + (f/Z)²·σz²·a aᵀ + f²·σyaw²·b bᵀ,
+#   λ_max = (f/Z)²σxy² + r²·max((f/Z)²σz², f²σyaw²),   tr = 2(f/Z)²σxy² + r²((f/Z)²σz² + f²σyaw²),
+# both growing with r, so worst at the corner farthest from the principal point, (1000, 800):
+# r² = 0.6² + 0.5² = 0.61. f²σyaw² = 10⁶·(0.5·π/180)² = 76.154 px² (altitude-free).
+#   10 m (f/Z = 100): 9 px² + 0.61·max(100, 76.154) = 9 + 61 = 70 px²;  tr = 18 + 61 + 46.454 = 125.454 px²
+#   20 m (f/Z = 50):  2.25 + 0.61·max(25, 76.154) = 2.25 + 46.454 = 48.704;  tr = 4.5 + 15.25 + 46.454 = 66.204
+# Tolerance 27 px → λ_target = (27/3)² = 81 px²: κ* = 81/sup. At 10 m exact 81/70 = 1.157 accept, trace
+# 81/125.454 = 0.646 reject; at 20 m exact 81/48.704 = 1.663, trace 81/66.204 = 1.224, both accept.
+HAND_CAMERA = sb.Intrinsics(fx=1000.0, fy=1000.0, cx=400.0, cy=300.0, width=1000, height=800)
+HAND_SIGMAS = [0.03, 0.03, 0.1, 0.0, 0.0, 0.5]
+YAW_PX2 = 1e6 * math.radians(0.5) ** 2 * 0.61
+
+
+def test_the_numbers_are_the_hand_worked_bound(dock, qtbot):
+    enter_platform(qtbot, dock, HAND_CAMERA, HAND_SIGMAS, 27.0, [10.0, 20.0])
+    ten, twenty = dock.result["altitudes"]
+    assert ten["sup_lmax_px2"] == pytest.approx(70.0) and ten["sup_trace_px2"] == pytest.approx(79.0 + YAW_PX2)
+    assert twenty["sup_lmax_px2"] == pytest.approx(2.25 + YAW_PX2)
+    assert twenty["sup_trace_px2"] == pytest.approx(19.75 + YAW_PX2)
+    assert (ten["kappa_exact"], ten["kappa_trace"]) == pytest.approx((81 / 70, 81 / (79.0 + YAW_PX2)))
+    assert (ten["verdict_exact"], ten["verdict_trace"]) == ("accept", "reject")
+    assert (twenty["verdict_exact"], twenty["verdict_trace"]) == ("accept", "accept")
+    assert ten["worst_pixel"] == twenty["worst_pixel"] == [1000.0, 800.0]
+    # At 10 m the worst pixel's variance splits 9 : 9 : 61 : 0 : 0 : 46.454 over x, y, z, roll, pitch, yaw.
+    assert ten["budget_share"] == pytest.approx(np.array([9, 9, 61, 0, 0, YAW_PX2]) / (79.0 + YAW_PX2))
+    rows = table_texts(dock)
+    assert [r[0] for r in rows] == ["10 m", "20 m"] and rows[0][1] == f"{79.0 + YAW_PX2:.4g}"
+    assert rows[0][3].endswith("✗") and rows[0][4].endswith("✓") and rows[0][4].startswith("1.16")
+
+
+def test_the_mount_turns_roll_as_worked_out_by_hand(dock, qtbot):
+    """Roll alone (σ 0.5°, s = (0.5·π/180)² rad²) on the camera above; Σ_u has rank 1, so λ_max = tr = s·|j|².
+    Method mount, roll → φx: j = f·(−x·y, −(1 + y²)); nadir mount, roll → φy: j = f·(1 + x², x·y). Both
+    grow with |x| and |y|: worst at (1000, 800), x = 0.6, y = 0.5, where
+    method |j|²/f² = 0.3² + 1.25² = 1.6525 and nadir |j|²/f² = 1.36² + 0.3² = 1.9396."""
+    s = math.radians(0.5) ** 2
+    enter_platform(qtbot, dock, HAND_CAMERA, [0.0, 0.0, 0.0, 0.5, 0.0, 0.0], 27.0, [10.0])
+    assert dock.result["inputs"]["mount"] == "method"
+    assert dock.result["altitudes"][0]["sup_lmax_px2"] == pytest.approx(1e6 * s * 1.6525)
+    before = dock.result
+    dock.mount_combo.setCurrentIndex(sb.MOUNTS.index(sb.NADIR_MOUNT))
+    wait_for_update(qtbot, dock, before)
+    nadir = dock.result["altitudes"][0]
+    assert (nadir["sup_lmax_px2"], nadir["sup_trace_px2"]) == pytest.approx((1e6 * s * 1.9396, 1e6 * s * 1.9396))
+    assert nadir["worst_pixel"] == [1000.0, 800.0]
+    dock.mount_combo.setCurrentIndex(sb.MOUNTS.index(sb.METHOD_MOUNT))
 
 
 def test_every_platform_preset_is_offered():

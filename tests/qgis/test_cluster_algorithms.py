@@ -15,6 +15,7 @@ import numpy as np
 import pytest
 from qgis.core import QgsFeature, QgsField, QgsGeometry, QgsPoint, QgsPointXY, QgsProcessingException, QgsVectorLayer
 from qgis.PyQt.QtCore import QVariant
+from registry import run
 
 from birdseye.birdseye_qgis.core.field.frame_records import FRAME_FIELDS
 from birdseye.birdseye_qgis.core.geometry.camera import CameraModel
@@ -24,12 +25,6 @@ from birdseye.birdseye_qgis.core.geometry.rotations import euler_zyx_to_rotmat, 
 SITE = LocalFrame(-27.55, 151.95, 400.0)
 UTM = ProjectedCRS(32756)
 DIGEST = hashlib.sha256(b"demo model").hexdigest()
-
-
-def run(alg_id, params):
-    import processing
-
-    return processing.run(f"birdseye:{alg_id}", params)
 
 
 def grid9(cx, cy, step=0.04):
@@ -326,7 +321,7 @@ def test_sealed_rule_is_verified_before_scoring_and_refused_when_tampered(birdse
 # -------------------------------------------------------------------------------- checkpoint screening
 def onnx_model(path, bias=None):
     """A heatmap model: the channel mean of the image (/255), or a constant ``bias`` everywhere."""
-    onnx = pytest.importorskip("onnx")
+    import onnx
     from onnx import TensorProto, helper
 
     from birdseye.birdseye_qgis.core.detect.model_metadata import ModelMetadata, embed_metadata
@@ -381,8 +376,6 @@ def three_frame_scene(tmp_path):
 
 
 def test_screencheckpoints_flags_a_collapsed_sparse_model_and_keeps_the_good_one(birdseye_provider, tmp_path):
-    pytest.importorskip("cv2")
-    pytest.importorskip("onnxruntime")
 
     frames, geo = three_frame_scene(tmp_path)
     good, flat = onnx_model(tmp_path / "good.onnx"), onnx_model(tmp_path / "flat.onnx", bias=0.8)

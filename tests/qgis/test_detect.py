@@ -8,8 +8,11 @@ from __future__ import annotations
 import hashlib
 import json
 
+import cv2
 import numpy as np
+import onnx
 import pytest
+from onnx import TensorProto, helper
 from qgis.core import (
     QgsFeature,
     QgsGeometry,
@@ -28,10 +31,6 @@ from birdseye.birdseye_qgis.core.geometry.ground import LevelPlaneGround
 from birdseye.birdseye_qgis.core.geometry.poses import FrameGeometry, FramePoses
 from birdseye.birdseye_qgis.core.geometry.projection import project_pairs
 from birdseye.birdseye_qgis.core.geometry.rotations import euler_zyx_to_rotmat, rotmat_to_quat
-
-cv2 = pytest.importorskip("cv2")
-onnx = pytest.importorskip("onnx")
-from onnx import TensorProto, helper  # noqa: E402
 
 UTM = "EPSG:32756"
 NADIR = np.array([[0.0, 1.0, 0.0], [-1.0, 0.0, 0.0], [0.0, 0.0, 1.0]])
@@ -115,7 +114,8 @@ def test_detections_are_written_on_the_ground_in_the_layer_crs(birdseye_provider
                   "OUTPUT_HEATMAPS": str(tmp_path / "heat")})
     out = result["OUTPUT"]
     assert out.crs().authid() == UTM and out.wkbType() == 1001  # PointZ
-    assert out.fields().names() == ["frame_id", "u", "v", "score", "model", "model_digest", "threshold"]
+    assert out.fields().names() == ["frame_id", "u", "v", "score", "model", "model_digest", "threshold", "ground",
+                                    "dem_source", "dem_datum", "dem_n_m"]
     feats = list(out.getFeatures())
     expected = sum(len(v) for v in scene["views"].values())
     assert result["DETECTION_COUNT"] == len(feats) == expected >= 6
@@ -124,6 +124,7 @@ def test_detections_are_written_on_the_ground_in_the_layer_crs(birdseye_provider
     assert result["MODEL_DIGEST"] == digest and result["THRESHOLD_USED"] == pytest.approx(0.3)
     for f in feats:
         assert f["model"] == "m.onnx" and f["model_digest"] == digest and f["threshold"] == pytest.approx(0.3)
+        assert f["ground"] == "level" and not f["dem_source"]
         truth = scene["views"][f["frame_id"]]
         assert np.min(np.hypot(truth[:, 0] - f["u"], truth[:, 1] - f["v"])) < 0.05
         p = f.geometry().constGet()
@@ -184,7 +185,8 @@ def test_the_bundled_model_finds_simulated_burrows_end_to_end(birdseye_provider,
     import processing
 
     from birdseye.birdseye_qgis.core.field.frame_records import poses_from_records
-    from birdseye.birdseye_qgis.core.labels.training_set import Geotags, project_labels
+    from birdseye.birdseye_qgis.core.field.geotags import Geotags
+    from birdseye.birdseye_qgis.core.labels.training_set import project_labels
     from birdseye.birdseye_qgis.core.sim.campaign import CampaignConfig, simulate_campaign
     from birdseye.birdseye_qgis.qgis_io.layers import pyproj_crs, read_frame_layer
     from birdseye.processing.algorithms.detect import DEFAULT_MODEL
@@ -199,8 +201,8 @@ def test_the_bundled_model_finds_simulated_burrows_end_to_end(birdseye_provider,
         "CALIBRATION": str(folder / "calibration.yaml"), "OUTPUT": "TEMPORARY_OUTPUT"})["OUTPUT"]
     result = run({"FRAMES": frames, "OUTPUT": "TEMPORARY_OUTPUT"})
     rows = list(csv.DictReader(open(folder / "truth" / "targets.csv", encoding="utf-8")))
-    truth = Geotags([int(r["id"]) for r in rows], ["burrow"] * len(rows), [float(r["lat"]) for r in rows],
-                    [float(r["lon"]) for r in rows], [float(r["h_ground"]) for r in rows])
+    truth = Geotags([int(r["id"]) for r in rows], [float(r["lat"]) for r in rows], [float(r["lon"]) for r in rows],
+                    [float(r["h_ground"]) for r in rows], ["burrow"] * len(rows))
     (poses, _), = poses_from_records(read_frame_layer(frames))
     in_view = np.zeros(len(truth), bool)
     for fl in project_labels(poses, truth):
@@ -318,8 +320,9 @@ def geotag_layer(targets_xyz):
 
 
 def test_the_algorithms_after_detect_name_frames_without_a_ground_height(birdseye_provider, scene, tmp_path):
-    """Frames without a ground height fed to Write labels, Cluster detections and Evaluate detections
-    warn, naming the frames where they can, instead of failing with a traceback."""
+    """Frames without a ground height fed to Write labels warn, naming the frames, instead of failing with
+    a traceback; Cluster detections and Evaluate detections score detections Detect placed on a DEM on
+    that DEM, every frame included, and without it say which DEM they need."""
     import processing
 
     frames = without_ground_height(scene["layer"])
@@ -327,21 +330,26 @@ def test_the_algorithms_after_detect_name_frames_without_a_ground_height(birdsey
     dem = flat_dem_layer(frames, 400.0, tmp_path / "at.tif")
     detections = run({"FRAMES": frames, "MODEL": identity_model(tmp_path / "m.onnx"), "DEM": dem,
                       "DEM_VERTICAL_DATUM": 0, "OUTPUT": "TEMPORARY_OUTPUT"})["OUTPUT"]
-    # Each algorithm runs to the end (a raw ValueError would fail here) and warns.
+    on_dem = {"DEM": dem, "DEM_VERTICAL_DATUM": 0}
+    # Each algorithm runs to the end (a raw ValueError would fail here) and warns (None: does not warn).
     calls = {
         "writelabels": ({"GEOTAGS": geotags, "FRAMES": frames, "SIGMA_PX": 4.0, "OUTPUT_FOLDER": str(tmp_path / "l"),
                          "OUTPUT_FRAMES": "TEMPORARY_OUTPUT", "OUTPUT_GEOTAGS": "TEMPORARY_OUTPUT"},
                         "3 frame(s) have no ground height (no usable altimeter reading, flag no_ground_height) and "
                         "get no labels; first: 7, 8, 9"),
         "clusterdetections": ({"DETECTIONS": detections, "GEOTAGS": geotags, "FRAMES": frames, "MIN_SAMPLES": 1,
-                               "OUTPUT": "TEMPORARY_OUTPUT"},
-                              "3 frame(s) without a ground height (flag no_ground_height; first: 7, 8, 9) were not "
-                              "counted as processed"),
+                               "OUTPUT": "TEMPORARY_OUTPUT"}, None),
         "evaluatedetections": ({"DETECTIONS": [detections], "GEOTAGS": geotags, "FRAMES": [frames],
                                 "OUTPUT_JSON": str(tmp_path / "s.json"), "OUTPUT_REPORT": str(tmp_path / "r.html")},
-                               "3 frame(s) without a ground height were not counted as processed"),
+                               None),
     }
     for alg, (params, warning) in calls.items():
         feedback = WarningsKept()
-        processing.run(f"birdseye:{alg}", params, feedback=feedback)
-        assert any(warning in w for w in feedback.warnings), (alg, feedback.warnings)
+        if warning is None:
+            with pytest.raises(QgsProcessingException, match=r"placed on the DEM .*at\.tif.*give that DEM \(DEM"):
+                processing.run(f"birdseye:{alg}", params, feedback=feedback)
+            processing.run(f"birdseye:{alg}", {**params, **on_dem}, feedback=feedback)
+            assert not any("not counted as processed" in w for w in feedback.warnings), (alg, feedback.warnings)
+        else:
+            processing.run(f"birdseye:{alg}", params, feedback=feedback)
+            assert any(warning in w for w in feedback.warnings), (alg, feedback.warnings)

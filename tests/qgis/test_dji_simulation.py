@@ -7,7 +7,6 @@ importdjiimages → importgeotags → writelabels, labels measured against the r
 """
 from __future__ import annotations
 
-import csv
 import sys
 from pathlib import Path
 
@@ -20,6 +19,7 @@ from birdseye.birdseye_qgis.core.geometry.projection import project_pairs
 from birdseye.birdseye_qgis.core.sim.dji_images import dji_camera_model
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "data"))
+from registry import rows, run
 from rendered_holes import dark_core_centroid
 
 # One line of 1280 × 960 frames from 8 m (8.9 mm per pixel) over a 10 × 8 m field with 10 burrows;
@@ -27,17 +27,6 @@ from rendered_holes import dark_core_centroid
 DJI_FLIGHT = {"PLATFORM": 1, "SEED": 4, "N_TARGETS": 10, "FIELD_WIDTH_M": 10.0, "FIELD_LENGTH_M": 8.0,
               "ALTITUDE_M": 8.0, "IMAGE_WIDTH": 1280, "IMAGE_HEIGHT": 960, "RTK_SIGMA_M": 0.0, "N_MISSED": 0,
               "N_SPURIOUS": 0}
-
-
-def rows(path):
-    with open(path, newline="", encoding="utf-8") as fh:
-        return list(csv.DictReader(fh))
-
-
-def run(alg, params, feedback=None):
-    import processing
-
-    return processing.run(f"birdseye:{alg}", params, feedback=feedback)
 
 
 def simulate(folder, **params):

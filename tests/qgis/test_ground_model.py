@@ -2,12 +2,12 @@
 DEM parameter group, on a simulated campaign imported by the importers."""
 from __future__ import annotations
 
-import csv
 from pathlib import Path
 
 import numpy as np
 import pytest
 from qgis.core import QgsApplication, QgsProcessingException, QgsRasterLayer
+from registry import rows, run
 
 from birdseye.birdseye_qgis.core.geometry.camera import load_calibration
 from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame
@@ -17,17 +17,6 @@ from birdseye.birdseye_qgis.core.geometry.projection import project_pairs
 from birdseye.birdseye_qgis.core.sim.campaign import CampaignConfig, simulate_campaign
 
 METHOD_PLANE = 1
-
-
-def run(alg_id, params):
-    import processing
-
-    return processing.run(f"birdseye:{alg_id}", params)
-
-
-def rows(path):
-    with open(path, newline="") as handle:
-        return list(csv.DictReader(handle))
 
 
 @pytest.fixture(scope="module")

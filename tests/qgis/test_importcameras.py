@@ -13,14 +13,9 @@ from qgis.core import QgsFeature, QgsGeometry, QgsPoint, QgsProcessingException,
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "data"))
 from camera_solutions import camera_coordinates, metashape_pixel, to_ecef, truth, write_metashape
+from registry import run
 
 from birdseye.birdseye_qgis.core.geometry.geodesy import ecef_to_geodetic
-
-
-def run(alg, params):
-    import processing
-
-    return processing.run(f"birdseye:{alg}", params)
 
 
 def geotag_layer(ground_enu):

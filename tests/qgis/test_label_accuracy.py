@@ -7,7 +7,6 @@
 """
 from __future__ import annotations
 
-import csv
 import sys
 from pathlib import Path
 
@@ -21,12 +20,8 @@ from birdseye.birdseye_qgis.core.geometry.projection import project_pairs
 from birdseye.birdseye_qgis.core.sim.campaign import CampaignConfig, simulate_campaign
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "data"))
+from registry import rows
 from rendered_holes import dark_core_centroid
-
-
-def rows(path):
-    with open(path, newline="") as f:
-        return list(csv.DictReader(f))
 
 
 def product_labels(folder, out, **extra):

@@ -9,14 +9,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 from qgis.core import QgsProcessingException
+from registry import run
 
 REAL = Path(__file__).resolve().parents[3] / "shared" / "data" / "real_solutions"
-
-
-def run(alg, params):
-    import processing
-
-    return processing.run(f"birdseye:{alg}", params)
 
 
 def test_project_markers_are_labelled_on_their_pinned_marks(birdseye_provider, tmp_path):

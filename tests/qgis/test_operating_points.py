@@ -90,8 +90,6 @@ def test_the_sweeps_threshold_axis_equals_detect_runs_at_each_threshold(simulate
 
 # ------------------------------------------------------------------ screening in blocks
 def test_screencheckpoints_method_preset_and_blocks(birdseye_provider, tmp_path):
-    pytest.importorskip("cv2")
-    pytest.importorskip("onnxruntime")
     frames, geo = three_frame_scene(tmp_path)
     good = onnx_model(tmp_path / "good.onnx")
     out = tmp_path / "screen.json"

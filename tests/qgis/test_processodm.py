@@ -4,15 +4,12 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
-import pytest
-
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "data"))
 from camera_solutions import truth, write_opensfm
 from nodeodm_stub import NodeOdmStub
 
 
 def test_frames_come_back_from_the_node(birdseye_provider, tmp_path):
-    pytest.importorskip("pyodm")
     import processing
 
     images = tmp_path / "images"

@@ -7,19 +7,14 @@ import shutil
 from pathlib import Path
 
 import pytest
+from registry import run
 
 BRIGHTON = Path(__file__).resolve().parents[1] / "data" / "brighton_beach_960"
 
 
-def run(alg, params, feedback=None):
-    import processing
-
-    return processing.run(f"birdseye:{alg}", params, feedback=feedback)
-
-
 @pytest.mark.timeout(600)
 def test_brighton_frames_are_all_registered_and_the_change_reported(birdseye_provider, tmp_path):
-    pytest.importorskip("pycolmap")
+    import pycolmap  # noqa: F401  (refineposes needs it: a missing install fails here, not skips)
     images = tmp_path / "images"
     shutil.copytree(BRIGHTON, images, ignore=shutil.ignore_patterns("*.md", "LICENSE"))
     frames = run("importdjiimages", {"IMAGES": str(images), "OUTPUT": "TEMPORARY_OUTPUT"})["OUTPUT"]

@@ -41,7 +41,7 @@ def pixel(east, north):
 
 @pytest.fixture
 def frame_image(tmp_path):
-    cv2 = pytest.importorskip("cv2")
+    import cv2
     path = tmp_path / "frame0.png"
     cv2.imwrite(str(path), np.full((1200, 1920, 3), 80, np.uint8))
     return str(path)
@@ -49,7 +49,7 @@ def frame_image(tmp_path):
 
 def test_writelabels_labels_confirmed_clusters_and_draws_hard_negative_tiles_first(birdseye_provider, tmp_path,
                                                                                   frame_image):
-    cv2 = pytest.importorskip("cv2")
+    import cv2
     det, verdicts = scene()
     out = tmp_path / "labels"
     result = run("writelabels", {"GEOTAGS": geotag_layer(), "FRAMES": frame_layer(images=[frame_image]),

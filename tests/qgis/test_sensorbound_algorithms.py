@@ -13,6 +13,7 @@ import math
 import numpy as np
 import pytest
 from qgis.core import QgsProcessingException, QgsProcessingFeedback
+from registry import run
 
 from birdseye.birdseye_qgis.core.design import monte_carlo_bound as mc
 from birdseye.birdseye_qgis.core.design import sensor_bound as sb
@@ -40,12 +41,6 @@ class RecordingFeedback(QgsProcessingFeedback):
     def pushWarning(self, warning):
         self.warnings.append(warning)
         super().pushWarning(warning)
-
-
-def run(alg_id, parameters, feedback=None):
-    import processing
-
-    return processing.run(f"birdseye:{alg_id}", parameters, feedback=feedback)
 
 
 def read_json(path):

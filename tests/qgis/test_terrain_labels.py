@@ -19,7 +19,6 @@ the importers read it, ``importflightlog`` with the campaign's DEM.
 """
 from __future__ import annotations
 
-import csv
 import json
 import math
 import sys
@@ -35,6 +34,7 @@ from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame
 from birdseye.birdseye_qgis.core.geometry.poses import FrameGeometry, FramePoses
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "data"))
+from registry import rows, run
 from rendered_holes import dark_core_centroid
 
 SLOPE_DEG = 20.0
@@ -51,17 +51,6 @@ class Warnings(QgsProcessingFeedback):
     def pushWarning(self, warning):
         self.warnings.append(warning)
         super().pushWarning(warning)
-
-
-def run(alg, params, feedback=None):
-    import processing
-
-    return processing.run(f"birdseye:{alg}", params, feedback=feedback)
-
-
-def rows(path):
-    with open(path, newline="") as f:
-        return list(csv.DictReader(f))
 
 
 @pytest.fixture(scope="module")

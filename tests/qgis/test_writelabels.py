@@ -7,14 +7,9 @@ import json
 import numpy as np
 import pytest
 from qgis.core import QgsExpressionContextUtils, QgsProcessingException, QgsProject
+from registry import run
 
 from birdseye.birdseye_qgis.core.sim.campaign import CampaignConfig, simulate_campaign
-
-
-def run(alg_id, params):
-    import processing
-
-    return processing.run(f"birdseye:{alg_id}", params)
 
 
 def simulate_and_import(folder, **config):

@@ -27,7 +27,7 @@ from typing import Optional
 
 import numpy as np
 
-from ..errors import Cancelled, InputError
+from ..errors import InputError, check_cancel
 from ..geometry.rotations import se3_exp
 from .sensor_bound import (
     AXES,
@@ -190,8 +190,7 @@ def scaling_study(intr, altitude_m, sigmas, scales=np.logspace(-1, 2, 25), per_a
     z = _draws(n_samples, seed)
 
     def max_skld(variances):
-        if is_canceled is not None and is_canceled():
-            raise Cancelled("Monte Carlo scaling study cancelled")
+        check_cancel(is_canceled)
         sample = _second_moment(intr, px, points, z, variances, mount)
         model = pixel_covariance(intr, px[:, 0], px[:, 1], depth, variances, mount)
         return float(np.max(symmetric_kl(sample, model)))

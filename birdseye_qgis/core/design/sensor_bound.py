@@ -83,8 +83,10 @@ from typing import Callable, Optional, Sequence
 
 import numpy as np
 
-from ..errors import Cancelled, InputError
+from ..errors import InputError, check_cancel
+from ..geometry.camera import NADIR_ROTATION
 from ..geometry.rotations import hat
+from ..labels.training_set import label_sigma_px
 
 AXES = ("x", "y", "z", "roll", "pitch", "yaw")
 SIGMA_UNITS = ("m", "m", "m", "deg", "deg", "deg")
@@ -133,7 +135,7 @@ METHOD_MOUNT = CameraMount(
                "down) and z (optical axis), applied to the camera-frame rotation vector as the method does")
 NADIR_MOUNT = CameraMount(
     key="nadir_top_forward", name="Nadir camera, image top towards the nose",
-    R_cam_body=((0.0, 1.0, 0.0), (-1.0, 0.0, 0.0), (0.0, 0.0, 1.0)),
+    R_cam_body=tuple(map(tuple, NADIR_ROTATION.tolist())),
     convention=TRANSLATION_CONVENTION + "; roll, pitch, yaw: forward-right-down body attitude errors of a nadir "
                "camera with the image top towards the nose: roll -> rotation about camera y, pitch -> about "
                "camera x, yaw -> about the optical axis z")
@@ -197,11 +199,11 @@ def _stride(stride_px) -> int:
 
 
 def lambda_target(tolerance_px) -> float:
-    """Per-direction variance budget ``(r/3)²`` px² for a label radius ``r`` px drawn at 3σ."""
+    """Per-direction variance budget ``σ_label² = (r/3)²`` px² for a label radius ``r`` px drawn at 3σ."""
     r = float(tolerance_px)
     if not (r > 0 and math.isfinite(r)):
         raise InputError(f"label tolerance must be a positive number of pixels, got {tolerance_px}")
-    return (r / 3.0) ** 2
+    return label_sigma_px(r) ** 2
 
 
 def sigmas_to_variances(sigmas_m_deg) -> np.ndarray:
@@ -581,8 +583,7 @@ def evaluate_bounds(intr, altitudes: Sequence[float], sigmas, tolerance_px: floa
     sig = sigmas_to_variances(sigmas)  # validates before any work is done
     results = []
     for k, altitude in enumerate(altitudes):
-        if is_canceled is not None and is_canceled():
-            raise Cancelled("sensor bound cancelled")
+        check_cancel(is_canceled)
         results.append(evaluate_bound(intr, altitude, sigmas, tolerance_px, stride_px, mount=mount).to_json_dict())
         if progress is not None:
             progress((k + 1) / len(altitudes))

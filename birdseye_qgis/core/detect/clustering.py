@@ -1,13 +1,16 @@
 """Detections on the ground → de-duplicated points → DBSCAN clusters → cluster summaries.
 
-Everything here works in a horizontal metric frame: ``xy`` arrays are (east, north) metres of a
-:class:`~.geodesy.LocalFrame` (the callers convert any layer CRS there), so a 3 cm cell is 3 cm
-wherever the field lies.
+Distances are measured in a horizontal metric frame: ``xy`` arrays are (east, north) metres of the
+run's :class:`~.geodesy.LocalFrame` (the callers convert any layer CRS there). Detections enter as
+:class:`GroundPositions`, which also carry their WGS84 position: the de-duplication grid is anchored
+to the Earth (:func:`fixed_grid_cells`), not to the run's frame, whose origin depends on whatever
+else the run contains. A flight's cells, and so its clusters, are the same whether it is clustered
+alone, pooled with other flights, swept or screened.
 
 The chain (docs/design.md#workflow, step 6):
 
-1. **De-duplicate** on a square grid of ``cell_m`` (default 3 cm): every occupied cell becomes one
-   point at the mean position of its detections. A burrow seen by 40 frames at the same spot gives a
+1. **De-duplicate** on a fixed square grid of ``cell_m`` (default 3 cm): every occupied cell becomes
+   one point at the mean position of its detections. A burrow seen by 40 frames at the same spot gives a
    few cells, not 40 points, which bounds the neighbourhood sizes DBSCAN meets.
 2. **Cluster** the de-duplicated points with DBSCAN (``eps_m``, ``min_samples``; scikit-learn's
    DBSCAN rules, computed with scipy's connected components on a radius graph, so the plugin needs
@@ -29,6 +32,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import InputError
+from ..geometry.geodesy import LocalFrame
 
 #: Defaults for burrow-sized targets (a few cm) seen from 10–20 m with cm-level projection noise. ε and
 #: min_samples are the method's configuration (ε 0.20 m, min_samples 2, with eps_pred 0.20 m), so a
@@ -43,14 +47,93 @@ HULL_BUFFER_M = 0.03
 
 # Relative slack of the k-d tree radius query; exact ``d ≤ eps`` is then applied to our own distances.
 _RADIUS_SLACK = 1e-9
+#: The de-duplication grid is laid out per tile of GRID_TILE_DEG × GRID_TILE_DEG (about 5.6 km north–south),
+#: in the east–north plane at the tile's south-west corner: fixed on the Earth, and small enough that the
+#: plane stays within a millimetre of the ellipsoid's metres across a field.
+GRID_TILE_DEG = 0.05
+
+
+@dataclass
+class GroundPositions:
+    """Detections on the ground: ``xy`` (N, 2) east/north metres in the run's local frame, where distances
+    are measured, and ``lat``/``lon`` (N,) WGS84 degrees, which place them on the fixed de-duplication grid."""
+
+    xy: np.ndarray
+    lat: np.ndarray
+    lon: np.ndarray
+
+    def __post_init__(self):
+        self.xy = _as_xy(self.xy)
+        self.lat = np.asarray(self.lat, dtype=float).reshape(-1)
+        self.lon = np.asarray(self.lon, dtype=float).reshape(-1)
+        if not len(self.xy) == len(self.lat) == len(self.lon):
+            raise ValueError(f"{len(self.xy)} local positions but {len(self.lat)} latitudes, "
+                             f"{len(self.lon)} longitudes")
+
+    @classmethod
+    def from_geodetic(cls, local: LocalFrame, lat, lon, height=None) -> "GroundPositions":
+        """Positions given in WGS84; a missing (NaN) or absent height is the local frame's ground height."""
+        lat, lon = np.asarray(lat, dtype=float).reshape(-1), np.asarray(lon, dtype=float).reshape(-1)
+        h = np.full(len(lat), local.h0) if height is None else np.asarray(height, dtype=float).reshape(-1)
+        h = np.where(np.isfinite(h), h, local.h0)
+        xy = local.from_geodetic(lat, lon, h)[:, :2] if len(lat) else np.empty((0, 2))
+        return cls(xy, lat, lon)
+
+    @classmethod
+    def from_local(cls, local: LocalFrame, enu) -> "GroundPositions":
+        """Positions given as local east-north-up points (N, 3), e.g. back-projected detections, or as
+        east-north points (N, 2) on the frame's tangent plane."""
+        enu = np.asarray(enu, dtype=float)
+        if enu.size == 0:
+            return cls(np.empty((0, 2)), np.empty(0), np.empty(0))
+        if enu.shape[-1] == 2:
+            enu = np.column_stack([enu.reshape(-1, 2), np.zeros(enu.size // 2)])
+        enu = enu.reshape(-1, 3)
+        lat, lon, _ = local.to_geodetic(enu)
+        return cls(enu[:, :2], lat, lon)
+
+    @classmethod
+    def concatenate(cls, parts) -> "GroundPositions":
+        parts = list(parts)
+        if not parts:
+            return cls(np.empty((0, 2)), np.empty(0), np.empty(0))
+        return cls(np.concatenate([p.xy for p in parts]), np.concatenate([p.lat for p in parts]),
+                   np.concatenate([p.lon for p in parts]))
+
+    def __len__(self) -> int:
+        return len(self.xy)
+
+    def subset(self, index) -> "GroundPositions":
+        return GroundPositions(self.xy[index], self.lat[index], self.lon[index])
+
+
+def fixed_grid_cells(lat, lon, cell_m: float) -> np.ndarray:
+    """The cell (N, 4) int64 of every WGS84 position on the de-duplication grid: its GRID_TILE_DEG tile
+    (south-west corner's indices) and its ``cell_m`` square east and north of that corner, measured on the
+    ellipsoid. The cell depends on the position alone, never on the other positions of a run."""
+    lat, lon = np.asarray(lat, dtype=float).reshape(-1), np.asarray(lon, dtype=float).reshape(-1)
+    tile = np.floor(np.column_stack([lat, lon]) / GRID_TILE_DEG).astype(np.int64)
+    square = np.empty((len(lat), 2), dtype=np.int64)
+    # One integer per tile (|index| < 10,000 on both axes), as np.unique over rows is slow.
+    tile_key = (tile[:, 0] + 10_000) * 100_000 + tile[:, 1] + 10_000
+    keys, which = np.unique(tile_key, return_inverse=True)
+    which = which.reshape(-1)
+    for k in range(len(keys)):
+        mine = which == k
+        i, j = tile[np.argmax(mine)]
+        corner = LocalFrame(i * GRID_TILE_DEG, j * GRID_TILE_DEG)
+        east_north = corner.from_geodetic(lat[mine], lon[mine], np.zeros(int(mine.sum())))[:, :2]
+        square[mine] = np.floor(east_north / cell_m).astype(np.int64)
+    return np.column_stack([tile, square])
 
 
 # ------------------------------------------------------------------------------ de-duplication
 @dataclass
 class Deduplicated:
-    """Occupied grid cells: ``xy`` (K, 2) mean detection position per cell, ``count`` (K,) detections
-    per cell, ``inverse`` (N,) the cell of every detection. Cells are ordered by grid index, so the
-    result (and the DBSCAN labels after it) do not depend on the order of the detections."""
+    """Occupied grid cells: ``xy`` (K, 2) mean detection position per cell (local frame), ``count`` (K,)
+    detections per cell, ``inverse`` (N,) the cell of every detection. Cells are ordered by their fixed
+    grid index, so the result (and the DBSCAN labels after it) depend neither on the order of the
+    detections nor on the run's local frame."""
 
     xy: np.ndarray
     count: np.ndarray
@@ -60,18 +143,21 @@ class Deduplicated:
         return len(self.xy)
 
 
-def deduplicate(xy, cell_m: float) -> Deduplicated:
-    """Merge detections (N, 2) (m) falling into the same ``cell_m`` square (m) into one point."""
-    xy = _as_xy(xy)
+def deduplicate(positions: GroundPositions, cell_m: float) -> Deduplicated:
+    """Merge detections falling into the same ``cell_m`` square (m) of the fixed grid into one point."""
     if not cell_m > 0:
         raise InputError(f"the de-duplication cell must be larger than 0 (got {cell_m} m)", field="DEDUP_CM")
+    xy = positions.xy
     if len(xy) == 0:
         return Deduplicated(np.empty((0, 2)), np.empty(0, np.int64), np.empty(0, np.int64))
-    ij = np.floor(xy / cell_m).astype(np.int64)
-    ij -= ij.min(axis=0)
-    key = ij[:, 0] * (int(ij[:, 1].max()) + 1) + ij[:, 1]
-    _, inverse, count = np.unique(key, return_inverse=True, return_counts=True)
-    inverse = inverse.reshape(-1)
+    cells = fixed_grid_cells(positions.lat, positions.lon, cell_m)
+    order = np.lexsort(cells.T[::-1])
+    sorted_cells = cells[order]
+    starts = np.ones(len(order), dtype=bool)
+    starts[1:] = np.any(sorted_cells[1:] != sorted_cells[:-1], axis=1)
+    inverse = np.empty(len(order), dtype=np.int64)
+    inverse[order] = np.cumsum(starts) - 1
+    count = np.bincount(inverse)
     k = len(count)
     mean = np.column_stack([np.bincount(inverse, xy[:, 0], k), np.bincount(inverse, xy[:, 1], k)]) / count[:, None]
     return Deduplicated(mean, count, inverse)
@@ -309,16 +395,16 @@ class Clustering:
         return self.dbscan.labels[self.dbscan.core]
 
 
-def cluster_detections(xy, frame_id=None, score=None, dedup_cm: float = DEFAULT_DEDUP_CM,
+def cluster_detections(positions: GroundPositions, frame_id=None, score=None, dedup_cm: float = DEFAULT_DEDUP_CM,
                        eps_m: float = DEFAULT_EPS_M, min_samples: int = DEFAULT_MIN_SAMPLES,
                        graph: NeighbourGraph | None = None, points: Deduplicated | None = None) -> Clustering:
-    """De-duplicate detections (N, 2) (m) on a ``dedup_cm`` grid, DBSCAN them, summarise the clusters.
+    """De-duplicate detections on the fixed ``dedup_cm`` grid, DBSCAN them, summarise the clusters.
 
     ``points`` and ``graph`` let a sweep pass the de-duplication and radius graph it already has.
     """
-    xy = _as_xy(xy)
+    xy = positions.xy
     cell_m = float(dedup_cm) / 100.0
-    points = points if points is not None else deduplicate(xy, cell_m)
+    points = points if points is not None else deduplicate(positions, cell_m)
     graph = graph if graph is not None else neighbour_graph(points.xy, eps_m)
     result = dbscan(graph, eps_m, min_samples)
     summary = summarize_clusters(xy, result.labels[points.inverse], result.n_clusters, frame_id, score)

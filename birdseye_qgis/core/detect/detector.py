@@ -39,11 +39,11 @@ from typing import Callable, Iterator
 
 import numpy as np
 
-from ..errors import Cancelled, InputError
+from ..errors import InputError, check_cancel
 from ..geometry.geodesy import LocalFrame
-from ..geometry.ground import LevelPlaneGround
+from ..geometry.ground import LevelPlaneGround, placeable_frames
 from ..geometry.poses import FrameGeometry, FramePoses
-from ..geometry.projection import pixel_to_ground
+from ..geometry.projection import centre_gsd_m, pixel_to_ground
 from .model_metadata import ModelMetadata
 
 #: ONNX Runtime providers tried before the CPU, in order of preference.
@@ -357,11 +357,12 @@ def detect_frames(model: HeatmapModel, poses: FramePoses, images, request: Detec
     """Detections of every frame of ``poses`` (one camera), yielded frame by frame, in order.
 
     ``images[k]`` is the image path of frame k, read with ``read_image(path, reduction)`` (see
-    :func:`read_bgr`). Detections go onto the level plane at each frame's altimeter depth — a frame
-    without a ground height is skipped (with the reason) — or, given ``ground`` (a factory
-    ``FrameGeometry -> GroundModel``, e.g. a DEM's ``DemGround.from_dem``), onto that ground, which
-    also gives the ground sample distance of frames without a ground height (one whose image centre
-    it does not cover is skipped, with the reason).
+    :func:`read_bgr`). Detections go onto the level plane at each frame's altimeter depth, or, given
+    ``ground`` (a factory ``FrameGeometry -> GroundModel``: ``MethodPlaneGround``, a DEM's
+    ``DemGroundFactory``), onto that ground. A frame without a ground height is skipped (with the
+    reason) when the ground model needs one (the planes, :func:`~.ground.needs_ground_height`); a DEM
+    places it and gives its ground sample distance (one whose image centre it does not cover is
+    skipped, with the reason).
     Progress is reported after each frame; cancel is checked before each.
     """
     request = request or DetectRequest()
@@ -386,25 +387,24 @@ def detect_frames_at_thresholds(model: HeatmapModel, poses: FramePoses, images, 
         if not 0.0 < threshold < 1.0:
             raise InputError(f"the threshold must be a probability between 0 and 1 (got {threshold})")
     local = local or LocalFrame.around(poses.lat, poses.lon, poses.height)
-    has_ground = np.isfinite(poses.ground_height) | (ground is not None)
+    has_ground = placeable_frames(poses, ground)
     geom = FrameGeometry(poses.subset(has_ground), local)
     ground = LevelPlaneGround(geom) if ground is None else ground(geom)
     geom_index = np.cumsum(has_ground) - 1
     gsd_cm = np.full(len(poses), np.nan)
-    gsd_cm[has_ground] = _centre_gsd_m(geom, ground) * 100.0
+    gsd_cm[has_ground] = centre_gsd_m(geom, ground) * 100.0
     cam = poses.camera
     heat_dir = Path(request.heatmap_dir) if request.heatmap_dir else None
     if heat_dir is not None:
         heat_dir.mkdir(parents=True, exist_ok=True)
     n = len(poses)
     for k in range(n):
-        if is_canceled is not None and is_canceled():
-            raise Cancelled()
+        check_cancel(is_canceled)
         image_path = str(images[k])
         skipped = None
         if not has_ground[k]:
-            skipped = ("the frame has no ground height (no altimeter reading, or no tie points in view), so "
-                       "nothing can be placed on the level ground: give a DEM to place it")
+            skipped = ("the frame has no ground height (no altimeter reading, or no tie points in view), which "
+                       "the level plane and the method's plane stand on: give a DEM to place it")
         elif not np.isfinite(gsd_cm[k]):
             skipped = ("the ground model does not cover the image centre and the frame has no ground height, "
                        "so its ground resolution is unknown (check that the DEM covers the flight)")
@@ -426,22 +426,6 @@ def detect_frames_at_thresholds(model: HeatmapModel, poses: FramePoses, images, 
             yield [found] * len(thresholds)
         if progress is not None:
             progress((k + 1) / n)
-
-
-def _centre_gsd_m(geom: FrameGeometry, ground) -> np.ndarray:
-    """Ground sample distance (m/px) at each image centre: the altimeter's level depth over the focal
-    length (:meth:`FrameGeometry.gsd_m`), the measured range, where the frame has a ground height;
-    elsewhere the camera's vertical distance to where the principal ray meets ``ground`` (a DEM), NaN
-    where it misses."""
-    gsd = geom.gsd_m()
-    missing = np.flatnonzero(~np.isfinite(gsd))
-    if len(missing):
-        cam = geom.camera
-        centre = np.tile([[cam.cx, cam.cy]], (len(missing), 1))
-        hit, valid = ground.intersect(missing, geom.C[missing], geom.rays(missing, centre))
-        depth = np.einsum("fi,fi->f", geom.C[missing] - hit, geom.up[missing])
-        gsd[missing] = np.where(valid, depth / np.sqrt(cam.fx * cam.fy), np.nan)
-    return gsd
 
 
 def _empty(k, frame_id, image, gsd_cm) -> FrameDetections:

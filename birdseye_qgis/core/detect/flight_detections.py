@@ -9,18 +9,19 @@ import numpy as np
 
 from ..geometry.geodesy import LocalFrame
 from ..geometry.poses import FramePoses
+from .clustering import GroundPositions
 from .detector import DetectRequest, HeatmapModel, detect_frames_at_thresholds
 
 
 @dataclass
 class ThresholdDetections:
     """The flight's detections from a peak extraction at ``threshold``: ``frame_id`` (N,), pixels
-    ``uv`` (N, 2) in the original images, ground ``xy`` (N, 2) in the run's local frame (m)."""
+    ``uv`` (N, 2) in the original images, and their ``positions`` on the ground."""
 
     threshold: float
     frame_id: np.ndarray
     uv: np.ndarray
-    xy: np.ndarray
+    positions: GroundPositions
 
     def __len__(self) -> int:
         return len(self.frame_id)
@@ -38,11 +39,12 @@ class FlightDetections:
 
 def detect_flight(model: HeatmapModel, pose_groups: Sequence[FramePoses], images: Sequence[Sequence[str]],
                   thresholds: Sequence[float], edge_buffer_px: float, local: LocalFrame,
-                  progress=None, is_canceled=None) -> FlightDetections:
+                  progress=None, is_canceled=None, ground=None) -> FlightDetections:
     """Every frame of every pose group (``images[g][k]`` is frame k of group g) through ``model``, one
-    heatmap per frame and its peaks at every threshold (:func:`~.detector.detect_frames_at_thresholds`)."""
+    heatmap per frame and its peaks at every threshold (:func:`~.detector.detect_frames_at_thresholds`),
+    placed on ``ground`` (a ground-model factory as Detect takes it; None = the level plane)."""
     request = DetectRequest(edge_buffer_px=edge_buffer_px)
-    parts = [([], [], []) for _ in thresholds]
+    parts = [([], [], [], []) for _ in thresholds]
     processed, skipped = [], []
     total = max(1, sum(len(p) for p in pose_groups))
     done = 0
@@ -52,19 +54,24 @@ def detect_flight(model: HeatmapModel, pose_groups: Sequence[FramePoses], images
                 progress((offset + fraction * size) / total)
 
         for found in detect_frames_at_thresholds(model, poses, paths, thresholds, request, local,
-                                                 progress=group_progress, is_canceled=is_canceled):
+                                                 progress=group_progress, is_canceled=is_canceled, ground=ground):
             if found[0].skipped:
                 skipped.append((found[0].frame_id, found[0].skipped))
                 continue
             processed.append(found[0].frame_id)
-            for (frame_ids, uvs, xys), at in zip(parts, found):
+            for (frame_ids, uvs, xys, lat_lons), at in zip(parts, found):
                 frame_ids.append(np.full(len(at), at.frame_id, dtype=object))
                 uvs.append(at.uv)
                 xys.append(at.ground_local[:, :2])
+                lat_lons.append(np.column_stack([at.lat, at.lon]))
         done += len(poses)
-    by_threshold = [ThresholdDetections(float(t), _concat(f, np.empty(0, dtype=object)), _concat(u, np.empty((0, 2))),
-                                        _concat(x, np.empty((0, 2))))
-                    for t, (f, u, x) in zip(thresholds, parts)]
+    by_threshold = []
+    for t, (f, u, x, ll) in zip(thresholds, parts):
+        lat_lon = _concat(ll, np.empty((0, 2)))
+        by_threshold.append(ThresholdDetections(float(t), _concat(f, np.empty(0, dtype=object)),
+                                                _concat(u, np.empty((0, 2))),
+                                                GroundPositions(_concat(x, np.empty((0, 2))), lat_lon[:, 0],
+                                                                lat_lon[:, 1])))
     return FlightDetections(np.array(processed, dtype=object), skipped, by_threshold)
 
 

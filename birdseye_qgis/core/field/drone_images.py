@@ -48,7 +48,7 @@ import re
 
 import numpy as np
 
-from ..errors import Cancelled, InputError
+from ..errors import InputError, check_cancel
 from ..geometry.camera import CameraModel
 from ..geometry.dem import DemRaster
 from ..geometry.geodesy import LocalFrame, ProjectedCRS
@@ -253,8 +253,7 @@ def import_drone_images(folder, calibration: CameraModel | None = None, crs: Pro
     cameras: dict[str, CameraModel] = {}
     rows, unplaced = [], []
     for i, path in enumerate(paths):
-        if is_canceled is not None and is_canceled():
-            raise Cancelled()
+        check_cancel(is_canceled)
         try:
             meta = read_dji_metadata(path)
             if meta.orientation not in (0, 1):

@@ -28,7 +28,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..errors import InputError
+from ..errors import InputError, check_cancel
 from ..geometry.camera import CameraModel
 from ..geometry.geodesy import ProjectedCRS
 from .flight_db import read_flight_db_frames
@@ -36,7 +36,7 @@ from .flight_track import flight_track
 from .frames import RADALT_WINDOW_S, Frames, compute_footprints, ground_heights, rtk_flags
 from .images import list_images, sync_strobes
 from .import_report import FlightImport, ImportReport, apply_rtk_filter, name_list, report_ground
-from .pose_log import check_cancel, read_pose_log
+from .pose_log import read_pose_log
 
 
 def import_pose_log(pose_log, images_folder, camera: CameraModel, fps: float = 5.0,

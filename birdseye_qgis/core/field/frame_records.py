@@ -6,12 +6,14 @@ schema so writer and readers never drift apart.
 """
 from __future__ import annotations
 
+import json
+
 import numpy as np
 
 from ..errors import InputError
 from ..geometry.camera import CameraModel
 from ..geometry.geodesy import LocalFrame
-from ..geometry.poses import FramePoses
+from ..geometry.poses import FramePoses, indices_by_camera
 from ..geometry.rotations import quat_to_rotmat, rotmat_to_euler_zyx
 
 #: (name, type, description) — type is one of "int", "double", "string".
@@ -38,6 +40,50 @@ FRAME_FIELDS = [
     ("flags", "string", "comma-separated warnings (e.g. rtk_float, non_nadir, yaw_mismatch)"),
 ]
 FRAME_FIELD_NAMES = [f[0] for f in FRAME_FIELDS]
+
+#: A camera model longer than the text fields of the format a frame layer is written to (an ESRI Shapefile
+#: keeps 254 characters; a camera model needs about 500) goes on in fields ``camera_2``, ``camera_3``, …
+CAMERA_FIELD = "camera"
+
+
+def camera_part_fields(n_parts: int) -> list[tuple[str, str, str]]:
+    """The schema of the fields after ``camera`` that hold the rest of a camera model in ``n_parts`` parts."""
+    return [(f"{CAMERA_FIELD}_{k}", "string", f"camera model as JSON, part {k} (continues field camera)")
+            for k in range(2, n_parts + 1)]
+
+
+def split_camera(text: str, max_chars: int) -> list[str]:
+    """``text`` in parts of at most ``max_chars`` characters, for ``camera``, ``camera_2``, …"""
+    return [text[i:i + max_chars] for i in range(0, len(text), max_chars)] or [text]
+
+
+def split_cameras(records, max_chars: int) -> tuple[list[tuple[str, str, str]], list[dict]]:
+    """Frame records for text fields of ``max_chars`` characters: the fields their cameras need after the
+    frame-layer fields (none when every camera fits) and the records with ``camera``, ``camera_2``, … set."""
+    records = list(records)
+    parts = [split_camera(r[CAMERA_FIELD] or "", max_chars) for r in records]
+    extra = camera_part_fields(max((len(p) for p in parts), default=1))
+    names = [CAMERA_FIELD] + [f[0] for f in extra]
+    return extra, [{**r, **dict(zip(names, p))} for r, p in zip(records, parts)]
+
+
+def join_camera(parts) -> str:
+    """A frame's camera model from its parts (``camera``, ``camera_2``, …; empty ones skipped)."""
+    return "".join(p for p in parts if p)
+
+
+def camera_cut_at(parts, field_lengths) -> int | None:
+    """The field length (characters) at which a camera model was cut, or None.
+
+    A format with short text fields cuts a longer value without a word (QGIS's Save Features As… to an ESRI
+    Shapefile keeps 254 characters): the camera was cut when its parts do not join into JSON and one of them
+    fills its field. ``field_lengths``: each part's field length, 0 where the format sets none.
+    """
+    try:
+        json.loads(join_camera(parts))
+        return None
+    except ValueError:
+        return next((n for p, n in zip(parts, field_lengths) if n > 0 and p and len(p) >= n), None)
 
 
 def euler_degrees(quat) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -81,17 +127,13 @@ def poses_from_records(records, source: str = "frame layer") -> list[tuple[Frame
     if missing:
         raise InputError(f"is not a BirdsEye frame layer: missing field(s) {', '.join(missing)} (make it with "
                          "Import flight log, Import drone images or Import camera solution)", source=source)
-    groups: dict[str, list[int]] = {}
-    for i, rec in enumerate(records):
-        cam = rec["camera"]
-        if not cam:
-            raise InputError("is empty; the frame has no camera model", source=source, row=i + 1,
-                             field="camera")
-        groups.setdefault(cam, []).append(i)
+    cameras = [rec["camera"] for rec in records]
+    empty = next((i for i, cam in enumerate(cameras) if not cam), None)
+    if empty is not None:
+        raise InputError("is empty; the frame has no camera model", source=source, row=empty + 1, field="camera")
     out = []
-    for cam_json, idx in groups.items():
-        camera = CameraModel.from_json(cam_json, source=f"{source}, row {idx[0] + 1}, field 'camera'")
-        idx = np.asarray(idx)
+    for idx in indices_by_camera(cameras):
+        camera = CameraModel.from_json(cameras[idx[0]], source=f"{source}, row {idx[0] + 1}, field 'camera'")
         try:
             cols = {n: np.array([_number(records[i][n]) for i in idx], dtype=float)
                     for n in ("lat", "lon", "height_m", "qw", "qx", "qy", "qz", "ground_h_m")}

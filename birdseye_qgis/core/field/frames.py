@@ -6,12 +6,13 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..errors import check_cancel
 from ..geometry.geodesy import LocalFrame, ProjectedCRS
 from ..geometry.ground import LevelPlaneGround
-from ..geometry.poses import FrameGeometry, FramePoses, ground_height_from_altimeter
+from ..geometry.poses import FrameGeometry, FramePoses, ground_height_from_altimeter, indices_by_camera
 from ..geometry.projection import footprints
 from .frame_records import FRAME_FIELDS, euler_degrees
-from .pose_log import RTK_FIXED, RTK_FLOAT, check_cancel
+from .pose_log import RTK_FIXED, RTK_FLOAT
 
 #: A strobe row whose altimeter reading is bad takes the ground height interpolated from good
 #: readings at most this far (s) before and after it; beyond, the frame has no ground height.
@@ -109,6 +110,11 @@ class Frames:
                       None if self.euler_deg is None else self.euler_deg[index],
                       {k: v[index] for k, v in self.extra.items()})
 
+    def poses(self, index) -> FramePoses:
+        """The poses of frames ``index``, which all have one camera (:func:`.poses.indices_by_camera`)."""
+        return FramePoses(self.frame_id[index], self.lat[index], self.lon[index], self.height[index],
+                          self.quat[index], self.ground_h[index], self.cameras[index[0]])
+
 
 @dataclass
 class Footprints:
@@ -143,19 +149,15 @@ def compute_footprints(frames: Frames, crs: ProjectedCRS, per_edge: int = 4, blo
     placeable = np.isfinite(frames.ground_h) | (ground is not None)
     for i in np.flatnonzero(~placeable):
         frames.flags[i].append("no_ground_height")
-    by_camera: dict[int, list[int]] = {}
-    for i in np.flatnonzero(placeable):
-        by_camera.setdefault(id(frames.cameras[i]), []).append(int(i))
-    total, done = max(int(np.count_nonzero(placeable)), 1), 0
-    for members in by_camera.values():
+    placed = np.flatnonzero(placeable)
+    total, done = max(len(placed), 1), 0
+    for members in indices_by_camera([frames.cameras[i] for i in placed]):
+        members = placed[members]
         camera = frames.cameras[members[0]]
-        members = np.asarray(members)
         for start in range(0, len(members), block):
             check_cancel(is_canceled)
             idx = members[start:start + block]
-            poses = FramePoses(frames.frame_id[idx], frames.lat[idx], frames.lon[idx], frames.height[idx],
-                               frames.quat[idx], frames.ground_h[idx], camera)
-            geometry = FrameGeometry(poses, local)
+            geometry = FrameGeometry(frames.poses(idx), local)
             model = LevelPlaneGround(geometry) if ground is None else ground(geometry)
             pts, complete = footprints(geometry, model, per_edge)
             if ground is None:

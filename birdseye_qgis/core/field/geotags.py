@@ -72,53 +72,134 @@ class ColumnMapping:
     label: str | None = None
 
 
+#: Where a target to label or score comes from: the survey (a geotag) or a review (a cluster a person
+#: confirmed real, or rejected, that no geotag matches).
+SURVEY, REVIEW = "survey", "review"
+PROVENANCES = (SURVEY, REVIEW)
+#: The class of a target whose survey gives none.
+UNLABELLED = "target"
+
+
 @dataclass
 class Geotags:
-    """Geotags in file order. Heights in metres (NaN when the input has none)."""
+    """Surveyed targets: the one geotag type of import, labels, scoring, the review and planning.
 
+    ``ids`` name the targets in every output (labels.csv, matched clusters, waypoints, the review);
+    a geotag layer's ids follow one rule (``qgis_io.layers.read_geotag_layer``, docs/design.md#geotags).
+    ``lat``, ``lon`` WGS84 (deg); ``height`` ellipsoidal (m), NaN where unknown (the ground model
+    places the target); ``h_msl`` likewise. ``labels``: target class (default :data:`UNLABELLED`);
+    ``provenance``: :data:`SURVEY` or :data:`REVIEW`; ``fix_quality``: NMEA GGA code (0 unknown);
+    ``source_row``: line of the file or row (1..) of the layer each came from; ``flags``: warnings per
+    geotag; ``problems``: the bad rows left out when reading (one :class:`InputError` each).
+    """
+
+    ids: np.ndarray
     lat: np.ndarray
     lon: np.ndarray
-    h_ellipsoid: np.ndarray
-    h_msl: np.ndarray
-    fix_quality: np.ndarray
-    label: list
-    source_row: np.ndarray
+    height: np.ndarray
+    labels: np.ndarray | None = None
+    provenance: np.ndarray | None = None
+    h_msl: np.ndarray | None = None
+    fix_quality: np.ndarray | None = None
+    source_row: np.ndarray | None = None
+    flags: list | None = None
     source: str = ""
     problems: list = field(default_factory=list)
-    flags: list = field(default_factory=list)
-    #: 1.. over the geotags as read, so a target keeps its id when a filter drops others (labels,
-    #: evaluations and reviews of one survey refer to the same ids).
-    number: np.ndarray | None = None
 
     def __post_init__(self):
-        for name in ("lat", "lon", "h_ellipsoid", "h_msl"):
+        for name in ("lat", "lon", "height"):
             setattr(self, name, np.asarray(getattr(self, name), dtype=float).reshape(-1))
-        self.fix_quality = np.asarray(self.fix_quality, dtype=np.int64).reshape(-1)
-        self.source_row = np.asarray(self.source_row, dtype=np.int64).reshape(-1)
-        self.label = [str(v) for v in self.label]
-        if not self.flags:
-            self.flags = [[] for _ in range(len(self.lat))]
-        self.number = (np.arange(1, len(self.lat) + 1) if self.number is None
-                       else np.asarray(self.number, dtype=np.int64).reshape(-1))
+        n = len(self.lat)
+        self.ids = _objects(self.ids)
+        self.labels = _objects([UNLABELLED] * n if self.labels is None else [str(v) for v in self.labels])
+        self.provenance = _objects([SURVEY] * n if self.provenance is None else self.provenance)
+        self.h_msl = np.full(n, np.nan) if self.h_msl is None else np.asarray(self.h_msl, dtype=float).reshape(-1)
+        self.fix_quality = np.asarray(np.zeros(n) if self.fix_quality is None else self.fix_quality,
+                                      dtype=np.int64).reshape(-1)
+        self.source_row = np.asarray(np.arange(1, n + 1) if self.source_row is None else self.source_row,
+                                     dtype=np.int64).reshape(-1)
+        self.flags = [[] for _ in range(n)] if self.flags is None else [list(f) for f in self.flags]
 
     def __len__(self) -> int:
         return len(self.lat)
 
     def subset(self, index) -> "Geotags":
+        """The geotags at ``index`` (integer positions or a boolean mask), ids and rows kept."""
         index = np.asarray(index)
         if index.dtype == bool:
             index = np.flatnonzero(index)
-        return Geotags(self.lat[index], self.lon[index], self.h_ellipsoid[index], self.h_msl[index],
-                       self.fix_quality[index], [self.label[i] for i in index], self.source_row[index],
-                       self.source, list(self.problems), [list(self.flags[i]) for i in index], self.number[index])
+        index = index.astype(np.int64).reshape(-1)
+        return Geotags(self.ids[index], self.lat[index], self.lon[index], self.height[index], self.labels[index],
+                       self.provenance[index], self.h_msl[index], self.fix_quality[index], self.source_row[index],
+                       [self.flags[i] for i in index], self.source, list(self.problems))
+
+    def __add__(self, other: "Geotags") -> "Geotags":
+        """These geotags followed by ``other``'s (e.g. the survey and a review's targets)."""
+        return Geotags(*(np.concatenate([getattr(self, n), getattr(other, n)])
+                         for n in ("ids", "lat", "lon", "height", "labels", "provenance", "h_msl", "fix_quality",
+                                   "source_row")),
+                       self.flags + other.flags, self.source, self.problems + other.problems)
 
     def records(self):
-        """One dict per geotag with the :data:`GEOTAG_FIELD_NAMES`; ids are the geotags' :attr:`number`."""
+        """One dict per geotag with the :data:`GEOTAG_FIELD_NAMES`."""
         for i in range(len(self)):
-            yield {"id": int(self.number[i]), "label": self.label[i], "fix_quality": int(self.fix_quality[i]),
+            yield {"id": int(self.ids[i]), "label": self.labels[i], "fix_quality": int(self.fix_quality[i]),
                    "lat": float(self.lat[i]), "lon": float(self.lon[i]),
-                   "h_ellipsoid": _none_if_nan(self.h_ellipsoid[i]), "h_msl": _none_if_nan(self.h_msl[i]),
+                   "h_ellipsoid": _none_if_nan(self.height[i]), "h_msl": _none_if_nan(self.h_msl[i]),
                    "source_row": int(self.source_row[i]), "flags": ",".join(self.flags[i])}
+
+
+def geotag_ids(values, rows, source: str = "", field_name: str = "id") -> np.ndarray:
+    """The ids of a geotag layer's features, by the one rule (docs/design.md#geotags).
+
+    ``values``: the id field's value per feature (None: the layer has no id field); ``rows``: each
+    feature's row, 1.. in the layer's feature order. With an id field, each geotag's id is its value
+    (a whole number as an int, text stripped); an empty id or one shared by two geotags is refused,
+    naming the rows. Without one, a geotag's id is its row, whatever the format the layer is saved in.
+    """
+    rows = np.asarray(rows, dtype=np.int64).reshape(-1)
+    if values is None:
+        return _objects(rows.tolist())
+    ids = [_id_value(v) for v in values]
+    empty = [int(r) for r, v in zip(rows, ids) if v is None]
+    if empty:
+        raise InputError(f"has {len(empty)} geotag(s) without an id (row(s) {_rows_text(empty)}): give every "
+                         f"geotag its own id, or rename the field '{field_name}' so geotags are numbered by row",
+                         source=source, row=empty[0], field=field_name)
+    seen: dict = {}
+    for r, v in zip(rows.tolist(), ids):
+        seen.setdefault(v, []).append(r)
+    shared = {v: rs for v, rs in seen.items() if len(rs) > 1}
+    if shared:
+        v, rs = next(iter(shared.items()))
+        more = f" ({len(shared) - 1} more id(s) are shared too)" if len(shared) > 1 else ""
+        raise InputError(f"gives id {v} to {len(rs)} geotags (rows {_rows_text(rs)}){more}: labels, scores and "
+                         "waypoints name a target by its id, so each geotag needs its own", source=source,
+                         row=rs[0], field=field_name)
+    return _objects(ids)
+
+
+def _id_value(value):
+    """An id as written in a layer: a whole number as an int (7.0 → 7), text stripped; None if empty."""
+    if value is None:
+        return None
+    if isinstance(value, float):
+        return int(value) if value.is_integer() else (value if np.isfinite(value) else None)
+    if isinstance(value, (int, np.integer)):
+        return int(value)
+    text = str(value).strip()
+    return text or None
+
+
+def _rows_text(rows, shown: int = 10) -> str:
+    return ", ".join(str(r) for r in rows[:shown]) + (" …" if len(rows) > shown else "")
+
+
+def _objects(values) -> np.ndarray:
+    """A 1-D object array (ids and texts keep their Python types: 7 stays 7, "A7" stays "A7")."""
+    out = np.empty(len(values), dtype=object)
+    out[:] = list(values)
+    return out
 
 
 def _none_if_nan(value):
@@ -292,10 +373,10 @@ class _Collector:
         self.problems: list[InputError] = []
 
     def geotags(self) -> Geotags:
-        if not self.rows:
-            return Geotags([], [], [], [], [], [], [], self.source, self.problems)
-        lat, lon, h, msl, fix, label, row = zip(*self.rows)
-        return Geotags(lat, lon, h, msl, fix, label, row, self.source, self.problems)
+        """The good rows, numbered 1.. in file order (the ids Import geotags writes)."""
+        lat, lon, h, msl, fix, label, row = zip(*self.rows) if self.rows else ([],) * 7
+        return Geotags(np.arange(1, len(lat) + 1), lat, lon, h, label, None, msl, fix, row, source=self.source,
+                       problems=self.problems)
 
 
 def _parse_rover(lines, source: str) -> Geotags:
@@ -512,7 +593,7 @@ def prepare_geotags(tags: Geotags, fixed_only: bool = False, pole_height_m: floa
               for k, v in zip(*np.unique(tags.fix_quality, return_counts=True))}
     keep = tags.fix_quality == FIX_RTK_FIXED if fixed_only else np.ones(len(tags), dtype=bool)
     out = tags.subset(keep)
-    out.h_ellipsoid = out.h_ellipsoid - pole_height_m
+    out.height = out.height - pole_height_m
     out.h_msl = out.h_msl - pole_height_m
     for i, fix in enumerate(out.fix_quality):
         if fix == FIX_RTK_FLOAT:
@@ -521,7 +602,7 @@ def prepare_geotags(tags: Geotags, fixed_only: bool = False, pole_height_m: floa
             out.flags[i].append("fix_unknown")
         elif fix != FIX_RTK_FIXED:
             out.flags[i].append("no_rtk")
-        if not np.isfinite(out.h_ellipsoid[i]):
+        if not np.isfinite(out.height[i]):
             out.flags[i].append("no_height")
     duplicates = _flag_duplicates(out, duplicate_distance_m)
     return PreparedGeotags(out, int(np.count_nonzero(~keep)), duplicates, counts)

@@ -8,7 +8,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..errors import Cancelled, InputError
+from ..errors import InputError, check_cancel
 
 POSE_LOG_COLUMNS = ("time_s", "lat_deg", "lon_deg", "height_m", "qw", "qx", "qy", "qz", "rtk_status",
                     "radalt_m", "radalt_snr", "strobe")
@@ -36,10 +36,6 @@ class RowProblems:
             return None
         first = "; ".join(str(e) for e in self.examples[:3])
         return f"{self.count} bad {what} left out; first: {first}"
-def check_cancel(is_canceled) -> None:
-    if is_canceled is not None and is_canceled():
-        raise Cancelled()
-
 
 @dataclass
 class PoseLog:

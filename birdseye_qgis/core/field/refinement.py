@@ -35,6 +35,8 @@ import numpy as np
 
 from ..errors import Cancelled, InputError
 from ..geometry.camera import CameraModel
+from ..geometry.poses import indices_by_camera
+from ..geometry.rigid import RigidTransform
 from ..geometry.similarity import OUTLIER_FACTOR, Similarity, fit_similarity_robust
 from .pose_log import RTK_FIXED, RTK_FLOAT, RTK_NONE
 from .solutions.colmap import colmap_camera
@@ -209,11 +211,9 @@ def refine_poses(frames: list[FrameInput], workdir, options: RefineOptions | Non
     extraction.sift.max_num_features = int(options.max_features)
     mode = REFINED if options.refine_intrinsics else NOMINAL if any(frames[k].approx_intrinsics for k in usable) \
         else FIXED
-    by_camera: dict[str, list[int]] = {}
-    for k in usable:
-        by_camera.setdefault(frames[k].camera.to_json(), []).append(k)
     with _CancelWatch(token, is_canceled):
-        for members in by_camera.values():
+        for group in indices_by_camera([frames[k].camera for k in usable]):
+            members = [usable[j] for j in group]
             camera = frames[members[0]].camera
             # SIFT's first octave −1 doubles the image first: on a copy downscaled for speed it only chases
             # the detail the downscaling removed, at 4× the work (Brighton: 25 s → 7 s, 0.55 → 0.58 px).
@@ -403,9 +403,9 @@ def _stretch_vertically(rec, up: np.ndarray, origin: np.ndarray, factor: float) 
         if not frame.has_pose:
             continue
         pose = frame.rig_from_world
-        r = pose.rotation.matrix()
-        centre = moved(-r.T @ np.asarray(pose.translation, dtype=float))
-        frame.rig_from_world = pycolmap.Rigid3d(pose.rotation, -r @ centre)
+        world_from_rig = RigidTransform(pose.rotation.matrix(), pose.translation).inverse()
+        stretched = RigidTransform(world_from_rig.rotation, moved(world_from_rig.translation))
+        frame.rig_from_world = pycolmap.Rigid3d(pose.rotation, stretched.inverse().translation)
 
 
 def _rescaled_params(model: str, params: np.ndarray, k: float) -> np.ndarray:
@@ -468,18 +468,19 @@ def _collect(rec, frames, names, result) -> None:
         k = index_of.get(image.name)
         if k is None or not image.has_pose:
             continue
-        pose = image.cam_from_world().matrix()
+        cam_from_world = RigidTransform.from_matrix(image.cam_from_world().matrix())
         camera = rec.cameras[image.camera_id]
         observed = [p for p in image.points2D if p.has_point3D()]
         xyz = np.array([rec.points3D[p.point3D_id].xyz for p in observed]).reshape(-1, 3)
         xy = np.array([p.xy for p in observed]).reshape(-1, 2)
-        in_cam = xyz @ pose[:, :3].T + pose[:, 3]
+        in_cam = cam_from_world.apply(xyz)
         projected = np.asarray(camera.img_from_cam(np.ascontiguousarray(in_cam), False)).reshape(-1, 2)
         rms = float(np.sqrt(np.mean(np.sum((projected - xy) ** 2, axis=1)))) if len(xy) else math.nan
         frame = result[k]
         frame.registered, frame.reason = True, ""
-        frame.r_local_cam = pose[:, :3].T  # SfM frame until _align
-        frame.centre = -pose[:, :3].T @ pose[:, 3]
+        world_from_cam = cam_from_world.inverse()
+        frame.r_local_cam = world_from_cam.rotation  # SfM frame until _align
+        frame.centre = world_from_cam.translation
         frame.reprojection_rms_px = rms
         frame.n_points = len(xyz)
         frame.camera = _refined_camera(frames[k].camera, camera)
@@ -568,17 +569,12 @@ def refine_frames(frames, workdir, options: RefineOptions | None = None, progres
     from dataclasses import replace
 
     from ..geometry.geodesy import LocalFrame
-    from ..geometry.poses import FrameGeometry, FramePoses, body_pose_from_camera
+    from ..geometry.poses import FrameGeometry, body_pose_from_camera
 
     local = LocalFrame.around(frames.lat, frames.lon, frames.height)
     centres, rotations = np.zeros((len(frames), 3)), np.zeros((len(frames), 3, 3))
-    by_camera: dict[int, list[int]] = {}
-    for i, camera in enumerate(frames.cameras):
-        by_camera.setdefault(id(camera), []).append(i)
-    for members in by_camera.values():
-        idx = np.asarray(members)
-        geometry = FrameGeometry(FramePoses(frames.frame_id[idx], frames.lat[idx], frames.lon[idx], frames.height[idx],
-                                            frames.quat[idx], frames.ground_h[idx], frames.cameras[idx[0]]), local)
+    for idx in indices_by_camera(frames.cameras):
+        geometry = FrameGeometry(frames.poses(idx), local)
         centres[idx], rotations[idx] = geometry.C, geometry.R_local_cam
     sigma = gnss_sigma_m(frames)
     surveyed = None if geotag_heights is None else np.asarray(geotag_heights, dtype=float)

@@ -24,6 +24,12 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import InputError
+from .rigid import RigidTransform
+
+#: Body → camera rotation (the rotation of ``T_cam_imu``) of a nadir camera with the image top towards the nose:
+#: camera x = body right, camera y = −body forward, camera z = body down (docs/design.md#camera). The one mount
+#: that design, planning and the simulator share.
+NADIR_ROTATION = np.array([[0.0, 1.0, 0.0], [-1.0, 0.0, 0.0], [0.0, 0.0, 1.0]])
 
 #: File-dialog filter for the calibration files :func:`load_calibration` reads.
 CALIBRATION_FILE_FILTER = "Camera calibration (*.yaml *.yml);;All files (*)"
@@ -216,12 +222,7 @@ class CameraModel:
     # ------------------------------------------------------------------ extrinsics
     @property
     def T_imu_cam(self) -> np.ndarray:
-        r = self.T_cam_imu[:3, :3]
-        t = self.T_cam_imu[:3, 3]
-        out = np.eye(4)
-        out[:3, :3] = r.T
-        out[:3, 3] = -r.T @ t
-        return out
+        return RigidTransform.from_matrix(self.T_cam_imu).inverse().matrix
 
     # ------------------------------------------------------------------ (de)serialisation
     def to_dict(self) -> dict:
@@ -346,8 +347,7 @@ def load_kalibr_yaml(path, text: str | None = None, camera: str = "cam0") -> Cam
     if rad is not None:
         t_rad_imu = _numbers(rad, path, "T_rad_imu", 16).reshape(4, 4)
         _check_rigid(path, "T_rad_imu", t_rad_imu)
-        r, t = t_rad_imu[:3, :3], t_rad_imu[:3, 3]
-        t_imu_rad = tuple(-r.T @ t)
+        t_imu_rad = tuple(RigidTransform.from_matrix(t_rad_imu).inverse().translation)
     _check_intrinsics(path, width, height, fx, fy, cx, cy)
     return CameraModel(width, height, fx, fy, cx, cy, tuple(dist), t_cam_imu, t_imu_rad,
                        source=f"kalibr:{path.name}", fisheye=dist_model == "equidistant")
@@ -440,7 +440,7 @@ def write_kalibr_yaml(camera: CameraModel, path) -> None:
            "T_cam_imu": camera.T_cam_imu.tolist()}
     doc = {"cam0": cam}
     if camera.t_imu_rad is not None:
-        t = np.eye(4)
-        t[:3, 3] = -np.asarray(camera.t_imu_rad, dtype=float)
-        doc["T_rad_imu"] = t.tolist()
+        # Only the altimeter's position is known: its frame is taken as the body's, moved to the lever arm.
+        imu_from_rad = RigidTransform(np.eye(3), camera.t_imu_rad)
+        doc["T_rad_imu"] = imu_from_rad.inverse().matrix.tolist()
     Path(path).write_text(yaml.safe_dump(doc, sort_keys=False), encoding="utf-8")

@@ -58,7 +58,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import Cancelled, InputError
+from ..errors import InputError, check_cancel
 from .geodesy import LocalFrame, ProjectedCRS, on_python_thread
 from .ground import GroundModel
 from .poses import FrameGeometry, FramePoses
@@ -679,7 +679,10 @@ class DemGround(GroundModel):
     ``intersect`` casts each ray to its first terrain hit (invalid: misses the DEM, leaves its extent
     or reaches no-data first); ``place`` moves points along their frame's up onto the terrain (NaN off
     the DEM). The fast path starts from the level plane through the terrain under each camera.
+    Frames without a ground height are placed like the others (the terrain is known without one).
     """
+
+    needs_ground_height = False
 
     def __init__(self, geometry: FrameGeometry, heightfield: Heightfield):
         self.geometry = geometry
@@ -744,6 +747,20 @@ class DemGround(GroundModel):
         return ~(hits.valid & (short <= tolerance_m))
 
 
+@dataclass(frozen=True, eq=False)
+class DemGroundFactory:
+    """The ground-model factory (``FrameGeometry -> DemGround``) core code takes as ``ground`` for a DEM:
+    :meth:`DemGround.from_dem` with the flight's vertical reference and the datum check's tolerance."""
+
+    dem: DemRaster
+    pose_heights_datum: str = "ellipsoidal"
+    tolerance_m: float = 5.0
+    needs_ground_height = False
+
+    def __call__(self, geometry: FrameGeometry) -> DemGround:
+        return DemGround.from_dem(geometry, self.dem, self.pose_heights_datum, self.tolerance_m)
+
+
 def _visible_extent(geometry: FrameGeometry, lowest_u: float, per_edge: int = 8):
     """Local (east_min, east_max, north_min, north_max) the frames' image borders can reach down to the
     height ``lowest_u``; None when some frame sees the horizon (then any part of the DEM may be seen)."""
@@ -790,8 +807,7 @@ def frame_terrain_slope(geometry: FrameGeometry, ground: DemGround, grid=(9, 7),
     f_total = len(geometry)
     pts = np.full((f_total, k, 3), np.nan)
     for a in range(0, f_total, chunk):
-        if is_canceled is not None and is_canceled():
-            raise Cancelled()
+        check_cancel(is_canceled)
         frames = np.arange(a, min(a + chunk, f_total))
         fi = np.repeat(frames, k)
         p, ok = ground.intersect(fi, geometry.C[fi], geometry.rays(fi, np.tile(uv, (len(frames), 1))))

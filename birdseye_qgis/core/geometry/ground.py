@@ -27,7 +27,14 @@ METHOD_PLANE_MAX_AXIS_TILT_DEG = 45.0
 
 
 class GroundModel:
-    """Interface: ``intersect`` rays and ``place`` points, one frame index per ray/point."""
+    """Interface: ``intersect`` rays and ``place`` points, one frame index per ray/point.
+
+    ``needs_ground_height``: the model stands on each frame's ground height (``FramePoses.ground_height``),
+    so frames without one cannot be placed; a terrain model does not. Ground-model factories (a model
+    class, or :class:`~.dem.DemGroundFactory`) carry it too: :func:`needs_ground_height` asks them.
+    """
+
+    needs_ground_height = True
 
     def intersect(self, frame_idx, origins, directions):
         """Points (N, 3) where rays hit the ground, and a validity mask (N,) (False: missed)."""
@@ -36,6 +43,23 @@ class GroundModel:
     def place(self, frame_idx, points):
         """Points (N, 3) moved along the local vertical onto the ground seen by their frame."""
         raise NotImplementedError
+
+    def occluded(self, frame_idx, points) -> np.ndarray:
+        """True where the ground hides a ground point (N, 3) from its frame's camera; a plane hides nothing."""
+        return np.zeros(len(np.asarray(points).reshape(-1, 3)), dtype=bool)
+
+
+def needs_ground_height(ground) -> bool:
+    """Whether the ground-model factory ``ground`` (``FrameGeometry -> GroundModel``; None = the level
+    plane) needs each frame's ground height: frames without one are then left out (not processed by
+    Detect, not counted in view), while a DEM places them."""
+    return getattr(ground or LevelPlaneGround, "needs_ground_height", True)
+
+
+def placeable_frames(poses, ground) -> np.ndarray:
+    """Mask (F,) of the frames of ``poses`` (:class:`~.poses.FramePoses`) the ground-model factory ``ground``
+    can place points on: those with a ground height, or all when it needs none (a DEM)."""
+    return np.isfinite(poses.ground_height) | (not needs_ground_height(ground))
 
 
 class LevelPlaneGround(GroundModel):

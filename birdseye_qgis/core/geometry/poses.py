@@ -17,6 +17,7 @@ import numpy as np
 
 from .camera import CameraModel
 from .geodesy import LocalFrame
+from .rigid import RigidTransform
 from .rotations import quat_to_rotmat
 
 
@@ -48,6 +49,23 @@ class FramePoses:
     def subset(self, index) -> "FramePoses":
         return FramePoses(self.frame_id[index], self.lat[index], self.lon[index], self.height[index],
                           self.quat[index], self.ground_height[index], self.camera)
+
+
+def indices_by_camera(cameras) -> list[np.ndarray]:
+    """The frames of each camera, for per-frame ``cameras``: index arrays in order of first appearance.
+
+    Frames whose cameras are equal form one group, whether the cameras are :class:`CameraModel` objects
+    (equal when their JSON is) or a frame layer's camera JSON strings; frames of one camera usually share the
+    object, so each object is compared once rather than each frame.
+    """
+    by_object: dict[int, list[int]] = {}
+    by_camera: dict = {}
+    for i, camera in enumerate(cameras):
+        members = by_object.get(id(camera))
+        if members is None:
+            members = by_object[id(camera)] = by_camera.setdefault(camera, [])
+        members.append(i)
+    return [np.asarray(members) for members in by_camera.values()]
 
 
 def ground_height_from_altimeter(height, quat, radalt, t_imu_rad=None) -> np.ndarray:
@@ -93,9 +111,10 @@ class FrameGeometry:
         self.imu_position = local.from_geodetic(poses.lat, poses.lon, poses.height)
         self.up = local.up_at(poses.lat, poses.lon)
         self.R_local_body = local.rotation_from_ned(poses.lat, poses.lon) @ quat_to_rotmat(poses.quat)
-        t_imu_cam = self.camera.T_imu_cam
-        self.R_local_cam = self.R_local_body @ t_imu_cam[:3, :3]
-        self.C = self.imu_position + self.R_local_body @ t_imu_cam[:3, 3]
+        local_from_body = RigidTransform(self.R_local_body, self.imu_position)
+        local_from_cam = local_from_body @ RigidTransform.from_matrix(self.camera.T_imu_cam)
+        self.R_local_cam = local_from_cam.rotation
+        self.C = local_from_cam.translation
         # Level ground under each frame: normal to the ellipsoid at the IMU, at the ground height.
         self.ground_point = self.imu_position - (poses.height - poses.ground_height)[:, None] * self.up
 
@@ -126,9 +145,7 @@ def body_pose_from_camera(local: LocalFrame, centre: np.ndarray, r_local_cam: np
     (F, 3) and camera → local rotations (F, 3, 3) are known: :class:`FrameGeometry` run backwards."""
     from .rotations import rotmat_to_quat
 
-    t_imu_cam = camera.T_imu_cam
-    r_local_body = np.asarray(r_local_cam, dtype=float) @ t_imu_cam[:3, :3].T
-    imu = np.asarray(centre, dtype=float) - r_local_body @ t_imu_cam[:3, 3]
-    lat, lon, h = (np.atleast_1d(np.asarray(a, dtype=float)) for a in local.to_geodetic(imu))
-    r_ned_body = np.swapaxes(local.rotation_from_ned(lat, lon), -1, -2) @ r_local_body
+    local_from_body = RigidTransform(r_local_cam, centre) @ RigidTransform.from_matrix(camera.T_cam_imu)
+    lat, lon, h = (np.atleast_1d(np.asarray(a, dtype=float)) for a in local.to_geodetic(local_from_body.translation))
+    r_ned_body = np.swapaxes(local.rotation_from_ned(lat, lon), -1, -2) @ local_from_body.rotation
     return lat, lon, h, rotmat_to_quat(r_ned_body)

@@ -135,3 +135,19 @@ def pixel_to_ground(geometry: FrameGeometry, ground: GroundModel, frame_idx, uv)
     frame_idx = np.asarray(frame_idx, dtype=np.int64)
     uv = np.asarray(uv, dtype=float).reshape(-1, 2)
     return ground.intersect(frame_idx, geometry.C[frame_idx], geometry.rays(frame_idx, uv))
+
+
+def centre_gsd_m(geom: FrameGeometry, ground: GroundModel) -> np.ndarray:
+    """Ground sample distance (m/px) at each image centre: the altimeter's level depth over the focal
+    length (:meth:`FrameGeometry.gsd_m`), the measured range, where the frame has a ground height;
+    elsewhere the camera's vertical distance to where the principal ray meets ``ground`` (a DEM), NaN
+    where it misses."""
+    gsd = geom.gsd_m()
+    missing = np.flatnonzero(~np.isfinite(gsd))
+    if len(missing):
+        cam = geom.camera
+        centre = np.tile([[cam.cx, cam.cy]], (len(missing), 1))
+        hit, valid = ground.intersect(missing, geom.C[missing], geom.rays(missing, centre))
+        depth = np.einsum("fi,fi->f", geom.C[missing] - hit, geom.up[missing])
+        gsd[missing] = np.where(valid, depth / np.sqrt(cam.fx * cam.fy), np.nan)
+    return gsd

@@ -161,13 +161,3 @@ def se3_exp(xi: np.ndarray) -> np.ndarray:
     t[..., :3, 3] = (so3_left_jacobian(phi) @ rho[..., None])[..., 0]
     return t
 
-
-def invert_transform(t: np.ndarray) -> np.ndarray:
-    """Inverse of homogeneous rigid transforms (..., 4, 4)."""
-    t = np.asarray(t, dtype=float)
-    out = np.zeros_like(t)
-    rt = np.swapaxes(t[..., :3, :3], -1, -2)
-    out[..., :3, :3] = rt
-    out[..., :3, 3] = -(rt @ t[..., :3, 3:4])[..., 0]
-    out[..., 3, 3] = 1.0
-    return out

@@ -15,7 +15,7 @@ import numpy as np
 
 from ..field.frame_records import local_frame_around, poses_from_records, uses_geotag_heights
 from ..geometry.poses import FrameGeometry
-from .training_set import Geotags, project_labels
+from .training_set import project_labels
 
 #: Fields of the check layer, one feature per image mark.
 MARK_CHECK_FIELDS = [
@@ -92,18 +92,16 @@ def check_marks(records: list, points, point_idx, frame_idx, uv_mark) -> MarkChe
 
     Mark ``k`` is point ``point_idx[k]`` marked in record ``frame_idx[k]`` at ``uv_mark[k]``.
     """
-    targets = Geotags(points.number, np.asarray(points.label, dtype=object), points.lat, points.lon,
-                      points.h_ellipsoid)
     groups = poses_from_records(records)
-    local = local_frame_around(groups, targets.lat, targets.lon)
+    local = local_frame_around(groups, points.lat, points.lon)
     frame_idx = np.asarray(frame_idx, dtype=np.int64)
     point_idx = np.asarray(point_idx, dtype=np.int64)
     uv_mark = np.asarray(uv_mark, dtype=float).reshape(-1, 2)
-    surveyed = local.from_geodetic(targets.lat, targets.lon, np.nan_to_num(targets.height))
+    surveyed = local.from_geodetic(points.lat, points.lon, np.nan_to_num(points.height))
     placed: dict[tuple[int, int], np.ndarray] = {}
     on_ground = np.full((len(frame_idx), 3), np.nan)
     for poses, idx in groups:
-        for labels in project_labels(poses, targets, 0.0, local, None, uses_geotag_heights(records, idx)):
+        for labels in project_labels(poses, points, 0.0, local, None, uses_geotag_heights(records, idx)):
             for g, uv in zip(labels.geotag_index.tolist(), labels.uv):
                 placed[(int(idx[labels.frame_index]), g)] = uv
         # Each mark's ray meets the horizontal plane of its point's surveyed height: where the person's
@@ -122,7 +120,7 @@ def check_marks(records: list, points, point_idx, frame_idx, uv_mark) -> MarkChe
                         dtype=float).reshape(-1, 2)
     kinds = ["check_point" if "check_point" in f else "control_point" for f in points.flags]
     lat, lon, _ = local.to_geodetic(on_ground)
-    return MarkCheck(point_idx, frame_idx, uv_mark, uv_label, list(points.label), kinds,
+    return MarkCheck(point_idx, frame_idx, uv_mark, uv_label, list(points.labels), kinds,
                      np.asarray(lat, dtype=float), np.asarray(lon, dtype=float),
                      np.hypot(*(on_ground[:, :2] - surveyed[point_idx, :2]).T))
 

@@ -29,7 +29,8 @@ from pathlib import Path
 
 import numpy as np
 
-from ..errors import Cancelled
+from ..errors import check_cancel
+from ..field.geotags import PROVENANCES, REVIEW, UNLABELLED, Geotags
 from ..geometry.geodesy import LocalFrame
 from ..geometry.ground import LevelPlaneGround
 from ..geometry.poses import FrameGeometry, FramePoses
@@ -37,38 +38,13 @@ from ..geometry.projection import Projection, project_in_view
 from .sparse_png import encode_gray_png
 
 LABELS_CSV_FIELDS = ["frame_id", "image", "geotag_id", "label", "u", "v", "sigma_px", "margin_px", "provenance"]
-SURVEY, REVIEW = "survey", "review"
-PROVENANCES = (SURVEY, REVIEW)
+#: A label is drawn out to this many σ (rasters and COCO boxes), so a label of radius r px has σ_label = r / 3.
+LABEL_RADIUS_SIGMAS = 3.0
 
 
-@dataclass
-class Geotags:
-    """Targets to label: ids, labels, WGS84 positions (ellipsoidal heights, NaN: on the ground) and
-    where each came from (``provenance``: survey or review; default survey)."""
-
-    ids: np.ndarray
-    labels: np.ndarray
-    lat: np.ndarray
-    lon: np.ndarray
-    height: np.ndarray
-    provenance: np.ndarray | None = None
-
-    def __post_init__(self):
-        self.ids = np.asarray(self.ids)
-        self.labels = np.asarray(self.labels, dtype=object)
-        for name in ("lat", "lon", "height"):
-            setattr(self, name, np.asarray(getattr(self, name), dtype=float).reshape(-1))
-        self.provenance = np.asarray([SURVEY] * len(self.lat) if self.provenance is None else self.provenance,
-                                     dtype=object).reshape(-1)
-
-    def __len__(self) -> int:
-        return len(self.lat)
-
-    def __add__(self, other: "Geotags") -> "Geotags":
-        return Geotags(np.concatenate([self.ids.astype(object), other.ids.astype(object)]),
-                       np.concatenate([self.labels, other.labels]), np.concatenate([self.lat, other.lat]),
-                       np.concatenate([self.lon, other.lon]), np.concatenate([self.height, other.height]),
-                       np.concatenate([self.provenance, other.provenance]))
+def label_sigma_px(radius_px: float) -> float:
+    """σ_label (px) of labels of radius ``radius_px`` (the sensor bound's tolerance r): r / 3."""
+    return radius_px / LABEL_RADIUS_SIGMAS
 
 
 def review_label_inputs(clusters, survey: Geotags) -> tuple[Geotags, Geotags]:
@@ -80,12 +56,11 @@ def review_label_inputs(clusters, survey: Geotags) -> tuple[Geotags, Geotags]:
     cluster's is unknown and it is labelled ``target``.
     """
     classes = sorted({str(x) for x in survey.labels})
-    label = classes[0] if len(classes) == 1 else "target"
+    label = classes[0] if len(classes) == 1 else UNLABELLED
 
     def spots(chosen, name, provenance):
-        return Geotags(np.asarray([c.key for c in chosen], dtype=object), [name] * len(chosen),
-                       [c.lat for c in chosen], [c.lon for c in chosen], np.full(len(chosen), np.nan),
-                       [provenance] * len(chosen))
+        return Geotags([c.key for c in chosen], [c.lat for c in chosen], [c.lon for c in chosen],
+                       np.full(len(chosen), np.nan), [name] * len(chosen), [provenance] * len(chosen))
 
     return (spots([c for c in clusters if c.is_target], label, REVIEW),
             spots([c for c in clusters if c.is_hard_negative], "hard_negative", REVIEW))
@@ -192,7 +167,7 @@ def frames_without_ground(poses: FramePoses) -> np.ndarray:
 def soft_label_raster(width: int, height: int, uv: np.ndarray, sigma_px: float) -> np.ndarray:
     """8-bit soft-label raster: Gaussian humps of σ px centred on ``uv``, cut at 3σ, combined by max."""
     out = np.zeros((height, width), dtype=np.uint8)
-    radius = int(np.ceil(3.0 * sigma_px))
+    radius = int(np.ceil(LABEL_RADIUS_SIGMAS * sigma_px))
     offsets = np.arange(-radius, radius + 1)
     for u, v in np.asarray(uv, dtype=float).reshape(-1, 2):
         cu, cv = int(round(u)), int(round(v))
@@ -202,7 +177,8 @@ def soft_label_raster(width: int, height: int, uv: np.ndarray, sigma_px: float) 
             continue
         xs, ys = xs[x_ok], ys[y_ok]
         r2 = (ys[:, None] - v) ** 2 + (xs[None, :] - u) ** 2
-        hump = np.where(r2 <= 9.0 * sigma_px ** 2, np.rint(255.0 * np.exp(-r2 / (2.0 * sigma_px ** 2))), 0)
+        hump = np.where(r2 <= LABEL_RADIUS_SIGMAS ** 2 * sigma_px ** 2,
+                        np.rint(255.0 * np.exp(-r2 / (2.0 * sigma_px ** 2))), 0)
         block = out[ys[0]:ys[-1] + 1, xs[0]:xs[-1] + 1]
         np.maximum(block, hump.astype(np.uint8), out=block)
     return out
@@ -284,8 +260,7 @@ class LabelWriter:
         ``hard_negative_labels``: the hard negatives projected like the targets (same frame order)."""
         counts = np.zeros(len(frame_labels), dtype=np.int64)
         for k, fl in enumerate(frame_labels):
-            if is_canceled is not None and is_canceled():
-                raise Cancelled()
+            check_cancel(is_canceled)
             hard = hard_negative_labels[k] if hard_negative_labels is not None else None
             counts[k] = self._add_frame(poses, str(images[fl.frame_index]), fl, hard)
             if progress is not None:
@@ -417,7 +392,7 @@ def _add_coco(coco: dict, frame_id, image, cam, uv, names, class_index, sigma_px
     image_id = len(coco["images"]) + 1
     coco["images"].append({"id": image_id, "file_name": image, "width": cam.width, "height": cam.height,
                            "frame_id": _json_id(frame_id)})
-    half = 3.0 * sigma_px
+    half = LABEL_RADIUS_SIGMAS * sigma_px
     for (u, v), name in zip(uv, names):
         coco["annotations"].append({
             "id": len(coco["annotations"]) + 1, "image_id": image_id, "category_id": class_index[name] + 1,

@@ -39,8 +39,9 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from ..errors import Cancelled, InputError
-from ..geometry.camera import CameraModel
+from ..geometry.camera import NADIR_ROTATION, CameraModel
 from ..geometry.geodesy import LocalFrame
+from ..geometry.rigid import RigidTransform
 from .mission_files import CAPTURE_PHOTO, CAPTURE_TIMED, MissionSpec
 
 ALTITUDE_LIMITS_M = (2.0, 120.0)
@@ -57,10 +58,6 @@ PHOTO_ACTION_S = 1.0
 LEVEL_GROUND_FRACTION = 0.1
 #: Headings at which the footprint check projects each geotag.
 HEADING_STEP_DEG = 5.0
-#: Body → camera rotation of a nadir camera with the image top towards the nose (camera x = body
-#: right, camera y = −body forward, camera z = body down).
-NADIR_T_CAM_BODY = np.array([[0.0, 1.0, 0.0, 0.0], [-1.0, 0.0, 0.0, 0.0], [0.0, 0.0, 1.0, 0.0],
-                             [0.0, 0.0, 0.0, 1.0]])
 #: fast-tsp works on unsigned 16-bit distances.
 _TSP_INT_MAX = 65535
 SURVEY_ORIGIN = "survey"
@@ -377,7 +374,7 @@ def merge_geotags(xy: np.ndarray, radius_m: float):
 
 def nadir_camera(camera: CameraModel) -> CameraModel:
     """The calibrated lens on a gimbal at −90°, image top towards the nose."""
-    return replace(camera, T_cam_imu=NADIR_T_CAM_BODY.copy(), t_imu_rad=None)
+    return replace(camera, T_cam_imu=RigidTransform(NADIR_ROTATION, np.zeros(3)).matrix, t_imu_rad=None)
 
 
 def _nadir_geometry(local: LocalFrame, camera: CameraModel, xy: np.ndarray, altitude_m: float,

@@ -8,11 +8,12 @@ from typing import Sequence
 
 import numpy as np
 
+from ..field.geotags import Geotags
 from ..geometry.geodesy import LocalFrame
-from ..geometry.ground import LevelPlaneGround
+from ..geometry.ground import LevelPlaneGround, placeable_frames
 from ..geometry.poses import FrameGeometry, FramePoses
-from ..geometry.projection import project_in_view, project_pairs
-from ..scoring.evaluation import Geotags, local_frame_for
+from ..geometry.projection import centre_gsd_m, project_in_view, project_pairs
+from ..scoring.evaluation import local_frame_for
 from .units import ReviewUnits, frame_key
 
 DEFAULT_WINDOW_PX = 128
@@ -20,18 +21,24 @@ DEFAULT_MAX_CHIPS = 4
 
 
 class FrameIndex:
-    """Frames by id: their pose group, index and image, with the geometry of the frames that have a
-    ground height (the others cannot place geotags and were not processed by detect)."""
+    """Frames by id: their pose group, index and image, with the geometry and ground model of the frames
+    the ground model ``ground`` (a factory as Detect takes it, the one the detections were placed with;
+    None = the level plane) can place: with a plane, those with a ground height (the others were not
+    processed by Detect); with a DEM, all."""
 
-    def __init__(self, pose_groups: Sequence[FramePoses], images: Sequence[Sequence[str]], local: LocalFrame):
+    def __init__(self, pose_groups: Sequence[FramePoses], images: Sequence[Sequence[str]], local: LocalFrame,
+                 ground=None):
         self.local = local
         self.groups = []
+        self.gsd_m = []   # per group, each frame's ground sample distance at the image centre (m/px)
         self.lookup: dict = {}
         for g, (poses, paths) in enumerate(zip(pose_groups, images)):
-            keep = np.flatnonzero(np.isfinite(poses.ground_height))
+            keep = np.flatnonzero(placeable_frames(poses, ground))
             sub = poses.subset(keep)
             geometry = FrameGeometry(sub, local) if len(sub) else None
-            self.groups.append((geometry, LevelPlaneGround(geometry) if geometry is not None else None))
+            model = (ground or LevelPlaneGround)(geometry) if geometry is not None else None
+            self.groups.append((geometry, model))
+            self.gsd_m.append(centre_gsd_m(geometry, model) if geometry is not None else np.empty(0))
             for i, k in enumerate(keep.tolist()):
                 self.lookup[frame_key(poses.frame_id[k])] = (g, i, paths[k] or "")
 
@@ -81,8 +88,7 @@ def _geotag_marks(frames: FrameIndex, g: int, i: int, window, geotag_local, geot
 
 
 def _radius_m(frames: FrameIndex, g: int, i: int, window_px: int) -> float:
-    geometry = frames.groups[g][0]
-    return float(geometry.gsd_m()[i]) * window_px * 0.75 + 0.5
+    return float(frames.gsd_m[g][i]) * window_px * 0.75 + 0.5
 
 
 def plan_unit_chips(units: ReviewUnits, unit: int, frames: FrameIndex, geotag_local=None, geotag_labels=(),

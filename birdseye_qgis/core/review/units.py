@@ -13,14 +13,16 @@ from ..detect.clustering import (
     DEFAULT_EPS_M,
     DEFAULT_MIN_SAMPLES,
     Clustering,
+    GroundPositions,
     cluster_detections,
     dbscan,
     neighbour_graph,
 )
 from ..errors import InputError
+from ..field.geotags import Geotags
 from ..geometry.geodesy import LocalFrame
 from ..geometry.poses import FramePoses
-from ..scoring.evaluation import Detections, Geotags
+from ..scoring.evaluation import Detections
 from ..scoring.matching import in_view, match_to_clusters
 from ..scoring.operating_point import DEFAULT_EDGE_BUFFER_PX, DEFAULT_EPS_PRED_M
 from ..scoring.pre_review import score_flight
@@ -172,20 +174,24 @@ def propagation_groups(xy, eps_m: float = PROPAGATION_EPS_M) -> np.ndarray:
 class PooledDetections:
     """The detections of every layer of a review, concatenated (layer order, then each layer's order)."""
 
-    xy: np.ndarray
+    positions: GroundPositions
     layer: np.ndarray
     frame: np.ndarray
     score: np.ndarray
     uv: np.ndarray
     layer_names: list
 
+    @property
+    def xy(self) -> np.ndarray:
+        return self.positions.xy
+
     @classmethod
     def of(cls, layers: Sequence[ReviewLayer], local: LocalFrame) -> "PooledDetections":
         if not layers:
             raise InputError("choose at least one detection layer to review")
-        xy = [layer.detections.local_xy(local) for layer in layers]
-        return cls(np.concatenate(xy),
-                   np.concatenate([np.full(len(p), k, dtype=np.int64) for k, p in enumerate(xy)]),
+        positions = [layer.detections.ground_positions(local) for layer in layers]
+        return cls(GroundPositions.concatenate(positions),
+                   np.concatenate([np.full(len(p), k, dtype=np.int64) for k, p in enumerate(positions)]),
                    np.concatenate([np.asarray(layer.detections.frame_id, dtype=object) for layer in layers]),
                    np.concatenate([layer.detections.score for layer in layers]),
                    np.concatenate([np.column_stack([layer.u, layer.v]) for layer in layers]),
@@ -200,13 +206,13 @@ class PooledDetections:
 
 
 def _geotags_in_view(local: LocalFrame, geotags: Geotags, pose_groups: Sequence[FramePoses],
-                     edge_buffer_px: float) -> tuple[np.ndarray, np.ndarray]:
-    """Geotags in the local frame (G, 3) and which of them are in view of the flight (G,)."""
+                     edge_buffer_px: float, ground=None) -> tuple[np.ndarray, np.ndarray]:
+    """Geotags in the local frame (G, 3) and which of them are in view of the flight (G,) on ``ground``."""
     if not len(geotags):
         return np.empty((0, 3)), np.zeros(0, bool)
     g_local = local.from_geodetic(geotags.lat, geotags.lon,
                                   np.where(np.isfinite(geotags.height), geotags.height, local.h0))
-    return g_local, in_view(pose_groups, local, g_local, edge_buffer_px).mask
+    return g_local, in_view(pose_groups, local, g_local, edge_buffer_px, ground).mask
 
 
 def _review_order(matched, n_frames, max_score, keys) -> np.ndarray:
@@ -217,20 +223,22 @@ def _review_order(matched, n_frames, max_score, keys) -> np.ndarray:
 
 
 def build_units(layers: Sequence[ReviewLayer], local: LocalFrame, geotags: Geotags, pose_groups: Sequence[FramePoses],
-                params: ReviewParameters = ReviewParameters()) -> ReviewUnits:
+                params: ReviewParameters = ReviewParameters(), ground=None) -> ReviewUnits:
     """The review units of ``layers`` as ``params.units`` says: consensus clusters (the default) or
-    the method's per-frame groups (see the package docstring)."""
+    the method's per-frame groups (see the package docstring). ``ground``: the ground-model factory the
+    layers' detections were placed with (None = the level plane), which the in-view test stands on."""
     if params.units == METHOD_UNITS:
-        return build_method_units(layers, local, geotags, pose_groups, params)
-    return build_consensus_units(layers, local, geotags, pose_groups, params)
+        return build_method_units(layers, local, geotags, pose_groups, params, ground)
+    return build_consensus_units(layers, local, geotags, pose_groups, params, ground)
 
 
 def build_consensus_units(layers: Sequence[ReviewLayer], local: LocalFrame, geotags: Geotags,
                           pose_groups: Sequence[FramePoses],
-                          params: ReviewParameters = ReviewParameters()) -> ReviewUnits:
+                          params: ReviewParameters = ReviewParameters(), ground=None) -> ReviewUnits:
     """Consensus units over the union of ``layers`` (see the package docstring)."""
     det = PooledDetections.of(layers, local)
-    clustering = cluster_detections(det.xy, det.frame, det.score, params.dedup_cm, params.eps_m, params.min_samples)
+    clustering = cluster_detections(det.positions, det.frame, det.score, params.dedup_cm, params.eps_m,
+                                    params.min_samples)
     n = clustering.n_clusters
     det_unit = clustering.detection_cluster
     # Position: the core cell nearest each cluster's mean detection position.
@@ -245,7 +253,7 @@ def build_consensus_units(layers: Sequence[ReviewLayer], local: LocalFrame, geot
     if len(set(keys)) != len(keys):   # two units within a centimetre: cannot happen with eps ≥ 2 cm
         raise InputError("two review units share a position to the centimetre; increase EPS_M")
     # Matching: the hit test of the scores, on the union's clusters.
-    g_local, visible = _geotags_in_view(local, geotags, pose_groups, params.edge_buffer_px)
+    g_local, visible = _geotags_in_view(local, geotags, pose_groups, params.edge_buffer_px, ground)
     fs = score_flight(clustering, g_local[:, :2], visible, params.eps_pred_m)
     matched_ids = [[geotags.ids[g] for g in idx] for idx in fs.cluster_geotags] if n else []
     s = clustering.summary
@@ -286,11 +294,12 @@ def complete_linkage_groups(uv, frame, group_px: float = METHOD_GROUP_PX) -> np.
 
 def build_method_units(layers: Sequence[ReviewLayer], local: LocalFrame, geotags: Geotags,
                        pose_groups: Sequence[FramePoses],
-                       params: ReviewParameters = ReviewParameters(units=METHOD_UNITS)) -> ReviewUnits:
+                       params: ReviewParameters = ReviewParameters(units=METHOD_UNITS),
+                       ground=None) -> ReviewUnits:
     """The method's review units (see the package docstring): detections matched to an in-view geotag
     are set aside one by one; per frame, the rest are grouped by complete linkage at ``group_px``."""
     det = PooledDetections.of(layers, local)
-    g_local, visible = _geotags_in_view(local, geotags, pose_groups, params.edge_buffer_px)
+    g_local, visible = _geotags_in_view(local, geotags, pose_groups, params.edge_buffer_px, ground)
     seen = np.flatnonzero(visible)
     near = match_to_clusters(g_local[seen, :2], np.arange(len(seen)), det.xy, params.eps_pred_m).point
     unmatched = np.ones(len(det.xy), dtype=bool)

@@ -21,8 +21,10 @@ from typing import Sequence
 
 import numpy as np
 
+from ..field.geotags import Geotags
+from ..geometry.ground_record import common_ground
 from ..geometry.poses import FramePoses
-from .evaluation import Detections, Evaluation, Flight, Geotags, evaluate_flights, local_frame_for
+from .evaluation import Detections, Evaluation, Flight, evaluate_flights, local_frame_for
 from .matching import match_to_clusters
 from .operating_point import OperatingPoint
 from .pre_review import ratio
@@ -152,9 +154,13 @@ class Comparison:
 
 
 def compare_detectors(old: Detections, new: Detections, pose_groups: Sequence[FramePoses], geotags: Geotags,
-                      op: OperatingPoint = OperatingPoint(), log: VerdictLog | None = None,
+                      op: OperatingPoint = OperatingPoint(), log: VerdictLog | None = None, ground=None,
                       progress=None, is_canceled=None) -> Comparison:
-    """Score two detection layers of one flight as Evaluate detections does and classify what changed."""
+    """Score two detection layers of one flight as Evaluate detections does and classify what changed.
+
+    Both must have been placed on one ground (a change of ground is not a change of detector), whose
+    factory ``ground`` (``old.ground.factory(dem)``; None = the level plane) the in-view test stands on."""
+    common_ground([old.ground, new.ground], [old.name, new.name])
     local = local_frame_for(pose_groups, geotags)
 
     def half(fraction_start):
@@ -162,8 +168,10 @@ def compare_detectors(old: Detections, new: Detections, pose_groups: Sequence[Fr
             return None
         return lambda f: progress(fraction_start + 0.5 * f)
 
-    before = evaluate_flights([Flight(old, pose_groups, old.name)], geotags, op, log, local, half(0.0), is_canceled)
-    after = evaluate_flights([Flight(new, pose_groups, new.name)], geotags, op, log, local, half(0.5), is_canceled)
+    before = evaluate_flights([Flight(old, pose_groups, old.name, ground)], geotags, op, log, local, half(0.0),
+                              is_canceled)
+    after = evaluate_flights([Flight(new, pose_groups, new.name, ground)], geotags, op, log, local, half(0.5),
+                             is_canceled)
     geotag_xy = local.from_geodetic(geotags.lat, geotags.lon,
                                     np.where(np.isfinite(geotags.height), geotags.height, local.h0))[:, :2] \
         if len(geotags) else np.empty((0, 2))

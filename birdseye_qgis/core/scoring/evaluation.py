@@ -1,14 +1,16 @@
 """Evaluate detections of one or more flights against geotags, from geodetic inputs."""
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import asdict, dataclass, field
 from typing import Sequence
 
 import numpy as np
 
-from ..detect.clustering import Clustering, cluster_detections
-from ..errors import Cancelled, InputError
+from ..detect.clustering import Clustering, GroundPositions, cluster_detections
+from ..errors import InputError, check_cancel
+from ..field.geotags import Geotags
 from ..geometry.geodesy import LocalFrame
+from ..geometry.ground_record import GroundRecord
 from ..geometry.poses import FramePoses
 from .matching import InView, in_view
 from .operating_point import OperatingPoint
@@ -19,7 +21,8 @@ from .verdicts import VerdictLog, units_of_clusters
 
 @dataclass
 class Detections:
-    """One detection layer: WGS84 positions (ellipsoidal heights, NaN allowed), frame ids, scores."""
+    """One detection layer: WGS84 positions (ellipsoidal heights, NaN allowed), frame ids, scores, and
+    the ground model Detect placed them with (``ground``)."""
 
     lat: np.ndarray
     lon: np.ndarray
@@ -30,6 +33,7 @@ class Detections:
     model: str = ""
     model_digest: str = ""
     threshold: float | None = None
+    ground: GroundRecord = GroundRecord()
 
     def __post_init__(self):
         for n in ("lat", "lon", "height", "score"):
@@ -39,39 +43,20 @@ class Detections:
     def __len__(self) -> int:
         return len(self.lat)
 
-    def local_xy(self, local: LocalFrame) -> np.ndarray:
-        h = np.where(np.isfinite(self.height), self.height, local.h0)
-        return local.from_geodetic(self.lat, self.lon, h)[:, :2] if len(self) else np.empty((0, 2))
+    def ground_positions(self, local: LocalFrame) -> GroundPositions:
+        return GroundPositions.from_geodetic(local, self.lat, self.lon, self.height)
 
 
 @dataclass
 class Flight:
-    """One flight to score: its detections and its processed frames (pose groups, one per camera)."""
+    """One flight to score: its detections, its processed frames (pose groups, one per camera) and the
+    ground-model factory the detections were placed with (``detections.ground.factory(dem)``; None = the
+    level plane), which the in-view test stands on."""
 
     detections: Detections
     pose_groups: Sequence[FramePoses]
     name: str = ""
-
-
-@dataclass
-class Geotags:
-    """Surveyed targets: ids and WGS84 positions (heights may be NaN: the ground model places them)."""
-
-    ids: np.ndarray
-    lat: np.ndarray
-    lon: np.ndarray
-    height: np.ndarray
-
-    def __post_init__(self):
-        self.ids = np.asarray(self.ids).reshape(-1)
-        for n in ("lat", "lon", "height"):
-            setattr(self, n, np.asarray(getattr(self, n), dtype=float).reshape(-1))
-
-    def __len__(self) -> int:
-        return len(self.lat)
-
-    def subset(self, index) -> "Geotags":
-        return Geotags(self.ids[index], self.lat[index], self.lon[index], self.height[index])
+    ground: object = None
 
 
 @dataclass
@@ -83,6 +68,7 @@ class FlightEvaluation:
     n_detections: int
     n_added: int = 0
     cluster_units: list = field(default_factory=list)
+    ground: GroundRecord = GroundRecord()
 
 
 @dataclass
@@ -104,7 +90,8 @@ class Evaluation:
         out["flights"] = []
         for i, f in enumerate(self.flights):
             row = {"name": f.name, "n_detections": int(f.n_detections), "n_frames": int(f.in_view.n_frames),
-                   "n_frames_without_ground": int(f.in_view.n_frames_without_ground)}
+                   "n_frames_without_ground": int(f.in_view.n_frames_without_ground),
+                   "ground": asdict(f.ground)}
             row.update(f.score.counts.to_dict())
             if self.post is not None:
                 row["post"] = {conv: p.flights[i].to_dict() for conv, p in self.post.items()}
@@ -156,20 +143,19 @@ def evaluate_flights(flights: Sequence[Flight], geotags: Geotags, op: OperatingP
     results = []
     n = len(flights)
     for i, flight in enumerate(flights):
-        if is_canceled is not None and is_canceled():
-            raise Cancelled()
+        check_cancel(is_canceled)
         det = flight.detections
         keep = np.ones(len(det), dtype=bool) if op.threshold is None else det.score >= op.threshold
-        xy = det.local_xy(local)[keep]
-        clustering = cluster_detections(xy, det.frame_id[keep], det.score[keep], op.dedup_cm, op.eps_m,
+        positions = det.ground_positions(local).subset(keep)
+        clustering = cluster_detections(positions, det.frame_id[keep], det.score[keep], op.dedup_cm, op.eps_m,
                                         op.min_samples)
-        view = in_view(flight.pose_groups, local, geotag_local, op.edge_buffer_px)
+        view = in_view(flight.pose_groups, local, geotag_local, op.edge_buffer_px, flight.ground)
         score = score_flight(clustering, geotag_local[:, :2], view.mask, op.eps_pred_m)
-        ev = FlightEvaluation(flight.name or det.name, clustering, score, view, int(keep.sum()))
+        ev = FlightEvaluation(flight.name or det.name, clustering, score, view, int(keep.sum()), ground=det.ground)
         if log is not None:
             ev.cluster_units = units_of_clusters(clustering, unit_xy, unit_keys, op.eps_pred_m)
             if len(added_local):
-                seen = in_view(flight.pose_groups, local, added_local, op.edge_buffer_px).mask
+                seen = in_view(flight.pose_groups, local, added_local, op.edge_buffer_px, flight.ground).mask
                 ev.n_added = int(countable_added_targets(added_local[:, :2], seen, clustering, geotag_local[:, :2],
                                                          op.eps_pred_m).sum())
         results.append(ev)

@@ -6,16 +6,17 @@ from typing import Sequence
 
 import numpy as np
 
-from ..errors import Cancelled
+from ..errors import check_cancel
 from ..geometry.geodesy import LocalFrame
-from ..geometry.ground import LevelPlaneGround
+from ..geometry.ground import LevelPlaneGround, placeable_frames
 from ..geometry.poses import FrameGeometry, FramePoses
 from ..geometry.projection import project_in_view
 
 
 @dataclass
 class InView:
-    """``mask`` (G,) True for points in view of at least one processed frame; frame counts."""
+    """``mask`` (G,) True for points in view of at least one processed frame; frame counts
+    (``n_frames_without_ground``: frames left out for want of the ground height their ground model needs)."""
 
     mask: np.ndarray
     n_frames: int
@@ -23,26 +24,32 @@ class InView:
 
 
 def in_view(pose_groups: Sequence[FramePoses], local: LocalFrame, points, edge_buffer_px: float = 0.0,
-            progress=None, is_canceled=None) -> InView:
+            ground=None, progress=None, is_canceled=None) -> InView:
     """Which local points (G, 3) pass the in-frame test in at least one frame of ``pose_groups``.
 
-    Frames without a ground height are left out (detect skips them, so they were not processed).
+    Each point is placed on the ground its frame sees, built by ``ground`` (a factory ``FrameGeometry ->
+    GroundModel`` as Detect takes it, e.g. :class:`~.dem.DemGroundFactory`; None = the level plane), so
+    the test stands on the ground the detections were placed on. Points the ground hides from a frame (a
+    DEM's ridge) are not in view of it. Frames without a ground height are left out and counted when the
+    ground model needs one (the level plane, the method's plane: Detect skips them, so they were not
+    processed); a DEM places them.
     """
     points = np.asarray(points, dtype=float).reshape(-1, 3)
     mask = np.zeros(len(points), dtype=bool)
     n_frames = n_skipped = 0
     for g, poses in enumerate(pose_groups):
-        if is_canceled is not None and is_canceled():
-            raise Cancelled()
-        has_ground = np.isfinite(poses.ground_height)
-        n_skipped += int((~has_ground).sum())
-        if not has_ground.all():
-            poses = poses.subset(np.flatnonzero(has_ground))
+        check_cancel(is_canceled)
+        placeable = placeable_frames(poses, ground)
+        n_skipped += int((~placeable).sum())
+        if not placeable.all():
+            poses = poses.subset(np.flatnonzero(placeable))
         n_frames += len(poses)
         if len(poses) and len(points):
             geom = FrameGeometry(poses, local)
-            proj = project_in_view(geom, points, LevelPlaneGround(geom), edge_buffer_px)
-            mask[proj.point_idx] = True
+            model = (ground or LevelPlaneGround)(geom)
+            proj = project_in_view(geom, points, model, edge_buffer_px)
+            hidden = model.occluded(proj.frame_idx, model.place(proj.frame_idx, points[proj.point_idx]))
+            mask[proj.point_idx[~hidden]] = True
         if progress is not None:
             progress((g + 1) / len(pose_groups))
     return InView(mask, n_frames, n_skipped)

@@ -14,7 +14,7 @@ from typing import Sequence
 
 import numpy as np
 
-from ..detect.clustering import cluster_detections
+from ..detect.clustering import GroundPositions, cluster_detections
 from ..errors import InputError
 from .operating_point import OperatingPoint
 from .pre_review import PreCounts, ratio, score_flight
@@ -105,7 +105,7 @@ def pixel_matches(det_frame, det_uv, label_frame, label_uv, radius_px: float) ->
 class ScreenRun:
     """One checkpoint run over one block of frames, at the screening threshold.
 
-    Detections: ``frame_id`` (N,), ``uv`` (N, 2) pixels, ``xy`` (N, 2) local metres; ``n_frames``
+    Detections: ``frame_id`` (N,), ``uv`` (N, 2) pixels, ``positions`` on the ground; ``n_frames``
     processed; pixel labels ``label_frame_id`` (L,), ``label_uv`` (L, 2) (in-view geotags projected
     into each frame); ``geotag_xy`` (G, 2) the geotags in view of the block's frames, local frame.
     """
@@ -115,7 +115,7 @@ class ScreenRun:
     n_frames: int
     frame_id: np.ndarray
     uv: np.ndarray
-    xy: np.ndarray
+    positions: GroundPositions
     label_frame_id: np.ndarray
     label_uv: np.ndarray
     geotag_xy: np.ndarray
@@ -190,7 +190,7 @@ def screen_checkpoints(runs: Sequence[ScreenRun], op: OperatingPoint = Operating
         counts, tp, n_det, n_lab, n_frames = PreCounts(), 0, 0, 0, 0
         per_frame = {}
         for r in mine:
-            clustering = cluster_detections(r.xy, r.frame_id, None, op.dedup_cm, op.eps_m, op.min_samples)
+            clustering = cluster_detections(r.positions, r.frame_id, None, op.dedup_cm, op.eps_m, op.min_samples)
             g = np.asarray(r.geotag_xy, dtype=float).reshape(-1, 2)
             counts = counts + score_flight(clustering, g, np.ones(len(g), dtype=bool), op.eps_pred_m).counts
             tp += pixel_matches(r.frame_id, r.uv, r.label_frame_id, r.label_uv, radius_px)

@@ -20,8 +20,15 @@ from typing import Mapping, Sequence
 
 import numpy as np
 
-from ..detect.clustering import DEFAULT_DEDUP_CM, cluster_centroids_and_extents, dbscan, deduplicate, neighbour_graph
-from ..errors import Cancelled, InputError
+from ..detect.clustering import (
+    DEFAULT_DEDUP_CM,
+    GroundPositions,
+    cluster_centroids_and_extents,
+    dbscan,
+    deduplicate,
+    neighbour_graph,
+)
+from ..errors import InputError, check_cancel
 from .matching import match_to_clusters
 from .pre_review import f1_geo
 
@@ -44,22 +51,22 @@ THRESHOLD_TOLERANCE = 1e-9
 class SweepFlight:
     """One flight seen by one checkpoint.
 
-    ``detections[t]``: ground positions (N, 2) in a local metric frame of the detections a peak
+    ``detections[t]``: the ground positions (local frame and WGS84) of the detections a peak
     extraction at threshold t gives, one entry per threshold of the grid; ``n_frames`` the frames
     processed; ``geotag_xy`` (G, 2) the in-view geotags in the same frame.
     """
 
-    detections: Mapping[float, np.ndarray]
+    detections: Mapping[float, GroundPositions]
     geotag_xy: np.ndarray
     n_frames: int
     name: str = ""
     checkpoint: str = ""
     model_digest: str = ""
 
-    def at_threshold(self, threshold: float) -> np.ndarray:
-        for t, xy in self.detections.items():
+    def at_threshold(self, threshold: float) -> GroundPositions:
+        for t, positions in self.detections.items():
             if abs(float(t) - float(threshold)) <= THRESHOLD_TOLERANCE:
-                return np.asarray(xy, dtype=float).reshape(-1, 2)
+                return positions
         have = ", ".join(f"{float(t):g}" for t in sorted(self.detections)) or "none"
         raise InputError(f"{self.checkpoint or 'the checkpoint'} on {self.name or 'a flight'}: no detections "
                          f"made at threshold {float(threshold):g} (thresholds detected at: {have})",
@@ -229,9 +236,9 @@ def pareto_front(recall, gmcf, eligible=None) -> np.ndarray:
 @dataclass
 class DetectionRun:
     """Detections of one checkpoint on one flight from one peak extraction at ``threshold`` (a Detect
-    layer): ground positions (N, 2) in a local metric frame; ``source`` names the layer in messages."""
+    layer): their ground positions; ``source`` names the layer in messages."""
 
-    xy: np.ndarray
+    positions: GroundPositions
     threshold: float | None
     flight: str
     checkpoint: str
@@ -269,8 +276,8 @@ def flights_from_runs(runs: Sequence[DetectionRun], geotag_xy: Mapping[str, np.n
                              f"{', '.join(missing)}, which other layers were detected at: give every checkpoint "
                              "and flight a layer at every threshold, or give CHECKPOINTS to re-run the peak "
                              "extraction at each threshold", field="DETECTIONS")
-        flights.append(SweepFlight({t: r.xy for t, r in per_threshold.items()}, geotag_xy[flight], n_frames[flight],
-                                   flight, checkpoint, digest))
+        flights.append(SweepFlight({t: r.positions for t, r in per_threshold.items()}, geotag_xy[flight],
+                                   n_frames[flight], flight, checkpoint, digest))
     return flights, thresholds
 
 
@@ -314,14 +321,14 @@ def sweep(flights: Sequence[SweepFlight], grid: SweepGrid,
             counts["n_in_view"][ci] += len(geotags)
             counts["n_frames"][ci] += int(flight.n_frames)
             for ti, t in enumerate(grid.thresholds):
-                xy = flight.at_threshold(t)
+                positions = flight.at_threshold(t)
+                xy = positions.xy
                 counts["n_detections"][ci, ti] += len(xy)
-                points = deduplicate(xy, grid.dedup_cm / 100.0)
+                points = deduplicate(positions, grid.dedup_cm / 100.0)
                 graph = neighbour_graph(points.xy, eps_max)
                 for ei, eps in enumerate(grid.eps_m):
                     for mi, m in enumerate(grid.min_samples):
-                        if is_canceled is not None and is_canceled():
-                            raise Cancelled()
+                        check_cancel(is_canceled)
                         result = dbscan(graph, eps, int(m))
                         nc = result.n_clusters
                         _, extent = cluster_centroids_and_extents(xy, result.labels[points.inverse], nc)

@@ -65,8 +65,8 @@ from typing import Callable, Optional
 
 import numpy as np
 
-from ..errors import Cancelled, InputError
-from ..geometry.camera import CameraModel, write_kalibr_yaml
+from ..errors import InputError, check_cancel
+from ..geometry.camera import NADIR_ROTATION, CameraModel, write_kalibr_yaml
 from ..geometry.geodesy import (
     LocalFrame,
     ensure_proj_data,
@@ -77,6 +77,7 @@ from ..geometry.geodesy import (
 )
 from ..geometry.poses import FrameGeometry, FramePoses
 from ..geometry.projection import footprints
+from ..geometry.rigid import RigidTransform
 from ..geometry.rotations import quat_to_rotmat, rotmat_to_euler_zyx, rotmat_to_quat, so3_exp
 from .dji_images import DjiMetadataErrors, dji_camera_model, dji_frame_metadata, lens_for, write_frame
 from .field import FEATURE_NAMES, P_CONTRAST, P_OUTER, P_R, FieldScene
@@ -89,10 +90,8 @@ from .terrain import DemTerrain, FlatTerrain, Terrain, synthetic_terrain, write_
 DEPLOYED_SIZE = (1920, 1200)
 DEPLOYED_INTRINSICS = (4264.4945, 4262.8927, 958.4594, 592.5033)
 DEPLOYED_DISTORTION = (-0.08, 0.12, 4e-4, -3e-4, 0.0)
-# Nadir camera, image up = forward: camera x = body right, y = −body forward, z = body down …
-NADIR_ROTATION = np.array([[0.0, 1.0, 0.0], [-1.0, 0.0, 0.0], [0.0, 0.0, 1.0]])
-# … mounted with a small boresight misalignment (rad, about camera x, y, z) and a lever arm (body
-# forward, right, down; m). The radar altimeter sits behind and below the IMU.
+# The nadir camera (NADIR_ROTATION) is mounted with a small boresight misalignment (rad, about camera x, y, z)
+# and a lever arm (body forward, right, down; m). The radar altimeter sits behind and below the IMU.
 CAMERA_BORESIGHT_RAD = (0.004, -0.003, 0.006)
 CAMERA_LEVER_ARM_M = (0.07, 0.02, 0.09)
 RADAR_LEVER_ARM_M = (-0.05, 0.0, 0.12)
@@ -186,6 +185,7 @@ class CampaignConfig:
     forward_overlap: float = 0.8
     dji_dewarped: bool = False
     ortho_pixel_m: float = ORTHO_PIXEL_M
+    look_alike_density: float = 1.0
 
     def validated(self) -> "CampaignConfig":
         """This configuration, checked; raises :class:`InputError` naming the parameter."""
@@ -199,6 +199,8 @@ class CampaignConfig:
         need(self.field_width_m * self.field_length_m <= 250_000, "FIELD_WIDTH_M",
              "the field is larger than 25 ha; simulate a part of it")
         need(-80 <= self.site_lat <= 84, "SITE_LAT", f"must lie in −80…84°, got {self.site_lat}")
+        need(0 <= self.look_alike_density <= 20, "LOOK_ALIKE_DENSITY",
+             f"must lie in 0…20 (times the default density), got {self.look_alike_density}")
         need(-180 <= self.site_lon <= 180, "SITE_LON", f"must lie in −180…180°, got {self.site_lon}")
         need(1.0 <= self.altitude_m <= 120.0, "ALTITUDE_M", f"must lie in 1…120 m, got {self.altitude_m}")
         need(0.2 <= self.speed_ms <= 20.0, "SPEED_MS", f"must lie in 0.2…20 m/s, got {self.speed_ms}")
@@ -265,11 +267,10 @@ def deployed_camera(width: int = 1920, height: int = 1200) -> CameraModel:
     sx, sy = width / DEPLOYED_SIZE[0], height / DEPLOYED_SIZE[1]
     fx, fy, cx, cy = DEPLOYED_INTRINSICS
     r_cam_imu = so3_exp(np.asarray(CAMERA_BORESIGHT_RAD)) @ NADIR_ROTATION
-    t_cam_imu = np.eye(4)
-    t_cam_imu[:3, :3] = r_cam_imu
-    t_cam_imu[:3, 3] = -r_cam_imu @ np.asarray(CAMERA_LEVER_ARM_M)
+    imu_from_cam = RigidTransform(r_cam_imu.T, CAMERA_LEVER_ARM_M)  # the camera's pose on the body
     return CameraModel(width, height, fx * sx, fy * sy, (cx + 0.5) * sx - 0.5, (cy + 0.5) * sy - 0.5,
-                       DEPLOYED_DISTORTION, t_cam_imu, tuple(RADAR_LEVER_ARM_M), source="simulated")
+                       DEPLOYED_DISTORTION, imu_from_cam.inverse().matrix, tuple(RADAR_LEVER_ARM_M),
+                       source="simulated")
 
 
 @on_python_thread
@@ -347,7 +348,8 @@ def simulate_campaign(config: CampaignConfig, output_folder, progress: Callable[
     along_east = cfg.field_width_m >= cfg.field_length_m
     try:
         scene = FieldScene(seeds[0], domain, (cfg.field_width_m / 2, cfg.field_length_m / 2), cfg.n_targets,
-                           field_axis_azimuth=math.pi / 2 if along_east else 0.0)
+                           field_axis_azimuth=math.pi / 2 if along_east else 0.0,
+                           distractor_density=cfg.look_alike_density)
     except ValueError as exc:
         raise InputError(str(exc), field="N_TARGETS") from exc
     feature_lat, feature_lon, _ = local.to_geodetic(np.c_[scene.features.xy, np.zeros(len(scene.features))])
@@ -509,8 +511,7 @@ def _render_frames(renderer: FrameRenderer, geometry: FrameGeometry, t_frames, p
     if paths:
         paths[0].parent.mkdir(exist_ok=True)
     for i, path in enumerate(paths):
-        if is_canceled is not None and is_canceled():
-            raise Cancelled()
+        check_cancel(is_canceled)
         image = renderer.render(geometry, i, t_frames[i], photometry[i], np.random.default_rng(frame_seeds[i]))
         if write is not None:
             write(i, path, image)

@@ -184,7 +184,7 @@ class ReviewDock(QgsDockWidget):
         try:
             params = self._read_params()
             inputs = read_review_inputs(detection_layers, frame_layer, geotag_layer)
-            units = build_units(inputs.layers, inputs.local, inputs.geotags, inputs.pose_groups, params)
+            units = build_units(inputs.layers, inputs.local, inputs.geotags, inputs.pose_groups, params, inputs.ground)
             store = VerdictStore(store_path)
         except (InputError, OSError, ValueError) as exc:   # a message naming the layer, field or file
             show_banner(self.banner, [str(exc)], error=True)
@@ -197,19 +197,27 @@ class ReviewDock(QgsDockWidget):
         reviewer = self.reviewer_edit.text().strip() or default_reviewer()
         QgsSettings().setValue(SETTINGS_REVIEWER, reviewer)
         self.session = ReviewSession(store, units, reviewer, inputs.digests, params)
-        self.frames = FrameIndex(inputs.pose_groups, inputs.images, inputs.local)
+        self.frames = FrameIndex(inputs.pose_groups, inputs.images, inputs.local, inputs.ground)
         g = inputs.geotags
         self.geotag_local = inputs.local.from_geodetic(g.lat, g.lon, np.where(np.isfinite(g.height), g.height,
                                                                              inputs.local.h0)) if len(g) else None
         self.geotag_labels = [str(i) for i in g.ids]
-        self._flights = [Flight(layer.detections, inputs.pose_groups, layer.name) for layer in inputs.layers]
+        self._flights = [Flight(layer.detections, inputs.pose_groups, layer.name, inputs.ground)
+                         for layer in inputs.layers]
         self.chip_loader.reset()
         self.input_check = check_inputs(self.session.ledger.rows, inputs.digests,
                                            {**params.postprocessing(), **params.matching()}, units.keys)
-        if self.input_check.ok:
-            self.banner.hide()
+        notes = [] if self.input_check.ok else self.input_check.messages()
+        if inputs.ground_fallback:
+            notes.append(tr("The detections were placed on {ground}, which cannot be used here ({reason}). Chips and "
+                            "geotags in view stand on the level plane instead: positions in the chips and the scores "
+                            "may differ from those of Evaluate detections given that DEM.").format(
+                ground=inputs.layers[0].detections.ground.describe(), reason=inputs.ground_fallback))
+        if notes:
+            show_banner(self.banner, notes, title=None if not self.input_check.ok
+                        else tr("The review stands on the level plane, not on the detections' DEM"))
         else:
-            show_banner(self.banner, self.input_check.messages())
+            self.banner.hide()
         self.layer_filter.blockSignals(True)
         while self.layer_filter.count() > 1:
             self.layer_filter.removeItem(1)

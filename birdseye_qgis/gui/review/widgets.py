@@ -445,12 +445,13 @@ def show_chips(strip: ChipStrip, legend_label: QLabel, plans, images, n_frames: 
                          + tr("{shown} of {n} frames").format(shown=len(plans), n=n_frames))
 
 
-def show_banner(label: QLabel, messages, error: bool = False) -> None:
-    """A warning (inputs changed since verdicts were recorded) or an error (cannot start) above the review."""
+def show_banner(label: QLabel, messages, error: bool = False, title: str | None = None) -> None:
+    """A warning (by default: inputs changed since verdicts were recorded) or an error (cannot start) above
+    the review."""
     colour, background = ("#c62828", "#fdecea") if error else ("#ef8f00", "#fff4e5")
     label.setStyleSheet(f"QLabel{{background:{background};border-left:5px solid {colour};"
                         "border-radius:3px;padding:6px;}")
-    title = tr("Cannot start the review") if error else tr("Inputs changed since verdicts were recorded")
+    title = title or (tr("Cannot start the review") if error else tr("Inputs changed since verdicts were recorded"))
     label.setText(f"<b>{title}</b><ul style='margin:2px 0 0 -20px'>" +
                   "".join(f"<li>{m}</li>" for m in messages) + "</ul>")
     label.show()

@@ -9,7 +9,8 @@ from scipy.optimize import minimize
 
 from birdseye.birdseye_qgis.core.design import sensor_bound as sb
 from birdseye.birdseye_qgis.core.errors import Cancelled, InputError
-from birdseye.birdseye_qgis.core.geometry.rotations import euler_zyx_to_rotmat, invert_transform, se3_exp
+from birdseye.birdseye_qgis.core.geometry.rigid import RigidTransform
+from birdseye.birdseye_qgis.core.geometry.rotations import euler_zyx_to_rotmat, se3_exp
 
 DEPLOYED = sb.Intrinsics(fx=4264.4945, fy=4262.8927, cx=958.4594, cy=592.5033, width=1920, height=1200)
 DEPLOYED_SIGMAS = [0.010, 0.010, 0.060, 0.04, 0.04, 0.13]
@@ -29,7 +30,7 @@ def _back_project(intr, u, v, depth):
 @pytest.mark.parametrize("depth", [3.0, 10.0, 20.0, 80.0])
 def test_jacobian_matches_central_differences_of_the_full_projection(depth):
     t_cam_world = se3_exp(np.array([0.3, -0.2, 1.5, 0.1, -0.2, 0.3]))
-    t_world_cam = invert_transform(t_cam_world)
+    t_world_cam = RigidTransform.from_matrix(t_cam_world).inverse().matrix
     pixels = [(0, 0), (1920, 0), (0, 1200), (1920, 1200), (DEPLOYED.cx, DEPLOYED.cy), (300.5, 950.25)]
     h = 1e-6
     for u, v in pixels:

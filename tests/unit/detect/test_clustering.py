@@ -3,14 +3,25 @@ import numpy as np
 import pytest
 
 from birdseye.birdseye_qgis.core.detect.clustering import (
+    GRID_TILE_DEG,
+    GroundPositions,
     cluster_detections,
     cluster_hulls,
     dbscan,
     deduplicate,
+    fixed_grid_cells,
     neighbour_graph,
     summarize_clusters,
 )
 from birdseye.birdseye_qgis.core.errors import InputError
+from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame
+
+# A local frame at a corner of the fixed de-duplication grid: its cells are the floor of local x/y / cell.
+CORNER = LocalFrame(1000 * GRID_TILE_DEG, 200 * GRID_TILE_DEG)
+
+
+def on_ground(xy, local=CORNER) -> GroundPositions:
+    return GroundPositions.from_local(local, np.asarray(xy, dtype=float))
 
 
 def test_deduplicate_merges_detections_of_one_cell_into_their_mean():
@@ -18,7 +29,7 @@ def test_deduplicate_merges_detections_of_one_cell_into_their_mean():
                    [0.031, 0.002],                      # cell (1, 0)
                    [-0.001, 0.005],                     # cell (-1, 0): floor, not truncation
                    [0.011, 0.029]])                     # cell (0, 0)
-    d = deduplicate(xy, 0.03)
+    d = deduplicate(on_ground(xy), 0.03)
     assert len(d) == 3
     cell00 = d.inverse[0]
     assert d.inverse[1] == cell00 and d.inverse[4] == cell00
@@ -32,9 +43,9 @@ def test_deduplication_and_labels_do_not_depend_on_detection_order():
     rng = np.random.default_rng(3)
     xy = np.concatenate([rng.normal([1, 1], 0.03, (60, 2)), rng.normal([3, 1], 0.03, (60, 2)),
                          rng.uniform(0, 4, (30, 2))])
-    a = cluster_detections(xy, np.arange(len(xy)), rng.uniform(0, 1, len(xy)))
+    a = cluster_detections(on_ground(xy), np.arange(len(xy)), rng.uniform(0, 1, len(xy)))
     perm = rng.permutation(len(xy))
-    b = cluster_detections(xy[perm], np.arange(len(xy))[perm], None)
+    b = cluster_detections(on_ground(xy[perm]), np.arange(len(xy))[perm], None)
     np.testing.assert_allclose(a.points.xy, b.points.xy, atol=1e-12)
     np.testing.assert_array_equal(a.dbscan.labels, b.dbscan.labels)
     np.testing.assert_array_equal(a.detection_cluster[perm], b.detection_cluster)
@@ -45,7 +56,7 @@ def test_chained_points_form_one_cluster_with_border_ends():
     points (themselves and two neighbours) within eps and are core; the two ends have two and are
     border points; DBSCAN chains all nine into one 64 cm long cluster."""
     xy = np.column_stack([np.arange(9) * 0.08, np.zeros(9)])
-    c = cluster_detections(xy, np.arange(9), None, dedup_cm=3, eps_m=0.10, min_samples=3)
+    c = cluster_detections(on_ground(xy), np.arange(9), None, dedup_cm=3, eps_m=0.10, min_samples=3)
     assert c.n_clusters == 1
     np.testing.assert_array_equal(c.dbscan.labels, 0)
     np.testing.assert_array_equal(c.dbscan.core, [False] + [True] * 7 + [False])
@@ -56,7 +67,7 @@ def test_chained_points_form_one_cluster_with_border_ends():
 
 def test_isolated_and_sparse_points_are_noise():
     xy = np.array([[0, 0], [0.05, 0], [5, 5], [10, 0]], dtype=float)
-    c = cluster_detections(xy, None, None, eps_m=0.10, min_samples=3)
+    c = cluster_detections(on_ground(xy), None, None, eps_m=0.10, min_samples=3)
     assert c.n_clusters == 0
     np.testing.assert_array_equal(c.dbscan.labels, -1)
     np.testing.assert_array_equal(c.detection_cluster, -1)
@@ -66,9 +77,9 @@ def test_isolated_and_sparse_points_are_noise():
 def test_min_samples_counts_distinct_cells_not_repeated_detections():
     """Twenty detections in one 3 cm cell are one de-duplicated point: never a cluster at min_samples 3."""
     xy = np.full((20, 2), 0.005) + np.linspace(0, 0.02, 20)[:, None]
-    c = cluster_detections(xy, np.arange(20), None, dedup_cm=3, eps_m=0.10, min_samples=3)
+    c = cluster_detections(on_ground(xy), np.arange(20), None, dedup_cm=3, eps_m=0.10, min_samples=3)
     assert len(c.points) == 1 and c.n_clusters == 0
-    c1 = cluster_detections(xy, np.arange(20), None, dedup_cm=3, eps_m=0.10, min_samples=1)
+    c1 = cluster_detections(on_ground(xy), np.arange(20), None, dedup_cm=3, eps_m=0.10, min_samples=1)
     assert c1.n_clusters == 1 and c1.summary.n_detections[0] == 20 and c1.summary.n_frames[0] == 20
 
 
@@ -97,7 +108,7 @@ def test_dbscan_matches_scikit_learn_on_raw_points_for_every_eps_and_min_samples
     centres = rng.uniform(0, 3, (12, 2))
     xy = np.concatenate([centres[rng.integers(0, 12, 400)] + rng.normal(0, 0.04, (400, 2)),
                          rng.uniform(0, 3, (150, 2))])
-    points = deduplicate(xy, 0.03)
+    points = deduplicate(on_ground(xy), 0.03)
     graph = neighbour_graph(points.xy, 0.16)
     for eps in (0.05, 0.08, 0.12, 0.16):
         for m in (1, 2, 3, 5, 8):
@@ -158,17 +169,17 @@ def test_hulls_contain_every_detection_with_the_buffer_and_stay_close_to_the_exa
 
 def test_bad_parameters_are_input_errors_naming_the_parameter():
     with pytest.raises(InputError, match="DEDUP_CM"):
-        deduplicate(np.zeros((2, 2)), 0.0)
+        deduplicate(on_ground(np.zeros((2, 2))), 0.0)
     with pytest.raises(InputError, match="EPS_M"):
         neighbour_graph(np.zeros((2, 2)), 0.0)
     with pytest.raises(InputError, match="MIN_SAMPLES"):
         dbscan(neighbour_graph(np.zeros((2, 2)), 0.1), 0.1, 0)
     with pytest.raises(InputError, match="no position"):
-        deduplicate(np.array([[0.0, np.nan]]), 0.03)
+        on_ground([[0.0, np.nan]])
 
 
 def test_empty_detections_give_no_clusters():
-    c = cluster_detections(np.empty((0, 2)), np.empty(0), np.empty(0))
+    c = cluster_detections(on_ground(np.empty((0, 2))), np.empty(0), np.empty(0))
     assert c.n_clusters == 0 and len(c.points) == 0 and len(c.summary) == 0
     assert cluster_hulls(np.empty((0, 2)), np.empty(0, int), 0).shape == (0, 32, 2)
 
@@ -199,3 +210,51 @@ def test_a_border_point_between_two_clusters_joins_the_first_as_in_scikit_learn(
         np.testing.assert_array_equal(ours.labels, ref.labels_)
         middle = list(order).index(4)
         assert not ours.core[middle] and ours.labels[middle] == 0 and ours.n_clusters == 2
+
+
+def _simulated_flight(site, seed=11, n=4000):
+    """Detections (WGS84) of a simulated flight: 150 targets of a 40 m × 40 m field, each seen a few tens
+    of times with 4 cm scatter, and background false alarms."""
+    rng = np.random.default_rng(seed)
+    centres = rng.uniform(0, 40, (150, 2))
+    xy = np.concatenate([centres[rng.integers(0, 150, n)] + rng.normal(0, 0.04, (n, 2)),
+                         rng.uniform(0, 40, (n // 4, 2))])
+    return site.to_geodetic(np.column_stack([xy, np.zeros(len(xy))]))
+
+
+def test_a_flights_clusters_do_not_depend_on_where_the_runs_local_frame_lies():
+    """The same detections, clustered in local frames whose origin moved by 1.5 cm, or by kilometres (what
+    other flights in a run do to the frame's mid-range origin), give the same cells and the same clusters.
+    A grid laid out in the run's own frame would not: the check below shows it regroups the cells."""
+    site = LocalFrame(52.123456, 5.432101, 12.0)
+    lat, lon, h = _simulated_flight(site)
+    reference = cluster_detections(GroundPositions.from_geodetic(site, lat, lon, h), None, None, 3, 0.20, 5)
+    assert reference.n_clusters > 100
+    for shift_east_north in ((0.015, 0.0), (0.0, 0.015), (2500.0, -1800.0)):
+        moved_lat, moved_lon, _ = site.to_geodetic(np.array([*shift_east_north, 0.0]))
+        moved = LocalFrame(float(moved_lat), float(moved_lon), site.h0)
+        positions = GroundPositions.from_geodetic(moved, lat, lon, h)
+        again = cluster_detections(positions, None, None, 3, 0.20, 5)
+        np.testing.assert_array_equal(again.points.inverse, reference.points.inverse)
+        np.testing.assert_array_equal(again.points.count, reference.points.count)
+        np.testing.assert_array_equal(again.detection_cluster, reference.detection_cluster)
+        np.testing.assert_array_equal(again.summary.n_detections, reference.summary.n_detections)
+        local_grid = np.floor(positions.xy / 0.03).astype(np.int64)
+        _, local_cells = np.unique(local_grid, axis=0, return_inverse=True)
+        _, fixed_cells = np.unique(np.floor(site.from_geodetic(lat, lon, h)[:, :2] / 0.03), axis=0,
+                                   return_inverse=True)
+        assert not np.array_equal(local_cells.reshape(-1), fixed_cells.reshape(-1))
+
+
+def test_fixed_grid_cells_are_cell_sized_squares_on_the_ground():
+    """Positions 1 cm apart along a line 2 m long fall into consecutive cells, 3 or 4 to a 3 cm cell; each
+    tile's grid starts at its south-west corner."""
+    corner = LocalFrame(1000 * GRID_TILE_DEG, 200 * GRID_TILE_DEG)
+    east = np.arange(200) * 0.01 + 0.005
+    lat, lon, _ = corner.to_geodetic(np.column_stack([east, np.full(200, 0.015), np.zeros(200)]))
+    cells = fixed_grid_cells(lat, lon, 0.03)
+    np.testing.assert_array_equal(cells[:, :2], [[1000, 200]] * 200)
+    np.testing.assert_array_equal(cells[:, 2], np.floor(east / 0.03))
+    np.testing.assert_array_equal(cells[:, 3], 0)
+    west = fixed_grid_cells(*corner.to_geodetic(np.array([[-0.005, 0.015, 0.0]]))[:2], 0.03)
+    assert tuple(west[0, :2]) == (1000, 199)

@@ -6,26 +6,15 @@ resampling and back-projection can each be checked against an independent deriva
 """
 import hashlib
 
+import cv2
 import numpy as np
+import onnx
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from onnx import TensorProto, helper
 
-from birdseye.birdseye_qgis.core.detect.model_metadata import ModelMetadata, ModelMetadataError, embed_metadata
-from birdseye.birdseye_qgis.core.errors import Cancelled, InputError
-from birdseye.birdseye_qgis.core.geometry.camera import CameraModel
-from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame
-from birdseye.birdseye_qgis.core.geometry.ground import LevelPlaneGround
-from birdseye.birdseye_qgis.core.geometry.poses import FrameGeometry, FramePoses
-from birdseye.birdseye_qgis.core.geometry.projection import pixel_to_ground, project_pairs
-from birdseye.birdseye_qgis.core.geometry.rotations import euler_zyx_to_rotmat, rotmat_to_quat
-
-onnx = pytest.importorskip("onnx")
-pytest.importorskip("onnxruntime")
-cv2 = pytest.importorskip("cv2")
-from onnx import TensorProto, helper  # noqa: E402
-
-from birdseye.birdseye_qgis.core.detect.detector import (  # noqa: E402
+from birdseye.birdseye_qgis.core.detect.detector import (
     DetectRequest,
     HeatmapModel,
     cut_tiles,
@@ -39,6 +28,14 @@ from birdseye.birdseye_qgis.core.detect.detector import (  # noqa: E402
     tile_spans,
     to_frame_pixels,
 )
+from birdseye.birdseye_qgis.core.detect.model_metadata import ModelMetadata, ModelMetadataError, embed_metadata
+from birdseye.birdseye_qgis.core.errors import Cancelled, InputError
+from birdseye.birdseye_qgis.core.geometry.camera import CameraModel
+from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame
+from birdseye.birdseye_qgis.core.geometry.ground import LevelPlaneGround
+from birdseye.birdseye_qgis.core.geometry.poses import FrameGeometry, FramePoses
+from birdseye.birdseye_qgis.core.geometry.projection import pixel_to_ground, project_pairs
+from birdseye.birdseye_qgis.core.geometry.rotations import euler_zyx_to_rotmat, rotmat_to_quat
 
 NADIR = np.array([[0.0, 1.0, 0.0], [-1.0, 0.0, 0.0], [0.0, 0.0, 1.0]])
 
@@ -112,7 +109,7 @@ def test_tile_spans_regular_case():
 
 
 def test_stitched_tiles_reproduce_a_whole_image_run(tmp_path):
-    ort = pytest.importorskip("onnxruntime")
+    import onnxruntime as ort
     kernel = np.random.default_rng(1).normal(size=(5, 5))  # receptive field radius 2 px
     rng = np.random.default_rng(2)
     frame = rng.normal(size=(3, 77, 100)).astype(np.float32)

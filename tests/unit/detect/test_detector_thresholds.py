@@ -1,20 +1,16 @@
 """Peak extraction at several thresholds on one heatmap: the same as separate runs, not the score filter."""
+import cv2
 import numpy as np
 import pytest
+from test_detector import campaign, conv_model, gaussian_image
 
-pytest.importorskip("onnx")
-pytest.importorskip("onnxruntime")
-cv2 = pytest.importorskip("cv2")
-
-from test_detector import campaign, conv_model, gaussian_image  # noqa: E402
-
-from birdseye.birdseye_qgis.core.detect.detector import (  # noqa: E402
+from birdseye.birdseye_qgis.core.detect.detector import (
     DetectRequest,
     HeatmapModel,
     detect_frames,
     detect_frames_at_thresholds,
 )
-from birdseye.birdseye_qgis.core.errors import InputError  # noqa: E402
+from birdseye.birdseye_qgis.core.errors import InputError
 
 
 def test_a_blob_that_splits_at_a_higher_threshold_splits_as_in_a_separate_run(tmp_path):

@@ -2,7 +2,9 @@
 import json
 
 import numpy as np
+import onnx
 import pytest
+from onnx import TensorProto, helper
 
 from birdseye.birdseye_qgis.core.detect.model_metadata import (
     ModelMetadata,
@@ -12,9 +14,6 @@ from birdseye.birdseye_qgis.core.detect.model_metadata import (
     validate,
 )
 from birdseye.birdseye_qgis.core.errors import InputError
-
-onnx = pytest.importorskip("onnx")
-from onnx import TensorProto, helper  # noqa: E402
 
 
 def demo_metadata(**changes) -> ModelMetadata:

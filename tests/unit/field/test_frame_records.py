@@ -3,7 +3,15 @@ import numpy as np
 import pytest
 
 from birdseye.birdseye_qgis.core.errors import InputError
-from birdseye.birdseye_qgis.core.field.frame_records import FRAME_FIELD_NAMES, euler_degrees, poses_from_records
+from birdseye.birdseye_qgis.core.field.frame_records import (
+    FRAME_FIELD_NAMES,
+    camera_cut_at,
+    euler_degrees,
+    join_camera,
+    poses_from_records,
+    split_camera,
+    split_cameras,
+)
 from birdseye.birdseye_qgis.core.geometry.camera import CameraModel
 from birdseye.birdseye_qgis.core.geometry.rotations import euler_zyx_to_rotmat, rotmat_to_quat
 
@@ -41,3 +49,31 @@ def test_bad_records_name_the_row_and_field():
         poses_from_records([record(0, CAM_A, camera="")])
     with pytest.raises(InputError, match="has no frames"):
         poses_from_records([])
+
+
+def test_a_camera_split_for_short_text_fields_joins_back():
+    long_cam = CameraModel(4000, 3000, 2964.123456789, 2963.987654321, 2001.25, 1498.75,
+                           dist=(-0.1123456789, 0.0212345678, 1.2e-4, -3.4e-5, 0.0011223344), source="x" * 250)
+    text = long_cam.to_json()
+    assert len(text) > 2 * 254
+    parts = split_camera(text, 254)
+    assert len(parts) == 3 and all(len(p) <= 254 for p in parts) and join_camera(parts) == text
+    assert split_camera("", 254) == [""] and join_camera(["abc", None, ""]) == "abc"
+    # The records: the fields the longest camera needs, each record's parts; a short camera leaves the rest out.
+    fields, records = split_cameras([record(0, long_cam), record(1, CAM_A)], 254)
+    assert [f[0] for f in fields] == ["camera_2", "camera_3"] and all(f[1] == "string" for f in fields)
+    assert [records[0]["camera"], records[0]["camera_2"], records[0]["camera_3"]] == parts
+    assert records[1]["camera"] == CAM_A.to_json() and "camera_2" not in records[1]
+    assert split_cameras([record(0, CAM_A)], 1000)[0] == []
+    assert poses_from_records([{**r, "camera": join_camera([r["camera"], r.get("camera_2"), r.get("camera_3")])}
+                               for r in records])[0][0].camera == long_cam
+
+
+def test_a_cut_camera_is_told_from_a_whole_or_a_broken_one():
+    text = CAM_A.to_json()
+    assert camera_cut_at([text[:100]], [100]) == 100                 # filled its field, not JSON: cut
+    assert camera_cut_at([text[:100], text[100:120]], [254, 20]) == 20   # its second part was cut
+    assert camera_cut_at(split_camera(text, 100), [100] * len(split_camera(text, 100))) is None   # whole
+    assert camera_cut_at([text[:100]], [0]) is None                   # no field length: no evidence of a cut
+    assert camera_cut_at(["{not json"], [254]) is None                # broken, but not by the field
+    assert camera_cut_at([None], [254]) is None and camera_cut_at([""], [254]) is None

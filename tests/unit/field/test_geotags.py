@@ -11,7 +11,9 @@ from hypothesis import strategies as st
 from birdseye.birdseye_qgis.core.errors import InputError
 from birdseye.birdseye_qgis.core.field.geotags import (
     ColumnMapping,
+    Geotags,
     detect_format,
+    geotag_ids,
     geotags_from_columns,
     prepare_geotags,
     read_geotags,
@@ -37,10 +39,10 @@ def test_rover_csv_values_order_and_rows(tmp_path):
     assert len(tags) == 3
     np.testing.assert_allclose(tags.lat, [-33.8688001, -33.8688101, -33.8688201])
     np.testing.assert_allclose(tags.lon, [151.2093002, 151.2093102, 151.2093202])
-    np.testing.assert_allclose(tags.h_ellipsoid, [45.12, 45.3, 45.4])
+    np.testing.assert_allclose(tags.height, [45.12, 45.3, 45.4])
     np.testing.assert_allclose(tags.h_msl, [22.05, 22.23, 22.33])
     assert tags.fix_quality.tolist() == [4, 5, 1]
-    assert tags.label == ["burrow", "burrow,entrance", ""]
+    assert tags.labels.tolist() == ["burrow", "burrow,entrance", ""]
     assert tags.source_row.tolist() == [1, 3, 5]  # line numbers as an editor shows them
     assert tags.problems == []
 
@@ -54,7 +56,7 @@ def test_rover_csv_bad_rows_are_reported_and_good_rows_kept(tmp_path):
                  "10.0,20.0,5.0,1.0,fixed-ish?,d\n"
                  "10.1,20.1,5.0,1.0,4,e\n")
     tags = read_geotags(path, "rover")
-    assert tags.label == ["a", "e"]
+    assert tags.labels.tolist() == ["a", "e"]
     assert tags.source_row.tolist() == [1, 6]
     by_row = {e.row: e for e in tags.problems}
     assert sorted(by_row) == [2, 3, 4, 5]
@@ -82,10 +84,10 @@ def test_header_csv_finds_columns_by_common_names(tmp_path):
                  "T2,52.2,5.3,48.5,6.0,Float\n"
                  "T3,52.3,5.4,,,single\n")
     tags = read_geotags(path)  # auto → header
-    assert tags.label == ["T1", "T2", "T3"]
+    assert tags.labels.tolist() == ["T1", "T2", "T3"]
     np.testing.assert_allclose(tags.lat, [52.1, 52.2, 52.3])
-    np.testing.assert_allclose(tags.h_ellipsoid[:2], [48.0, 48.5])
-    assert math.isnan(tags.h_ellipsoid[2]) and math.isnan(tags.h_msl[2])
+    np.testing.assert_allclose(tags.height[:2], [48.0, 48.5])
+    assert math.isnan(tags.height[2]) and math.isnan(tags.h_msl[2])
     np.testing.assert_allclose(tags.h_msl[:2], [5.5, 6.0])
     assert tags.fix_quality.tolist() == [4, 5, 1]
     assert tags.source_row.tolist() == [2, 3, 4]
@@ -95,7 +97,7 @@ def test_header_csv_explicit_mapping_and_unknown_column(tmp_path):
     path = write(tmp_path, "survey.csv", "N,E,H,Q,what\n-1.5,36.8,1700.2,4,gap\n")
     tags = read_geotags(path, "header", ColumnMapping(lat="N", lon="E", height="H", fix="Q", label="what"))
     assert tags.lat.tolist() == [-1.5] and tags.lon.tolist() == [36.8]
-    assert tags.h_ellipsoid.tolist() == [1700.2] and tags.fix_quality.tolist() == [4] and tags.label == ["gap"]
+    assert tags.height.tolist() == [1700.2] and tags.fix_quality.tolist() == [4] and tags.labels.tolist() == ["gap"]
     with pytest.raises(InputError) as err:
         read_geotags(path, "header", ColumnMapping(lat="Lat"))
     assert "no column 'Lat'" in str(err.value) and "N, E, H, Q, what" in str(err.value)
@@ -127,7 +129,7 @@ def test_nmea_gga_positions_heights_and_hemispheres(tmp_path):
     np.testing.assert_allclose(tags.lat, [52.123456789, -33.5], atol=1e-9)
     np.testing.assert_allclose(tags.lon, [5.987654321, -70.25], atol=1e-9)
     np.testing.assert_allclose(tags.h_msl, [3.21, 520.0])
-    np.testing.assert_allclose(tags.h_ellipsoid, [3.21 + 43.5, 520.0 + 25.25])
+    np.testing.assert_allclose(tags.height, [3.21 + 43.5, 520.0 + 25.25])
     assert tags.fix_quality.tolist() == [4, 5]
     assert tags.source_row.tolist() == [1, 3]
     assert len(tags.problems) == 1 and tags.problems[0].row == 4 and "no position" in str(tags.problems[0])
@@ -157,9 +159,9 @@ def test_geotags_from_columns_parses_raw_values_and_reports_bad_ones():
                                 label=["a", "b", None, "d"], source_row=[1, 2, 3, 4], source="survey layer",
                                 field_names={"height": "alt"})
     assert tags.source_row.tolist() == [1, 3]
-    assert tags.h_ellipsoid.tolist() == [5.0, 7.5]
+    assert tags.height.tolist() == [5.0, 7.5]
     assert tags.fix_quality.tolist() == [4, 5]
-    assert tags.label == ["a", ""]
+    assert tags.labels.tolist() == ["a", ""]
     assert [(e.row, e.field) for e in tags.problems] == [(2, "geometry"), (4, "alt")]
 
 
@@ -177,7 +179,7 @@ def test_prepare_pole_height_fix_filter_flags_and_duplicates():
                                 h_msl=[450.0, 450.0, 450.0, 450.2, None], fix_quality=[4, 4, 4, 5, 2])
     prepared = prepare_geotags(tags, fixed_only=False, pole_height_m=1.8)
     out = prepared.geotags
-    np.testing.assert_allclose(out.h_ellipsoid[:4], [500.0, 500.0, 500.0, 500.2])
+    np.testing.assert_allclose(out.height[:4], [500.0, 500.0, 500.0, 500.2])
     np.testing.assert_allclose(out.h_msl[:4], [448.2, 448.2, 448.2, 448.4])
     assert out.flags == [[], ["duplicate_2cm"], [], ["rtk_float"], ["no_rtk", "no_height"]]
     assert prepared.duplicates == 1 and prepared.dropped_not_fixed == 0
@@ -274,3 +276,40 @@ def test_text_with_a_bom_and_a_stray_byte_is_still_text(tmp_path):
     path.write_bytes(b"\xef\xbb\xbf-27.5,151.9,410.0,368.5,4,burrow\n-27.50001,151.9,410.0,368.5,4,bu\xffrrow\n")
     tags = read_geotags(path)
     assert len(tags) == 2
+
+
+# ------------------------------------------------------------------------------------ the id rule
+def test_ids_are_the_id_field_else_the_row():
+    assert geotag_ids(None, [1, 2, 4]).tolist() == [1, 2, 4]
+    # Shapefile and GeoPackage give an int field as int, a DBF may give a whole number as a float.
+    assert geotag_ids([17, 3.0, " A7 ", np.int64(8)], [1, 2, 3, 4]).tolist() == [17, 3, "A7", 8]
+
+
+@given(st.lists(st.integers(1, 30), min_size=1, max_size=30))
+def test_ids_are_unique_or_refused_naming_the_first_shared_id_and_its_rows(values):
+    rows = list(range(1, len(values) + 1))
+    if len(set(values)) == len(values):
+        assert geotag_ids(values, rows).tolist() == values
+        return
+    with pytest.raises(InputError) as info:
+        geotag_ids(values, rows, "survey")
+    first = next(v for v in values if values.count(v) > 1)
+    where = [r for r, v in zip(rows, values) if v == first]
+    assert info.value.source == "survey" and info.value.field == "id" and info.value.row == where[0]
+    assert f"gives id {first} to {len(where)} geotags (rows {', '.join(map(str, where[:10]))}" in str(info.value)
+
+
+def test_empty_ids_are_refused_naming_their_rows():
+    with pytest.raises(InputError, match=r"survey, row 3, field 'code': has 2 geotag\(s\) without an id "
+                                         r"\(row\(s\) 3, 7\)"):
+        geotag_ids([1, 2, None, "  "], [1, 2, 3, 7], "survey", "code")
+
+
+def test_subset_and_concatenation_keep_ids_rows_and_provenance():
+    tags = Geotags(["a", "b", "c"], [1.0, 2.0, 3.0], [4.0, 5.0, 6.0], [7.0, np.nan, 9.0], source_row=[2, 5, 6])
+    part = tags.subset(np.array([False, True, True]))
+    assert part.ids.tolist() == ["b", "c"] and part.source_row.tolist() == [5, 6]
+    assert np.isnan(part.height[0]) and part.labels.tolist() == ["target", "target"]
+    both = part + Geotags(["det#1"], [0.0], [0.0], [np.nan], ["burrow"], ["review"])
+    assert both.ids.tolist() == ["b", "c", "det#1"] and both.provenance.tolist() == ["survey", "survey", "review"]
+    assert both.labels.tolist() == ["target", "target", "burrow"] and len(both.flags) == 3

@@ -46,7 +46,7 @@ def test_project_frames_are_where_the_flight_was(wheat):
     # Tokyo (139.54° E): UTM zone 54 N; the double similarity put the frames in another zone.
     assert ProjectedCRS.for_site(frames.lat, frames.lon).crs == "EPSG:32654"
     control = wheat.control_points
-    above = frames.height - np.median(control.h_ellipsoid)
+    above = frames.height - np.median(control.height)
     assert np.all((above > 20) & (above < 40)), "the project was flown about 30 m above the wheat"
     horizontal = np.hypot(*(np.radians([frames.lat - control.lat.mean(),
                                         (frames.lon - control.lon.mean()) * np.cos(np.radians(35.74))]) * 6.371e6))
@@ -55,8 +55,8 @@ def test_project_frames_are_where_the_flight_was(wheat):
 
 def test_control_points_become_a_geotag_layer_and_marks_a_check(wheat):
     points = wheat.control_points
-    assert points.label == ["7", "13.1", "X", "17", "13.2", "1"]
-    np.testing.assert_allclose([points.lon[0], points.lat[0], points.h_ellipsoid[0]],
+    assert points.labels.tolist() == ["7", "13.1", "X", "17", "13.2", "1"]
+    np.testing.assert_allclose([points.lon[0], points.lat[0], points.height[0]],
                                [139.5403358, 35.73756338, 96.849])
     assert [r["id"] for r in points.records()] == [1, 2, 3, 4, 5, 6]
     check = wheat.mark_check

@@ -18,8 +18,6 @@ from birdseye.birdseye_qgis.core.errors import Cancelled, InputError
 from birdseye.birdseye_qgis.core.field.odm import RECONSTRUCTION_OUTPUTS, parse_options, process_on_node
 from birdseye.birdseye_qgis.core.field.solutions import import_camera_solution
 
-pytest.importorskip("pyodm")
-
 
 @pytest.fixture
 def flight(tmp_path):
@@ -79,10 +77,11 @@ def test_cancel_during_the_upload_returns_at_once_and_removes_the_task(flight, t
     and the half-uploaded task must not stay on the node."""
     images, archive = flight
     with NodeOdmStub(archive, upload_delay_s=1.5) as node:
-        start = time.monotonic()
         with pytest.raises(Cancelled):
             process_on_node(images, node.url, tmp_path / "odm", is_canceled=lambda: bool(node.tasks))
-        assert time.monotonic() - start < 1.0
+        # The stub records an image only after its 1.5 s upload: none is recorded yet, so the call did not
+        # wait for the images in flight.
+        assert node.uploaded == [], "cancel waited for an upload to finish"
         assert len(removed_within(node)) == 1 and node.cancelled == node.removed
         assert not node.tasks and node.downloads == 0
 

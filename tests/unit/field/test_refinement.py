@@ -5,7 +5,6 @@ from __future__ import annotations
 
 import math
 import shutil
-import time
 from pathlib import Path
 
 import numpy as np
@@ -109,18 +108,25 @@ def brighton_inputs(tmp_path, drop=()):
             for i in range(len(frames))]
 
 
-def test_cancel_stops_the_structure_from_motion_promptly(tmp_path):
-    pytest.importorskip("pycolmap")
+def test_cancel_stops_the_structure_from_motion_before_its_next_stage(tmp_path):
+    """Cancel asked for from the start: refine_poses raises Cancelled during feature extraction, and no later
+    stage runs (no match in the database, no mapping folder). How soon it returns after the request is
+    benchmarks/bench_refineposes.py's figure, not a test's."""
+    import sqlite3
+
+    import pycolmap  # noqa: F401  (refineposes needs it: a missing install fails here, not skips)
     inputs = brighton_inputs(tmp_path)
     asked = []
-    start = time.perf_counter()
     with pytest.raises(Cancelled):
-        refine_poses(inputs, tmp_path / "work", is_canceled=lambda: asked.append(1) or len(asked) > 2)
-    assert time.perf_counter() - start < 10.0
+        refine_poses(inputs, tmp_path / "work", is_canceled=lambda: asked.append(1) or True)
+    assert asked, "the cancel callback was never asked"
+    assert not (tmp_path / "work" / "sparse").exists(), "incremental mapping started after the cancel"
+    with sqlite3.connect(tmp_path / "work" / "database.db") as db:
+        assert db.execute("SELECT COUNT(*) FROM two_view_geometries").fetchone()[0] == 0, "matching ran"
 
 
 def test_frames_without_images_are_reported_not_guessed(tmp_path):
-    pytest.importorskip("pycolmap")
+    import pycolmap  # noqa: F401  (refineposes needs it: a missing install fails here, not skips)
     inputs = brighton_inputs(tmp_path, drop=("DJI_0023.JPG",))
     refinement = refine_poses(inputs, tmp_path / "work")
     assert [f.registered for f in refinement.frames] == [True, True, True, True, True, False]
@@ -131,8 +137,8 @@ def test_frames_without_images_are_reported_not_guessed(tmp_path):
 def test_large_blocks_match_spatially_on_the_metadata_positions(tmp_path):
     """Beyond ``exhaustive_up_to`` frames, pairs come from the metadata positions: with images that carry
     no GPS tags of their own (re-encoded without EXIF), BirdsEye writes the pose priors itself."""
-    pycolmap = pytest.importorskip("pycolmap")
     import cv2
+    import pycolmap
 
     from birdseye.birdseye_qgis.core.field.refinement import RefineOptions
 
@@ -212,7 +218,8 @@ def test_a_nominal_focal_length_is_fixed_by_the_flying_height(tmp_path, surveyed
     """The block left the focal length 15 % long and every depth 15 % deep; GNSS height minus the surveyed
     ground (z = 0) brings both back: f within 0.3 % of the truth, the ground within 5 cm. Without a surveyed
     ground the block cannot tell, and the nominal focal length (1100 px) is kept, said so."""
-    pycolmap = pytest.importorskip("pycolmap")
+    import pycolmap
+
     from birdseye.birdseye_qgis.core.field.refinement import _collect, _fix_focal
 
     centres, rotations = ambiguous_block(tmp_path / "model", 1150.0, 1.15)

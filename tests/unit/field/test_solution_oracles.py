@@ -23,13 +23,12 @@ Our side is only what a reader returns: each image's camera → ECEF pose and it
 import json
 
 import numpy as np
+import pyproj
 import pytest
 
 from birdseye.birdseye_qgis.core.errors import InputError
 from birdseye.birdseye_qgis.core.field.solutions.colmap import SUPPORTED_MODELS, read_colmap
 from birdseye.birdseye_qgis.core.field.solutions.opensfm import read_reconstruction
-
-pyproj = pytest.importorskip("pyproj")
 
 SITE = (50.8203, -0.1359, 48.0)  # lat, lon, ellipsoidal height (Brighton)
 W, H = 1600, 1200
@@ -145,7 +144,7 @@ def _colmap_scene(reference):
 @pytest.fixture(scope="module")
 def colmap_models(tmp_path_factory):
     """Each (reference, format) → (folder written by pycolmap, scene)."""
-    pycolmap = pytest.importorskip("pycolmap")
+    import pycolmap
 
     out = {}
     for reference in ("ecef", "enu"):
@@ -189,7 +188,7 @@ def test_colmap_centres_are_pycolmaps_projection_centres(colmap_models):
 
 def test_colmap_rational_terms_are_refused_not_dropped(tmp_path):
     """FULL_OPENCV's k4–k6 divide the radial term; no CameraModel holds them, so reading must fail."""
-    pycolmap = pytest.importorskip("pycolmap")
+    import pycolmap
     rec = pycolmap.Reconstruction()
     params = COLMAP_PARAMS["FULL_OPENCV"][:9] + [0.01, 0.0, 0.0]
     rec.add_camera_with_trivial_rig(pycolmap.Camera(model="FULL_OPENCV", width=W, height=H, params=params,

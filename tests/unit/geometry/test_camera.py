@@ -21,7 +21,7 @@ def camera(dist=STRONG, **kw):
 
 
 def test_projection_matches_opencv_project_points():
-    cv2 = pytest.importorskip("cv2")
+    import cv2
     cam = camera(fx=1400.0, fy=1390.0)  # short lens: large normalised coordinates, distortion matters
     rng = np.random.default_rng(3)
     pts = np.column_stack([rng.uniform(-4, 4, 500), rng.uniform(-3, 3, 500), rng.uniform(6, 15, 500)])
@@ -40,7 +40,7 @@ def test_undistort_inverts_distort_over_whole_frame():
 
 
 def test_undistort_agrees_with_opencv_where_it_converges():
-    cv2 = pytest.importorskip("cv2")
+    import cv2
     cam = camera(dist=(-0.08, 0.12, 4e-4, -3e-4, 0.0))
     rng = np.random.default_rng(0)
     uv = np.column_stack([rng.uniform(0, cam.width, 200), rng.uniform(0, cam.height, 200)])
@@ -173,7 +173,7 @@ def test_r8_radial_term_and_skew_project_as_written():
 
 def test_skewed_camera_adds_skew_times_distorted_y_to_opencv():
     """cv2.projectPoints ignores K[0, 1]; the skewed pixel is OpenCV's plus skew · y_d, y_d = (v − cy)/fy."""
-    cv2 = pytest.importorskip("cv2")
+    import cv2
     cam = camera(fx=1400.0, fy=1390.0, skew=2.5)
     rng = np.random.default_rng(5)
     pts = np.column_stack([rng.uniform(-4, 4, 300), rng.uniform(-3, 3, 300), rng.uniform(6, 15, 300)])
@@ -185,7 +185,7 @@ def test_skewed_camera_adds_skew_times_distorted_y_to_opencv():
 
 
 def test_fisheye_matches_opencv_fisheye_project_points():
-    cv2 = pytest.importorskip("cv2")
+    import cv2
     cam = CameraModel(1280, 960, 520.0, 521.0, 641.2, 478.9, dist=(0.05, -0.012, 0.004, -0.0007), fisheye=True)
     rng = np.random.default_rng(8)
     pts = np.column_stack([rng.uniform(-4, 4, 400), rng.uniform(-3, 3, 400), rng.uniform(1, 8, 400)])

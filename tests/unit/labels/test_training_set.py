@@ -8,13 +8,13 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from birdseye.birdseye_qgis.core.field.geotags import Geotags
 from birdseye.birdseye_qgis.core.geometry.camera import CameraModel
 from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame
 from birdseye.birdseye_qgis.core.geometry.poses import FramePoses
 from birdseye.birdseye_qgis.core.geometry.rotations import euler_zyx_to_rotmat, rotmat_to_quat
 from birdseye.birdseye_qgis.core.labels.sparse_png import encode_gray_png
 from birdseye.birdseye_qgis.core.labels.training_set import (
-    Geotags,
     LabelRequest,
     project_labels,
     soft_label_raster,
@@ -61,7 +61,7 @@ def test_sparse_png_decodes_to_the_same_raster(h, w, n, seed):
 
 
 def test_sparse_png_is_read_by_opencv_too():
-    cv2 = pytest.importorskip("cv2")
+    import cv2
     raster = soft_label_raster(1920, 1200, np.array([[10.0, 10.0], [1900.0, 1190.0], [960.0, 600.0]]), 10.0)
     png = encode_gray_png(raster)
     back = cv2.imdecode(np.frombuffer(png, np.uint8), cv2.IMREAD_UNCHANGED)
@@ -89,8 +89,8 @@ def small_campaign(edge_geotag=False):
     if edge_geotag:
         g = np.vstack([g, [-2.22, 0.0, 0.0]])  # ~8 px inside frame 101's left edge
     g_lat, g_lon, g_h = local.to_geodetic(g + [0, 0, 400.0])
-    geotags = Geotags(np.arange(1, len(g) + 1), ["burrow", "gap", "burrow"] + ["burrow"] * (len(g) - 3),
-                      g_lat, g_lon, g_h)
+    geotags = Geotags(np.arange(1, len(g) + 1), g_lat, g_lon, g_h,
+                      ["burrow", "gap", "burrow"] + ["burrow"] * (len(g) - 3))
     return poses, geotags, local
 
 
@@ -136,7 +136,7 @@ def test_edge_buffer_reports_edge_labels_and_writes_no_positive(tmp_path):
 
 
 def test_tiles_keep_every_positive_and_a_seeded_share_of_negatives(tmp_path):
-    cv2 = pytest.importorskip("cv2")
+    import cv2
     poses, geotags, local = small_campaign()
     images = []
     for fid in poses.frame_id:
@@ -203,12 +203,12 @@ def test_geotags_without_height_go_onto_the_flight_ground_of_the_surveyed_ones()
 def test_review_targets_are_labelled_with_their_provenance_and_hard_negatives_fill_the_negative_sample(tmp_path):
     """A confirmed cluster nobody surveyed is a label like a geotag (provenance review); a rejected one
     (hard negative) puts its tile first in the negative sample, label all zero."""
-    cv2 = pytest.importorskip("cv2")
+    import cv2
     poses, survey, local = small_campaign()
     # Frame 101 (centre 0, 0) alone sees the review target; frame 102 (centre 2, 0) alone the hard negative.
     r_lat, r_lon, r_h = local.to_geodetic(np.array([[-1.5, 0.5, 400.0], [3.5, -1.0, 400.0]]))
-    targets = survey + Geotags(["det#7"], ["burrow"], r_lat[:1], r_lon[:1], [np.nan], ["review"])
-    hard = Geotags(["det#9"], ["hard_negative"], r_lat[1:], r_lon[1:], [np.nan])
+    targets = survey + Geotags(["det#7"], r_lat[:1], r_lon[:1], [np.nan], ["burrow"], ["review"])
+    hard = Geotags(["det#9"], r_lat[1:], r_lon[1:], [np.nan], ["hard_negative"])
     images = []
     for fid in poses.frame_id:
         path = tmp_path / f"{fid}.png"

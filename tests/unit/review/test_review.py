@@ -13,6 +13,7 @@ import numpy as np
 import pytest
 
 from birdseye.birdseye_qgis.core.errors import InputError
+from birdseye.birdseye_qgis.core.field.geotags import Geotags
 from birdseye.birdseye_qgis.core.geometry.camera import CameraModel
 from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame
 from birdseye.birdseye_qgis.core.geometry.ground import LevelPlaneGround
@@ -42,7 +43,7 @@ from birdseye.birdseye_qgis.core.review.units import (
     position_key,
     propagation_groups,
 )
-from birdseye.birdseye_qgis.core.scoring.evaluation import Detections, Geotags
+from birdseye.birdseye_qgis.core.scoring.evaluation import Detections
 from birdseye.birdseye_qgis.core.scoring.verdicts import CONVENTIONS, VerdictLog
 
 SITE = LocalFrame(-27.55, 151.95, 400.0)
@@ -209,7 +210,7 @@ def test_method_units_are_per_frame_groups_of_the_detections_no_geotag_matches(t
     assert len(units) == 8 and not units.matched.any()
     assert sorted(k.rsplit("@", 1)[1] for k in units.keys) == sorted(["100", "101", "102", "103"] * 2)
     s1, s2 = (SITE.from_geodetic(*ground_points(spot))[0, :2] for spot in (S1, S2))
-    xy = np.concatenate([layer.detections.local_xy(SITE) for layer in two_layers])
+    xy = np.concatenate([layer.detections.ground_positions(SITE).xy for layer in two_layers])
     np.testing.assert_array_equal(units.detection_unit == -1, np.hypot(*(xy - s2).T) < 0.1)
     at_s1 = np.hypot(*(units.xy - s1).T) < 0.05
     assert at_s1.sum() == 4
@@ -237,7 +238,7 @@ def test_method_matching_is_per_detection_and_the_rest_of_a_spot_is_one_unit_per
     set_aside = units.detection_unit == -1
     assert set_aside.sum() == 2 * 3 * 4
     east = SITE.from_geodetic(*ground_points([(S2[0] + 0.215, S2[1])]))[0, :2]
-    xy = np.concatenate([layer.detections.local_xy(SITE) for layer in two_layers])
+    xy = np.concatenate([layer.detections.ground_positions(SITE).xy for layer in two_layers])
     np.testing.assert_array_equal(set_aside, np.hypot(*(xy - east).T) <= 0.20)
 
 

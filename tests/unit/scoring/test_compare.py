@@ -8,8 +8,9 @@ import numpy as np
 import pytest
 from test_scoring import SITE, detections, geodetic, grid9, poses_over
 
+from birdseye.birdseye_qgis.core.field.geotags import Geotags
 from birdseye.birdseye_qgis.core.scoring.compare import compare_detectors
-from birdseye.birdseye_qgis.core.scoring.evaluation import Flight, Geotags, evaluate_flights
+from birdseye.birdseye_qgis.core.scoring.evaluation import Flight, evaluate_flights
 from birdseye.birdseye_qgis.core.scoring.operating_point import OperatingPoint
 
 OP = OperatingPoint(threshold=None, dedup_cm=3, eps_m=0.10, min_samples=3, eps_pred_m=0.20)

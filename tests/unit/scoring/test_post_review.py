@@ -6,12 +6,13 @@ The field is the one of test_scoring: one nadir frame 10 m above level ground at
 import numpy as np
 import pytest
 
-from birdseye.birdseye_qgis.core.detect.clustering import cluster_detections
+from birdseye.birdseye_qgis.core.detect.clustering import GroundPositions, cluster_detections
+from birdseye.birdseye_qgis.core.field.geotags import Geotags
 from birdseye.birdseye_qgis.core.geometry.camera import CameraModel
 from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame
 from birdseye.birdseye_qgis.core.geometry.poses import FramePoses
 from birdseye.birdseye_qgis.core.geometry.rotations import euler_zyx_to_rotmat, rotmat_to_quat
-from birdseye.birdseye_qgis.core.scoring.evaluation import Detections, Flight, Geotags, evaluate_flights
+from birdseye.birdseye_qgis.core.scoring.evaluation import Detections, Flight, evaluate_flights
 from birdseye.birdseye_qgis.core.scoring.operating_point import OperatingPoint
 from birdseye.birdseye_qgis.core.scoring.post_review import (
     PostCounts,
@@ -112,14 +113,16 @@ ADDED = {                        # (east, north): counts in a?
 
 
 def test_countable_added_targets_by_hand():
-    clustering = cluster_detections(np.concatenate([BLOB, CHAIN]), None, None, OP.dedup_cm, OP.eps_m, OP.min_samples)
+    clustering = cluster_detections(GroundPositions.from_local(SITE, np.concatenate([BLOB, CHAIN])), None, None,
+                                    OP.dedup_cm, OP.eps_m, OP.min_samples)
     assert clustering.n_clusters == 2
     xy = np.array([v[0] for v in ADDED.values()])
     in_view = np.array([name != "out of view" for name in ADDED])
     mask = countable_added_targets(xy, in_view, clustering, GEOTAG, OP.eps_pred_m)
     assert dict(zip(ADDED, mask.tolist())) == {name: v[1] for name, v in ADDED.items()}
     # an out-of-view target stays out even far from everything; no clusters and no geotags: only view counts
-    empty = cluster_detections(np.empty((0, 2)), None, None, OP.dedup_cm, OP.eps_m, OP.min_samples)
+    empty = cluster_detections(GroundPositions.from_local(SITE, np.empty((0, 2))), None, None, OP.dedup_cm,
+                               OP.eps_m, OP.min_samples)
     np.testing.assert_array_equal(countable_added_targets(xy, in_view, empty, np.empty((0, 2)), 0.2), in_view)
 
 

@@ -1,13 +1,17 @@
 """Figures of sweeps: the plot counts every configuration it draws."""
 import numpy as np
 
+from birdseye.birdseye_qgis.core.detect.clustering import GroundPositions
+from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame
 from birdseye.birdseye_qgis.core.scoring.reports import sweep_figure
 from birdseye.birdseye_qgis.core.scoring.sweep import SweepFlight, SweepGrid, sweep
 
 
 def flight(checkpoint):
     spot = np.array([[0.0, 0.0], [0.05, 0.0], [0.0, 0.05]])
-    return SweepFlight({0.3: spot, 0.5: spot[:2]}, np.array([[0.0, 0.0]]), 4, "f", checkpoint, checkpoint.upper())
+    site = LocalFrame(-27.55, 151.95)
+    return SweepFlight({0.3: GroundPositions.from_local(site, spot), 0.5: GroundPositions.from_local(site, spot[:2])},
+                       np.array([[0.0, 0.0]]), 4, "f", checkpoint, checkpoint.upper())
 
 
 def test_the_sweep_plot_is_titled_with_every_checkpoints_configurations():

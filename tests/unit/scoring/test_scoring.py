@@ -8,13 +8,14 @@ view follows from the numbers alone.
 import numpy as np
 import pytest
 
-from birdseye.birdseye_qgis.core.detect.clustering import cluster_detections
+from birdseye.birdseye_qgis.core.detect.clustering import GroundPositions, cluster_detections
 from birdseye.birdseye_qgis.core.errors import InputError
+from birdseye.birdseye_qgis.core.field.geotags import Geotags
 from birdseye.birdseye_qgis.core.geometry.camera import CameraModel
 from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame
 from birdseye.birdseye_qgis.core.geometry.poses import FramePoses
 from birdseye.birdseye_qgis.core.geometry.rotations import euler_zyx_to_rotmat, rotmat_to_quat
-from birdseye.birdseye_qgis.core.scoring.evaluation import Detections, Flight, Geotags, evaluate_flights
+from birdseye.birdseye_qgis.core.scoring.evaluation import Detections, Flight, evaluate_flights
 from birdseye.birdseye_qgis.core.scoring.matching import in_view, match_to_clusters
 from birdseye.birdseye_qgis.core.scoring.operating_point import OperatingPoint
 from birdseye.birdseye_qgis.core.scoring.post_review import ReviewedFlight, post_scores
@@ -114,7 +115,8 @@ def test_frames_without_ground_height_are_not_processed():
 
 # -------------------------------------------------------------------- recovered, hit, PRE
 def flight1_score():
-    clustering = cluster_detections(FLIGHT1_DETECTIONS, None, None, OP.dedup_cm, OP.eps_m, OP.min_samples)
+    clustering = cluster_detections(GroundPositions.from_local(SITE, FLIGHT1_DETECTIONS), None, None, OP.dedup_cm,
+                                    OP.eps_m, OP.min_samples)
     xy = np.array([v[0] for v in FLIGHT1_GEOTAGS.values()])
     visible = np.array([v[1] for v in FLIGHT1_GEOTAGS.values()])
     return clustering, score_flight(clustering, xy, visible, OP.eps_pred_m)

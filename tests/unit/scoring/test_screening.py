@@ -3,7 +3,9 @@ recall and GMCF, detections per frame, review load), blocks and presets — hand
 import numpy as np
 import pytest
 
+from birdseye.birdseye_qgis.core.detect.clustering import GroundPositions
 from birdseye.birdseye_qgis.core.errors import InputError
+from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame
 from birdseye.birdseye_qgis.core.scoring.operating_point import OperatingPoint
 from birdseye.birdseye_qgis.core.scoring.screening import (
     SCREEN_PRESETS,
@@ -29,7 +31,8 @@ def test_pixel_matching_is_one_to_one_nearest_first_within_the_radius():
 
 def screen_run(name, block, n_frames, uv, frame_id, xy, geotag_xy, labels):
     lf, luv = labels
-    return ScreenRun(name, block, n_frames, np.asarray(frame_id), np.asarray(uv, float), np.asarray(xy, float),
+    return ScreenRun(name, block, n_frames, np.asarray(frame_id), np.asarray(uv, float),
+                     GroundPositions.from_local(LocalFrame(-27.55, 151.95), np.asarray(xy, float)),
                      np.asarray(lf), np.asarray(luv, float), np.asarray(geotag_xy, float))
 
 

@@ -3,8 +3,9 @@ credibility filter, the Pareto front, F1 and the default grid, against hand-comp
 import numpy as np
 import pytest
 
-from birdseye.birdseye_qgis.core.detect.clustering import cluster_detections
+from birdseye.birdseye_qgis.core.detect.clustering import GroundPositions, cluster_detections
 from birdseye.birdseye_qgis.core.errors import InputError
+from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame
 from birdseye.birdseye_qgis.core.scoring.pre_review import PreCounts, score_flight
 from birdseye.birdseye_qgis.core.scoring.sweep import (
     METHOD_GRID,
@@ -16,6 +17,12 @@ from birdseye.birdseye_qgis.core.scoring.sweep import (
     pareto_front,
     sweep,
 )
+
+SITE = LocalFrame(-27.55, 151.95, 400.0)
+
+
+def on_ground(xy) -> GroundPositions:
+    return GroundPositions.from_local(SITE, xy)
 
 
 def random_detections(rng, targets, spread=0.03):
@@ -31,7 +38,7 @@ def random_flight(seed, thresholds, checkpoint="a.onnx", n_targets=25):
     """Independent detections per threshold (a peak extraction per threshold need not nest)."""
     rng = np.random.default_rng(seed)
     targets = rng.uniform(0, 30, (n_targets, 2))
-    detections = {t: random_detections(rng, targets) for t in thresholds}
+    detections = {t: on_ground(random_detections(rng, targets)) for t in thresholds}
     return SweepFlight(detections, targets[rng.random(n_targets) < 0.9], 10 + seed, f"flight {seed % 10}",
                        checkpoint, checkpoint.upper())
 
@@ -76,7 +83,8 @@ def test_the_threshold_axis_takes_each_thresholds_own_detections():
     (Three frames see it; de-duplication merges each spot's three detections into one point.)"""
     one = np.array([[0.0, 0.0]])
     two = np.array([[-0.3, 0.0], [0.3, 0.0]])
-    flight = SweepFlight({0.3: np.tile(one, (3, 1)), 0.5: np.repeat(two, 3, axis=0)}, np.array([[0.3, 0.0]]), 3)
+    flight = SweepFlight({0.3: on_ground(np.tile(one, (3, 1))), 0.5: on_ground(np.repeat(two, 3, axis=0))},
+                         np.array([[0.3, 0.0]]), 3)
     r = sweep([flight], SweepGrid([0.3, 0.5], [0.1], [1], [0.05]))
     assert r.counts["n_clusters"][0, :, 0, 0, 0].tolist() == [1, 2]
     assert r.gmcf_pre[0, :, 0, 0, 0].tolist() == [0.0, 0.5]
@@ -131,7 +139,7 @@ def test_thresholds_must_be_probabilities_a_detector_can_run_at():
 
 
 def run(checkpoint, flight, threshold, n=2, source=None):
-    return DetectionRun(np.zeros((n, 2)), threshold, flight, checkpoint, checkpoint.upper(),
+    return DetectionRun(on_ground(np.zeros((n, 2))), threshold, flight, checkpoint, checkpoint.upper(),
                         source or f"{checkpoint}@{flight}@{threshold}")
 
 

@@ -14,6 +14,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from osgeo import gdal, osr
 
 from birdseye.birdseye_qgis.core.errors import Cancelled, InputError
 from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame
@@ -23,9 +24,6 @@ from birdseye.birdseye_qgis.core.sim.field import FieldScene
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "data"))
 from rendered_holes import dark_core_centroid
-
-gdal = pytest.importorskip("osgeo.gdal")
-osr = pytest.importorskip("osgeo.osr")
 
 # A small field (noise off: each geotag is its target's true position), tiny frames, a 1 cm map.
 FIELD = dict(seed=5, n_targets=8, field_width_m=4.0, field_length_m=3.0, altitude_m=4.0, fps=1.0,

@@ -25,11 +25,11 @@ from pathlib import Path
 
 import numpy as np
 
-from ...errors import Cancelled, InputError
+from ...errors import InputError, check_cancel
 from ...geometry.camera import CameraModel
 from ...geometry.dem import DemRaster
 from ...geometry.geodesy import LocalFrame, ProjectedCRS, ecef_to_geodetic, rotation_ecef_enu
-from ...geometry.poses import FramePoses
+from ...geometry.poses import FramePoses, indices_by_camera
 from ...geometry.rotations import R_ENU_NED, rotmat_to_quat
 from ..dji import T_CAM_GIMBAL
 from ..frame_records import GEOTAG_HEIGHTS_FLAG
@@ -192,11 +192,7 @@ def _tie_point_ground(solution, lat, lon, h, r_ned_body, cameras) -> np.ndarray:
     local_pts = local.from_geodetic(p_lat, p_lon, p_h)
     tree = cKDTree(local_pts[:, :2])
     depth = np.maximum(h - np.median(p_h), 1.0)
-    groups: dict[int, list[int]] = {}
-    for i, c in enumerate(cameras):
-        groups.setdefault(id(c), []).append(i)
-    for members in groups.values():
-        idx = np.asarray(members)
+    for idx in indices_by_camera(cameras):
         cam = cameras[idx[0]]
         geometry = FrameGeometry(FramePoses(idx, lat[idx], lon[idx], h[idx], rotmat_to_quat(r_ned_body[idx]),
                                             np.full(len(idx), np.nan), cam), local)
@@ -224,8 +220,7 @@ def import_camera_solution(path, images_folder=None, crs: ProjectedCRS | None = 
                            is_canceled=None) -> FlightImport:
     """Frames with footprints from a camera solution; what cannot be placed is reported, not guessed."""
     solution = read_camera_solution(path, images_folder, colmap_reference, solution_crs)
-    if is_canceled is not None and is_canceled():
-        raise Cancelled()
+    check_cancel(is_canceled)
     report = ImportReport(solution.source)
     report.notes.extend(solution.notes)
     if not solution.cameras:
@@ -270,7 +265,7 @@ def _control_ground(solution: CameraSolution) -> float | None:
     """The median surveyed height of the solution's control points (its ground), if it has any."""
     if solution.marks is None or not solution.ellipsoidal:
         return None
-    heights = solution.marks.points.h_ellipsoid
+    heights = solution.marks.points.height
     heights = heights[np.isfinite(heights)]
     return float(np.median(heights)) if len(heights) else None
 

@@ -23,6 +23,7 @@ import numpy as np
 from ...errors import InputError
 from ...geometry.camera import CameraModel
 from ...geometry.geodesy import geodetic_to_ecef, rotation_ecef_enu
+from ...geometry.rigid import RigidTransform
 from ...geometry.similarity import fit_similarity_robust
 from . import CameraSolution, SolvedCamera, match_images
 
@@ -77,17 +78,17 @@ def colmap_camera(camera: CameraModel) -> tuple[str, list]:
     return "OPENCV", [fx, fy, cx, cy, k1, k2, p1, p2]
 
 
-def _reference_transform(reference: str, source: str):
-    """(rotation, origin) taking model coordinates to ECEF for ``ecef`` / ``enu:lat,lon,h`` references."""
+def _reference_transform(reference: str, source: str) -> RigidTransform:
+    """The transform taking model coordinates to ECEF for ``ecef`` / ``enu:lat,lon,h`` references."""
     if reference == "ecef":
-        return np.eye(3), np.zeros(3)
+        return RigidTransform(np.eye(3), np.zeros(3))
     if reference.startswith("enu:"):
         try:
             lat, lon, h = (float(v) for v in reference[4:].split(","))
         except ValueError:
             raise InputError(f"the ENU origin must be 'lat,lon,h' in degrees and metres, got {reference[4:]!r}",
                              source=source) from None
-        return rotation_ecef_enu(lat, lon), geodetic_to_ecef(lat, lon, h).reshape(3)
+        return RigidTransform(rotation_ecef_enu(lat, lon), geodetic_to_ecef(lat, lon, h).reshape(3))
     raise InputError(f"reference {reference!r} is not 'gps', 'ecef' or 'enu:lat,lon,h'", source=source)
 
 
@@ -118,10 +119,10 @@ def read_colmap(folder, images_folder=None, reference: str = "gps") -> CameraSol
         if not image.has_pose:
             unaligned.append((image.name, "not registered"))
             continue
-        pose = image.cam_from_world().matrix()
+        world_from_cam = RigidTransform.from_matrix(image.cam_from_world().matrix()).inverse()
         names.append(image.name)
-        rotations.append(pose[:, :3].T)
-        centres.append(-pose[:, :3].T @ pose[:, 3])
+        rotations.append(world_from_cam.rotation)
+        centres.append(world_from_cam.translation)
         cams.append(models[image.camera_id])
     rotations, centres = np.asarray(rotations).reshape(-1, 3, 3), np.asarray(centres).reshape(-1, 3)
     points = np.array([p.xyz for p in rec.points3D.values()]).reshape(-1, 3) if rec.num_points3D() else None
@@ -133,9 +134,10 @@ def read_colmap(folder, images_folder=None, reference: str = "gps") -> CameraSol
         r_ecef, centres_ecef = sim.rotate(rotations), sim.apply(centres)
         points = None if points is None else sim.apply(points)
     else:
-        r_ref, origin = _reference_transform(reference, source)
-        r_ecef, centres_ecef = np.einsum("ij,njk->nik", r_ref, rotations), centres @ r_ref.T + origin
-        points = None if points is None else points @ r_ref.T + origin
+        ecef_from_world = _reference_transform(reference, source)
+        ecef_from_cam = ecef_from_world @ RigidTransform(rotations, centres)
+        r_ecef, centres_ecef = ecef_from_cam.rotation, ecef_from_cam.translation
+        points = None if points is None else ecef_from_world.apply(points)
     cameras = [SolvedCamera(n, c, r, x) for n, c, r, x in zip(names, cams, r_ecef, centres_ecef)]
     return CameraSolution("colmap", source, cameras, unaligned, points, notes, ellipsoidal=reference != "gps")
 

@@ -351,8 +351,7 @@ def _control_marks(chunk, frame, camera_names, source, notes) -> ControlMarks | 
     if not ids:
         return None
     lat, lon, h = _reference_to_wgs84(chunk, np.array(xyz), source)
-    points = Geotags(lat, lon, h, np.full(len(ids), np.nan), np.zeros(len(ids), dtype=np.int64), labels,
-                     np.arange(1, len(ids) + 1), source,
+    points = Geotags(np.arange(1, len(ids) + 1), lat, lon, h, labels, source=source,
                      flags=[["check_point" if c else "control_point"] for c in checks])
     index = {marker_id: i for i, marker_id in enumerate(ids)}
     point_idx, cams, uv = [], [], []

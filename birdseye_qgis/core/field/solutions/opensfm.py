@@ -25,6 +25,7 @@ import numpy as np
 from ...errors import InputError
 from ...geometry.camera import CameraModel
 from ...geometry.geodesy import geodetic_to_ecef, rotation_ecef_enu
+from ...geometry.rigid import RigidTransform
 from ...geometry.rotations import so3_exp
 from . import CameraSolution, SolvedCamera
 
@@ -109,8 +110,7 @@ def read_reconstruction(path) -> CameraSolution:
         notes.append(f"the file holds {len(doc)} separate reconstructions (partial alignment); all are read, each in "
                      "the same geographic reference")
     lat0, lon0, h0 = _reference(doc[0], path)
-    origin = geodetic_to_ecef(lat0, lon0, h0).reshape(3)
-    r_ecef_enu = rotation_ecef_enu(lat0, lon0)
+    ecef_from_world = RigidTransform(rotation_ecef_enu(lat0, lon0), geodetic_to_ecef(lat0, lon0, h0).reshape(3))
     names, rotvecs, translations, models_of, points = [], [], [], [], []
     for rec in doc:
         models = {key: _camera(key, spec, source) for key, spec in rec.get("cameras", {}).items()}
@@ -128,9 +128,8 @@ def read_reconstruction(path) -> CameraSolution:
         t = np.asarray(translations, dtype=float).reshape(-1, 3)
     except ValueError as exc:
         raise InputError(f"a shot's rotation or translation is not three numbers ({exc})", source=source) from exc
-    r_world_cam = np.swapaxes(r_cam_world, 1, 2)
-    centres = origin + (-np.einsum("nij,nj->ni", r_world_cam, t)) @ r_ecef_enu.T
-    r_ecef_cam = np.einsum("ij,njk->nik", r_ecef_enu, r_world_cam)
-    cameras = [SolvedCamera(n, m, r, c) for n, m, r, c in zip(names, models_of, r_ecef_cam, centres)]
-    pts = np.asarray(points, dtype=float).reshape(-1, 3) @ r_ecef_enu.T + origin if points else None
+    ecef_from_cam = ecef_from_world @ RigidTransform(r_cam_world, t).inverse()
+    cameras = [SolvedCamera(n, m, r, c) for n, m, r, c in zip(names, models_of, ecef_from_cam.rotation,
+                                                                ecef_from_cam.translation)]
+    pts = ecef_from_world.apply(np.asarray(points, dtype=float).reshape(-1, 3)) if points else None
     return CameraSolution("opensfm", source, cameras, [], pts, notes)
