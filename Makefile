@@ -3,7 +3,7 @@
 SHELL := /bin/bash
 .SHELLFLAGS := -eu -o pipefail -c
 .DEFAULT_GOAL := help
-.PHONY: help setup lint test test-unit test-integration test-qgis-lts test-qgis-sid demo bench package qgis-process chain-model translations clean \
+.PHONY: help setup lint test test-unit test-integration test-qgis-lts test-qgis-sid demo demo-loop bench package qgis-process chain-model translations clean \
 	distclean
 
 VENV := .venv
@@ -16,6 +16,7 @@ ALLOW_EMPTY := || { rc=$$?; [[ $$rc == 5 ]] || exit $$rc; }
 
 help:
 	@echo "make demo          set up, then run the whole chain on a simulated campaign -> birdseye-demo/"
+	@echo "make demo-loop     set up, then one round of review -> labels -> retraining -> comparison -> birdseye-demo-loop/"
 	@echo "make test          set up, then run every test suite (unit, QGIS, desktop under Xvfb, qgis_process)"
 	@echo "make test-qgis-lts the QGIS suites on QGIS 3.40 LTR, in a Debian 13 chroot (root; CI runs it too)"
 	@echo "make test-qgis-sid the QGIS suites on Debian unstable's QGIS (3.44), in a chroot (root)"
@@ -61,6 +62,10 @@ test-qgis-sid:
 demo: setup
 	QT_QPA_PLATFORM=offscreen $(PYTHON) scripts/demo.py $(DEMO_ARGS)
 
+# DEMO_ARGS as for demo, e.g. "--size small --minutes 0.5" (scripts/demo_loop.py --help).
+demo-loop: setup
+	QT_QPA_PLATFORM=offscreen $(PYTHON) scripts/demo_loop.py $(DEMO_ARGS)
+
 bench: setup
 	@shopt -s nullglob; benches=(benchmarks/bench_*.py); \
 	(($${#benches[@]})) || { echo "no benchmarks/bench_*.py yet"; exit 0; }; \
@@ -94,7 +99,7 @@ translations: setup
 clean:
 	@! awk '{print $$2}' /proc/self/mounts | grep -q '^$(CURDIR)/build/' || \
 		{ echo "make clean: build/chroots is in use (scripts/qgis_chroot.sh); try again once it ends" >&2; exit 1; }
-	rm -rf --one-file-system build birdseye-demo .pytest_cache .hypothesis .qgis-settings
+	rm -rf --one-file-system build birdseye-demo birdseye-demo-loop .pytest_cache .hypothesis .qgis-settings
 	find . -path ./$(VENV) -prune -o \( -name __pycache__ -o -name '*.pyc' \) -exec rm -rf {} +
 
 distclean: clean

@@ -46,6 +46,7 @@ from pathlib import Path, PurePosixPath, PureWindowsPath
 from typing import Callable, Iterable, Sequence
 
 from .core.errors import Cancelled, InputError
+from .core.train.protocol import relay_lines
 
 #: The plugin folder; ``requirements.txt`` sits at its top, in the repository and in the zip.
 PLUGIN_ROOT = Path(__file__).resolve().parents[1]
@@ -402,16 +403,8 @@ def run_streaming(command: Sequence[str], env: dict[str, str], log: Callable[[st
     reader = threading.Thread(target=read, daemon=True)
     reader.start()
     try:
-        while True:
-            if is_canceled():
-                raise Cancelled()
-            try:
-                line = lines.get(timeout=poll_s)
-            except queue.Empty:
-                continue
-            if line is None:
-                break
-            log(line)
+        if relay_lines(lines, log, is_canceled, poll_s):
+            raise Cancelled()
         return process.wait()
     finally:
         if process.poll() is None:
@@ -509,9 +502,11 @@ class Installer:
     def __init__(self, folder: Path, python: str | None = None, search_path: Sequence[str] | None = None,
                  log: Callable[[str], None] = lambda line: None,
                  progress: Callable[[float], None] = lambda fraction: None,
-                 is_canceled: Callable[[], bool] = lambda: False):
+                 is_canceled: Callable[[], bool] = lambda: False, pip_options: Sequence[str] = ()):
         self.folder = Path(folder)
         self.python = python
+        # Extra pip options for both resolution and installation (a package group's index, e.g. PyTorch's).
+        self.pip_options = tuple(pip_options)
         self.search_path = tuple(sys.path) if search_path is None else tuple(search_path)
         self.log, self.progress, self.is_canceled = log, progress, is_canceled
         self.output: list[str] = []
@@ -579,7 +574,7 @@ class Installer:
             report_path = self.scratch / "report.json"
             try:
                 self._pip(["install", "--dry-run", "--no-input", "--only-binary=:all:", "--report", str(report_path),
-                           "-c", str(constraints), *(p.requirement for p in packages)], env)
+                           *self.pip_options, "-c", str(constraints), *(p.requirement for p in packages)], env)
             except InstallError as exc:
                 if not clashes:
                     raise
@@ -605,7 +600,8 @@ class Installer:
                 self.progress(0.85)
 
         self._pip(["install", "--no-deps", "--no-input", "--only-binary=:all:", "--progress-bar", "off",
-                   "--upgrade", "--target", str(self.folder), *(p.requirement for p in plan)], env, follow)
+                   *self.pip_options, "--upgrade", "--target", str(self.folder), *(p.requirement for p in plan)], env,
+                  follow)
 
     def _verify(self, packages: Sequence[RuntimePackage], env: dict[str, str]) -> None:
         """Import each package in a separate Python: a wheel that does not load on this system fails
@@ -621,3 +617,197 @@ class Installer:
         if status != 0:
             raise InstallError("The packages were installed but do not load: " + ", ".join(modules) + ".",
                                "\n".join(self.output))
+
+
+# ---------------------------------------------------------------------------------------- PyTorch, for training
+# Train detector (birdseye:traindetector) trains in a separate Python process; QGIS's own Python never
+# imports torch. PyTorch is an optional package group that Install dependencies installs on request into
+# its own folder of the profile (never QGIS's site-packages, nor BirdsEye's runtime folder): the training
+# process is QGIS's Python with that folder and BirdsEye's folder on its PYTHONPATH. A Python that already
+# has torch (a venv, conda) can be named instead (the algorithm's PYTHON parameter or the environment
+# variable below); tests and the repository use .venv's.
+TORCH_VERSION = "2.13.0"
+TORCHVISION_VERSION = "0.28.0"
+ONNX_SPECIFIER = ">=1.17.0"
+#: PyTorch's own package index for the CPU build (PyPI's Linux wheels are the CUDA build, gigabytes);
+#: the CUDA build's index matches the CUDA runtime of PyPI's torch 2.13 wheels.
+TORCH_CPU_INDEX = "https://download.pytorch.org/whl/cpu"
+TORCH_CUDA_INDEX = "https://download.pytorch.org/whl/cu130"
+PYPI_INDEX = "https://pypi.org/simple"
+TRAINING_PYTHON_VARIABLE = "BIRDSEYE_TRAINING_PYTHON"
+#: Modules the training process imports: torch, onnx (export), cv2 and numpy (tiles); torchvision only
+#: for a pretrained backbone, matplotlib only for the loss plot.
+TRAINING_MODULES = {"torch": "torch", "onnx": "onnx", "cv2": "opencv-python-headless", "numpy": "numpy",
+                    "torchvision": "torchvision", "matplotlib": "matplotlib"}
+TRAINING_REQUIRED = ("torch", "onnx", "cv2", "numpy")
+
+
+@dataclass(frozen=True)
+class PackageGroup:
+    """An optional group of packages installed together into their own folder, from ``index_url``
+    (PyPI stays the extra index for their dependencies)."""
+
+    name: str
+    title: str
+    build: str
+    packages: tuple[RuntimePackage, ...]
+    index_url: str | None = None
+
+    @property
+    def pip_options(self) -> list[str]:
+        return [] if self.index_url is None else ["--index-url", self.index_url, "--extra-index-url", PYPI_INDEX]
+
+    def pip_command(self, python: str, folder: Path | str) -> str:
+        """The command that installs the group by hand (what the installer does, in one line)."""
+        return " ".join([f'"{python}"', "-m", "pip", "install", "--target", f'"{folder}"', *self.pip_options,
+                         *(f'"{p.requirement}"' for p in self.packages)])
+
+
+def nvidia_driver_present(proc_version: Path = Path("/proc/driver/nvidia/version"),
+                          which: Callable[[str], str | None] | None = None) -> bool:
+    """Whether an NVIDIA driver is installed: Linux's ``/proc/driver/nvidia/version``, or ``nvidia-smi``
+    on the PATH (Windows and Linux; the driver installs it)."""
+    import shutil
+
+    which = shutil.which if which is None else which
+    try:
+        if Path(proc_version).is_file():
+            return True
+    except OSError:
+        pass
+    return which("nvidia-smi") is not None
+
+
+def torch_group(cuda: bool | None = None) -> PackageGroup:
+    """PyTorch for Train detector: the CPU build, or the CUDA build where an NVIDIA driver is present
+    (``cuda=None``: detect it). Exactly these torch and torchvision versions (a looser request would
+    let pip pick another build); onnx for the export."""
+    cuda = nvidia_driver_present() if cuda is None else cuda
+    use = Use("torch", always=("traindetector",))
+    packages = (RuntimePackage("torch", f"=={TORCH_VERSION}", use),
+                RuntimePackage("torchvision", f"=={TORCHVISION_VERSION}",
+                               Use("torchvision", sometimes=("traindetector",))),
+                RuntimePackage("onnx", ONNX_SPECIFIER, Use("onnx", always=("traindetector",))))
+    return PackageGroup("torch", "PyTorch (training)", "cuda" if cuda else "cpu", packages,
+                        TORCH_CUDA_INDEX if cuda else TORCH_CPU_INDEX)
+
+
+def torch_folder(profile_dir: Path | str, version: Sequence[int] = sys.version_info) -> Path:
+    """The PyTorch group's folder in a QGIS profile, one per Python version (next to BirdsEye's own)."""
+    return Path(profile_dir) / "python" / "birdseye-torch" / f"python{version[0]}.{version[1]}"
+
+
+def group_statuses(group: PackageGroup, folder: Path | None) -> list[PackageStatus]:
+    """Each package of ``group`` as found in its folder (from the distributions' metadata: nothing is
+    imported, so torch never enters QGIS's process), else in QGIS's Python."""
+    out = []
+    for package in group.packages:
+        found = None
+        if folder is not None and Path(folder).is_dir():
+            found = next(iter(importlib.metadata.distributions(name=package.distribution, path=[str(folder)])), None)
+        if found is not None:
+            out.append(PackageStatus(package, found.version, True))
+            continue
+        host = next(iter(importlib.metadata.distributions(
+            name=package.distribution, path=[p for p in sys.path if not _in_folder(p, folder)])), None)
+        out.append(PackageStatus(package, None if host is None else host.version, False))
+    return out
+
+
+@dataclass(frozen=True)
+class TrainingPython:
+    """A Python the training process can run in: the interpreter, what goes first on its PYTHONPATH,
+    where it came from (for the log) and the versions of :data:`TRAINING_MODULES` it has (None: missing)."""
+
+    executable: str
+    pythonpath: tuple[str, ...]
+    origin: str
+    versions: dict
+
+    @property
+    def missing(self) -> list[str]:
+        return [m for m in TRAINING_REQUIRED if not self.versions.get(m)]
+
+    def environment(self, plugin_root: Path = PLUGIN_ROOT, base: dict | None = None) -> dict[str, str]:
+        """The child's environment: the plugin folder (``birdseye_qgis`` importable), then this Python's
+        own entries, then any PYTHONPATH already set; unbuffered UTF-8 output."""
+        env = dict(os.environ if base is None else base)
+        entries = [str(plugin_root), *self.pythonpath] + ([env["PYTHONPATH"]] if env.get("PYTHONPATH") else [])
+        env["PYTHONPATH"] = os.pathsep.join(entries)
+        env["PYTHONIOENCODING"] = "utf-8"
+        env["PYTHONUNBUFFERED"] = "1"
+        return env
+
+
+_PROBE = ("import importlib.metadata as m, importlib.util as u, json, sys\n"
+          "out = {}\n"
+          "for module, dist in json.loads(sys.argv[1]).items():\n"
+          "    try:\n"
+          "        out[module] = m.version(dist) if u.find_spec(module) else None\n"
+          "    except Exception:\n"
+          "        out[module] = 'unknown' if u.find_spec(module) else None\n"
+          "print(json.dumps(out))\n")
+
+
+def probe_training_python(executable: str, pythonpath: Sequence[str] = (), timeout: float = 60) -> dict | None:
+    """{module: version or None} of :data:`TRAINING_MODULES` in ``executable`` with ``pythonpath`` first,
+    found without importing them (quick: no torch start-up); None when the interpreter does not run."""
+    env = TrainingPython(executable, tuple(pythonpath), "", {}).environment()
+    try:
+        result = subprocess.run([executable, "-c", _PROBE, json.dumps(TRAINING_MODULES)], capture_output=True,
+                                text=True, timeout=timeout, env=env, cwd=tempfile.gettempdir(), check=False,
+                                **_hidden_window())
+    except (OSError, subprocess.TimeoutExpired):
+        return None
+    try:
+        return json.loads(result.stdout.strip().splitlines()[-1]) if result.returncode == 0 else None
+    except (ValueError, IndexError):
+        return None
+
+
+def training_python_candidates(configured: str | None, profile_dir: Path | str | None,
+                               qgis_python: Callable[[], str] | None = None,
+                               environ: dict | None = None) -> list[tuple[str, tuple[str, ...], str]]:
+    """(interpreter, PYTHONPATH entries, origin) to try, in order: the Python the user named, the one in
+    ``BIRDSEYE_TRAINING_PYTHON``, then QGIS's Python with the profile's PyTorch folder (and BirdsEye's
+    package folder) when Install dependencies created it."""
+    environ = os.environ if environ is None else environ
+    found = []
+    if configured:
+        found.append((configured, (), "the Python given"))
+    if environ.get(TRAINING_PYTHON_VARIABLE):
+        found.append((environ[TRAINING_PYTHON_VARIABLE], (), TRAINING_PYTHON_VARIABLE))
+    if profile_dir is not None:
+        folder = torch_folder(profile_dir)
+        if folder.is_dir():
+            try:
+                python = (qgis_python or find_python)()
+            except InstallError:
+                python = None
+            if python:
+                found.append((python, (str(folder), str(package_folder(profile_dir))),
+                              f"QGIS's Python with {folder}"))
+    return found
+
+
+def find_training_python(configured: str | None = None, profile_dir: Path | str | None = None,
+                         qgis_python: Callable[[], str] | None = None, environ: dict | None = None,
+                         probe: Callable[..., dict | None] = probe_training_python
+                         ) -> tuple[TrainingPython | None, list[str]]:
+    """The first candidate (:func:`training_python_candidates`) that has torch, onnx, OpenCV and numpy,
+    and what was tried (for the message when none does). A Python the user named is the only one
+    tried: a mistake there is reported, not silently replaced."""
+    tried = []
+    candidates = training_python_candidates(configured, profile_dir, qgis_python, environ)
+    if configured:
+        candidates = candidates[:1]
+    for executable, pythonpath, origin in candidates:
+        versions = probe(executable, pythonpath)
+        if versions is None:
+            tried.append(f"{executable} ({origin}): does not run")
+            continue
+        candidate = TrainingPython(executable, tuple(pythonpath), origin, versions)
+        if not candidate.missing:
+            return candidate, tried
+        tried.append(f"{executable} ({origin}): no {', '.join(TRAINING_MODULES[m] for m in candidate.missing)}")
+    return None, tried

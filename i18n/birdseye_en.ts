@@ -250,12 +250,12 @@ review</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="230"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="238"/>
         <source>{n} units from {k} layer(s); verdict log {path}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="300"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="308"/>
         <source>A layer of the review was removed from the project; the review stopped. Every verdict is in the log; choose the layers again to resume.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -265,72 +265,72 @@ review</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="337"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="345"/>
         <source>&lt;b&gt;{pos}&lt;/b&gt; of {vis} shown · {done} of {n} units reviewed · {added} added</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="390"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="398"/>
         <source>An added target can only be withdrawn (0 or Backspace) or undone.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="401"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="409"/>
         <source>Saved: {key} → {verdict}{more} ({time} UTC)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="401"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="409"/>
         <source>, {} propagated vote(s)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="416"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="424"/>
         <source>Nothing to undo.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="420"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="428"/>
         <source>Undone: action {action} on {key} (rows appended; nothing deleted).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="438"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="446"/>
         <source>The verdict was NOT saved: {error}. Check that {path} is writable and not locked, then try again.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="453"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="461"/>
         <source>Click the map where the missed target is (Esc or right click cancels).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="474"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="482"/>
         <source>Added target {key} (Ctrl+Z undoes it).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="474"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="482"/>
         <source>A target is already recorded there.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="495"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="503"/>
         <source>No units: the detection layers have no clusters at these settings.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="496"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="504"/>
         <source>Nothing to show</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="508"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="516"/>
         <source>Loading frames…</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="515"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="523"/>
         <source>&lt;b&gt;Added target&lt;/b&gt; {key}&lt;br&gt;{lat:.7f}°, {lon:.7f}° · recorded as a target the detector missed (the &lt;i&gt;a&lt;/i&gt; term). 0 withdraws it.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -375,12 +375,12 @@ review</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="572"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="580"/>
         <source>updating…</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="581"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="589"/>
         <source>Scores could not be computed: {}</source>
         <translation type="unfinished"></translation>
     </message>
@@ -395,277 +395,277 @@ review</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="228"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="236"/>
         <source>Review verdicts</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="453"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="454"/>
         <source>Cannot start the review</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="453"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="454"/>
         <source>Inputs changed since verdicts were recorded</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="114"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="113"/>
         <source>Accept</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="114"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="113"/>
         <source>Reject</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="114"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="113"/>
         <source>: κ* = λ_target / sup; every variance of the budget may grow by this factor. Accept when κ* ≥ 1.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="137"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="136"/>
         <source>Sensor-bound calculator</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="174"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="173"/>
         <source>Camera</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="181"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="180"/>
         <source>A platform sets the camera and the pose-noise budget together.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="183"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="182"/>
         <source>Platform</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="186"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="185"/>
         <source>Camera calibration (Kalibr or OpenCV YAML)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="187"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="186"/>
         <source>Load fx, fy, cx, cy and the image size from a Kalibr camchain or OpenCV YAML file.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="190"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="189"/>
         <source>Calibration</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="204"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="203"/>
         <source>Width</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="205"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="204"/>
         <source>Height</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="217"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="216"/>
         <source>Pose noise (1σ)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="249"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="248"/>
         <source>Label tolerance and altitudes</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="254"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="253"/>
         <source>Label radius r at 3σ: the label must stay within r px of the target.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="258"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="257"/>
         <source>σ_label = r/3: the Gaussian sigma of the soft labels (λ_target = σ_label²).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="262"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="261"/>
         <source>Tolerance r (3σ)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="264"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="263"/>
         <source>e.g. 10, 20</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="265"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="264"/>
         <source>Heights above the ground in metres, separated by commas.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="267"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="266"/>
         <source>Altitudes [m]</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="271"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="270"/>
         <source>Verdicts</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="279"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="278"/>
         <source>Altitude</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="279"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="278"/>
         <source>sup tr Σ
 [px²]</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="279"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="278"/>
         <source>sup λmax
 [px²]</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="279"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="278"/>
         <source>κ* trace</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="279"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="278"/>
         <source>κ* exact</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="281"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="280"/>
         <source>Largest trace of the label covariance over the frame (the linear, pessimistic criterion).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="283"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="282"/>
         <source>Largest eigenvalue of the label covariance over the frame (the exact criterion).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="289"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="288"/>
         <source>Details for</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="291"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="290"/>
         <source>The altitude whose budget table and λ_max field are shown.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="299"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="298"/>
         <source>Your σ</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="299"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="298"/>
         <source>Balanced σ
 (trace)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="299"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="298"/>
         <source>Balanced σ
 (exact)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="299"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="298"/>
         <source>Share of
 error</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="301"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="300"/>
         <source>The largest budget with no axis starved (maximum Σ log σ²) that meets the exact bound.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="303"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="302"/>
         <source>Each axis&apos;s share of the error of your budget at the worst pixel: improve the largest first.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="328"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="327"/>
         <source>λ_max field — red: the tolerance λ_target</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="341"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="340"/>
         <source>Evaluate every pixel</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="342"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="341"/>
         <source>Re-evaluate on the full-resolution grid (stride 1 px), as the Processing algorithm does by default.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="345"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="344"/>
         <source>Use σ_label in Write labels</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="346"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="345"/>
         <source>Store σ_label = r/3 px in the project; Write labels uses it as its default label sigma (SIGMA_PX).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="349"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="348"/>
         <source>Run in Processing…</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="350"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="349"/>
         <source>Open the Sensor bound algorithm with these values, to write the JSON results, the HTML report and the λ_max raster.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="375"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="374"/>
         <source>Altitudes</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="455"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="454"/>
         <source>σ_label = {value:.2f} px</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="482"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="481"/>
         <source>every pixel</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="482"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="481"/>
         <source>preview grid: every {s} px and the frame edges</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="487"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="486"/>
         <source>λ_target = (r/3)² = {lam:.4g} px² · {grid}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="506"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="505"/>
         <source>worst pixel ({u:.0f}, {v:.0f})</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="524"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="523"/>
         <source>worst at ({u:.0f}, {v:.0f})</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="554"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="553"/>
         <source>σ_label = {s:.2f} px stored in the project: Write labels will use it as its label sigma (project variable @birdseye_sigma_label_px).</source>
         <translation type="unfinished"></translation>
     </message>
@@ -675,7 +675,7 @@ error</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/evaluatedetections.py" line="34"/>
+        <location filename="../processing/algorithms/evaluatedetections.py" line="36"/>
         <source>Sealed rule verified (seal {value}…, sealed {sealed_at}); arm '{name}': its operating point replaces the dialog's values: {value2}</source>
         <translation type="unfinished"></translation>
     </message>
@@ -690,143 +690,143 @@ error</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="251"/>
+        <location filename="../processing/algorithms/writelabels.py" line="231"/>
         <source>{n_labels} labels in {n_frames_with_labels} of {n_frames} frames (labels per labelled frame: mean {mean:g}, max {max}); {n_geotags_in_view} of {n_geotags} geotags in view (frames per geotag: mean {mean2:g}, max {max2})</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="270"/>
+        <location filename="../processing/algorithms/writelabels.py" line="250"/>
         <source>{n_occluded} projections were hidden behind terrain (not written)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="273"/>
+        <location filename="../processing/algorithms/writelabels.py" line="253"/>
         <source>{n_edge} projections fell within the edge buffer (not written)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="278"/>
+        <location filename="../processing/algorithms/writelabels.py" line="258"/>
         <source>{n_never} geotag(s) never in view of any frame: {shown}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="282"/>
+        <location filename="../processing/algorithms/writelabels.py" line="262"/>
         <source>{value} image(s) could not be read for tiles; first: {value2}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/dem.py" line="115"/>
+        <location filename="../processing/parameters/dem.py" line="138"/>
         <source>DEM {source}: {value}×{value2} cells of {cell_size_m:g} m, heights {value3:.1f}…{value4:.1f} m ({vertical_datum})</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/dependencies.py" line="64"/>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="68"/>
         <source>{always}; for some inputs: {sometimes}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/dependencies.py" line="66"/>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="70"/>
         <source>for some inputs: {sometimes}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/dependencies.py" line="67"/>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="71"/>
         <source>no algorithm (developer tools only)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/dependencies.py" line="74"/>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="78"/>
         <source>missing</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/dependencies.py" line="76"/>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="80"/>
         <source>update from {version}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/dependencies.py" line="78"/>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="82"/>
         <source>installed by BirdsEye ({version})</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/dependencies.py" line="82"/>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="86"/>
         <source>installed ({version})</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/dependencies.py" line="126"/>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="133"/>
         <source>BirdsEye — Python packages</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/dependencies.py" line="141"/>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="152"/>
         <source>Package</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/dependencies.py" line="141"/>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="152"/>
         <source>State</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/dependencies.py" line="141"/>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="152"/>
         <source>Needed by</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/dependencies.py" line="159"/>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="170"/>
         <source>Install</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/dependencies.py" line="163"/>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="174"/>
         <source>Show pip&apos;s log</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/dependencies.py" line="264"/>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="309"/>
         <source>Close</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/dependencies.py" line="205"/>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="224"/>
         <source>Every Python package BirdsEye&apos;s algorithms need is installed in the Python QGIS runs.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/dependencies.py" line="229"/>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="273"/>
         <source>Installing {names}…</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/dependencies.py" line="232"/>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="277"/>
         <source>Cancel</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/dependencies.py" line="249"/>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="294"/>
         <source>Installed: {names}. The algorithms can use them now; no restart needed.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/dependencies.py" line="249"/>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="294"/>
         <source>nothing new</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/dependencies.py" line="254"/>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="299"/>
         <source>The installation failed: {message}
 pip&apos;s log is below; the packages already there are unchanged.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/dependencies.py" line="260"/>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="305"/>
         <source>Cancelled; nothing was installed.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/dependencies.py" line="272"/>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="317"/>
         <source>Cancelling…</source>
         <translation type="unfinished"></translation>
     </message>
@@ -876,37 +876,37 @@ pip&apos;s log is below; the packages already there are unchanged.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="238"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="237"/>
         <source>How roll, pitch and yaw turn the camera. As the method: about the camera&apos;s x, y and optical axes; nadir, image top towards the nose: roll and pitch trade places.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="242"/>
+        <location filename="../birdseye_qgis/gui/sensor_bound_dock.py" line="241"/>
         <source>Mount</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/dem.py" line="85"/>
+        <location filename="../processing/parameters/dem.py" line="90"/>
         <source>{GROUND_MODEL}: the method&apos;s plane stands in for the level ground; with a terrain model ({DEM}) the terrain is the ground. Give one or the other.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/dependencies.py" line="72"/>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="76"/>
         <source>no release for Python {version}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/dependencies.py" line="80"/>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="84"/>
         <source>installed ({version}; untested outside {versions})</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/dependencies.py" line="141"/>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="152"/>
         <source>Versions</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/dependencies.py" line="197"/>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="216"/>
         <source>BirdsEye&apos;s algorithms need {count} Python package(s) that the Python QGIS runs does not have. Tick the ones to install and press Install: pip installs them, at versions that suit this Python and the packages QGIS already has, with what they depend on, into a folder of your QGIS profile:
 {folder}
 QGIS&apos;s own packages are not changed. pip downloads them from the Python Package Index (or the index your pip is set up to use).</source>
@@ -918,13 +918,78 @@ QGIS&apos;s own packages are not changed. pip downloads them from the Python Pac
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="261"/>
+        <location filename="../processing/algorithms/writelabels.py" line="241"/>
         <source>Of these, review targets: {n_in_view} of {n_targets} in view, {n_labels} labels.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="266"/>
+        <location filename="../processing/algorithms/writelabels.py" line="246"/>
         <source>Hard negatives: {n_in_view} of {n_clusters} in view, in {n_frames} frame(s); {n_tiles} hard-negative tile(s) written.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="234"/>
+        <source>Optional — {title} for Train detector ({build} build{why}): {state}. It is installed into its own folder, {folder}, and runs in a separate training process: QGIS itself never loads it. Several hundred MB (the CUDA build: gigabytes).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="234"/>
+        <source>, an NVIDIA driver is present</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/gui/dependencies.py" line="241"/>
+        <source>Install {title}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="212"/>
+        <source>The detections were placed on {ground}, which cannot be used here ({reason}). Chips and geotags in view stand on the level plane instead: positions in the chips and the scores may differ from those of Evaluate detections given that DEM.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="217"/>
+        <source>The review stands on the level plane, not on the detections&apos; DEM</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/qgis_io/layers.py" line="364"/>
+        <source>the camera model of frame {frame} was cut at {length} characters: {format} keeps at most {length} characters in a text field and a camera model needs about 500: the layer was probably saved to it after the import (Save Features As…). Save the original frame layer as a GeoPackage (.gpkg) instead, or run the import again with its output written to a GeoPackage (or to this format: the import then splits the camera over fields camera, camera_2, …).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/qgis_io/layers.py" line="364"/>
+        <source>the layer&apos;s file format (e.g. ESRI Shapefile)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/qgis_io/layers.py" line="409"/>
+        <source>The output&apos;s format keeps at most {n} characters in a text field: each frame&apos;s camera model goes on in fields {fields}; keep them with the layer.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/traindetector.py" line="272"/>
+        <source>Training: {stage}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/traindetector.py" line="274"/>
+        <source>Training process {pid} started: torch {torch} on {device} ({threads} threads), backbone {backbone}.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/traindetector.py" line="279"/>
+        <source>{stage} step {step}: loss {loss:.4f}, validation {val} ({seconds:.0f} s)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/traindetector.py" line="283"/>
+        <source>Checkpoint written: {path} ({stage}, step {step})</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/parameters/dem.py" line="128"/>
+        <source>{layer}: its detections were placed on {recorded}; {DEM} is {given}. Check that both hold the same terrain in the same vertical reference.</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
@@ -994,52 +1059,52 @@ QGIS&apos;s own packages are not changed. pip downloads them from the Python Pac
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="61"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="62"/>
         <source>Clusters</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="63"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="64"/>
         <source>De-duplicated points</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="73"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="74"/>
         <source>DETECTIONS: the detection layer cannot be read.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="84"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="86"/>
         <source>The detection layer holds no detection with a position.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="146"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="151"/>
         <source>OUTPUT: the cluster layer cannot be created.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="168"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="173"/>
         <source>OUTPUT_POINTS: the point layer cannot be created.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="76"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="77"/>
         <source>{dropped} detection(s) without a position or score were left out</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="110"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="115"/>
         <source>No FRAMES given: every geotag is treated as in view.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="117"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="122"/>
         <source>{n_hit_clusters} of {n} clusters match an in-view geotag; {n_recovered} of {n_in_view} in-view geotags recovered.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="129"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="134"/>
         <source>{n_det} detections → {n_points} de-duplicated points → {n} clusters ({NOISE_POINTS} points are noise).</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1049,7 +1114,7 @@ QGIS&apos;s own packages are not changed. pip downloads them from the Python Pac
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="105"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="110"/>
         <source>{n} frame(s) without a ground height (flag no_ground_height; first: {items}) were not counted as processed: the geotags only they see are not in view.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1082,17 +1147,17 @@ QGIS&apos;s own packages are not changed. pip downloads them from the Python Pac
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/clustering.py" line="66"/>
+        <location filename="../processing/parameters/clustering.py" line="69"/>
         <source>{name}: give at least one detection layer.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/clustering.py" line="69"/>
+        <location filename="../processing/parameters/clustering.py" line="72"/>
         <source>{name}: give one frame layer per detection layer, in the same order (got {detections} detection layer(s) and {frames} frame layer(s)).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/clustering.py" line="77"/>
+        <location filename="../processing/parameters/clustering.py" line="80"/>
         <source>{layer}: {n} detection(s) without a position or score left out</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1100,77 +1165,77 @@ QGIS&apos;s own packages are not changed. pip downloads them from the Python Pac
 <context>
     <name>CompareDetectors</name>
     <message>
-        <location filename="../processing/algorithms/comparedetectors.py" line="36"/>
+        <location filename="../processing/algorithms/comparedetectors.py" line="37"/>
         <source>Compare detectors</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/comparedetectors.py" line="48"/>
+        <location filename="../processing/algorithms/comparedetectors.py" line="49"/>
         <source>Detections of the old detector (before)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/comparedetectors.py" line="50"/>
+        <location filename="../processing/algorithms/comparedetectors.py" line="51"/>
         <source>Detections of the new detector (after), same flight</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/comparedetectors.py" line="53"/>
+        <location filename="../processing/algorithms/comparedetectors.py" line="54"/>
         <source>Frames of the flight (both detectors ran on them)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/comparedetectors.py" line="55"/>
+        <location filename="../processing/algorithms/comparedetectors.py" line="56"/>
         <source>Geotags</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/comparedetectors.py" line="58"/>
+        <location filename="../processing/algorithms/comparedetectors.py" line="60"/>
         <source>Review verdicts (optional: adds the POST scores of both)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/comparedetectors.py" line="61"/>
+        <location filename="../processing/algorithms/comparedetectors.py" line="63"/>
         <source>What changed</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/comparedetectors.py" line="63"/>
+        <location filename="../processing/algorithms/comparedetectors.py" line="65"/>
         <source>Comparison (JSON)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/comparedetectors.py" line="65"/>
+        <location filename="../processing/algorithms/comparedetectors.py" line="67"/>
         <source>Report (HTML)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/comparedetectors.py" line="79"/>
+        <location filename="../processing/algorithms/comparedetectors.py" line="81"/>
         <source>{name}: the layer cannot be read.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/comparedetectors.py" line="84"/>
+        <location filename="../processing/algorithms/comparedetectors.py" line="86"/>
         <source>{name}: {n} detection(s) without a position or score left out</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/comparedetectors.py" line="89"/>
+        <location filename="../processing/algorithms/comparedetectors.py" line="91"/>
         <source>Both layers come from the same model file (model_digest) at the same threshold: the comparison shows no change of detector.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/comparedetectors.py" line="94"/>
+        <location filename="../processing/algorithms/comparedetectors.py" line="102"/>
         <source>GEOTAGS: the layer holds no point with a position.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/comparedetectors.py" line="121"/>
+        <location filename="../processing/algorithms/comparedetectors.py" line="130"/>
         <source>OUTPUT: the change layer cannot be created.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/comparedetectors.py" line="149"/>
+        <location filename="../processing/algorithms/comparedetectors.py" line="158"/>
         <source>{name}: cannot write {path} ({exc})</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1178,22 +1243,22 @@ QGIS&apos;s own packages are not changed. pip downloads them from the Python Pac
 <context>
     <name>DemParametersMixin</name>
     <message>
-        <location filename="../processing/parameters/dem.py" line="56"/>
+        <location filename="../processing/parameters/dem.py" line="60"/>
         <source>Terrain model (DEM/DSM raster, projected CRS in metres; empty: level ground)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/dem.py" line="59"/>
+        <location filename="../processing/parameters/dem.py" line="63"/>
         <source>DEM heights are measured from</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/dem.py" line="62"/>
+        <location filename="../processing/parameters/dem.py" line="66"/>
         <source>Geoid undulation N at the site (m; ellipsoidal = MSL + N)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/dem.py" line="66"/>
+        <location filename="../processing/parameters/dem.py" line="70"/>
         <source>Ground model without a DEM</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1324,7 +1389,7 @@ QGIS&apos;s own packages are not changed. pip downloads them from the Python Pac
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/detect.py" line="150"/>
+        <location filename="../processing/algorithms/detect.py" line="151"/>
         <source>{n_coarse} frame(s) (e.g. {items}) are coarser than 1.5× the model's resolution of {resolution_cm:g} cm/px: targets look smaller than in training, so expect fewer detections (fly lower or use a model trained at that resolution).</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1342,77 +1407,77 @@ QGIS&apos;s own packages are not changed. pip downloads them from the Python Pac
 <context>
     <name>EvaluateDetections</name>
     <message>
-        <location filename="../processing/algorithms/evaluatedetections.py" line="56"/>
+        <location filename="../processing/algorithms/evaluatedetections.py" line="58"/>
         <source>Detection layers (one per flight)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/evaluatedetections.py" line="58"/>
+        <location filename="../processing/algorithms/evaluatedetections.py" line="60"/>
         <source>Geotags</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/evaluatedetections.py" line="60"/>
+        <location filename="../processing/algorithms/evaluatedetections.py" line="62"/>
         <source>Frame layers (one per flight, same order)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/evaluatedetections.py" line="63"/>
+        <location filename="../processing/algorithms/evaluatedetections.py" line="66"/>
         <source>Review verdicts (optional: adds the POST scores)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/evaluatedetections.py" line="66"/>
+        <location filename="../processing/algorithms/evaluatedetections.py" line="69"/>
         <source>Sealed selection rule (optional: verified, its operating point is used)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/evaluatedetections.py" line="72"/>
+        <location filename="../processing/algorithms/evaluatedetections.py" line="75"/>
         <source>Scores (JSON)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/evaluatedetections.py" line="74"/>
+        <location filename="../processing/algorithms/evaluatedetections.py" line="77"/>
         <source>Report (HTML)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/evaluatedetections.py" line="85"/>
+        <location filename="../processing/algorithms/evaluatedetections.py" line="91"/>
         <source>GEOTAGS: the geotag layer cannot be read.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/evaluatedetections.py" line="88"/>
+        <location filename="../processing/algorithms/evaluatedetections.py" line="94"/>
         <source>GEOTAGS: the layer holds no point with a position.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/evaluatedetections.py" line="111"/>
+        <location filename="../processing/algorithms/evaluatedetections.py" line="117"/>
         <source>{name}: {n_frames_without_ground} frame(s) without a ground height were not counted as processed</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/evaluatedetections.py" line="118"/>
+        <location filename="../processing/algorithms/evaluatedetections.py" line="124"/>
         <source>OUTPUT_JSON: cannot write {out_json} ({exc})</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/evaluatedetections.py" line="126"/>
+        <location filename="../processing/algorithms/evaluatedetections.py" line="132"/>
         <source>OUTPUT_REPORT: cannot write {out_report} ({exc})</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/evaluatedetections.py" line="44"/>
+        <location filename="../processing/algorithms/evaluatedetections.py" line="46"/>
         <source>Evaluate detections (recall, GMCF)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/evaluatedetections.py" line="69"/>
+        <location filename="../processing/algorithms/evaluatedetections.py" line="72"/>
         <source>Arm to score (its name in the sealed rule; needed when arms share the checkpoint)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/evaluatedetections.py" line="95"/>
+        <location filename="../processing/algorithms/evaluatedetections.py" line="101"/>
         <source>ARM: names an arm of a sealed selection rule; give the rule (PREREGISTRATION) too, or leave ARM empty.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1815,118 +1880,123 @@ QGIS&apos;s own packages are not changed. pip downloads them from the Python Pac
 <context>
     <name>PlanFlight</name>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="100"/>
+        <location filename="../processing/algorithms/planflight.py" line="99"/>
         <source>Geotags (point layer)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="102"/>
+        <location filename="../processing/algorithms/planflight.py" line="101"/>
         <source>Selected geotags only</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="104"/>
-        <source>Geotag id field (empty: &apos;id&apos; if present, else the feature number)</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../processing/algorithms/planflight.py" line="107"/>
+        <location filename="../processing/algorithms/planflight.py" line="106"/>
         <source>Home: take-off and landing point (optional)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="114"/>
+        <location filename="../processing/algorithms/planflight.py" line="113"/>
         <source>Camera calibration (Kalibr or OpenCV YAML; optional)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="120"/>
+        <location filename="../processing/algorithms/planflight.py" line="119"/>
         <source>Capture</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="130"/>
+        <location filename="../processing/algorithms/planflight.py" line="129"/>
         <source>Plan even if the points spread over more than 10 km</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="138"/>
+        <location filename="../processing/algorithms/planflight.py" line="137"/>
         <source>Output CRS (empty: UTM zone of the site)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="142"/>
+        <location filename="../processing/algorithms/planflight.py" line="141"/>
         <source>Waypoints</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="144"/>
+        <location filename="../processing/algorithms/planflight.py" line="143"/>
         <source>Route</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="154"/>
+        <location filename="../processing/algorithms/planflight.py" line="153"/>
         <source>Mission files written</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="176"/>
+        <location filename="../processing/algorithms/planflight.py" line="175"/>
         <source>GEOTAGS: the geotag layer could not be opened.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="180"/>
+        <location filename="../processing/algorithms/planflight.py" line="178"/>
         <source>SELECTED_ONLY is set but no geotag of layer &apos;{}&apos; is selected: select the geotags of the partition to fly, or clear SELECTED_ONLY.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="190"/>
+        <location filename="../processing/algorithms/planflight.py" line="189"/>
         <source>GEOTAGS: layer &apos;{}&apos; has no features: there is nothing to fly over.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="249"/>
+        <location filename="../processing/algorithms/planflight.py" line="244"/>
         <source>With this camera at {alt:g} m and {v:g} m/s, one photo every {s:.2f} s gives {o:g} % forward overlap.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="311"/>
+        <location filename="../processing/algorithms/planflight.py" line="306"/>
         <source>{fmt}: {files}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="321"/>
+        <location filename="../processing/algorithms/planflight.py" line="316"/>
         <source>{g} geotag(s) → {w} waypoint(s) in {m} mission(s); route {km:.2f} km; estimated flight time {t:.1f} min at {v:g} m/s and {alt:g} m.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="327"/>
+        <location filename="../processing/algorithms/planflight.py" line="322"/>
         <source>  mission {n}: {w} waypoint(s), {l:.0f} m, {t:.1f} min</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="66"/>
+        <location filename="../processing/algorithms/planflight.py" line="65"/>
         <source>Plan the survey flight</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="135"/>
+        <location filename="../processing/algorithms/planflight.py" line="134"/>
         <source>With REVIEW: fly only to the unresolved clusters (the geotags then only tell which clusters they match)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="204"/>
+        <location filename="../processing/algorithms/planflight.py" line="199"/>
         <source>UNRESOLVED_ONLY needs a review: give REVIEW and the detection layers it judged (REVIEW_DETECTIONS).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="207"/>
+        <location filename="../processing/algorithms/planflight.py" line="202"/>
         <source>The review left no cluster unresolved (uncertain, unreviewed or with conflicting verdicts): there is nothing to fly back to.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="319"/>
+        <location filename="../processing/algorithms/planflight.py" line="314"/>
         <source>{u} unresolved cluster(s) of the review are targets too (waypoint field provenance: review).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/planflight.py" line="103"/>
+        <source>Geotag id field (empty: &apos;id&apos; if present, else the row number)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/planflight.py" line="185"/>
+        <source>{problem}: remove the feature or give it a position, so no target is left out of the flight.</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
@@ -2031,22 +2101,22 @@ QGIS&apos;s own packages are not changed. pip downloads them from the Python Pac
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/refineposes.py" line="89"/>
+        <location filename="../processing/algorithms/refineposes.py" line="90"/>
         <source>Registered {n} of {total} frames in {seconds:.0f} s ({rate:.1f} images per minute); intrinsics {intrinsics}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/refineposes.py" line="94"/>
+        <location filename="../processing/algorithms/refineposes.py" line="95"/>
         <source>Aligned to the GNSS positions: residual RMS {rms:.3f} m</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/refineposes.py" line="103"/>
+        <location filename="../processing/algorithms/refineposes.py" line="104"/>
         <source>{n} frame(s) keep their metadata pose (flag not_refined); first: {items}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/refineposes.py" line="119"/>
+        <location filename="../processing/algorithms/refineposes.py" line="120"/>
         <source>OUTPUT_REPORT: cannot write {path} ({error})</source>
         <translation type="unfinished"></translation>
     </message>
@@ -2061,12 +2131,12 @@ QGIS&apos;s own packages are not changed. pip downloads them from the Python Pac
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/refineposes.py" line="83"/>
+        <location filename="../processing/algorithms/refineposes.py" line="84"/>
         <source>{n} geotags with a surveyed height: the ground plane at {h:.2f} m</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/refineposes.py" line="97"/>
+        <location filename="../processing/algorithms/refineposes.py" line="98"/>
         <source>Camera-to-ground distance of the block / (GNSS height − ground height): {ratio:.4f}</source>
         <translation type="unfinished"></translation>
     </message>
@@ -2074,37 +2144,37 @@ QGIS&apos;s own packages are not changed. pip downloads them from the Python Pac
 <context>
     <name>ReviewParametersMixin</name>
     <message>
-        <location filename="../processing/parameters/review.py" line="30"/>
+        <location filename="../processing/parameters/review.py" line="31"/>
         <source>Review verdicts (the review dock&apos;s birdseye_verdicts table; optional)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/review.py" line="33"/>
+        <location filename="../processing/parameters/review.py" line="34"/>
         <source>Detection layers the review judged (with REVIEW)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/review.py" line="37"/>
+        <location filename="../processing/parameters/review.py" line="38"/>
         <source>Frame layers of those detections (one per layer, same order)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/review.py" line="55"/>
+        <location filename="../processing/parameters/review.py" line="56"/>
         <source>REVIEW_DETECTIONS is given without REVIEW: give the review&apos;s verdict table too, or leave REVIEW_DETECTIONS empty.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/review.py" line="60"/>
+        <location filename="../processing/parameters/review.py" line="61"/>
         <source>REVIEW: give the detection layer(s) the review judged (REVIEW_DETECTIONS): the verdicts name spots, the clusters come from those detections.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/review.py" line="72"/>
+        <location filename="../processing/parameters/review.py" line="73"/>
         <source>{layer}: {n} detection(s) without a position or score left out</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/review.py" line="82"/>
+        <location filename="../processing/parameters/review.py" line="83"/>
         <source>Review ({review}): {n} cluster(s) in {layers} detection layer(s); {hit} match a geotag; of the others {confirmed} confirmed real, {hard} hard negative, {conflicting} with conflicting verdicts, {uncertain} uncertain, {unreviewed} unreviewed.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -2112,142 +2182,142 @@ QGIS&apos;s own packages are not changed. pip downloads them from the Python Pac
 <context>
     <name>ScreenCheckpoints</name>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="77"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="80"/>
         <source>ONNX checkpoints</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="79"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="82"/>
         <source>Validation flights (frame layers with their images)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="81"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="84"/>
         <source>Geotags</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="93"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="97"/>
         <source>Pixel F1: match radius (px)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="96"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="100"/>
         <source>Collapsed if the distinct-position fraction is below</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="102"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="106"/>
         <source>Checkpoint table (CSV)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="104"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="108"/>
         <source>Checkpoint table (JSON)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="106"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="110"/>
         <source>Frontier plot (PNG)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="108"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="112"/>
         <source>Healthy checkpoints</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="114"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="118"/>
         <source>CHECKPOINTS: give at least one ONNX file.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="116"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="120"/>
         <source>FRAMES: give at least one validation flight.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="125"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="129"/>
         <source>GEOTAGS: the geotag layer cannot be read.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="153"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="161"/>
         <source>{name} on {flight_name}: {skipped} frame(s) skipped (unreadable image or no ground height)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="58"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="61"/>
         <source>Screen checkpoints</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="73"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="76"/>
         <source>Method: blocks of 500 frames, threshold 0.03</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="73"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="76"/>
         <source>BirdsEye: whole flights, each checkpoint&apos;s own threshold</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="83"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="86"/>
         <source>Preset (blocks and threshold; the two fields below override it)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="86"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="89"/>
         <source>Detection threshold (empty: the preset&apos;s)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="89"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="92"/>
         <source>Frames per block (0: each flight whole; empty: the preset&apos;s)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="99"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="103"/>
         <source>Too sparse if detections per frame in the worst block are below</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="137"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="145"/>
         <source>{n_blocks} block(s) of {size} frames over {n_flights} flight(s); threshold {threshold}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="137"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="145"/>
         <source>all</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="137"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="145"/>
         <source>of each checkpoint</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="186"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="194"/>
         <source>healthy</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="186"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="194"/>
         <source>collapsed</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="186"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="194"/>
         <source>too sparse</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="188"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="196"/>
         <source>{checkpoint}: {state}; recall_pre {recall}, gmcf_pre {gmcf}, F1 {f1_geo}, {dpf} detections per frame, review load {load}, pixel F1 {f1_pixel} (within {radius:g} px){frontier}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="188"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="196"/>
         <source> (frontier)</source>
         <translation type="unfinished"></translation>
     </message>
@@ -2404,97 +2474,97 @@ QGIS&apos;s own packages are not changed. pip downloads them from the Python Pac
 <context>
     <name>SimulateCampaign</name>
     <message>
-        <location filename="../processing/algorithms/simulatecampaign.py" line="96"/>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="98"/>
         <source>Pose noise Σ0: x, y, z (m), roll, pitch, yaw (deg)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/simulatecampaign.py" line="99"/>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="101"/>
         <source>Noise off (ideal poses, altimeter and geotags)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/simulatecampaign.py" line="106"/>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="108"/>
         <source>Terrain</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/simulatecampaign.py" line="119"/>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="121"/>
         <source>Geoid undulation N for altMSL (m; empty: EGM96 at the site)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/simulatecampaign.py" line="123"/>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="125"/>
         <source>Output folder</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/simulatecampaign.py" line="127"/>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="129"/>
         <source>Terrain model (truth/dem.tif, ellipsoidal heights; none for flat terrain)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/simulatecampaign.py" line="132"/>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="134"/>
         <source>Frames</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/simulatecampaign.py" line="103"/>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="105"/>
         <source>Platform</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/simulatecampaign.py" line="113"/>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="115"/>
         <source>Side overlap of neighbouring lines (fraction; empty: {ins:g} for the payload, {dji:g} for a DJI drone)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/simulatecampaign.py" line="117"/>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="119"/>
         <source>DJI drone undistorts its JPEGs (DewarpFlag 1)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/simulatecampaign.py" line="131"/>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="133"/>
         <source>Frames folder</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/simulatecampaign.py" line="167"/>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="169"/>
         <source>Simulating seed {seed}: {n_targets} targets in a {field_width_m:g} × {field_length_m:g} m field, flown at {altitude_m:g} m, {speed_ms:g} m/s, {fps:g} frames/s.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/simulatecampaign.py" line="174"/>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="176"/>
         <source>TERRAIN is flat: SLOPE_DEG and RELIEF_M are ignored (choose plane or hills).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/simulatecampaign.py" line="177"/>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="179"/>
         <source>TERRAIN is a plane: RELIEF_M is ignored (choose hills).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/simulatecampaign.py" line="183"/>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="185"/>
         <source>A DJI drone: photos on the lines with {forward_overlap:.0%} forward and {effective_side_overlap:.0%} side overlap; the pose in each JPEG&apos;s metadata carries heading, tilt and height errors (truth/dji_metadata_errors.csv).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/simulatecampaign.py" line="193"/>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="195"/>
         <source>Wrote {n_frames} frames, {log}{n_geotags} geotags to {folder}.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/simulatecampaign.py" line="73"/>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="75"/>
         <source>Simulate a campaign</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/simulatecampaign.py" line="101"/>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="103"/>
         <source>Render frames and the orthomosaic (off: poses and geotags only)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/simulatecampaign.py" line="129"/>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="131"/>
         <source>Orthomosaic of the field (orthomosaic.tif; none without rendering)</source>
         <translation type="unfinished"></translation>
     </message>
@@ -2502,117 +2572,117 @@ QGIS&apos;s own packages are not changed. pip downloads them from the Python Pac
 <context>
     <name>SweepOperatingPoints</name>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="96"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="99"/>
         <source>Geotags</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="103"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="106"/>
         <source>De-duplication grid cell (cm)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="109"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="113"/>
         <source>Credible: mean geotags per hit cluster at most</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="112"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="116"/>
         <source>Credible: mean median cluster extent at most (m)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="115"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="119"/>
         <source>Configurations (CSV)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="120"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="124"/>
         <source>Frontier plot (PNG)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="145"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="149"/>
         <source>GEOTAGS: the geotag layer cannot be read.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="233"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="241"/>
         <source>No configuration passed the credibility filter.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="72"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="75"/>
         <source>Sweep operating points</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="90"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="93"/>
         <source>ONNX checkpoints (run over FRAMES, peaks extracted at every threshold)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="93"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="96"/>
         <source>Or detection layers (checkpoints × flights × thresholds, from Detect)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="98"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="101"/>
         <source>Frame layers (with CHECKPOINTS: one per flight; with DETECTIONS: one per detection layer, same order)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="106"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="109"/>
         <source>Edge buffer (px) of the in-view test and of CHECKPOINTS&apos; detections</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="117"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="121"/>
         <source>Configurations and Pareto front (JSON, read by Select arms)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="133"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="137"/>
         <source>CHECKPOINTS, DETECTIONS: give ONNX checkpoints (the sweep runs them over the frames) or detection layers made by Detect, not both and not neither.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="137"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="141"/>
         <source>FRAMES: give at least one frame layer.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="139"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="143"/>
         <source>FRAMES: give one frame layer per detection layer, in the same order (got {detections} detection layer(s) and {frames} frame layer(s)).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="163"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="172"/>
         <source>{name}: {n_frames} frames, {value} geotags in view</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="172"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="180"/>
         <source>{layer}: {n} detection(s) without a position or score left out</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="177"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="185"/>
         <source>Threshold axis: the thresholds the layers were detected at, {values} (THRESHOLDS is used with CHECKPOINTS only).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="188"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="196"/>
         <source>Sweeping {n_checkpoints} checkpoint(s) × {size} configurations ({items}: threshold × eps × min_samples × eps_pred)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="226"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="234"/>
         <source>Pareto: {checkpoint}, threshold {threshold}, eps {eps_m} m, min_samples {min_samples}, eps_pred {eps_pred_m} m → recall_pre {recall_pre:.3f}, gmcf_pre {gmcf_pre:.3f}, F1 {f1_geo:.3f}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="252"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="276"/>
         <source>{checkpoint} on {flight}: {n} frame(s) skipped, e.g. {frame_id}: {reason}</source>
         <translation type="unfinished"></translation>
     </message>
@@ -2672,6 +2742,129 @@ QGIS&apos;s own packages are not changed. pip downloads them from the Python Pac
     <message>
         <location filename="../processing/algorithms/terrainslope.py" line="30"/>
         <source>Sensor bound: terrain-slope study</source>
+        <translation type="unfinished"></translation>
+    </message>
+</context>
+<context>
+    <name>TrainDetector</name>
+    <message>
+        <location filename="../processing/algorithms/traindetector.py" line="47"/>
+        <source>Train detector (heatmap model from training labels)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/traindetector.py" line="70"/>
+        <source>Write-labels output folders (with tiles; pick a folder or any file in it, e.g. its summary.json)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/traindetector.py" line="73"/>
+        <source>Frame layers the labels were written from, for each frame&apos;s ground sample distance (one per labels folder, in the same order, or one for all)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/traindetector.py" line="77"/>
+        <source>Ground sample distance of every frame (cm/px), instead of frame layers</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/traindetector.py" line="80"/>
+        <source>Network: small (from scratch, offline) or an ImageNet-pretrained encoder</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/traindetector.py" line="83"/>
+        <source>ImageNet weights file (.pth) of a pretrained encoder (empty: torchvision&apos;s cache; nothing is downloaded)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/traindetector.py" line="91"/>
+        <source>Training time budget (minutes)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/traindetector.py" line="93"/>
+        <source>Model resolution (cm/px): tiles are resampled to it</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/traindetector.py" line="96"/>
+        <source>Share of the frames held out for validation (0–0.5)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/traindetector.py" line="99"/>
+        <source>Random seed</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/traindetector.py" line="102"/>
+        <source>Default threshold written into the model (empty: best F1 on the held-out tiles)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/traindetector.py" line="105"/>
+        <source>CPU threads for training (0: all cores)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/traindetector.py" line="107"/>
+        <source>Python with PyTorch to train in (empty: the one Install dependencies set up)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/traindetector.py" line="114"/>
+        <source>Trained model (ONNX)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/traindetector.py" line="116"/>
+        <source>Model card (Markdown)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/traindetector.py" line="117"/>
+        <source>Loss curves (PNG)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/traindetector.py" line="118"/>
+        <source>Weights to fine-tune from (.pt)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/traindetector.py" line="179"/>
+        <source>Train detector needs PyTorch, which it runs in a separate Python process; no Python with torch, onnx and OpenCV was found ({tried}). In QGIS, choose {menu} and install the group '{group}' ({build} build); or install it yourself: {command}; or name a Python that has them (parameter {parameter}, or the environment variable {variable}) — for a virtual environment: &lt;venv&gt;/bin/python -m pip install &quot;torch=={torch}&quot; &quot;torchvision=={torchvision}&quot; onnx opencv-python-headless matplotlib</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/traindetector.py" line="179"/>
+        <source>none set up</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/traindetector.py" line="190"/>
+        <source>Training in {python} ({origin}): torch {torch}.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/traindetector.py" line="226"/>
+        <source>Cancelled by the user; no model was written.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/traindetector.py" line="235"/>
+        <source>The last checkpoint is kept: {path}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/traindetector.py" line="240"/>
+        <source>Wrote {model} (default threshold {threshold:g}), its model card and loss plot; training {train:.1f} s on {device}, {tiles_per_s:.1f} tiles/s; {overhead:.1f} s outside training (process start, loading tiles, validation, export; the first line came after {first:.1f} s).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/traindetector.py" line="87"/>
+        <source>Fine-tune from an earlier model: its weights (.pt), or a BirdsEye ONNX model of the small network such as the bundled one (empty: start afresh)</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
@@ -2758,17 +2951,17 @@ QGIS&apos;s own packages are not changed. pip downloads them from the Python Pac
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="174"/>
+        <location filename="../processing/algorithms/writelabels.py" line="172"/>
         <source>{n_records} frames ({n_groups} camera(s)), {n_geotags} geotags, σ = {sigma:g} px, edge buffer {edge_buffer_px:g} px</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="191"/>
+        <location filename="../processing/algorithms/writelabels.py" line="189"/>
         <source>{n_steep} frame(s) lie on terrain steeper than the level plane's 10° envelope (flag steep_terrain; first: {items}): their labels drift off target — give the DEM (parameter DEM)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="197"/>
+        <location filename="../processing/algorithms/writelabels.py" line="195"/>
         <source>{n_no_ground} frame(s) have no ground height (no usable altimeter reading, flag no_ground_height) and get no labels; first: {items}</source>
         <translation type="unfinished"></translation>
     </message>
@@ -2778,7 +2971,7 @@ QGIS&apos;s own packages are not changed. pip downloads them from the Python Pac
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="185"/>
+        <location filename="../processing/algorithms/writelabels.py" line="183"/>
         <source>{n} frame(s) could not be refined and keep their metadata pose (flag not_refined; first: {items}): their labels are only as good as the drone&apos;s metadata. Leave them out with a filter such as &quot;flags&quot; NOT LIKE &apos;%not_refined%&apos;</source>
         <translation type="unfinished"></translation>
     </message>

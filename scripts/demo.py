@@ -413,14 +413,15 @@ def draw_rank(layer) -> int:
     return {GEOMETRY_POINT: 0, GEOMETRY_LINE: 1}.get(layer.geometryType(), 2)
 
 
-def add_to_group(project, group_name: str | None, layers: list[tuple]) -> None:
-    """Add (layer, hidden) pairs under their group, points first; hidden ones start unticked."""
+def add_to_group(project, group_name: str | None, layers: list[tuple], order=GROUP_ORDER) -> None:
+    """Add (layer, hidden) pairs under their group (``order``: the groups in workflow order), points first;
+    hidden ones start unticked."""
     root = project.layerTreeRoot()
     target = root
     if group_name:
         target = root.findGroup(group_name)
         if target is None:  # keep the groups in workflow order whatever order they are filled in
-            position = sum(1 for g in GROUP_ORDER[:GROUP_ORDER.index(group_name)] if root.findGroup(g))
+            position = sum(1 for g in order[:order.index(group_name)] if root.findGroup(g))
             target = root.insertGroup(position, group_name)
     for layer, hidden in sorted(layers, key=lambda pair: draw_rank(pair[0])):
         project.addMapLayer(layer, False)
@@ -429,13 +430,13 @@ def add_to_group(project, group_name: str | None, layers: list[tuple]) -> None:
         node.setItemVisibilityChecked(not hidden)
 
 
-def finish_project(project, farm_layers: list) -> None:
+def finish_project(project, farm_layers: list, order=GROUP_ORDER) -> None:
     """Drawing order points > lines > polygons > maps whatever the group, later steps over earlier ones
     (clusters over frames); open on the farm (``farm_layers``: its fields' maps)."""
     from qgis.core import QgsRectangle, QgsReferencedRectangle
 
     root = project.layerTreeRoot()
-    workflow_position = {name: k for k, name in enumerate(GROUP_ORDER)}
+    workflow_position = {name: k for k, name in enumerate(order)}
     ordered = sorted(root.layerOrder(), key=lambda layer: (
         draw_rank(layer), -workflow_position.get(root.findLayer(layer.id()).parent().name(), -1)))
     root.setHasCustomLayerOrder(True)

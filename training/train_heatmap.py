@@ -23,14 +23,19 @@ Commands (run with the plugin's venv python from the repository root)::
     # tuning campaign, export, validate on campaigns it never saw, write models/demo_training.json
     python training/train_heatmap.py demo --work build/demo_training --out models/birdseye_demo_heatmap.onnx
 
-``torch`` is a training extra (``requirements-train.txt``); the plugin never needs it.
+The recipe itself (networks, tiles, augmentation, training loop, validation, export) lives in
+``birdseye_qgis/core/train`` and is the one ``birdseye:traindetector`` runs in its training process:
+``train`` here is that very run (``core.train.job.run_job``: model, ``.pt`` weights, model card, loss
+plot). ``--backbone`` picks the small network (default) or a torchvision ImageNet encoder
+(``--weights`` or torchvision's cache; nothing is downloaded).
+
+``torch`` (and ``torchvision`` for a pretrained encoder) are a training extra (``requirements-train.txt``);
+QGIS's own Python never imports them.
 """
 from __future__ import annotations
 
 import argparse
 import json
-import math
-import sqlite3
 import sys
 import time
 from dataclasses import dataclass
@@ -56,340 +61,71 @@ def _plugin_on_path() -> None:
 
 _plugin_on_path()
 
-from birdseye.birdseye_qgis.core.detect.detector import file_digest, model_size, normalise, resample  # noqa: E402
-from birdseye.birdseye_qgis.core.detect.model_metadata import ModelMetadata, embed_metadata  # noqa: E402
+from birdseye.birdseye_qgis.core.detect.detector import file_digest  # noqa: E402
+from birdseye.birdseye_qgis.core.errors import InputError  # noqa: E402
+from birdseye.birdseye_qgis.core.train.job import Source, TrainJob, run_job  # noqa: E402
+from birdseye.birdseye_qgis.core.train.recipe import (  # noqa: E402,F401 — the recipe's names, as before
+    BACKBONES,
+    CROP_PX,
+    POSITIVE_WEIGHT,
+    RESOLUTION_CM,
+    TILE_SIZE,
+    TILES_OVERLAP_PCT,
+    WIDTH,
+    Augmenter,
+    TileSet,
+    build_network,
+    channel_stats,
+    export_onnx,
+    frame_gsd_from_gpkg,
+    load_tiles,
+    make_metadata,
+    train_network,
+)
 
-#: Defaults of the demo model (and of ``train``): see models/README.md for why.
-RESOLUTION_CM = 1.0
-TILE_SIZE = 288
-TILES_OVERLAP_PCT = 20.0
-CROP_PX = 96
-WIDTH = 16
-#: Target pixels are ~0.1 % of a tile: weighting each pixel's cross-entropy by 1 + POSITIVE_WEIGHT·label
-#: keeps them from drowning in background (it does not move the optimum: still p = label per pixel).
-POSITIVE_WEIGHT = 10.0
-
-
-# ====================================================================================== network
-def build_network(width: int = WIDTH):
-    """The encoder–decoder heatmap network (logits); input N×3×H×W with H, W multiples of 8."""
-    import torch
-    from torch import nn
-
-    def conv_bn(cin, cout, stride=1):
-        return nn.Sequential(nn.Conv2d(cin, cout, 3, stride, 1, bias=False), nn.BatchNorm2d(cout),
-                             nn.ReLU(inplace=True))
-
-    def up(cin, cout):
-        return nn.Sequential(nn.ConvTranspose2d(cin, cout, 2, 2, bias=False), nn.BatchNorm2d(cout),
-                             nn.ReLU(inplace=True))
-
-    c1, c2, c3 = width, 2 * width, 4 * width
-
-    class Encoder(nn.Module):
-        def __init__(self):
-            super().__init__()
-            self.stage1 = nn.Sequential(conv_bn(3, c1, 2), conv_bn(c1, c1))             # 1/2
-            self.stage2 = nn.Sequential(conv_bn(c1, c2, 2), conv_bn(c2, c2))            # 1/4
-            self.stage3 = nn.Sequential(conv_bn(c2, c3, 2), conv_bn(c3, c3), conv_bn(c3, c3))  # 1/8
-
-        def forward(self, x):
-            f1 = self.stage1(x)
-            f2 = self.stage2(f1)
-            return f1, f2, self.stage3(f2)
-
-    class HeatmapNet(nn.Module):
-        def __init__(self):
-            super().__init__()
-            self.encoder = Encoder()
-            self.up3, self.fuse2 = up(c3, c2), conv_bn(c2, c2)   # 1/8 → 1/4, + stage2 features
-            self.up2, self.fuse1 = up(c2, c1), conv_bn(c1, c1)   # 1/4 → 1/2, + stage1 features
-            self.up1 = up(c1, c1)                                # 1/2 → 1/1
-            self.head = nn.Conv2d(c1, 1, 3, 1, 1)
-            nn.init.constant_(self.head.bias, -4.0)  # start near "no target": most pixels are background
-
-        def forward(self, x):
-            f1, f2, f3 = self.encoder(x)
-            y = self.fuse2(self.up3(f3) + f2)
-            y = self.fuse1(self.up2(y) + f1)
-            return self.head(self.up1(y))
-
-        def decoder_parameters(self):
-            return [p for n, p in self.named_parameters() if not n.startswith("encoder.")]
-
-    torch.manual_seed(0)
-    return HeatmapNet()
-
-
-# ====================================================================================== data
-@dataclass
-class TileSet:
-    """Training tiles at the model's resolution: BGR uint8 images and soft labels in [0, 1]."""
-
-    images: list
-    labels: list
-    positive: np.ndarray
-    source_gsd_cm: np.ndarray
-
-    def __len__(self) -> int:
-        return len(self.images)
-
-
-def frame_gsd_from_gpkg(path) -> dict:
-    """``{frame_id: gsd_cm}`` from a GeoPackage frame layer (any table with those two columns)."""
-    con = sqlite3.connect(str(path))
-    try:
-        tables = [r[0] for r in con.execute("SELECT table_name FROM gpkg_contents")]
-        for table in tables:
-            cols = [r[1] for r in con.execute(f'PRAGMA table_info("{table}")')]
-            if "frame_id" in cols and "gsd_cm" in cols:
-                return {str(f): float(g) for f, g in con.execute(f'SELECT frame_id, gsd_cm FROM "{table}"')
-                        if g is not None}
-    finally:
-        con.close()
-    raise SystemExit(f"{path}: no layer with fields frame_id and gsd_cm (is it a BirdsEye frame layer?)")
-
-
-def load_tiles(sources, resolution_cm: float, log=print) -> TileSet:
-    """Every tile pair of writelabels folders, resampled to ``resolution_cm``.
-
-    ``sources`` is a list of ``(folder, gsd_of)``: ``gsd_of`` maps the frame ids (as text) of that
-    folder's tiles to the frame's ground sample distance (cm/px).
-    """
-    import cv2
-
-    images, labels, positive, gsd = [], [], [], []
-    missing = set()
-    for folder, gsd_of in sources:
-        tile_dir = Path(folder) / "tiles"
-        names = sorted(p.name for p in (tile_dir / "images").glob("*.png"))
-        if not names:
-            raise SystemExit(f"{folder}: no tiles in tiles/images (run writelabels with a tile size)")
-        for name in names:
-            frame_id = name.rsplit("_", 2)[0]
-            if frame_id not in gsd_of:
-                missing.add(f"{Path(folder).name}:{frame_id}")
-                continue
-            img = cv2.imread(str(tile_dir / "images" / name), cv2.IMREAD_COLOR)
-            lab = cv2.imread(str(tile_dir / "labels" / name), cv2.IMREAD_UNCHANGED)
-            size = model_size(img.shape[1], img.shape[0], gsd_of[frame_id], resolution_cm)
-            images.append(resample(img, size))
-            labels.append(resample(lab.astype(np.float32) / 255.0, size))
-            positive.append(lab.max() >= 250)  # the tile holds a target's centre
-            gsd.append(gsd_of[frame_id])
-    if missing:
-        log(f"{len(missing)} frame(s) of the tiles have no GSD and were left out, e.g. {sorted(missing)[:3]}")
-    if not images:
-        raise SystemExit("no training tiles")
-    return TileSet(images, labels, np.asarray(positive), np.asarray(gsd))
-
-
-def channel_stats(tiles: TileSet, order: str = "RGB"):
-    """Per-channel mean and std of pixel values / 255 over the tiles, in the model's channel order."""
-    pix = np.concatenate([im.reshape(-1, 3)[::7] for im in tiles.images]).astype(np.float64) / 255.0
-    if order == "RGB":
-        pix = pix[:, ::-1]
-    return tuple(np.round(pix.mean(axis=0), 4).tolist()), tuple(np.round(pix.std(axis=0) + 1e-3, 4).tolist())
-
-
-class Augmenter:
-    """Random crops with scale jitter, flips and quarter turns (nadir views have no up), and
-    photometric jitter (exposure, white balance, contrast, noise) — what changes between flights."""
-
-    def __init__(self, tiles: TileSet, meta: ModelMetadata, crop: int, seed: int, scale_jitter=0.15):
-        self.tiles, self.meta, self.crop = tiles, meta, crop
-        self.rng = np.random.default_rng(seed)
-        self.scale_jitter = scale_jitter
-
-    def sample(self, index: int):
-        import cv2
-
-        rng, c = self.rng, self.crop
-        img, lab = self.tiles.images[index], self.tiles.labels[index]
-        s = math.exp(rng.uniform(-self.scale_jitter, self.scale_jitter))
-        if abs(s - 1.0) > 0.02:
-            size = (max(c, int(round(img.shape[1] * s))), max(c, int(round(img.shape[0] * s))))
-            img, lab = resample(img, size), resample(lab, size)
-        h, w = lab.shape
-        if h < c or w < c:  # pad small tiles (frame borders) with reflected content
-            img = cv2.copyMakeBorder(img, 0, max(0, c - h), 0, max(0, c - w), cv2.BORDER_REFLECT)
-            lab = cv2.copyMakeBorder(lab, 0, max(0, c - h), 0, max(0, c - w), cv2.BORDER_REFLECT)
-            h, w = lab.shape
-        # Keep a target in positive crops: centre the crop window near the label's maximum half the time.
-        if lab.max() > 0.5 and rng.random() < 0.5:
-            vy, vx = np.unravel_index(np.argmax(lab), lab.shape)
-            y0 = int(np.clip(vy - rng.integers(c // 8, c - c // 8), 0, h - c))
-            x0 = int(np.clip(vx - rng.integers(c // 8, c - c // 8), 0, w - c))
-        else:
-            y0, x0 = int(rng.integers(0, h - c + 1)), int(rng.integers(0, w - c + 1))
-        img, lab = img[y0:y0 + c, x0:x0 + c], lab[y0:y0 + c, x0:x0 + c]
-        k = int(rng.integers(4))
-        img, lab = np.rot90(img, k), np.rot90(lab, k)
-        if rng.random() < 0.5:
-            img, lab = img[:, ::-1], lab[:, ::-1]
-        x = img.astype(np.float32)
-        x = x * rng.uniform(0.7, 1.35) * rng.uniform(0.92, 1.08, 3)          # exposure, white balance
-        mean = x.mean()
-        x = (x - mean) * rng.uniform(0.8, 1.2) + mean                      # contrast
-        x = x + rng.normal(0.0, rng.uniform(0.0, 4.0), x.shape)            # sensor noise
-        img = np.clip(x, 0, 255).astype(np.uint8)
-        return normalise(np.ascontiguousarray(img), self.meta), np.ascontiguousarray(lab, dtype=np.float32)
-
-    def batch(self, size: int):
-        idx = self.rng.integers(0, len(self.tiles), size)
-        xs, ys = zip(*(self.sample(i) for i in idx))
-        return np.stack(xs), np.stack(ys)[:, None]
-
-
-# ====================================================================================== training
-def train_network(net, tiles: TileSet, meta: ModelMetadata, minutes: float, frozen_fraction: float = 0.2,
-                  batch: int = 16, crop: int = CROP_PX, lr: float = 3e-3, seed: int = 0, steps: int | None = None,
-                  log=print) -> dict:
-    """Two stages on a time budget (or a fixed number of ``steps``): encoder frozen, then all layers.
-
-    The encoder's weights are frozen in stage 1 (its batch-norm statistics still follow the data);
-    stage 2 fine-tunes everything with a cosine-decaying learning rate. Returns the loss history.
-    """
-    import torch
-
-    torch.manual_seed(seed)
-    aug = Augmenter(tiles, meta, crop, seed)
-    def loss_fn(logits, target):
-        weight = 1.0 + POSITIVE_WEIGHT * target
-        return torch.nn.functional.binary_cross_entropy_with_logits(logits, target, weight) / weight.mean()
-    history = {"stage": [], "step": [], "loss": [], "seconds": []}
-    start = time.perf_counter()
-    budget = minutes * 60.0
-
-    def run_stage(name, params, stage_steps, stage_seconds, lr0):
-        opt = torch.optim.AdamW(params, lr=lr0, weight_decay=1e-4)
-        t0 = time.perf_counter()
-        step, smoothed = 0, None
-        net.train()
-        while (step < stage_steps) if stage_steps is not None else (time.perf_counter() - t0 < stage_seconds):
-            frac = (step / stage_steps) if stage_steps else (time.perf_counter() - t0) / stage_seconds
-            for group in opt.param_groups:
-                group["lr"] = lr0 * 0.5 * (1.0 + math.cos(math.pi * min(1.0, frac))) + 1e-5
-            x, y = aug.batch(batch)
-            logits = net(torch.from_numpy(x))
-            loss = loss_fn(logits, torch.from_numpy(y))
-            opt.zero_grad()
-            loss.backward()
-            opt.step()
-            step += 1
-            smoothed = loss.item() if smoothed is None else 0.98 * smoothed + 0.02 * loss.item()
-            if step % 50 == 0 or (stage_steps is not None and step == stage_steps):
-                history["stage"].append(name)
-                history["step"].append(step)
-                history["loss"].append(round(smoothed, 5))
-                history["seconds"].append(round(time.perf_counter() - start, 1))
-                log(f"  {name} step {step}: loss {smoothed:.4f} ({time.perf_counter() - start:.0f} s)")
-        return step
-
-    for p in net.encoder.parameters():
-        p.requires_grad_(False)
-    n1 = None if steps is None else max(1, int(steps * frozen_fraction))
-    history["frozen_steps"] = run_stage("frozen-encoder", net.decoder_parameters(), n1, budget * frozen_fraction, lr)
-    for p in net.encoder.parameters():
-        p.requires_grad_(True)
-    n2 = None if steps is None else steps - n1
-    history["finetune_steps"] = run_stage("fine-tune", list(net.parameters()), n2,
-                                          budget * (1 - frozen_fraction), lr / 3)
-    history["train_seconds"] = round(time.perf_counter() - start, 1)
-    net.eval()
-    return history
-
-
-def export_onnx(net, meta: ModelMetadata, path) -> Path:
-    """The network + a sigmoid (output: probabilities) as ONNX, dynamic batch and size, with ``meta``."""
-    import io
-    import warnings
-
-    import onnx
-    import torch
-
-    class Probabilities(torch.nn.Module):
-        def __init__(self, inner):
-            super().__init__()
-            self.inner = inner
-
-        def forward(self, x):
-            return torch.sigmoid(self.inner(x))
-
-    wrapped = Probabilities(net).eval()  # eval: tracing in train mode would update batch-norm statistics
-    buffer = io.BytesIO()
-    with warnings.catch_warnings():  # the TorchScript exporter is deprecated but needs no onnxscript
-        warnings.simplefilter("ignore")
-        torch.onnx.export(wrapped, torch.zeros(1, 3, meta.tile_size, meta.tile_size), buffer,
-                          input_names=["image"], output_names=["heatmap"], opset_version=17, dynamo=False,
-                          dynamic_axes={"image": {0: "n", 2: "h", 3: "w"}, "heatmap": {0: "n", 2: "h", 3: "w"}})
-    model = onnx.load_from_string(buffer.getvalue())
-    model.producer_name = "BirdsEye training/train_heatmap.py"
-    model.graph.name = "birdseye_heatmap"
-    embed_metadata(model, meta)
-    onnx.checker.check_model(model)
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    onnx.save(model, str(path))
-    return path
-
-
-def make_metadata(tiles: TileSet, resolution_cm: float, threshold: float, label_sigma_px: float | None,
-                  description: str) -> ModelMetadata:
-    mean, std = channel_stats(tiles)
-    return ModelMetadata(resolution_cm=resolution_cm, tile_size=TILE_SIZE, tiles_overlap_pct=TILES_OVERLAP_PCT,
-                         output_kind="probability", default_threshold=threshold, standardization_mean=mean,
-                         standardization_std=std, class_names=("burrow",), input_channel_order="RGB",
-                         training_gsd_cm=round(float(np.median(tiles.source_gsd_cm)), 4),
-                         label_sigma_px=label_sigma_px, description=description)
+PRODUCER = "BirdsEye training/train_heatmap.py"
 
 
 # ====================================================================================== commands
 def cmd_train(args) -> None:
-    import torch
-
-    torch.set_num_threads(args.threads)
+    """Train on writelabels folders: the same run as birdseye:traindetector (core.train.job.run_job)."""
     label_dirs = [Path(p) for p in args.labels]
-    if args.frames and len(args.frames) != len(label_dirs):
-        raise SystemExit("give one --frames layer per --labels folder (in the same order), or --gsd-cm")
+    if args.frames and len(args.frames) not in (1, len(label_dirs)):
+        raise SystemExit("give one --frames layer per --labels folder (in the same order), one for all, or --gsd-cm")
     sources = []
     for i, folder in enumerate(label_dirs):
         if args.frames:
-            gsd_of = frame_gsd_from_gpkg(args.frames[i])
+            sources.append(Source(str(folder), gsd_cm=frame_gsd_from_gpkg(args.frames[min(i, len(args.frames) - 1)])))
         elif args.gsd_cm:
-            gsd_of = {p.name.rsplit("_", 2)[0]: args.gsd_cm for p in (folder / "tiles" / "images").glob("*.png")}
+            sources.append(Source(str(folder), gsd_default=args.gsd_cm))
         else:
             raise SystemExit("give the frames' GSD: --frames frames.gpkg (per --labels) or --gsd-cm")
-        sources.append((folder, gsd_of))
-    tiles = load_tiles(sources, args.resolution_cm)
-    meta = make_metadata(tiles, args.resolution_cm, args.threshold, _label_sigma(label_dirs, tiles, args.resolution_cm),
-                         f"trained by training/train_heatmap.py on {', '.join(p.name for p in label_dirs)}")
-    net = build_network(args.width)
-    if args.init:
-        net.load_state_dict(torch.load(args.init, weights_only=True))
-    print(f"{len(tiles)} tiles ({int(tiles.positive.sum())} with a target); training {args.minutes:g} min")
-    history = train_network(net, tiles, meta, args.minutes, log=_log)
-    out = export_onnx(net, meta, args.out)
-    torch.save(net.state_dict(), out.with_suffix(".pt"))
-    out.with_suffix(".training.json").write_text(json.dumps(history, indent=1))
-    print(f"wrote {out} ({out.stat().st_size / 1e6:.2f} MB) and {out.with_suffix('.pt')}")
+    job = TrainJob(sources=sources, out=args.out, backbone=args.backbone, weights=args.weights, init=args.init,
+                   minutes=args.minutes, steps=args.steps, resolution_cm=args.resolution_cm,
+                   val_fraction=args.val_fraction, seed=args.seed, threads=args.threads, threshold=args.threshold,
+                   width=args.width, producer="BirdsEye training/train_heatmap.py",
+                   description=f"trained by training/train_heatmap.py on {', '.join(p.name for p in label_dirs)}")
+    print(f"training {args.backbone} for {args.minutes:g} min", flush=True)
+    result = run_job(job, _print_event)
+    out = Path(result["model"])
+    print(f"wrote {out} ({out.stat().st_size / 1e6:.2f} MB), {result['weights']}, {result['card']}; "
+          f"{result['history']['tiles_per_s']:.1f} tiles/s over {result['seconds']['train']:.1f} s", flush=True)
+
+
+def _print_event(event: dict) -> None:
+    kind = event["type"]
+    if kind == "message":
+        _log(event["text"])
+    elif kind == "point":
+        val = event.get("val_loss")
+        _log(f"  {event['stage']} step {event['step']}: loss {event['loss']:.4f}"
+             + ("" if val is None else f", validation {val:.4f}") + f" ({event['seconds']:.0f} s)")
+    elif kind == "start":
+        _log(f"torch {event['torch']} on {event['device']} ({event['threads']} threads)")
 
 
 def _log(message: str) -> None:
     print(message, flush=True)  # the log of a long run shows up while it runs
-
-
-def _label_sigma(label_dirs, tiles: TileSet, resolution_cm: float):
-    """σ of the soft labels at the model's resolution (from writelabels' summary.json), if known."""
-    sigmas = []
-    for folder in label_dirs:
-        summary = Path(folder) / "summary.json"
-        if summary.is_file():
-            sigmas.append(float(json.loads(summary.read_text())["sigma_px"]))
-    if not sigmas:
-        return None
-    scale = float(np.median(tiles.source_gsd_cm)) / resolution_cm
-    return round(float(np.median(sigmas)) * scale, 3)
 
 
 # ====================================================================================== the demo model
@@ -441,19 +177,17 @@ def load_campaign(folder: Path) -> Campaign:
     from birdseye.birdseye_qgis.core.field.flight_log import import_flight_log
     from birdseye.birdseye_qgis.core.field.frame_records import poses_from_records
     from birdseye.birdseye_qgis.core.field.frames import frame_records
-    from birdseye.birdseye_qgis.core.field.geotags import read_geotags
+    from birdseye.birdseye_qgis.core.field.geotags import Geotags, read_geotags
     from birdseye.birdseye_qgis.core.geometry.camera import load_calibration
-    from birdseye.birdseye_qgis.core.labels.training_set import Geotags
 
     fps = json.loads((folder / "truth" / "campaign.json").read_text())["parameters"]["fps"]
     result = import_flight_log(folder / "poses.csv", folder, load_calibration(folder / "calibration.yaml"), fps=fps)
     records = list(frame_records(result.frames, result.footprints))
     (poses, index), = poses_from_records(records, str(folder))
-    tags = read_geotags(folder / "geotags.csv")
-    geotags = Geotags(np.arange(1, len(tags) + 1), tags.label, tags.lat, tags.lon, tags.h_ellipsoid)
+    geotags = read_geotags(folder / "geotags.csv")
     rows = list(csv.DictReader(open(folder / "truth" / "targets.csv", encoding="utf-8")))
-    truth = Geotags([int(r["id"]) for r in rows], ["burrow"] * len(rows), [float(r["lat"]) for r in rows],
-                    [float(r["lon"]) for r in rows], [float(r["h_ground"]) for r in rows])
+    truth = Geotags([int(r["id"]) for r in rows], [float(r["lat"]) for r in rows], [float(r["lon"]) for r in rows],
+                    [float(r["h_ground"]) for r in rows], ["burrow"] * len(rows))
     return Campaign(folder.name, poses, [records[i]["image"] for i in index], geotags, truth,
                     {str(records[i]["frame_id"]): float(records[i]["gsd_cm"]) for i in index})
 
@@ -488,7 +222,7 @@ def evaluate(model_path, campaigns, thresholds) -> dict:
     from birdseye.birdseye_qgis.core.detect.detector import HeatmapModel, detect_frames_at_thresholds
     from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame
     from birdseye.birdseye_qgis.core.labels.training_set import project_labels
-    from birdseye.birdseye_qgis.core.scoring.evaluation import Detections, Flight, Geotags, evaluate_flights
+    from birdseye.birdseye_qgis.core.scoring.evaluation import Detections, Flight, evaluate_flights
     from birdseye.birdseye_qgis.core.scoring.operating_point import OperatingPoint
 
     model = HeatmapModel(model_path)
@@ -517,7 +251,7 @@ def evaluate(model_path, campaigns, thresholds) -> dict:
             det_xy = np.concatenate([f.ground_local[:, :2] for f in found]) if found else np.zeros((0, 2))
             ev = evaluate_flights(
                 [Flight(Detections(det["lat"], det["lon"], det["height"], fid, det["score"]), [c.poses], c.name)],
-                Geotags(c.geotags.ids, c.geotags.lat, c.geotags.lon, c.geotags.height),
+                c.geotags,
                 OperatingPoint(threshold=t), local=local)
             for key in ("n_in_view", "n_recovered", "n_clusters", "n_hit_clusters"):
                 tot[key] += getattr(ev.pooled, key)
@@ -589,7 +323,7 @@ def cmd_demo(args) -> None:
                    f"(trained on seeds {TRAIN_SEEDS[0]}-{TRAIN_SEEDS[-1]}); real use needs a model trained on "
                    f"real labels with training/train_heatmap.py")
     meta = make_metadata(tiles, RESOLUTION_CM, 0.5, sigma, description)
-    net = build_network(args.width)
+    net = build_network("small", args.width)
     weights, trained = work / "demo.pt", work / "demo_training_run.json"
     if args.reuse_weights and weights.is_file() and trained.is_file():
         net.load_state_dict(torch.load(weights, weights_only=True))  # re-tune and re-validate only
@@ -603,14 +337,14 @@ def cmd_demo(args) -> None:
         report["network"] = {"width": args.width, "parameters": int(sum(p.numel() for p in net.parameters()))}
         torch.save(net.state_dict(), weights)
         trained.write_text(json.dumps({k: report[k] for k in ("training", "network")}, indent=1))
-    draft = export_onnx(net, meta, work / "draft.onnx")
+    draft = export_onnx(net, meta, work / "draft.onnx", PRODUCER)
     tune = evaluate(draft, [campaigns[s] for s in TUNE_SEEDS], THRESHOLD_GRID)
     threshold = choose_threshold(tune, THRESHOLD_GRID)
     report["tuning"] = {"threshold": threshold, "at_threshold": tune[threshold],
                         "grid": {str(t): {k: tune[t][k] for k in ("truth_recall", "view_recall", "truth_precision")}
                                  for t in THRESHOLD_GRID}}
     meta = make_metadata(tiles, RESOLUTION_CM, threshold, sigma, description)
-    out = export_onnx(net, meta, args.out)
+    out = export_onnx(net, meta, args.out, PRODUCER)
     validation = evaluate(out, [campaigns[s] for s in VALIDATION_SEEDS], THRESHOLD_GRID)
     exact = evaluate(out, [campaigns[s] for s in VALIDATION_SEEDS], (threshold,))  # the default alone: its time
     report["validation"] = {"threshold": threshold, "at_default_threshold": exact[threshold],
@@ -637,11 +371,18 @@ def main(argv=None) -> None:
     t.add_argument("--frames", action="append", help="GeoPackage frame layer(s) with frame_id and gsd_cm")
     t.add_argument("--gsd-cm", type=float, help="one GSD (cm/px) for every frame, instead of --frames")
     t.add_argument("--resolution-cm", type=float, default=RESOLUTION_CM)
-    t.add_argument("--threshold", type=float, default=0.5, help="default threshold written into the model")
+    t.add_argument("--threshold", type=float,
+                   help="default threshold written into the model (default: best F1 on the held-out tiles)")
+    t.add_argument("--backbone", choices=BACKBONES, default="small",
+                   help="small (from scratch) or a torchvision encoder with ImageNet weights")
+    t.add_argument("--weights", help="ImageNet weights (.pth) of the encoder (default: torchvision's cache)")
+    t.add_argument("--val-fraction", type=float, default=0.15, help="share of the frames held out for validation")
+    t.add_argument("--seed", type=int, default=0)
+    t.add_argument("--steps", type=int, help="a fixed number of steps instead of --minutes")
     t.add_argument("--width", type=int, default=WIDTH)
     t.add_argument("--minutes", type=float, default=20.0)
     t.add_argument("--threads", type=int, default=2)
-    t.add_argument("--init", help="a .pt checkpoint of this recipe to start from")
+    t.add_argument("--init", help="a .pt checkpoint of this recipe (same backbone) to start from")
     t.add_argument("--out", required=True)
     t.set_defaults(func=cmd_train)
     d = sub.add_parser("demo", help="simulate campaigns, train, tune and validate the bundled demo model")
@@ -654,7 +395,10 @@ def main(argv=None) -> None:
                    help="keep the weights of the last demo run (work/demo.pt): re-tune and re-validate only")
     d.set_defaults(func=cmd_demo)
     args = parser.parse_args(argv)
-    args.func(args)
+    try:
+        args.func(args)
+    except InputError as exc:
+        raise SystemExit(str(exc)) from None
 
 
 if __name__ == "__main__":

@@ -36,11 +36,15 @@ from ..core.errors import Cancelled
 from ..dependencies import (
     Installer,
     InstallError,
+    PackageGroup,
     PackageStatus,
     RuntimePackage,
+    group_statuses,
     package_folder,
     read_requirements,
     statuses,
+    torch_folder,
+    torch_group,
 )
 
 PACKAGE_COLUMN, VERSION_COLUMN, STATE_COLUMN, NEEDED_BY_COLUMN = range(4)
@@ -91,14 +95,16 @@ class InstallThread(QThread):
     failed = pyqtSignal(str, str)  # message, pip's log
     stopped = pyqtSignal()
 
-    def __init__(self, folder: Path, packages: Sequence[RuntimePackage], python: str | None, parent=None):
+    def __init__(self, folder: Path, packages: Sequence[RuntimePackage], python: str | None, parent=None,
+                 pip_options: Sequence[str] = ()):
         super().__init__(parent)
         self.folder, self.packages, self.python = folder, list(packages), python
+        self.pip_options = tuple(pip_options)
         self.cancel_requested = False
 
     def run(self) -> None:
         installer = Installer(self.folder, self.python, log=self.line.emit, progress=self.fraction.emit,
-                              is_canceled=lambda: self.cancel_requested)
+                              is_canceled=lambda: self.cancel_requested, pip_options=self.pip_options)
         try:
             self.succeeded.emit(installer.install(self.packages))
         except Cancelled:
@@ -120,7 +126,8 @@ class DependenciesDialog(QDialog):
 
     def __init__(self, parent=None, folder: Path | None = None, python: str | None = None,
                  packages: Sequence[RuntimePackage] | None = None,
-                 title: Callable[[str], str] = algorithm_title):
+                 title: Callable[[str], str] = algorithm_title, group: PackageGroup | None = None,
+                 group_folder: Path | None = None):
         super().__init__(parent)
         self.setObjectName("BirdsEyeDependenciesDialog")
         self.setWindowTitle(tr("BirdsEye — Python packages"))
@@ -128,6 +135,10 @@ class DependenciesDialog(QDialog):
         self.python = python
         self.packages = read_requirements() if packages is None else list(packages)
         self.title = title
+        # The optional PyTorch group (Train detector), in its own folder; never ticked by default.
+        self.group = torch_group() if group is None else group
+        self.group_folder = (torch_folder(QgsApplication.qgisSettingsDirPath()) if group_folder is None
+                             else Path(group_folder))
         self.thread: InstallThread | None = None
         self._busy = False
 
@@ -165,12 +176,20 @@ class DependenciesDialog(QDialog):
         self.log_button.toggled.connect(self.log.setVisible)
         self.close_button = QPushButton(tr("Close"))
         self.close_button.clicked.connect(self.reject)
+        self.group_label = QLabel()
+        self.group_label.setObjectName("groupLabel")
+        self.group_label.setWordWrap(True)
+        self.group_label.setTextInteractionFlags(Qt.TextInteractionFlag.TextSelectableByMouse)
+        self.group_button = QPushButton()
+        self.group_button.setObjectName("installGroupButton")
+        self.group_button.clicked.connect(self.start_group_install)
         self.buttons.addButton(self.install_button, QDialogButtonBox.ButtonRole.AcceptRole)
         self.buttons.addButton(self.log_button, QDialogButtonBox.ButtonRole.HelpRole)
         self.buttons.addButton(self.close_button, QDialogButtonBox.ButtonRole.RejectRole)
 
         layout = QVBoxLayout(self)
-        for widget in (self.intro, self.table, self.progress, self.status, self.log, self.buttons):
+        for widget in (self.intro, self.table, self.group_label, self.group_button, self.progress, self.status,
+                       self.log, self.buttons):
             layout.addWidget(widget)
         self.resize(900, 600)
         self.refresh()
@@ -205,6 +224,22 @@ class DependenciesDialog(QDialog):
             self.intro.setText(tr("Every Python package BirdsEye's algorithms need is installed in the Python "
                                   "QGIS runs."))
         self.install_button.setEnabled(any(s.needs_install for s in self.statuses))
+        self.refresh_group()
+
+    def refresh_group(self) -> None:
+        """The optional PyTorch group: its state in its folder and what installing it does."""
+        self.group_statuses = group_statuses(self.group, self.group_folder)
+        state = ", ".join(f"{s.package.distribution} {s.installed_version or tr('missing')}"
+                          for s in self.group_statuses)
+        self.group_label.setText(tr(
+            "Optional — {title} for Train detector ({build} build{why}): {state}. It is installed into its own "
+            "folder, {folder}, and runs in a separate training process: QGIS itself never loads it. Several "
+            "hundred MB (the CUDA build: gigabytes).").format(
+                title=self.group.title, build=self.group.build.upper(), state=state, folder=self.group_folder,
+                why=tr(", an NVIDIA driver is present") if self.group.build == "cuda" else ""))
+        missing = [s for s in self.group_statuses if s.needs_install]
+        self.group_button.setText(tr("Install {title}").format(title=self.group.title))
+        self.group_button.setEnabled(bool(missing))
 
     def checked_packages(self) -> list[RuntimePackage]:
         by_name = {s.package.distribution: s.package for s in self.statuses}
@@ -219,19 +254,29 @@ class DependenciesDialog(QDialog):
         return self._busy
 
     # ------------------------------------------------------------------ install
+    def start_group_install(self) -> None:
+        """Install the PyTorch group's missing packages into its folder, from its index."""
+        packages = [s.package for s in self.group_statuses if s.needs_install]
+        if packages and not self.is_running():
+            self._start(self.group_folder, packages, self.group.pip_options)
+
     def start_install(self) -> None:
         packages = self.checked_packages()
         if not packages or self.is_running():
             return
+        self._start(self.folder, packages, ())
+
+    def _start(self, folder: Path, packages: Sequence[RuntimePackage], pip_options: Sequence[str]) -> None:
         self.log.clear()
         self.progress.setRange(0, 0)  # busy while pip resolves: it cannot say how long that takes
         self.progress.setVisible(True)
         self.status.setText(tr("Installing {names}…").format(names=", ".join(p.requirement for p in packages)))
         self.install_button.setEnabled(False)
+        self.group_button.setEnabled(False)
         self.table.setEnabled(False)
         self.close_button.setText(tr("Cancel"))
         self._busy = True
-        self.thread = InstallThread(self.folder, packages, self.python, self)
+        self.thread = InstallThread(folder, packages, self.python, self, pip_options)
         self.thread.line.connect(self.log.appendPlainText)
         self.thread.fraction.connect(self._show_fraction)
         self.thread.succeeded.connect(self._succeeded)

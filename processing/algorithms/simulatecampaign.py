@@ -53,6 +53,8 @@ NUMBERS = [
     ("N_SPURIOUS", "Spurious geotags (no target)", INT, DEFAULTS.n_spurious, 0, 5000, True),
     ("RTK_FLOAT_EPISODES", "RTK-float episodes in the pose log", INT, DEFAULTS.rtk_float_episodes, 0, 100, True),
     ("ORTHO_PIXEL_M", "Orthomosaic pixel size (m)", DOUBLE, DEFAULTS.ortho_pixel_m, *ORTHO_PIXEL_RANGE_M, True),
+    ("LOOK_ALIKE_DENSITY", "Look-alikes (dark patches, depressions, stones…): times the default density", DOUBLE,
+     DEFAULTS.look_alike_density, 0.0, 20.0, True),
 ]
 PLATFORM_LABELS = ("RTK INS payload (pose log, radar altimeter)",
                    "DJI drone (the pose in each JPEG's own metadata, with its errors)")
@@ -162,7 +164,7 @@ class SimulateCampaign(BirdsEyeAlgorithm):
             else self.parameterAsDouble(parameters, self.GEOID_UNDULATION_M, context),
             terrain=terrain, slope_deg=values["SLOPE_DEG"], slope_aspect_deg=values["SLOPE_ASPECT_DEG"],
             relief_m=values["RELIEF_M"], hill_wavelength_m=values["HILL_WAVELENGTH_M"],
-            ortho_pixel_m=values["ORTHO_PIXEL_M"])
+            ortho_pixel_m=values["ORTHO_PIXEL_M"], look_alike_density=values["LOOK_ALIKE_DENSITY"])
         folder = self.parameterAsString(parameters, self.OUTPUT_FOLDER, context)
         feedback.pushInfo(self.tr("Simulating seed {seed}: {n_targets} targets in a "
                                   "{field_width_m:g} × {field_length_m:g} m field, flown at "

@@ -11,7 +11,6 @@ import os
 import sys
 import textwrap
 import threading
-import time
 from pathlib import Path
 
 import pytest
@@ -315,14 +314,20 @@ def test_run_streaming_passes_every_line_and_the_status():
     assert (lines, status) == (["one", "two"], 3)
 
 
-def test_run_streaming_stops_the_process_on_cancel():
+def test_run_streaming_stops_the_process_on_cancel(tmp_path):
+    """Cancelled, the child is stopped, not waited for: when run_streaming returns, the child is gone and
+    never reached the marker it writes after its 60 s sleep (waiting for it would have let it write it)."""
     lines = []
-    script = "import time\nprint('started', flush=True)\ntime.sleep(60)\nprint('never')"
-    start = time.monotonic()
+    marker = tmp_path / "slept_to_the_end"
+    script = ("import os, sys, time\nprint('started', os.getpid(), flush=True)\ntime.sleep(60)\n"
+              "open(sys.argv[1], 'w').close()\nprint('never')")
     with pytest.raises(Cancelled):
-        deps.run_streaming([sys.executable, "-c", script], dict(os.environ), lines.append,
-                           is_canceled=lambda: lines == ["started"])
-    assert time.monotonic() - start < 10 and lines == ["started"]
+        deps.run_streaming([sys.executable, "-c", script, str(marker)], dict(os.environ), lines.append,
+                           is_canceled=lambda: bool(lines))
+    assert len(lines) == 1 and lines[0].startswith("started ")
+    pid = int(lines[0].split()[1])
+    assert not Path(f"/proc/{pid}").exists(), f"the child {pid} still runs (or was never reaped)"
+    assert not marker.exists(), "run_streaming waited for the child to finish instead of stopping it"
     assert threading.active_count() < 50
 
 

@@ -1,0 +1,387 @@
+"""`make demo-loop`: one round of the review loop on simulated campaigns, ending in a QGIS project.
+
+The bundled model was trained on fields with few look-alikes; these fields hold LOOK_ALIKES times as
+many (dark moist patches, shaded depressions, loose-soil mounds, stones), so it fires on some of them.
+Runs in a standalone QGIS application, every step through the Processing registry (see scripts/demo.py):
+
+1. simulate two *review* campaigns and two *test* campaigns, each over its own paddock
+   (``simulatecampaign``), and import their geotags and flight logs;
+2. detect on the review campaigns with the bundled model and cluster the detections (``detect``,
+   ``clusterdetections``);
+3. review them as a person would in the review dock, through the same session and verdict log, but with
+   the simulator's truth as the reviewer's eyes: a review unit within EPS_PRED_M of a true target
+   (surveyed or not) is confirmed real, every other one a hard negative;
+4. write labels from the survey *and* the verdicts: confirmed targets nobody surveyed become targets,
+   hard negatives become hard-negative tiles (``writelabels`` with REVIEW);
+5. retrain from the bundled model on those labels, in its own PyTorch process (``traindetector``), for
+   7.5 minutes on 2 CPU threads (15 CPU-minutes);
+6. detect on the test campaigns, which neither training saw, with both models, and compare them
+   (``detect``, ``comparedetectors``): recall_pre and gmcf_pre before and after, pooled over the test
+   campaigns (sums of counts, one division), and what changed; the figures are added to the retrained
+   model's card.
+
+    .venv/bin/python scripts/demo_loop.py [--out birdseye-demo-loop] [--size full|small] [--minutes M]
+"""
+from __future__ import annotations
+
+import argparse
+import csv
+import json
+import math
+import os
+import shutil
+import sys
+import time
+from dataclasses import dataclass
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import demo  # noqa: E402  (scripts/demo.py: the Processing runner, terminal feedback and project helpers)
+
+REPO_ROOT = demo.REPO_ROOT
+PROJECT_NAME = "birdseye_loop.qgz"
+SUMMARY_NAME = "loop_summary.json"
+LOOK_ALIKES = 4.0          # times the simulator's default look-alike density
+EPS_PRED_M = 0.20          # the reviewer's "same spot": the matching radius of the scores
+REVIEWER = "simulated reviewer (the simulator's truth)"
+GROUPS = ["survey", "flight", "detections", "review", "labels", "model", "comparison", "farm map"]
+
+
+@dataclass(frozen=True)
+class Campaign:
+    key: str
+    title: str
+    seed: int
+    review: bool           # reviewed and relabelled (True) or kept for the test (False)
+    offset: int            # paddocks side by side, this many spacings east of the first
+
+
+CAMPAIGNS = [Campaign("review1", "review campaign 1", 401, True, 0),
+             Campaign("review2", "review campaign 2", 402, True, 1),
+             Campaign("test1", "test campaign 1", 501, False, 2),
+             Campaign("test2", "test campaign 2", 502, False, 3)]
+
+
+@dataclass(frozen=True)
+class LoopSize:
+    demo_size: str         # the simulated campaign size of scripts/demo.py
+    minutes: float         # training budget (wall-clock minutes on TRAINING_THREADS threads)
+
+
+# 7.5 minutes on 2 threads: a CPU time budget of 15 minutes.
+TRAINING_THREADS = 2
+SIZES = {"full": LoopSize("full", 7.5), "small": LoopSize("small", 0.5)}
+
+
+def campaign_steps(size: demo.DemoSize) -> list[demo.Step]:
+    steps = []
+    for c in CAMPAIGNS:
+        steps.append(demo.Step(f"campaign_{c.key}", "simulatecampaign", f"Simulate the {c.title}", {
+            "SEED": c.seed, "N_TARGETS": size.n_targets, "FIELD_WIDTH_M": size.field_width_m,
+            "FIELD_LENGTH_M": size.field_length_m, "ALTITUDE_M": demo.ALTITUDE_M, "SPEED_MS": 2.5,
+            "FPS": size.training_fps if c.review else size.held_out_fps,
+            "IMAGE_WIDTH": size.image_width, "IMAGE_HEIGHT": size.image_height, "SIGMAS": demo.SIGMAS,
+            "LOOK_ALIKE_DENSITY": LOOK_ALIKES, "SITE_LAT": demo.SITE_LAT,
+            "SITE_LON": demo.field_longitude(c.offset * size.field_spacing_m),
+            "OUTPUT_FOLDER": f"{{out}}/campaigns/{c.key}"},
+            layer_suffix=c.title, maps=(("ORTHOMOSAIC", "Orthomosaic"),), map_group="farm map"))
+        steps.append(demo.Step(f"geotags_{c.key}", "importgeotags", f"Import the geotags of the {c.title}", {
+            "INPUT": f"{{campaign_{c.key}[GEOTAGS]}}", "OUTPUT": f"{{out}}/survey/geotags_{c.key}.gpkg"},
+            group="survey", layer_suffix=c.title))
+        steps.append(demo.Step(f"flight_{c.key}", "importflightlog", f"Import the {c.title}'s log", {
+            "POSE_LOG": f"{{campaign_{c.key}[POSES]}}", "IMAGES": f"{{campaign_{c.key}[OUTPUT_FOLDER]}}",
+            "CALIBRATION": f"{{campaign_{c.key}[CALIBRATION]}}",
+            "FPS": size.training_fps if c.review else size.held_out_fps,
+            "OUTPUT": f"{{out}}/flight/frames_{c.key}.gpkg", "OUTPUT_TRACK": f"{{out}}/flight/track_{c.key}.gpkg"},
+            group="flight", layer_suffix=c.title, hidden=("OUTPUT",)))
+        steps.append(demo.Step(f"detect_{c.key}", "detect", f"Detect on the {c.title} with the bundled model", {
+            "FRAMES": f"{{flight_{c.key}[OUTPUT]}}", "MODEL": str(demo.BUNDLED_MODEL),
+            "OUTPUT": f"{{out}}/detections/bundled_{c.key}.gpkg"},
+            group="detections", layer_suffix=f"bundled model, {c.title}", hidden=("OUTPUT",)))
+    return steps
+
+
+def review_steps(size: demo.DemoSize) -> list[demo.Step]:
+    steps = []
+    for c in CAMPAIGNS:
+        if not c.review:
+            continue
+        steps.append(demo.Step(f"clusters_{c.key}", "clusterdetections", f"Cluster the {c.title}'s detections", {
+            "DETECTIONS": f"{{detect_{c.key}[OUTPUT]}}", "GEOTAGS": f"{{geotags_{c.key}[OUTPUT]}}",
+            "FRAMES": f"{{flight_{c.key}[OUTPUT]}}", "OUTPUT": f"{{out}}/review/clusters_{c.key}.gpkg",
+            "OUTPUT_POINTS": None}, group="review", layer_suffix=c.title))
+    return steps
+
+
+def relabel_and_train_steps(size: demo.DemoSize, minutes: float) -> list[demo.Step]:
+    steps = []
+    for c in CAMPAIGNS:
+        if c.review:
+            steps.append(demo.Step(f"labels_{c.key}", "writelabels", f"Write labels from the survey and the review "
+                                   f"of the {c.title}", {
+                "GEOTAGS": f"{{geotags_{c.key}[OUTPUT]}}", "FRAMES": f"{{flight_{c.key}[OUTPUT]}}",
+                "REVIEW": f"{{review_{c.key}[VERDICTS]}}", "REVIEW_DETECTIONS": [f"{{detect_{c.key}[OUTPUT]}}"],
+                "SIGMA_PX": 10.0, "EDGE_BUFFER_PX": 20.0, "WRITE_RASTERS": False, "WRITE_TILES": True,
+                "TILE_SIZE": size.tile_size, "NEGATIVE_RATIO": 1.5, "OUTPUT_FOLDER": f"{{out}}/labels/{c.key}",
+                "OUTPUT_FRAMES": None, "OUTPUT_GEOTAGS": None}))
+    reviewed = [c for c in CAMPAIGNS if c.review]
+    steps.append(demo.Step("train", "traindetector", "Retrain the bundled model on the review's labels", {
+        "LABELS": [f"{{labels_{c.key}[OUTPUT_FOLDER]}}" for c in reviewed],
+        "FRAMES": [f"{{flight_{c.key}[OUTPUT]}}" for c in reviewed],
+        "INIT": str(demo.BUNDLED_MODEL), "MINUTES": minutes, "THREADS": TRAINING_THREADS, "SEED": 1,
+        # The demo runs in the repository's venv, which has the training extra (requirements-train.txt).
+        "PYTHON": sys.executable,
+        "OUTPUT_MODEL": "{out}/model/retrained.onnx"}))
+    for c in CAMPAIGNS:
+        if c.review:
+            continue
+        steps.append(demo.Step(f"retrained_{c.key}", "detect", f"Detect on the {c.title} with the retrained model", {
+            "FRAMES": f"{{flight_{c.key}[OUTPUT]}}", "MODEL": "{train[OUTPUT_MODEL]}",
+            "OUTPUT": f"{{out}}/detections/retrained_{c.key}.gpkg"},
+            group="detections", layer_suffix=f"retrained model, {c.title}", hidden=("OUTPUT",)))
+        steps.append(demo.Step(f"compare_{c.key}", "comparedetectors", f"Compare both models on the {c.title}", {
+            "DETECTIONS_OLD": f"{{detect_{c.key}[OUTPUT]}}", "DETECTIONS_NEW": f"{{retrained_{c.key}[OUTPUT]}}",
+            "FRAMES": f"{{flight_{c.key}[OUTPUT]}}", "GEOTAGS": f"{{geotags_{c.key}[OUTPUT]}}",
+            "OUTPUT": f"{{out}}/comparison/changes_{c.key}.gpkg",
+            "OUTPUT_JSON": f"{{out}}/comparison/comparison_{c.key}.json",
+            "OUTPUT_REPORT": f"{{out}}/comparison/comparison_{c.key}.html"},
+            group="comparison", layer_suffix=c.title))
+    return steps
+
+
+# ------------------------------------------------------------------------------------------ the reviewer
+def true_targets(campaign_folder: Path) -> tuple[list, list]:
+    """Latitudes and longitudes of every simulated target, surveyed or not (truth/targets.csv)."""
+    with open(campaign_folder / "truth" / "targets.csv", encoding="utf-8", newline="") as handle:
+        rows = list(csv.DictReader(handle))
+    return [float(r["lat"]) for r in rows], [float(r["lon"]) for r in rows]
+
+
+def simulated_review(campaign: Campaign, values: dict, out: Path) -> dict:
+    """Judge every review unit of the campaign's detections with the review dock's own session and verdict
+    log; the simulator's truth decides. Returns the step's results: the verdict table and the counts."""
+    import numpy as np
+    from qgis.core import QgsVectorLayer
+
+    from birdseye.birdseye_qgis.core.review.units import ReviewParameters, build_units
+    from birdseye.birdseye_qgis.qgis_io.review_store import ReviewSession, VerdictStore, read_review_inputs
+
+    def layer(path, name):
+        loaded = QgsVectorLayer(str(path), name, "ogr")
+        if not loaded.isValid():
+            raise demo.DemoError(f"the simulated review cannot open {path}")
+        return loaded
+
+    detections = layer(values[f"detect_{campaign.key}"]["OUTPUT"], f"bundled model, {campaign.title}")
+    frames = layer(values[f"flight_{campaign.key}"]["OUTPUT"], f"frames, {campaign.title}")
+    geotags = layer(values[f"geotags_{campaign.key}"]["OUTPUT"], f"geotags, {campaign.title}")
+    inputs = read_review_inputs([detections], frames, geotags)
+    params = ReviewParameters()
+    units = build_units(inputs.layers, inputs.local, inputs.geotags, inputs.pose_groups, params, inputs.ground)
+    lat, lon = true_targets(Path(values[f"campaign_{campaign.key}"]["OUTPUT_FOLDER"]))
+    truth = inputs.local.from_geodetic(np.asarray(lat), np.asarray(lon), np.full(len(lat), inputs.local.h0))[:, :2]
+    unit_xy = inputs.local.from_geodetic(np.asarray(units.lat), np.asarray(units.lon),
+                                         np.full(len(units.lat), inputs.local.h0))[:, :2]
+    path = out / "review" / f"verdicts_{campaign.key}.gpkg"
+    path.parent.mkdir(parents=True, exist_ok=True)
+    store = VerdictStore(path)
+    session = ReviewSession(store, units, REVIEWER, inputs.digests, params)
+    counts = {"confirmed_real": 0, "hard_negative": 0}
+    try:
+        for key, xy in zip(units.keys, unit_xy):
+            real = len(truth) and float(np.min(np.hypot(*(truth - xy).T))) <= EPS_PRED_M
+            verdict = "confirmed_real" if real else "hard_negative"
+            session.set_verdict(key, verdict)
+            counts[verdict] += 1
+    finally:
+        store.close()
+    print(f"    {len(units.keys)} review units: {counts['confirmed_real']} confirmed real, "
+          f"{counts['hard_negative']} hard negatives → {path.relative_to(out)}", flush=True)
+    return {"VERDICTS": f"{path}|layername=birdseye_verdicts", "UNITS": len(units.keys), **counts}
+
+
+# ------------------------------------------------------------------------------------------ figures
+POOLED = ("n_in_view", "n_recovered", "n_clusters", "n_hit_clusters")
+
+
+def pooled_comparison(values: dict) -> dict:
+    """Before and after, pooled over the test campaigns (sums of counts, one division), and the changes."""
+    sums = {side: dict.fromkeys(POOLED, 0) for side in ("before", "after")}
+    changes = {}
+    for c in CAMPAIGNS:
+        if c.review:
+            continue
+        doc = json.loads(Path(values[f"compare_{c.key}"]["OUTPUT_JSON"]).read_text(encoding="utf-8"))
+        for side in sums:
+            for key in POOLED:
+                sums[side][key] += int(doc[side][key])
+        for name, n in doc["changes"].items():
+            changes[name] = changes.get(name, 0) + int(n)
+
+    def ratio(a, b):
+        return None if b == 0 else a / b
+
+    out = {}
+    for side, s in sums.items():
+        out[side] = dict(s, recall_pre=ratio(s["n_recovered"], s["n_in_view"]),
+                         gmcf_pre=ratio(s["n_hit_clusters"], s["n_clusters"]))
+    out["changes"] = changes
+    return out
+
+
+def append_to_model_card(card: Path, numbers: dict) -> None:
+    """The comparison on the test campaigns, after the card's own (tile) figures: what a user needs to
+    decide whether the retrained model replaces the bundled one."""
+    b, a, t = numbers["test"]["before"], numbers["test"]["after"], numbers["training"]
+    rows = [("recall_pre", demo.fmt(b["recall_pre"]), demo.fmt(a["recall_pre"])),
+            ("gmcf_pre", demo.fmt(b["gmcf_pre"]), demo.fmt(a["gmcf_pre"])),
+            ("geotags recovered / in view", f"{b['n_recovered']} / {b['n_in_view']}",
+             f"{a['n_recovered']} / {a['n_in_view']}"),
+            ("clusters on a geotag / clusters", f"{b['n_hit_clusters']} / {b['n_clusters']}",
+             f"{a['n_hit_clusters']} / {a['n_clusters']}")]
+    text = ["", "## Review loop: the test campaigns neither training saw", "",
+            f"Bundled model before, this model after, pooled over {numbers['test_campaigns']} simulated campaigns "
+            f"with {numbers['look_alike_density']:g}× the look-alikes (sums of counts, one division; scored as "
+            "Evaluate detections scores, each model at its own default threshold). Training: "
+            f"{t['seconds'] / 60:.1f} min on {TRAINING_THREADS} CPU threads ({t['cpu_minutes']:.1f} CPU-minutes).",
+            "", "| figure | before | after |", "| --- | ---: | ---: |",
+            *[f"| {name} | {before} | {after} |" for name, before, after in rows],
+            "", "Changes: " + ", ".join(f"{k.replace('_', ' ')} {v}" for k, v in numbers["test"]["changes"].items())
+            + ".", ""]
+    with open(card, "a", encoding="utf-8") as handle:
+        handle.write("\n".join(text))
+
+
+def summary_lines(numbers: dict, shown_out: str) -> str:
+    b, a = numbers["test"]["before"], numbers["test"]["after"]
+    lines = ["", "=" * 78,
+             f" BirdsEye review loop finished in {numbers['seconds'] / 60:.1f} min; everything is in {shown_out}/",
+             "-" * 78]
+    for key, review in numbers["review"].items():
+        lines.append(f" Review      {key}: {review['UNITS']} units → {review['confirmed_real']} confirmed real, "
+                     f"{review['hard_negative']} hard negatives")
+    labels = numbers["labels"]
+    lines += [f" Labels      {labels['review_targets']} review targets, {labels['hard_negatives']} hard-negative "
+              "clusters in the training labels",
+              f" Training    {numbers['training']['tiles']} tiles, {numbers['training']['seconds']:.0f} s, "
+              f"threshold {demo.fmt(numbers['training']['threshold'], 2)} → model/retrained.onnx",
+              f" Test        recall_pre {demo.fmt(b['recall_pre'])} → {demo.fmt(a['recall_pre'])}, "
+              f"gmcf_pre {demo.fmt(b['gmcf_pre'])} → {demo.fmt(a['gmcf_pre'])} "
+              f"({b['n_clusters']} → {a['n_clusters']} clusters)",
+              f" Changes     {', '.join(f'{k}: {v}' for k, v in numbers['test']['changes'].items())}",
+              "-" * 78, f" Open it     qgis {shown_out}/{PROJECT_NAME}", "=" * 78]
+    return "\n".join(lines)
+
+
+# ------------------------------------------------------------------------------------------ the run
+def prepare_folder(out: Path) -> None:
+    """An empty folder; a previous loop demo there is replaced, anything else is left alone."""
+    if out.exists():
+        previous = (out / PROJECT_NAME).exists() or (out / SUMMARY_NAME).exists() or (out / "campaigns").is_dir()
+        if any(out.iterdir()) and not previous:
+            raise demo.DemoError(f"{out} exists and is not a BirdsEye review-loop folder; choose another --out")
+        print(f"Removing the previous review-loop demo in {out}/")
+        shutil.rmtree(out)
+    out.mkdir(parents=True)
+
+
+def run(out: Path, size_name: str, minutes: float | None) -> int:
+    started = time.monotonic()
+    size = SIZES[size_name]
+    demo_size = demo.SIZES[size.demo_size]
+    minutes = size.minutes if minutes is None else minutes
+    _app, _provider = demo.start_qgis()
+    from qgis.core import QgsProject
+
+    first, review, second = campaign_steps(demo_size), review_steps(demo_size), relabel_and_train_steps(demo_size,
+                                                                                                         minutes)
+    try:
+        demo.preflight(first + review + second, None)
+        prepare_folder(out)
+        project = QgsProject.instance()
+        project.clear()
+        project.setTitle("BirdsEye review loop")
+        values = {"out": str(out)}
+        farm_layers = []
+        numbered = [*first, *review, None, *second]
+        for number, step in enumerate(numbered, 1):
+            if step is None:
+                for c in CAMPAIGNS:
+                    if c.review:
+                        print(f"[{number}/{len(numbered)}] Review the {c.title} (simulated reviewer)", flush=True)
+                        values[f"review_{c.key}"] = simulated_review(c, values, out)
+                continue
+            print(f"[{number}/{len(numbered)}] {step.title} (birdseye:{step.alg_id})", flush=True)
+            step_start = time.monotonic()
+            results, layers = demo.run_step(step, values, project)
+            maps = demo.load_maps(step, results)
+            values[step.name] = results
+            demo.add_to_group(project, step.group, layers, GROUPS)
+            demo.add_to_group(project, step.map_group, maps, GROUPS)
+            if (layers or maps) and not project.crs().isValid():
+                project.setCrs((layers or maps)[0][0].crs())
+            farm_layers += [layer for layer, _ in maps]
+            print(f"    done in {time.monotonic() - step_start:.1f} s", flush=True)
+        add_verdict_layers(project, values)
+        demo.add_to_group(project, "farm map", [demo.osm_basemap()], GROUPS)
+        demo.finish_project(project, farm_layers, GROUPS)
+        project_path = out / PROJECT_NAME
+        if not project.write(str(project_path)):
+            raise demo.DemoError(f"could not write {project_path}: {project.error()}")
+        invalid = demo.check_saved_project(project_path)
+        if invalid:
+            raise demo.DemoError(f"{project_path} opens with invalid layers: {', '.join(invalid)}")
+        reviewed = [c for c in CAMPAIGNS if c.review]
+        train = values["train"]
+        numbers = {
+            "look_alike_density": LOOK_ALIKES,
+            "review": {c.key: {k: v for k, v in values[f"review_{c.key}"].items() if k != "VERDICTS"}
+                       for c in reviewed},
+            "labels": {"review_targets": sum(int(values[f"labels_{c.key}"]["REVIEW_TARGETS"]) for c in reviewed),
+                       "hard_negatives": sum(int(values[f"labels_{c.key}"]["HARD_NEGATIVES"]) for c in reviewed)},
+            "training": {"tiles": int(train["TILES"]), "seconds": float(train["TRAIN_SECONDS"]),
+                         "minutes_budget": minutes, "threads": TRAINING_THREADS,
+                         "cpu_minutes": round(float(train["TRAIN_SECONDS"]) * TRAINING_THREADS / 60.0, 2),
+                         "threshold": train["THRESHOLD_USED"],
+                         "tiles_per_second": train["TILES_PER_SECOND"], "model_card": Path(train["MODEL_CARD"]).name},
+            "test": pooled_comparison(values),
+            "test_campaigns": sum(not c.review for c in CAMPAIGNS),
+            "seconds": round(time.monotonic() - started, 1),
+        }
+        (out / SUMMARY_NAME).write_text(json.dumps(numbers, indent=2) + "\n", encoding="utf-8")
+        append_to_model_card(Path(train["MODEL_CARD"]), numbers)
+        shown = os.path.relpath(out) if not os.path.relpath(out).startswith("..") else str(out)
+        print(summary_lines(numbers, shown))
+        return 0
+    except demo.DemoError as exc:
+        print(f"\nThe review-loop demo stopped: {exc}", file=sys.stderr)
+        return 1
+
+
+def add_verdict_layers(project, values: dict) -> None:
+    from qgis.core import QgsVectorLayer
+
+    layers = []
+    for c in CAMPAIGNS:
+        if c.review:
+            layer = QgsVectorLayer(values[f"review_{c.key}"]["VERDICTS"], f"Verdicts ({c.title})", "ogr")
+            if not layer.isValid():
+                raise demo.DemoError(f"the verdict log of the {c.title} cannot be opened as a layer")
+            layers.append((layer, False))
+    demo.add_to_group(project, "review", layers, GROUPS)
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--out", type=Path, default=REPO_ROOT / "birdseye-demo-loop")
+    parser.add_argument("--size", choices=sorted(SIZES), default="full")
+    parser.add_argument("--minutes", type=float, default=None,
+                        help="training budget in minutes on 2 threads (default: 7.5 at full size, 0.5 small)")
+    args = parser.parse_args(argv)
+    if args.minutes is not None and not (0 < args.minutes and math.isfinite(args.minutes)):
+        parser.error("--minutes must be a positive number")
+    return run(args.out.resolve(), args.size, args.minutes)
+
+
+if __name__ == "__main__":
+    sys.exit(main())

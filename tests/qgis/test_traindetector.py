@@ -1,0 +1,139 @@
+"""birdseye:traindetector through the Processing registry: a simulated campaign imported and labelled by
+the plugin's own algorithms, a short training in a separate Python (.venv's, which has torch), the model
+run by Detect targets; cancel leaves no process and no model but a checkpoint; a pretrained encoder from
+a weights file made here. torch must never enter this (QGIS's) process."""
+from __future__ import annotations
+
+import json
+import re
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+from qgis.core import QgsProcessingException, QgsProcessingFeedback
+
+from birdseye.birdseye_qgis.core.sim.campaign import CampaignConfig, simulate_campaign
+from birdseye.birdseye_qgis.core.train.protocol import process_alive
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "unit" / "train"))
+from fake_labels import make_label_folder  # noqa: E402
+from registry import run
+from training_python import TRAINING_PYTHON, needs_training_python
+
+pytestmark = needs_training_python
+
+
+class Recorder(QgsProcessingFeedback):
+    """Keeps what the algorithm reports; cancels at the first training progress when asked to."""
+
+    def __init__(self, cancel_when_training: bool = False):
+        super().__init__()
+        self.infos, self.progress, self.pid = [], [], None
+        self.cancel_when_training = cancel_when_training
+        self.progressChanged.connect(self._progress)
+
+    def pushInfo(self, info):  # noqa: N802 — QGIS's name
+        self.infos.append(info)
+        found = re.match(r"Training process (\d+) started", info)
+        if found:
+            self.pid = int(found[1])
+        super().pushInfo(info)
+
+    def _progress(self, value):
+        self.progress.append(value)
+        if self.cancel_when_training and value > 2.0 and not self.isCanceled():
+            self.cancel()
+
+
+@pytest.fixture(scope="module")
+def campaign(birdseye_provider, tmp_path_factory):
+    """A small simulated campaign, imported, and its training labels with 96 px tiles."""
+    folder = tmp_path_factory.mktemp("campaign")
+    simulate_campaign(CampaignConfig(seed=5, n_targets=8, field_width_m=6.0, field_length_m=5.0, image_width=480,
+                                     image_height=300), folder)
+    geotags = run("importgeotags", {"INPUT": str(folder / "geotags.csv"), "OUTPUT": "TEMPORARY_OUTPUT"})["OUTPUT"]
+    frames = run("importflightlog", {"POSE_LOG": str(folder / "poses.csv"), "IMAGES": str(folder / "frames"),
+                                     "CALIBRATION": str(folder / "calibration.yaml"),
+                                     "OUTPUT": "TEMPORARY_OUTPUT"})["OUTPUT"]
+    labels = folder / "labels"
+    run("writelabels", {"GEOTAGS": geotags, "FRAMES": frames, "WRITE_RASTERS": False, "WRITE_TILES": True,
+                        "TILE_SIZE": 96, "OUTPUT_FOLDER": str(labels), "OUTPUT_FRAMES": None,
+                        "OUTPUT_GEOTAGS": None})
+    return frames, labels
+
+
+def test_trains_a_model_detect_accepts_without_torch_in_qgis(campaign, tmp_path):
+    from birdseye.birdseye_qgis.core.detect.detector import HeatmapModel
+
+    frames, labels = campaign
+    feedback = Recorder()
+    out = tmp_path / "trained" / "mine.onnx"
+    started = time.perf_counter()
+    result = run("traindetector", {"LABELS": [str(labels / "summary.json")], "FRAMES": [frames], "MINUTES": 0.25,
+                                   "VALIDATION_FRACTION": 0.25, "THREADS": 2, "PYTHON": TRAINING_PYTHON,
+                                   "OUTPUT_MODEL": str(out)}, feedback)
+    seconds = time.perf_counter() - started
+    assert "torch" not in sys.modules, "QGIS's process imported torch"
+    assert result["OUTPUT_MODEL"] == str(out) and out.is_file()
+    model = HeatmapModel(str(out))  # onnxruntime session + BirdsEye metadata, validated
+    assert model.metadata.resolution_cm == 1.0 and model.metadata.tile_size == 288
+    assert 0.0 < model.metadata.default_threshold < 1.0 and model.metadata.label_sigma_px
+    card = Path(result["MODEL_CARD"]).read_text(encoding="utf-8")
+    assert "## Validation (held-out tiles)" in card and "| threshold | recall |" in card and "provenance" in card
+    assert Path(result["PLOT"]).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert Path(result["CHECKPOINT"]).is_file() and not out.with_name("mine.checkpoint.pt").exists()
+    assert result["TILES"] > 0 and result["TILES_PER_SECOND"] > 0
+    assert len(feedback.progress) >= 5 and max(feedback.progress) == 100
+    assert any(" step " in line and "validation" in line for line in feedback.infos), "loss points were relayed"
+    assert feedback.pid is not None and not process_alive(feedback.pid)
+    assert not list(out.parent.glob(".*.tmp*")), "no temporary file left"
+    print(f"traindetector: {seconds:.1f} s for a {0.25 * 60:.0f} s budget")
+    detections = run("detect", {"FRAMES": frames, "MODEL": str(out), "OUTPUT": "TEMPORARY_OUTPUT"})
+    assert detections["FRAMES_PROCESSED"] > 0 and detections["MODEL_DIGEST"] == model.digest
+    assert "torch" not in sys.modules
+
+
+def test_cancel_ends_the_process_keeps_a_checkpoint_and_writes_no_model(tmp_path):
+    labels = make_label_folder(tmp_path / "labels", n_frames=6)
+    out = tmp_path / "cancelled.onnx"
+    feedback = Recorder(cancel_when_training=True)
+    started = time.perf_counter()
+    with pytest.raises(QgsProcessingException, match="Cancelled by the user; no model was written.*checkpoint"):
+        run("traindetector", {"LABELS": [str(labels)], "GSD_CM": 1.0, "MINUTES": 5, "THREADS": 2,
+                              "PYTHON": TRAINING_PYTHON, "OUTPUT_MODEL": str(out)}, feedback)
+    assert time.perf_counter() - started < 120, "a 5-minute budget was not cut short"
+    assert feedback.pid is not None and not process_alive(feedback.pid), "the training process is still there"
+    assert not out.exists() and not list(tmp_path.glob("*.onnx")) and not list(tmp_path.glob(".*.tmp*"))
+    assert (tmp_path / "cancelled.checkpoint.pt").is_file(), "the last good checkpoint is kept"
+    assert "torch" not in sys.modules
+
+
+def test_a_pretrained_encoder_from_a_weights_file(tmp_path):
+    weights = tmp_path / "resnet18_random.pth"
+    script = ("import sys, torch; sys.path.insert(0, sys.argv[2]); from birdseye_qgis.core.train.recipe import "
+              "import_torchvision; tv = import_torchvision(); torch.manual_seed(0); "
+              "torch.save(tv.models.resnet18(weights=None).state_dict(), sys.argv[1])")
+    subprocess.run([TRAINING_PYTHON, "-c", script, str(weights), str(Path(__file__).resolve().parents[2])],
+                   check=True, timeout=120)
+    labels = make_label_folder(tmp_path / "labels", n_frames=4)
+    out = tmp_path / "pretrained.onnx"
+    result = run("traindetector", {"LABELS": [str(labels)], "GSD_CM": 1.0, "BACKBONE": 6, "WEIGHTS": str(weights),
+                                   "MINUTES": 0.1, "THREADS": 2, "PYTHON": TRAINING_PYTHON, "OUTPUT_MODEL": str(out)})
+    report = json.loads(out.with_name("pretrained.training.json").read_text(encoding="utf-8"))
+    assert report["settings"]["backbone"] == "resnet18" and report["settings"]["weights"] == str(weights)
+    assert report["metadata"]["standardization_mean"] == [0.485, 0.456, 0.406]
+    assert result["OUTPUT_MODEL"] == str(out) and "torch" not in sys.modules
+
+
+def test_missing_weights_and_missing_torch_say_what_to_do(tmp_path):
+    labels = make_label_folder(tmp_path / "labels", n_frames=3)
+    with pytest.raises(QgsProcessingException, match="does not exist"):
+        run("traindetector", {"LABELS": [str(labels)], "GSD_CM": 1.0, "BACKBONE": 1, "MINUTES": 0.1,
+                              "WEIGHTS": str(tmp_path / "nowhere.pth"), "PYTHON": TRAINING_PYTHON,
+                              "OUTPUT_MODEL": str(tmp_path / "m.onnx")})
+    with pytest.raises(QgsProcessingException, match=r"Install dependencies….*PyTorch \(training\).*pip install"):
+        run("traindetector", {"LABELS": [str(labels)], "GSD_CM": 1.0, "MINUTES": 0.1, "PYTHON": "/usr/bin/python3",
+                              "OUTPUT_MODEL": str(tmp_path / "m.onnx")})
+    assert not (tmp_path / "m.onnx").exists()
