@@ -2144,38 +2144,43 @@ QGIS&apos;s own packages are not changed. pip downloads them from the Python Pac
 <context>
     <name>ReviewParametersMixin</name>
     <message>
-        <location filename="../processing/parameters/review.py" line="31"/>
+        <location filename="../processing/parameters/review.py" line="32"/>
         <source>Review verdicts (the review dock&apos;s birdseye_verdicts table; optional)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/review.py" line="34"/>
+        <location filename="../processing/parameters/review.py" line="35"/>
         <source>Detection layers the review judged (with REVIEW)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/review.py" line="38"/>
+        <location filename="../processing/parameters/review.py" line="39"/>
         <source>Frame layers of those detections (one per layer, same order)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/review.py" line="56"/>
+        <location filename="../processing/parameters/review.py" line="58"/>
         <source>REVIEW_DETECTIONS is given without REVIEW: give the review&apos;s verdict table too, or leave REVIEW_DETECTIONS empty.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/review.py" line="61"/>
+        <location filename="../processing/parameters/review.py" line="63"/>
         <source>REVIEW: give the detection layer(s) the review judged (REVIEW_DETECTIONS): the verdicts name spots, the clusters come from those detections.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/review.py" line="73"/>
+        <location filename="../processing/parameters/review.py" line="79"/>
         <source>{layer}: {n} detection(s) without a position or score left out</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/review.py" line="83"/>
+        <location filename="../processing/parameters/review.py" line="89"/>
         <source>Review ({review}): {n} cluster(s) in {layers} detection layer(s); {hit} match a geotag; of the others {confirmed} confirmed real, {hard} hard negative, {conflicting} with conflicting verdicts, {uncertain} uncertain, {unreviewed} unreviewed.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/parameters/review.py" line="107"/>
+        <source>{layer}: its detections were placed on {recorded}; the review&apos;s in-view test stands on the level plane here (this algorithm has no DEM, or none was given).</source>
         <translation type="unfinished"></translation>
     </message>
 </context>

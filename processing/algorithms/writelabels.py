@@ -152,7 +152,7 @@ class WriteLabels(ReviewParametersMixin, DemParametersMixin, BirdsEyeAlgorithm):
         groups = self.run_core(poses_from_records, records, frame_source.sourceName())
         survey = geotags
         reviewed = self.read_reviewed_clusters(parameters, context, steps, geotag_source,
-                                               [poses for poses, _ in groups])
+                                               [poses for poses, _ in groups], dem=dem)
         review_targets, hard = review_label_inputs(reviewed or [], survey)
         geotags = survey + review_targets
         if reviewed is not None:

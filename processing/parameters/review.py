@@ -9,6 +9,7 @@ from qgis.core import (
     QgsProcessingParameterVectorLayer,
 )
 
+from ...birdseye_qgis.core.geometry.ground_record import DEM
 from ...birdseye_qgis.core.scoring.evaluation import Flight, evaluate_flights
 from ...birdseye_qgis.core.scoring.reviewed_clusters import outcome_counts, reviewed_clusters
 from ...birdseye_qgis.qgis_enums import SOURCE_VECTOR, SOURCE_VECTOR_POINT
@@ -42,13 +43,14 @@ class ReviewParametersMixin(ClusteringParametersMixin):
         self.add_matching_parameters(edge_buffer=edge_buffer, advanced=True)
 
     def read_reviewed_clusters(self, parameters, context, feedback, geotag_source, pose_groups=None,
-                               start: float = 0.0, end: float = 100.0):
+                               start: float = 0.0, end: float = 100.0, dem=None):
         """The clusters of the reviewed detection layers with their outcomes (``core.scoring
         .reviewed_clusters``), clustered and matched to ``geotag_source``'s geotags as ``evaluatedetections``
         does; None without REVIEW.
 
         ``pose_groups``: the frames of every detection layer when the algorithm has one frame layer
-        (Write labels); otherwise REVIEW_FRAMES pairs a frame layer with each detection layer."""
+        (Write labels); otherwise REVIEW_FRAMES pairs a frame layer with each detection layer. The in-view
+        test stands on the ground each layer's detections were placed on (:meth:`review_ground`)."""
         review = self.parameterAsVectorLayer(parameters, self.REVIEW, context)
         det_layers = self.parameterAsLayerList(parameters, self.REVIEW_DETECTIONS, context)
         if review is None:
@@ -63,8 +65,12 @@ class ReviewParametersMixin(ClusteringParametersMixin):
                 "name spots, the clusters come from those detections."))
         log = self.run_core(read_verdicts, review, context)
         geotags = self.run_core(read_geotag_layer, geotag_source, context.transformContext())
+        def ground_for(detections):
+            return self.review_ground(detections, dem, feedback)
+
         if pose_groups is None:
-            flights = self.read_flights(parameters, context, feedback, self.REVIEW_DETECTIONS, self.REVIEW_FRAMES)
+            flights = self.read_flights(parameters, context, feedback, self.REVIEW_DETECTIONS, self.REVIEW_FRAMES,
+                                        ground_for)
         else:
             flights = []
             for layer in det_layers:
@@ -72,7 +78,7 @@ class ReviewParametersMixin(ClusteringParametersMixin):
                 if dropped:
                     feedback.pushWarning(self.tr("{layer}: {n} detection(s) without a position or score left "
                                                  "out").format(layer=layer.name(), n=dropped))
-                flights.append(Flight(det, pose_groups, layer.name()))
+                flights.append(Flight(det, pose_groups, layer.name(), ground_for(det)))
         op = self.read_operating_point(parameters, context)
         progress, is_canceled = self.progress_callbacks(feedback, start, end)
         evaluation = self.run_core(evaluate_flights, flights, geotags, op, log, None, progress, is_canceled)
@@ -88,3 +94,19 @@ class ReviewParametersMixin(ClusteringParametersMixin):
             confirmed=counts["confirmed_real"], hard=counts["hard_negative"], conflicting=counts["conflicting"],
             uncertain=counts["uncertain"], unreviewed=counts["unreviewed"]))
         return clusters
+
+    def review_ground(self, detections, dem, feedback):
+        """The ground the review's in-view test stands on: the one the layer's detections were placed on
+        (``detections.ground``). A DEM record needs ``dem`` (the algorithm's own DEM, when it has one): without
+        it the level plane stands in, with a warning: only which geotags count as in view can change, so a
+        cluster may be kept as unresolved that the DEM would have settled by a geotag."""
+        record = detections.ground
+        if record.model != DEM:
+            return self.run_core(record.factory, None, detections.name)
+        if dem is None:
+            feedback.pushWarning(self.tr(
+                "{layer}: its detections were placed on {recorded}; the review's in-view test stands on the level "
+                "plane here (this algorithm has no DEM, or none was given).").format(
+                layer=detections.name, recorded=record.describe()))
+            return None
+        return self.run_core(record.factory, dem, detections.name)

@@ -17,7 +17,13 @@ import json
 
 import numpy as np
 import pytest
-from qgis.core import QgsFeatureRequest, QgsProcessingContext, QgsProcessingException, QgsRasterLayer
+from qgis.core import (
+    QgsFeatureRequest,
+    QgsProcessingContext,
+    QgsProcessingException,
+    QgsProcessingFeedback,
+    QgsRasterLayer,
+)
 from registry import rows, run
 
 from birdseye.birdseye_qgis.core.geometry.camera import load_calibration
@@ -176,3 +182,55 @@ def test_the_review_stands_on_the_recorded_dem_and_falls_back_with_the_reason(sl
     gone = GroundRecord(DEM, str(slope["base"] / "moved.tif"), "ellipsoidal")
     ground, reason = review_ground(gone, inputs.pose_groups)
     assert ground is None and "moved.tif: cannot be opened" in reason
+
+
+class Warnings(QgsProcessingFeedback):
+    def __init__(self):
+        super().__init__()
+        self.warnings = []
+
+    def pushWarning(self, warning):  # noqa: N802 — QGIS's name
+        self.warnings.append(warning)
+        super().pushWarning(warning)
+
+
+def test_write_labels_judges_a_review_of_dem_detections_on_that_dem(slope, tmp_path):
+    """A review of DEM-placed detections, acted on by Write labels: with its DEM the review's in-view test
+    stands on the terrain, silently; without one the level plane stands in, and the log says so. Every
+    cluster was judged a hard negative: those no geotag settles become hard-negative tiles either way."""
+    from qgis.core import (
+        QgsCoordinateReferenceSystem,
+        QgsCoordinateTransform,
+        QgsFeature,
+        QgsField,
+        QgsProject,
+        QgsVectorLayer,
+    )
+    from qgis.PyQt.QtCore import QVariant
+
+    clusters = run("clusterdetections", {"DETECTIONS": slope["detections"], "OUTPUT": "TEMPORARY_OUTPUT"})["OUTPUT"]
+    to_wgs84 = QgsCoordinateTransform(clusters.crs(), QgsCoordinateReferenceSystem("EPSG:4326"),
+                                      QgsProject.instance())
+    verdicts = QgsVectorLayer("None", "verdicts", "memory")
+    verdicts.dataProvider().addAttributes([QgsField(n, QVariant.String) for n in
+                                           ("unit_key", "verdict", "provenance", "time", "reviewer")] +
+                                          [QgsField("lat", QVariant.Double), QgsField("lon", QVariant.Double)])
+    verdicts.updateFields()
+    rows_added = []
+    for k, cluster in enumerate(clusters.getFeatures()):
+        point = to_wgs84.transform(cluster["centroid_x"], cluster["centroid_y"])
+        row = QgsFeature(verdicts.fields())
+        row.setAttributes([f"u{k}", "hard_negative", "direct", "2024-05-01T10:00:00Z", "ana", point.y(), point.x()])
+        rows_added.append(row)
+    assert rows_added
+    verdicts.dataProvider().addFeatures(rows_added)
+    base = {"GEOTAGS": slope["geotags"], "FRAMES": slope["frames"], "WRITE_RASTERS": False,
+            "REVIEW": verdicts, "REVIEW_DETECTIONS": [slope["detections"]], "OUTPUT_FRAMES": None,
+            "OUTPUT_GEOTAGS": None}
+    on_dem, without = Warnings(), Warnings()
+    with_dem = run("writelabels", {**base, "DEM": slope["dem"], "DEM_VERTICAL_DATUM": 0,
+                                   "OUTPUT_FOLDER": str(tmp_path / "dem")}, on_dem)
+    level = run("writelabels", {**base, "OUTPUT_FOLDER": str(tmp_path / "level")}, without)
+    assert not [w for w in on_dem.warnings if "review's in-view test" in w]
+    assert [w for w in without.warnings if "review's in-view test stands on the level plane" in w]
+    assert with_dem["HARD_NEGATIVES"] > 0 and level["HARD_NEGATIVES"] > 0

@@ -604,10 +604,10 @@ def validation_figures(net, val: TileSet, meta: ModelMetadata, thresholds=THRESH
     """Detection figures per threshold on the held-out tiles, peaks found as the detector finds them
     (:func:`~..detect.detector.find_peaks`, the model's blur).
 
-    Targets are the label maxima of at least :data:`CENTRE_MIN_LABEL` (centres); a peak within ``match_radius_px`` (default
-    2·σ of the labels at the model's resolution, at least 3 px) of a target detects it, one peak per
-    target. Per threshold: ``recall`` (targets detected / targets), ``precision`` (peaks on a target /
-    peaks), ``f1``, ``false_per_tile`` (peaks on no target per tile).
+    Targets are the label maxima of at least :data:`CENTRE_MIN_LABEL` (centres); a peak within
+    ``match_radius_px`` (default 2·σ of the labels at the model's resolution, at least 3 px) of a target
+    detects it, one peak per target. Per threshold: ``recall`` (targets detected / targets),
+    ``precision`` (peaks on a target / peaks), ``f1``, ``false_per_tile`` (peaks on no target per tile).
     """
     import cv2
 

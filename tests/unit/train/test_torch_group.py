@@ -2,6 +2,7 @@
 (birdseye_qgis/dependencies.py), without QGIS and without torch."""
 from __future__ import annotations
 
+import subprocess
 import sys
 from pathlib import Path
 
@@ -49,7 +50,13 @@ def test_group_status_reads_the_folder_without_importing(tmp_path):
     states = {s.package.distribution: s for s in deps.group_statuses(deps.torch_group(cuda=False), folder)}
     assert states["torch"].installed_version == "2.13.0" and states["torch"].in_folder
     assert not states["torch"].needs_install
-    assert "torch" not in sys.modules
+    # In a fresh interpreter (the unit suite's own process imports torch in the recipe tests): reading the
+    # group's state imports nothing of it, as the dependencies dialog in QGIS's process needs.
+    script = ("import sys; sys.path.insert(0, sys.argv[1]); from birdseye.birdseye_qgis import dependencies as d; "
+              "from pathlib import Path; d.group_statuses(d.torch_group(cuda=False), Path(sys.argv[2])); "
+              "assert 'torch' not in sys.modules, 'reading the state imported torch'")
+    plugin_path = Path(deps.__file__).resolve().parents[1] / "build" / "pluginpath"
+    subprocess.run([sys.executable, "-c", script, str(plugin_path), str(folder)], check=True, timeout=60)
 
 
 def test_finding_the_training_python(tmp_path):
