@@ -372,7 +372,8 @@ def main(argv=None) -> None:
     t.add_argument("--gsd-cm", type=float, help="one GSD (cm/px) for every frame, instead of --frames")
     t.add_argument("--resolution-cm", type=float, default=RESOLUTION_CM)
     t.add_argument("--threshold", type=float,
-                   help="default threshold written into the model (default: best F1 on the held-out tiles)")
+                   help="default threshold written into the model (default: the highest threshold within one "
+                        "held-out target of the best F1)")
     t.add_argument("--backbone", choices=BACKBONES, default="small",
                    help="small (from scratch) or a torchvision encoder with ImageNet weights")
     t.add_argument("--weights", help="ImageNet weights (.pth) of the encoder (default: torchvision's cache)")

@@ -22,9 +22,8 @@ from qgis.core import (
     QgsProcessingContext,
     QgsProcessingException,
     QgsProcessingFeedback,
-    QgsRasterLayer,
 )
-from registry import rows, run
+from registry import rows, run, simulated_terrain_campaign
 
 from birdseye.birdseye_qgis.core.geometry.camera import load_calibration
 from birdseye.birdseye_qgis.core.geometry.ground_record import DEM, LEVEL_PLANE
@@ -44,12 +43,8 @@ WITHOUT_GROUND = 3
 def slope(birdseye_provider, tmp_path_factory):
     base = tmp_path_factory.mktemp("ground_travels")
     folder = base / "campaign"
-    sim = run("simulatecampaign", {**CAMPAIGN, "OUTPUT_FOLDER": str(folder)})
-    dem = QgsRasterLayer(sim["DEM"], "terrain")
-    geotags = run("importgeotags", {"INPUT": sim["GEOTAGS"], "OUTPUT": "TEMPORARY_OUTPUT"})["OUTPUT"]
-    frames = run("importflightlog", {"POSE_LOG": sim["POSES"], "IMAGES": str(folder / "frames"),
-                                     "CALIBRATION": sim["CALIBRATION"], "DEM": dem, "DEM_VERTICAL_DATUM": 0,
-                                     "OUTPUT": "TEMPORARY_OUTPUT"})["OUTPUT"]
+    imported = simulated_terrain_campaign(folder, CAMPAIGN)
+    sim, dem, geotags, frames = imported, imported["dem"], imported["geotags"], imported["frames"]
     # Frames spread over the flight lose their altimeter ground.
     ids = sorted(f.id() for f in frames.getFeatures())
     lost = ids[len(ids) // 4::len(ids) // WITHOUT_GROUND][:WITHOUT_GROUND]

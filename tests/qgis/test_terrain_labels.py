@@ -26,7 +26,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from qgis.core import QgsProcessingFeedback, QgsRasterLayer
+from qgis.core import QgsProcessingFeedback
 
 from birdseye.birdseye_qgis.core.design.terrain_slope import slope_error_px
 from birdseye.birdseye_qgis.core.geometry.camera import load_calibration
@@ -34,7 +34,7 @@ from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame
 from birdseye.birdseye_qgis.core.geometry.poses import FrameGeometry, FramePoses
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "data"))
-from registry import rows, run
+from registry import rows, run, simulated_terrain_campaign
 from rendered_holes import dark_core_centroid
 
 SLOPE_DEG = 20.0
@@ -58,13 +58,9 @@ def campaign(birdseye_provider, tmp_path_factory):
     """The campaign, imported, and labelled twice: with the DEM and with the level plane."""
     base = tmp_path_factory.mktemp("slope")
     folder = base / "campaign"
-    sim = run("simulatecampaign", {**CAMPAIGN, "OUTPUT_FOLDER": str(folder)})
-    dem = QgsRasterLayer(sim["DEM"], "terrain")
-    assert dem.isValid() and Path(sim["DEM"]) == folder / "truth" / "dem.tif"
-    geotags = run("importgeotags", {"INPUT": sim["GEOTAGS"], "OUTPUT": "TEMPORARY_OUTPUT"})["OUTPUT"]
-    frames = run("importflightlog", {"POSE_LOG": sim["POSES"], "IMAGES": str(folder / "frames"),
-                                     "CALIBRATION": sim["CALIBRATION"], "DEM": dem, "DEM_VERTICAL_DATUM": 0,
-                                     "OUTPUT": "TEMPORARY_OUTPUT"})["OUTPUT"]
+    imported = simulated_terrain_campaign(folder, CAMPAIGN)
+    dem, geotags, frames = imported["dem"], imported["geotags"], imported["frames"]
+    assert Path(imported["DEM"]) == folder / "truth" / "dem.tif"
     common = {"GEOTAGS": geotags, "FRAMES": frames, "SIGMA_PX": 5.0, "WRITE_RASTERS": False,
               "OUTPUT_FRAMES": None, "OUTPUT_GEOTAGS": None}
     run("writelabels", {**common, "DEM": dem, "DEM_VERTICAL_DATUM": 0, "OUTPUT_FOLDER": str(base / "dem")})

@@ -213,7 +213,8 @@ def run_job(job: TrainJob, emit: Callable[[dict], None] = lambda event: None,
     figures = recipe.validation_figures(net, val, meta) if val is not None and len(val) else None
     threshold = job.threshold if job.threshold is not None else recipe.best_threshold(figures)
     threshold_rule = "given" if job.threshold is not None else (
-        "best F1 on the held-out tiles" if figures and figures.get("targets") else "no held-out targets to choose by")
+        "highest threshold within one target of the best F1 on the held-out tiles"
+        if figures and figures.get("targets") else "no held-out targets to choose by")
     meta = recipe.make_metadata(train, job.resolution_cm, threshold, sigma, description, mean_std)
     emit({"type": "progress", "stage": "exporting", "fraction": 0.96})
     model = recipe.export_onnx(net, meta, job.model_path, job.producer)

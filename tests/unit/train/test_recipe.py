@@ -155,6 +155,11 @@ def test_validation_figures_count_peaks_against_label_centres_by_hand():
     assert (rows["0.3"]["recall"], rows["0.3"]["precision"], rows["0.3"]["false_per_tile"]) == (1.0, 0.6667, 1.0)
     assert (rows["0.5"]["recall"], rows["0.5"]["precision"]) == (0.5, 0.5)
     assert (rows["0.7"]["recall"], rows["0.7"]["precision"]) == (0.5, 1.0)
-    # The best F1 (0.8 at 0.3 against 0.5 and 0.667) sets the model's default threshold.
-    assert recipe.best_threshold(figures) == 0.3
+    # F1 0.8 at 0.3, 0.5 at 0.5, 0.667 at 0.7. Two targets cannot tell F1 values within 1/2 apart: the
+    # highest threshold within 0.5 of the best is 0.7 (the fewest detections).
+    assert recipe.best_threshold(figures) == 0.7
+    # With 50 targets only values within 0.02 tie: the loop demo's tiles (F1 0.559, 0.614, 0.594, 0.590,
+    # 0.602, 0.406 at 0.1…0.6) give 0.5, where the best F1 alone gave 0.2.
+    rows = dict(zip(("0.1", "0.2", "0.3", "0.4", "0.5", "0.6"), (0.559, 0.614, 0.594, 0.590, 0.602, 0.406)))
+    assert recipe.best_threshold({"targets": 50, "by_threshold": {t: {"f1": f} for t, f in rows.items()}}) == 0.5
     assert recipe.best_threshold(None) == 0.5
