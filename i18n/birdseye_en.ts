@@ -2179,7 +2179,7 @@ QGIS&apos;s own packages are not changed. pip downloads them from the Python Pac
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/review.py" line="107"/>
+        <location filename="../processing/parameters/review.py" line="105"/>
         <source>{layer}: its detections were placed on {recorded}; the review&apos;s in-view test stands on the level plane here (this algorithm has no DEM, or none was given).</source>
         <translation type="unfinished"></translation>
     </message>

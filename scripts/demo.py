@@ -545,13 +545,15 @@ def summary(shown_out: str, numbers: dict, timings: list, elapsed: float) -> str
     return "\n".join(lines)
 
 
-def prepare_folder(out: Path) -> None:
-    """An empty demo folder; a previous demo there is replaced, anything else is left alone."""
+def prepare_folder(out: Path, project_name: str = PROJECT_NAME, summary_name: str = SUMMARY_NAME,
+                   kind: str = "demo") -> None:
+    """An empty folder for a demo of ``kind``; a previous one there (its project, summary or campaigns)
+    is replaced, anything else is left alone."""
     if out.exists():
-        previous_demo = (out / PROJECT_NAME).exists() or (out / SUMMARY_NAME).exists() or (out / "campaigns").is_dir()
+        previous_demo = (out / project_name).exists() or (out / summary_name).exists() or (out / "campaigns").is_dir()
         if any(out.iterdir()) and not previous_demo:
-            raise DemoError(f"{out} exists and is not a BirdsEye demo folder; choose another --out")
-        print(f"Removing the previous demo in {out}/")
+            raise DemoError(f"{out} exists and is not a BirdsEye {kind} folder; choose another --out")
+        print(f"Removing the previous {kind} in {out}/")
         shutil.rmtree(out)
     out.mkdir(parents=True)
 

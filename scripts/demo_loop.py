@@ -29,7 +29,6 @@ import csv
 import json
 import math
 import os
-import shutil
 import sys
 import time
 from dataclasses import dataclass
@@ -274,17 +273,6 @@ def summary_lines(numbers: dict, shown_out: str) -> str:
 
 
 # ------------------------------------------------------------------------------------------ the run
-def prepare_folder(out: Path) -> None:
-    """An empty folder; a previous loop demo there is replaced, anything else is left alone."""
-    if out.exists():
-        previous = (out / PROJECT_NAME).exists() or (out / SUMMARY_NAME).exists() or (out / "campaigns").is_dir()
-        if any(out.iterdir()) and not previous:
-            raise demo.DemoError(f"{out} exists and is not a BirdsEye review-loop folder; choose another --out")
-        print(f"Removing the previous review-loop demo in {out}/")
-        shutil.rmtree(out)
-    out.mkdir(parents=True)
-
-
 def run(out: Path, size_name: str, minutes: float | None) -> int:
     started = time.monotonic()
     size = SIZES[size_name]
@@ -297,7 +285,7 @@ def run(out: Path, size_name: str, minutes: float | None) -> int:
                                                                                                          minutes)
     try:
         demo.preflight(first + review + second, None)
-        prepare_folder(out)
+        demo.prepare_folder(out, PROJECT_NAME, SUMMARY_NAME, "review-loop demo")
         project = QgsProject.instance()
         project.clear()
         project.setTitle("BirdsEye review loop")

@@ -101,12 +101,10 @@ class ReviewParametersMixin(ClusteringParametersMixin):
         it the level plane stands in, with a warning: only which geotags count as in view can change, so a
         cluster may be kept as unresolved that the DEM would have settled by a geotag."""
         record = detections.ground
-        if record.model != DEM:
-            return self.run_core(record.factory, None, detections.name)
-        if dem is None:
+        if record.model == DEM and dem is None:
             feedback.pushWarning(self.tr(
                 "{layer}: its detections were placed on {recorded}; the review's in-view test stands on the level "
                 "plane here (this algorithm has no DEM, or none was given).").format(
                 layer=detections.name, recorded=record.describe()))
             return None
-        return self.run_core(record.factory, dem, detections.name)
+        return self.run_core(record.factory, dem if record.model == DEM else None, detections.name)

@@ -94,6 +94,18 @@ def small_campaign(edge_geotag=False):
     return poses, geotags, local
 
 
+def grey_frames(poses, folder) -> list[str]:
+    """One uniform grey 640 × 400 image per frame of ``poses`` in ``folder``, named by frame id."""
+    import cv2
+
+    images = []
+    for fid in poses.frame_id:
+        path = folder / f"{fid}.png"
+        cv2.imwrite(str(path), np.full((400, 640, 3), 90, np.uint8))
+        images.append(str(path))
+    return images
+
+
 def test_project_labels_finds_every_frame_that_sees_each_geotag():
     poses, geotags, local = small_campaign()
     labels = project_labels(poses, geotags, local=local)
@@ -138,11 +150,7 @@ def test_edge_buffer_reports_edge_labels_and_writes_no_positive(tmp_path):
 def test_tiles_keep_every_positive_and_a_seeded_share_of_negatives(tmp_path):
     import cv2
     poses, geotags, local = small_campaign()
-    images = []
-    for fid in poses.frame_id:
-        path = tmp_path / f"{fid}.png"
-        cv2.imwrite(str(path), np.full((400, 640, 3), 90, np.uint8))
-        images.append(str(path))
+    images = grey_frames(poses, tmp_path)
     labels = project_labels(poses, geotags, local=local)
     req = LabelRequest(sigma_px=3.0, write_rasters=False, tile_size=128, negative_ratio=1.0, seed=5)
     r1 = write_label_set(poses, images, geotags, labels, tmp_path / "a", req)
@@ -209,11 +217,7 @@ def test_review_targets_are_labelled_with_their_provenance_and_hard_negatives_fi
     r_lat, r_lon, r_h = local.to_geodetic(np.array([[-1.5, 0.5, 400.0], [3.5, -1.0, 400.0]]))
     targets = survey + Geotags(["det#7"], r_lat[:1], r_lon[:1], [np.nan], ["burrow"], ["review"])
     hard = Geotags(["det#9"], r_lat[1:], r_lon[1:], [np.nan], ["hard_negative"])
-    images = []
-    for fid in poses.frame_id:
-        path = tmp_path / f"{fid}.png"
-        cv2.imwrite(str(path), np.full((400, 640, 3), 90, np.uint8))
-        images.append(str(path))
+    images = grey_frames(poses, tmp_path)
     labels = project_labels(poses, targets, local=local)
     hard_labels = project_labels(poses, hard, local=local)
     assert [fl.geotag_index.tolist() for fl in hard_labels] == [[], [0], []]
