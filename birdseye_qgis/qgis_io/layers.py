@@ -48,6 +48,7 @@ from ..core.field.frame_records import (
 )
 from ..core.field.geotags import UNLABELLED, Geotags, geotag_ids
 from ..core.geometry.geodesy import ProjectedCRS, utm_epsg
+from ..core.geometry.heights import metres_per_unit
 from ..qgis_enums import (
     CRS_WKT2_2019,
     DISTANCE_METERS,
@@ -465,14 +466,6 @@ def _driver_text_limit(driver: str, suffix: str) -> int | None:
 
 
 # ------------------------------------------------------------------------------------------ rasters
-# Metres per unit of the height-unit names GDAL drivers write (band unit type) — lower case, as compared.
-# US survey foot is 1200/3937 m exactly; the international foot 0.3048 m: 2 ppm apart, 2 mm per km of height.
-_HEIGHT_UNITS = {
-    "m": 1.0, "metre": 1.0, "meter": 1.0, "metres": 1.0, "meters": 1.0,
-    "ft": 0.3048, "foot": 0.3048, "feet": 0.3048, "international foot": 0.3048,
-    "us survey foot": 1200 / 3937, "us-ft": 1200 / 3937, "ftus": 1200 / 3937, "us_survey_foot": 1200 / 3937,
-    "foot_us": 1200 / 3937, "us foot": 1200 / 3937,
-}
 # Cells kept beyond a requested extent: bilinear sampling at the extent's edge needs the next cell centre.
 _WINDOW_PAD_CELLS = 2
 
@@ -482,12 +475,12 @@ def _height_unit(band, dataset, name: str) -> tuple[float, str]:
     part of a compound CRS, else metres (what DEM files without a unit almost always hold)."""
     unit = (band.GetUnitType() or "").strip()
     if unit:
-        factor = _HEIGHT_UNITS.get(unit.lower())
-        if factor is None:
+        try:
+            return metres_per_unit(unit), unit
+        except InputError:
             raise InputError(f"has heights in '{unit}', a unit BirdsEye does not know; convert them to metres "
                              "(Raster › Raster Calculator) and set the band's unit to 'm', then run again",
-                             source=name)
-        return factor, unit
+                             source=name) from None
     srs = dataset.GetSpatialRef()
     if srs is not None and srs.IsCompound():
         return srs.GetTargetLinearUnits("VERT_CS"), srs.GetAttrValue("VERT_CS|UNIT") or "metre"

@@ -467,7 +467,7 @@ def review_ground(record, pose_groups) -> tuple[object, str]:
             raise InputError("cannot be opened (moved or deleted?)", source=record.dem_source)
         ground = record.factory(layer_io.read_dem(raster, record.dem_datum, record.geoid_undulation_m))
         for poses in pose_groups:
-            check_vertical_datum(ground.dem, ground.pose_heights_datum, poses, ground.tolerance_m)
+            check_vertical_datum(ground.dem, poses, ground.tolerance_m)
     except InputError as exc:
         return None, str(exc)
     return ground, ""

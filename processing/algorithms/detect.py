@@ -117,6 +117,7 @@ class Detect(DemParametersMixin, BirdsEyeAlgorithm):
         threshold = model.metadata.default_threshold if request.threshold is None else request.threshold
         # Every detection carries the ground it was placed on: scoring and the review stand on the same one.
         placed_on = ground_attributes(self.ground_record(self.dem))
+        ground = self.dem_ground(self.dem, [poses for poses, _ in groups], feedback)
         total = sum(len(p) for p, _ in groups)
         counts = dict(detections=0, processed=0, skipped=0, edge=0, no_ground=0)
         coarse = []
@@ -126,7 +127,7 @@ class Detect(DemParametersMixin, BirdsEyeAlgorithm):
             progress, is_canceled = self.progress_callbacks(feedback, 100.0 * done / total,
                                                             100.0 * (done + len(poses)) / total)
             for found in detect_frames(model, poses, images, request, local=local, progress=progress,
-                                       is_canceled=is_canceled, ground=self.dem_ground(self.dem)):
+                                       is_canceled=is_canceled, ground=ground):
                 if found.skipped:
                     counts["skipped"] += 1
                     feedback.pushWarning(self.tr("Frame {frame_id}: {skipped}; skipped.").format(

@@ -83,7 +83,7 @@ class ImportFlightLog(DemParametersMixin, BirdsEyeAlgorithm):
         self.report_dem(feedback, dem)
         progress, is_canceled = self.progress_callbacks(feedback, 0.0, 80.0)
         result = self.run_core(
-            import_flight_log, pose_log, images, camera, ground=self.dem_ground(dem),
+            import_flight_log, pose_log, images, camera, dem=dem,
             fps=self.parameterAsDouble(parameters, self.FPS, context),
             radalt_snr_min=self.parameterAsDouble(parameters, self.RADALT_SNR_MIN, context),
             fixed_only=self.parameterAsEnum(parameters, self.RTK_FILTER, context) == 1,

@@ -198,10 +198,11 @@ class WriteLabels(ReviewParametersMixin, DemParametersMixin, BirdsEyeAlgorithm):
                                      n_no_ground=len(no_ground), items=', '.join(str(i) for i in no_ground[:5])))
         label_counts = np.zeros(len(records), dtype=np.int64)
         steps.setCurrentStep(1)
+        ground = self.dem_ground(dem, [poses for poses, _ in groups], feedback)
         projected = [self.run_core(project_labels, poses, geotags, request.edge_buffer_px, local,
-                                   self.dem_ground(dem), own) for (poses, _), own in zip(groups, geotag_heights)]
+                                   ground, own) for (poses, _), own in zip(groups, geotag_heights)]
         hard_projected = [self.run_core(project_labels, poses, hard, request.edge_buffer_px, local,
-                                        self.dem_ground(dem), own) if len(hard) else None
+                                        ground, own) if len(hard) else None
                           for (poses, _), own in zip(groups, geotag_heights)]
         steps.setCurrentStep(2)
         done = 0

@@ -2,13 +2,13 @@
 DEM, or the method's plane.
 
 Parameters: ``DEM`` (raster layer, optional), ``DEM_VERTICAL_DATUM`` (what the DEM's heights are
-measured from), ``GEOID_UNDULATION_M`` (N, ellipsoidal = MSL + N, needed for an MSL DEM) and, in the
+measured from), ``GEOID_UNDULATION_M`` (N, ellipsoidal = MSL + N: the one N for every mean-sea-level height of
+the run, the DEM's and the frames'; empty: PROJ's EGM96 grid where the frames name EGM96) and, in the
 algorithms that place labels and detections (writelabels, detect, and the sweep and screening, which
 detect again), ``GROUND_MODEL`` (advanced): without a DEM, the level plane at the tilt-corrected
 altimeter depth (default) or the method's plane, normal to the optical axis at the raw altimeter range
 (``core.geometry.ground.MethodPlaneGround``), to reproduce its figures. The importers (group ``field``)
-cast footprints for the map and keep the level plane: the frame layer's depth and terrain fields stay
-those of the level ground. The algorithms that score detection layers take the ground each layer
+drape footprints on the DEM. The algorithms that score detection layers take the ground each layer
 records (``recorded_ground``): they need the DEM only for layers Detect placed on one.
 """
 from __future__ import annotations
@@ -23,15 +23,16 @@ from qgis.core import (
 
 from ...birdseye_qgis.__about__ import tr
 from ...birdseye_qgis.core.errors import InputError
-from ...birdseye_qgis.core.geometry.dem import VERTICAL_DATUMS, DemGroundFactory, DemRaster
+from ...birdseye_qgis.core.geometry.dem import VERTICAL_DATUMS, DemGroundFactory, DemRaster, check_flight
 from ...birdseye_qgis.core.geometry.ground import MethodPlaneGround
 from ...birdseye_qgis.core.geometry.ground_record import GroundRecord
+from ...birdseye_qgis.core.geometry.heights import MAX_UNDULATION_M
 from ...birdseye_qgis.qgis_enums import NUMBER_DOUBLE, PARAMETER_ADVANCED
 from ...birdseye_qgis.qgis_io import layers
 
 DATUM_LABELS = ("Ellipsoidal (WGS84), like RTK and INS heights",
-                "Mean sea level (give the geoid undulation N)",
-                "Unknown: check it against the altimeter's ground")
+                "Mean sea level (like DJI and EXIF heights; N needed against ellipsoidal frames)",
+                "Unknown: check it against the frames' own ground")
 GROUND_MODEL_LABELS = ("Level ground at the tilt-corrected altimeter depth",
                        "The method's plane: normal to the optical axis at the raw altimeter range")
 METHOD_PLANE = 1
@@ -64,8 +65,9 @@ class DemParametersMixin:
             self.DEM_VERTICAL_DATUM, self.tr("DEM heights are measured from"), options=list(DATUM_LABELS),
             defaultValue=2))
         self.addParameter(QgsProcessingParameterNumber(
-            self.GEOID_UNDULATION_M, self.tr("Geoid undulation N at the site (m; ellipsoidal = MSL + N)"),
-            NUMBER_DOUBLE, None, optional=True, minValue=-120.0, maxValue=120.0))
+            self.GEOID_UNDULATION_M, self.tr("Geoid undulation N at the site (m; ellipsoidal = MSL + N; empty: "
+                                             "EGM96 from PROJ's grid where one is needed)"),
+            NUMBER_DOUBLE, None, optional=True, minValue=-MAX_UNDULATION_M, maxValue=MAX_UNDULATION_M))
         if ground_model:
             choice = QgsProcessingParameterEnum(
                 self.GROUND_MODEL, self.tr("Ground model without a DEM"),
@@ -101,16 +103,22 @@ class DemParametersMixin:
         except InputError as exc:
             raise QgsProcessingException(str(exc)) from exc
 
-    def dem_ground(self, dem: DemRaster | None, pose_heights_datum: str = "ellipsoidal", tolerance_m: float = 5.0):
+    def dem_ground(self, dem: DemRaster | None, pose_groups=(), feedback=None):
         """A ground-model factory (``geometry -> GroundModel``) for core code, or None for the level plane.
 
-        Without a DEM: the method's plane when GROUND_MODEL asked for it (``read_dem`` reads it). RTK/INS
-        poses are ellipsoidal; the DEM's datum is checked against them and, where the frames have one,
-        against their ground height (``tolerance_m``, median over the frames).
+        Without a DEM: the method's plane when GROUND_MODEL asked for it (``read_dem`` reads it). With one: the
+        DEM converted into the frames' vertical reference and checked against their ground
+        (``dem.check_vertical_datum``) — once over the whole flight when its camera groups ``pose_groups``
+        are given (the result said on ``feedback``), else on each geometry the factory is asked for.
         """
         if dem is None:
             return MethodPlaneGround if self.method_plane else None
-        return DemGroundFactory(dem, pose_heights_datum, tolerance_m)
+        if not pose_groups:
+            return DemGroundFactory(dem)
+        check = self.run_core(check_flight, dem, pose_groups)
+        if feedback is not None:
+            feedback.pushInfo(tr("DEM against the frames: {check}").format(check=check.describe()))
+        return DemGroundFactory(dem, vertical_offset_m=check.offset_m)
 
     def ground_record(self, dem: DemRaster | None) -> GroundRecord:
         """The ground this run places detections on, as the detection layer records it."""

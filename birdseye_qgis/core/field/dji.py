@@ -9,14 +9,14 @@ camera y = gimbal z, camera z = gimbal x). Check: pitch −90°, yaw 0 → the c
 the image top (−y) points north; yaw 90° turns the image top east.
 
 Depth. ``RelativeAltitude`` is the height above the take-off point, so the ground is a level plane at
-the take-off height: ``ground_h = AbsoluteAltitude − RelativeAltitude``. DJI's ``AbsoluteAltitude`` is
-MSL-like (EGM96, or barometric) on older models rather than ellipsoidal; because camera height and
-ground height come from the same source the depth (= ``RelativeAltitude``) is right, but the absolute
-heights may differ from ellipsoidal ones by the geoid undulation (tens of metres). Terrain that rises
-or falls from the take-off point scales footprints accordingly (a DEM ground model fixes that). A DEM
-is checked once for the whole flight: the take-off height must be one the terrain around the frames
-has (:func:`.dem.check_vertical_datum` with ``ground_reference="takeoff"``), so honest relief between
-the take-off point and the field passes while a datum mix-up larger than the relief does not.
+the take-off height: ``ground_h = AbsoluteAltitude − RelativeAltitude`` (ground source ``takeoff``). DJI's
+``AbsoluteAltitude`` is above mean sea level (:data:`DJI_HEIGHT_REFERENCE`, EGM96, as GNSS receivers report
+it; barometric on models without RTK, and then often tens of metres off); because camera height and ground
+height come from the same source the depth (= ``RelativeAltitude``) is right whatever the bias. Terrain that
+rises or falls from the take-off point scales footprints accordingly (a DEM ground model fixes that). A DEM
+is converted into EGM96 heights and checked once for the whole flight: the take-off height must be one the
+terrain around the frames has (:func:`.dem.check_vertical_datum`), so honest relief between the take-off
+point and the field passes while a datum mix-up larger than the relief does not.
 
 Intrinsics, best first: a calibration file; ``DewarpData`` (:func:`.camera.camera_from_dji_dewarp`);
 ``CalibratedFocalLength`` + ``CalibratedOpticalCenterX/Y`` (pixels); EXIF ``FocalLength`` (mm) with
@@ -52,6 +52,7 @@ from ..errors import InputError
 from ..geometry.camera import CalibrationError, CameraModel, camera_from_dji_dewarp
 from ..geometry.dem import DemRaster
 from ..geometry.geodesy import ProjectedCRS
+from ..geometry.heights import EGM96_REFERENCE, TAKEOFF
 from ..geometry.rotations import euler_zyx_to_rotmat, rotmat_to_quat
 from .import_report import FlightImport
 from .pose_log import RTK_FIXED, RTK_FLOAT, RTK_NONE
@@ -69,8 +70,9 @@ YAW_MISMATCH_DEG = 5.0
 NADIR_PITCH_LIMIT_DEG = -80.0
 #: Long side (mm) of the 35 mm film frame the EXIF 35 mm-equivalent focal length refers to.
 FILM_LONG_SIDE_MM = 36.0
-#: What DJI's ``AbsoluteAltitude`` is measured from (the heights a DEM is compared with).
-DJI_HEIGHT_DATUM = "msl"
+#: What DJI's ``AbsoluteAltitude`` and EXIF's ``GPSAltitude`` ("above sea level", by the EXIF standard) are
+#: measured from: mean sea level, as GNSS receivers report it with the EGM96 geoid.
+DJI_HEIGHT_REFERENCE = EGM96_REFERENCE
 
 _JPEG_SUFFIXES = (".jpg", ".jpeg")
 _XMP_HEADER = b"http://ns.adobe.com/xap/1.0/\x00"
@@ -128,7 +130,7 @@ class DjiMetadata:
 
     @property
     def gps_height(self) -> float | None:
-        """XMP ``AbsoluteAltitude``, else the EXIF GPS altitude (:data:`DJI_HEIGHT_DATUM`); None without either."""
+        """XMP ``AbsoluteAltitude``, else the EXIF GPS altitude (:data:`DJI_HEIGHT_REFERENCE`); None without either."""
         absolute = self.tag("AbsoluteAltitude")
         return absolute if absolute is not None else self.exif_alt
 
@@ -333,6 +335,8 @@ class DjiPose:
     rtk_status: int
     rtk_std: tuple
     flags: list
+    #: Where ``ground_h`` came from (``heights.GROUND_SOURCES``): the take-off point for DJI's relative altitude.
+    ground_source: str = TAKEOFF
 
     @property
     def quat(self) -> np.ndarray:

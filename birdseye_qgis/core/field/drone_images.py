@@ -33,13 +33,14 @@ Each image is placed from the best its metadata holds (:func:`import_drone_image
 Heights above ground. A frame without a relative altitude (EXIF only, or XMP attitude without
 ``AboveGroundAltitude``) gets its ground, in order: from ``flight_height_m`` — the flight's take-off
 ground is the median GPS altitude of that camera's frames minus the height the flight was flown at
-(flag ``ground_from_flight_height``; the median, because a stray frame shot during climb-out or landing
-must not move the ground of a whole flight, and per camera, because each drone's GPS altitude has its
-own bias); else from the DEM under the camera (flag ``ground_from_dem``: the footprint drapes on the
-terrain, and the frame's ground height is the terrain under it; its GPS altitude cannot be checked
-against the DEM's vertical reference); else the image is refused with that reason. EXIF's
-``GPSAltitude`` is "above sea level" by the EXIF standard, like DJI's ``AbsoluteAltitude``
-(:data:`.dji.DJI_HEIGHT_DATUM`), so one folder has one vertical reference.
+(flag ``ground_from_flight_height``, ground source ``flight_height``; the median, because a stray frame shot
+during climb-out or landing must not move the ground of a whole flight, and per camera, because each drone's
+GPS altitude has its own bias); else from the DEM under the camera (flag ``ground_from_dem``, source ``dem``:
+the footprint drapes on the terrain, and the frame's ground height is the terrain under it, the DEM converted
+into the frames' heights); else the frame is imported without a ground (flag ``no_ground_height``, no
+footprint), which Refine frame poses can give it from its tie points. EXIF's ``GPSAltitude`` is "above sea
+level" by the EXIF standard, like DJI's ``AbsoluteAltitude`` (:data:`.dji.DJI_HEIGHT_REFERENCE`, EGM96), so one
+folder has one vertical reference.
 """
 from __future__ import annotations
 
@@ -52,9 +53,10 @@ from ..errors import InputError, check_cancel
 from ..geometry.camera import CameraModel
 from ..geometry.dem import DemRaster
 from ..geometry.geodesy import LocalFrame, ProjectedCRS
+from ..geometry.heights import DEM_GROUND, FLIGHT_HEIGHT, NO_GROUND, TAKEOFF
 from ..geometry.rotations import euler_zyx_to_rotmat, rotmat_to_euler_zyx
 from .dji import (
-    DJI_HEIGHT_DATUM,
+    DJI_HEIGHT_REFERENCE,
     NADIR_PITCH_LIMIT_DEG,
     YAW_MISMATCH_DEG,
     DjiMetadata,
@@ -100,8 +102,12 @@ FLAG_NOTES = (
     ("track_turn", f"the track turns by more than {TRACK_TURN_DEG:g}° at the image: its heading is least sure"),
     ("ground_from_flight_height", "no relative altitude: the ground is the camera's median GPS altitude minus "
                                   "the flight height given"),
-    ("ground_from_dem", "no relative altitude: the ground is the DEM under the camera (GPS altitude taken as "
-                        "MSL; it cannot be checked against the DEM)"),
+    ("ground_from_dem", "no relative altitude: the ground is the DEM under the camera (the DEM converted into the "
+                        "GPS altitudes' reference, EGM96; it cannot be checked against them)"),
+    ("no_ground_height", "no relative altitude, flight height or DEM: the height above the ground is unknown, so "
+                         "these frames have no footprint and get no labels or detections. Give FLIGHT_HEIGHT_M or "
+                         "a DEM, or refine their poses (Refine frame poses gives them the ground their tie points "
+                         "see)"),
     ("approx_intrinsics", "intrinsics from the nominal focal length; give a CALIBRATION for precise labels"),
 )
 
@@ -170,6 +176,7 @@ def other_pose(meta: DjiMetadata) -> tuple[DjiPose, bool]:
         raise InputError("has no GPS altitude (EXIF GPSAltitude): its height cannot be placed", source=meta.path,
                          field="GPSAltitude")
     ground = height - above_ground if above_ground is not None else math.nan
+    source = TAKEOFF if above_ground is not None else NO_GROUND
     attitude = maker_attitude(meta)
     flags = ["rtk_none"]
     if attitude is None:
@@ -179,7 +186,7 @@ def other_pose(meta: DjiMetadata) -> tuple[DjiPose, bool]:
         roll, pitch, yaw = attitude
         if pitch > NADIR_PITCH_LIMIT_DEG:
             flags.append("non_nadir")
-    pose = DjiPose(lat, lon, height, ground, roll, pitch, yaw, RTK_NONE, (math.nan,) * 3, flags)
+    pose = DjiPose(lat, lon, height, ground, roll, pitch, yaw, RTK_NONE, (math.nan,) * 3, flags, source)
     return pose, attitude is None
 
 
@@ -240,8 +247,8 @@ def import_drone_images(folder, calibration: CameraModel | None = None, crs: Pro
     ``frame_id`` is the image's index in the name-sorted folder listing (stable across re-imports).
     ``flight_height_m``: the height above the take-off ground the flight was flown at, for images
     without a relative altitude (module docstring). With a ``dem`` the footprints drape on the terrain;
-    its vertical reference is checked once against the take-off heights the flight has (heights in
-    :data:`.dji.DJI_HEIGHT_DATUM`).
+    it is converted into the frames' heights (:data:`.dji.DJI_HEIGHT_REFERENCE`) and checked once against the
+    take-off heights the flight has.
     """
     if flight_height_m is not None and not flight_height_m > 0.5:
         raise InputError(f"the flight height above the ground must be more than 0.5 m, not {flight_height_m:g}",
@@ -268,7 +275,7 @@ def import_drone_images(folder, calibration: CameraModel | None = None, crs: Pro
         rows.append([i, str(path.resolve()), meta.time_s, pose, camera, pose.flags + cam_flags, from_track])
         if progress is not None:
             progress(0.5 * (i + 1) / len(paths))
-    rows = _place_grounds(rows, unplaced, flight_height_m, dem is not None)
+    _place_grounds(rows, flight_height_m, dem is not None)
     _head_along_tracks(rows)
     report.counts.update(images=len(paths), placed=len(rows), unplaced=len(unplaced))
     report.unplaced = unplaced
@@ -287,47 +294,44 @@ def import_drone_images(folder, calibration: CameraModel | None = None, crs: Pro
         sync_offset_s=np.full(len(rows), np.nan), cameras=list(cams), flags=[list(f) for f in flags],
         euler_deg=np.array([[p.roll_deg, p.pitch_deg, p.yaw_deg] for p in poses]),
         extra={name: np.array([p.rtk_std[k] for p in poses])
-               for k, name in enumerate(("rtk_std_lon_m", "rtk_std_lat_m", "rtk_std_hgt_m"))})
+               for k, name in enumerate(("rtk_std_lon_m", "rtk_std_lat_m", "rtk_std_hgt_m"))},
+        reference=DJI_HEIGHT_REFERENCE, ground_source=[p.ground_source for p in poses])
+    crs = crs or ProjectedCRS.for_site(frames.lat, frames.lon)
+    sub = None if progress is None else (lambda f: progress(0.5 + 0.5 * f))
+    ground = dem_ground_for(frames, dem, report)
+    fp = compute_footprints(frames, crs, progress=sub, is_canceled=is_canceled, ground=ground)
+    on_dem = np.array(["ground_from_dem" in f for f in frames.flags])
+    frames.ground_h[on_dem] = frames.height[on_dem] - fp.depth_m[on_dem]
+    for i in np.flatnonzero(on_dem & np.isfinite(frames.ground_h)):
+        frames.ground_source[i] = DEM_GROUND
     for flag, text in FLAG_NOTES:
         n = sum(flag in f for f in frames.flags)
         report.counts[flag] = n
         if n:
             report.notes.append(f"{n} frame(s) flagged {flag}: {text}")
-    crs = crs or ProjectedCRS.for_site(frames.lat, frames.lon)
-    sub = None if progress is None else (lambda f: progress(0.5 + 0.5 * f))
-    ground = dem_ground_for(frames, dem, DJI_HEIGHT_DATUM, "takeoff")
-    fp = compute_footprints(frames, crs, progress=sub, is_canceled=is_canceled, ground=ground)
-    on_dem = np.array(["ground_from_dem" in f for f in frames.flags])
-    frames.ground_h[on_dem] = frames.height[on_dem] - fp.depth_m[on_dem]
     n = sum("footprint_unbounded" in f for f in frames.flags)
     if n:
         report.notes.append(f"{n} frame(s) look above the horizon and have no footprint (flag footprint_unbounded)")
     return FlightImport(frames, fp, [], report)
 
 
-def _place_grounds(rows, unplaced, flight_height_m, has_dem) -> list:
-    """Rows whose frames have a ground (or will have the DEM's); the others go to ``unplaced``."""
+def _place_grounds(rows, flight_height_m, has_dem) -> None:
+    """Give frames without a relative altitude their ground: from the flight height, else the DEM's (after the
+    footprints); without either they keep none (``compute_footprints`` flags them ``no_ground_height``)."""
     need = [r for r in rows if math.isnan(r[3].ground_h)]
-    if not need:
-        return rows
-    if flight_height_m is None and not has_dem:
-        for r in need:
-            unplaced.append(InputError(
-                "has no height above the ground (no DJI RelativeAltitude or Camera:AboveGroundAltitude): give the "
-                "height the flight was flown at above the take-off ground (FLIGHT_HEIGHT_M) or a DEM",
-                source=r[1], field="RelativeAltitude"))
-        return [r for r in rows if not math.isnan(r[3].ground_h)]
+    if not need or (flight_height_m is None and not has_dem):
+        return
     if flight_height_m is None:
         for r in need:
             r[5].append("ground_from_dem")
-        return rows
+        return
     for camera in {id(r[4]): r[4] for r in need}.values():
         mine = [r for r in need if r[4] is camera]
         takeoff = float(np.median([r[3].height for r in mine])) - flight_height_m
         for r in mine:
             r[3].ground_h = takeoff
+            r[3].ground_source = FLIGHT_HEIGHT
             r[5].append("ground_from_flight_height")
-    return rows
 
 
 def _head_along_tracks(rows) -> None:

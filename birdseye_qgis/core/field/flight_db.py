@@ -10,8 +10,9 @@ import numpy as np
 from ..errors import InputError
 from ..geometry.camera import CameraModel
 from ..geometry.geodesy import ProjectedCRS
+from ..geometry.heights import ELLIPSOIDAL_REFERENCE
 from .flight_track import flight_track
-from .frames import RADALT_WINDOW_S, Frames, compute_footprints, ground_heights, rtk_flags
+from .frames import RADALT_WINDOW_S, Frames, compute_footprints, dem_ground_for, ground_heights, rtk_flags
 from .images import STAMP_NAME
 from .import_report import FlightImport, ImportReport, apply_rtk_filter, name_list, report_ground
 from .pose_log import RowProblems
@@ -24,7 +25,7 @@ _DB_TIME_COLUMNS = ("time_s", "time", "timestamp", "stamp", "t_img")
 def read_flight_db_frames(path, camera: CameraModel, utm_crs=None, images_folder=None,
                           radalt_snr_min: float = 13.0, fixed_only: bool = False,
                           crs: ProjectedCRS | None = None, with_track: bool = True,
-                          progress=None, is_canceled=None, ground=None) -> FlightImport:
+                          progress=None, is_canceled=None, dem=None) -> FlightImport:
     """Frames from the reference payload's ``flight_data.db`` (already one row per saved image).
 
     ``utm_crs`` (EPSG code or WKT) is the projected CRS of the table's ``x, y``; it is required
@@ -136,7 +137,8 @@ def read_flight_db_frames(path, camera: CameraModel, utm_crs=None, images_folder
             flags[i].append("image_missing")
     frames = Frames(frame_id=np.asarray(good_rows, dtype=np.int64), image=image_paths, time_s=time_s,
                     lat=lat, lon=lon, height=v[:, 2], quat=quat_wxyz, ground_h=ground_h, rtk_status=rtk,
-                    sync_offset_s=np.full(len(v), np.nan), cameras=[camera] * len(v), flags=flags)
+                    sync_offset_s=np.full(len(v), np.nan), cameras=[camera] * len(v), flags=flags,
+                    reference=ELLIPSOIDAL_REFERENCE)  # the payload's INS heights (assumed: the db does not say)
     report.counts.update(rows=len(rows), bad_rows=problems.count, frames=len(frames),
                          images_missing=len(missing_images), radalt_interpolated=int(interpolated.sum()))
     if missing_images:
@@ -146,6 +148,7 @@ def read_flight_db_frames(path, camera: CameraModel, utm_crs=None, images_folder
     if len(frames) == 0:
         raise InputError("no frame is left after the RTK filter", source=source)
     crs = crs or ProjectedCRS.for_site(frames.lat, frames.lon)
+    ground = dem_ground_for(frames, dem, report)
     fp = compute_footprints(frames, crs, progress=progress, is_canceled=is_canceled, ground=ground)
     report_ground(report, frames)
     track = []

@@ -31,9 +31,10 @@ import numpy as np
 from ..errors import InputError, check_cancel
 from ..geometry.camera import CameraModel
 from ..geometry.geodesy import ProjectedCRS
+from ..geometry.heights import ELLIPSOIDAL_REFERENCE
 from .flight_db import read_flight_db_frames
 from .flight_track import flight_track
-from .frames import RADALT_WINDOW_S, Frames, compute_footprints, ground_heights, rtk_flags
+from .frames import RADALT_WINDOW_S, Frames, compute_footprints, dem_ground_for, ground_heights, rtk_flags
 from .images import list_images, sync_strobes
 from .import_report import FlightImport, ImportReport, apply_rtk_filter, name_list, report_ground
 from .pose_log import read_pose_log
@@ -41,11 +42,12 @@ from .pose_log import read_pose_log
 
 def import_pose_log(pose_log, images_folder, camera: CameraModel, fps: float = 5.0,
                     radalt_snr_min: float = 13.0, fixed_only: bool = False, crs: ProjectedCRS | None = None,
-                    with_track: bool = True, progress=None, is_canceled=None, ground=None) -> FlightImport:
+                    with_track: bool = True, progress=None, is_canceled=None, dem=None) -> FlightImport:
     """Pose log + image folder + camera → frames with footprints, flight line and a report.
 
-    ``crs`` None: the UTM zone of the site. Progress: parsing 0–45 %, sync/ground 45–50 %,
-    footprints 50–100 %.
+    ``crs`` None: the UTM zone of the site; ``dem``: a DEM the footprints drape on (converted into the log's
+    ellipsoidal heights, checked against the altimeter's ground). Progress: parsing 0–45 %, sync/ground
+    45–50 %, footprints 50–100 %.
     """
     def sub(a, b):
         return None if progress is None else (lambda f: progress(a + (b - a) * f))
@@ -89,7 +91,8 @@ def import_pose_log(pose_log, images_folder, camera: CameraModel, fps: float = 5
     frames = Frames(frame_id=matched.astype(np.int64), image=[images.path[sync.image_of[s]] for s in matched],
                     time_s=log.time_s[rows], lat=log.lat[rows], lon=log.lon[rows], height=log.height[rows],
                     quat=log.quat[rows], ground_h=ground_h, rtk_status=log.rtk_status[rows],
-                    sync_offset_s=sync.offset_s[matched], cameras=[camera] * len(rows), flags=flags)
+                    sync_offset_s=sync.offset_s[matched], cameras=[camera] * len(rows), flags=flags,
+                    reference=ELLIPSOIDAL_REFERENCE)
     report.counts.update(radalt_interpolated=int(interpolated.sum()),
                          no_ground_height=int(np.count_nonzero(~np.isfinite(ground_h))))
     if interpolated.any():
@@ -101,6 +104,7 @@ def import_pose_log(pose_log, images_folder, camera: CameraModel, fps: float = 5
         raise InputError("no frame is left after the RTK filter (no frame has an RTK fixed solution); "
                          "choose 'all' to import float frames flagged", source=log.source)
     crs = crs or ProjectedCRS.for_site(frames.lat, frames.lon)
+    ground = dem_ground_for(frames, dem, report)
     fp = compute_footprints(frames, crs, progress=sub(0.5, 0.97), is_canceled=is_canceled, ground=ground)
     report_ground(report, frames)
     track = []

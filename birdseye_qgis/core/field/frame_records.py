@@ -13,6 +13,7 @@ import numpy as np
 from ..errors import InputError
 from ..geometry.camera import CameraModel
 from ..geometry.geodesy import LocalFrame
+from ..geometry.heights import ALTIMETER, ELLIPSOIDAL_REFERENCE, VerticalReference, parse_ground_source
 from ..geometry.poses import FramePoses, indices_by_camera
 from ..geometry.rotations import quat_to_rotmat, rotmat_to_euler_zyx
 
@@ -23,7 +24,7 @@ FRAME_FIELDS = [
     ("time_s", "double", "exposure time (s, the pose log's clock)"),
     ("lat", "double", "IMU latitude, WGS84 (deg)"),
     ("lon", "double", "IMU longitude, WGS84 (deg)"),
-    ("height_m", "double", "IMU ellipsoidal height (m)"),
+    ("height_m", "double", "IMU height (m), measured from height_ref"),
     ("qw", "double", "attitude quaternion w (body FRD → NED)"),
     ("qx", "double", "attitude quaternion x"),
     ("qy", "double", "attitude quaternion y"),
@@ -31,8 +32,12 @@ FRAME_FIELDS = [
     ("roll_deg", "double", "roll (deg, ZYX; yaw-roll-pitch when looking down)"),
     ("pitch_deg", "double", "pitch (deg, ZYX; yaw-roll-pitch when looking down)"),
     ("yaw_deg", "double", "yaw from true north (deg, ZYX; yaw-roll-pitch when looking down)"),
-    ("ground_h_m", "double", "ellipsoidal height of the level ground under the frame (m)"),
+    ("ground_h_m", "double", "height of the level ground under the frame (m), measured from height_ref"),
     ("depth_m", "double", "camera height above that ground (m)"),
+    ("height_ref", "string", "what height_m and ground_h_m are measured from: ellipsoidal, a geoid (EGM96: above "
+                             "mean sea level), msl (geoid not named) or unknown"),
+    ("ground_src", "string", "where ground_h_m came from: altimeter, tie_points, dem (under the frame); takeoff, "
+                             "flight_height, control_points, geotags (one height for the site); empty: none"),
     ("rtk_status", "int", "3 fixed, 2 float, 1 none"),
     ("sync_offset_s", "double", "image time minus strobe time (s)"),
     ("gsd_cm", "double", "ground sample distance at the image centre (cm/px)"),
@@ -131,6 +136,8 @@ def poses_from_records(records, source: str = "frame layer") -> list[tuple[Frame
     empty = next((i for i, cam in enumerate(cameras) if not cam), None)
     if empty is not None:
         raise InputError("is empty; the frame has no camera model", source=source, row=empty + 1, field="camera")
+    reference = flight_reference(records, source)
+    ground_source = [_ground_source(rec, row, source) for row, rec in enumerate(records, start=1)]
     out = []
     for idx in indices_by_camera(cameras):
         camera = CameraModel.from_json(cameras[idx[0]], source=f"{source}, row {idx[0] + 1}, field 'camera'")
@@ -145,9 +152,34 @@ def poses_from_records(records, source: str = "frame layer") -> list[tuple[Frame
                 raise InputError("is empty or not a number", source=source, row=row, field=n)
         quat = np.stack([cols["qw"], cols["qx"], cols["qy"], cols["qz"]], axis=1)
         poses = FramePoses(np.array([records[i]["frame_id"] for i in idx]), cols["lat"], cols["lon"],
-                           cols["height_m"], quat, cols["ground_h_m"], camera)
+                           cols["height_m"], quat, cols["ground_h_m"], camera, reference,
+                           [ground_source[i] for i in idx])
         out.append((poses, idx))
     return out
+
+
+def flight_reference(records, source: str = "frame layer") -> VerticalReference:
+    """What the frames' heights are measured from (field ``height_ref``). A layer written before the field
+    existed reads as ellipsoidal, as it always was; one that mixes references is refused: a DEM or a geotag
+    height can be converted into one reference, and a flight's frames are compared with each other."""
+    if not records or "height_ref" not in records[0]:
+        return ELLIPSOIDAL_REFERENCE
+    found: dict = {}
+    for row, rec in enumerate(records, start=1):
+        found.setdefault(VerticalReference.parse(rec.get("height_ref"), source, row, "height_ref"), []).append(row)
+    if len(found) > 1:
+        listed = "; ".join(f"{ref.describe()} (rows {', '.join(map(str, rows[:3]))}{' …' if len(rows) > 3 else ''})"
+                           for ref, rows in found.items())
+        raise InputError(f"mixes vertical references: {listed}. Import each flight into its own frame layer, or "
+                         "import them again so they state one reference", source=source, field="height_ref")
+    return next(iter(found))
+
+
+def _ground_source(record, row: int, source: str) -> str:
+    """A frame's ground source (field ``ground_src``; a layer without it: the altimeter, as it always was)."""
+    if "ground_src" not in record:
+        return ALTIMETER
+    return parse_ground_source(record.get("ground_src"), source, row, "ground_src")
 
 
 def local_frame_around(groups, lat=(), lon=()):

@@ -8,6 +8,7 @@ import numpy as np
 
 from ..errors import check_cancel
 from ..geometry.geodesy import LocalFrame, ProjectedCRS
+from ..geometry.heights import ALTIMETER, ELLIPSOIDAL_REFERENCE, NO_GROUND, VerticalReference
 from ..geometry.ground import LevelPlaneGround
 from ..geometry.poses import FrameGeometry, FramePoses, ground_height_from_altimeter, indices_by_camera
 from ..geometry.projection import footprints
@@ -73,12 +74,14 @@ def ground_heights(time_s, height, quat, radalt, good, query, t_imu_rad=None,
 
 @dataclass
 class Frames:
-    """F frames, everything the frame layer carries (arrays of length F; heights ellipsoidal, m).
+    """F frames, everything the frame layer carries (arrays of length F; heights in m).
 
     ``cameras[f]`` is the camera model of frame f (frames of one camera share the object);
     ``euler_deg`` (F, 3) overrides the roll/pitch/yaw derived from ``quat`` (DJI writes the gimbal
     angles exactly, where a nadir gimbal sits at the ZYX singularity); ``extra`` holds
-    :data:`FRAME_EXTRA_FIELDS` columns.
+    :data:`FRAME_EXTRA_FIELDS` columns. ``reference``: what ``height`` and ``ground_h`` are measured from;
+    ``ground_source``: per frame, where ``ground_h`` came from (``heights.GROUND_SOURCES``; default: the
+    altimeter where a ground height is known, none elsewhere).
     """
 
     frame_id: np.ndarray
@@ -95,6 +98,13 @@ class Frames:
     flags: list
     euler_deg: np.ndarray | None = None
     extra: dict = field(default_factory=dict)
+    reference: VerticalReference = ELLIPSOIDAL_REFERENCE
+    ground_source: list | None = None
+
+    def __post_init__(self):
+        if self.ground_source is None:
+            self.ground_source = [ALTIMETER if np.isfinite(g) else NO_GROUND for g in np.asarray(self.ground_h)]
+        self.ground_source = list(self.ground_source)
 
     def __len__(self) -> int:
         return len(self.frame_id)
@@ -108,12 +118,19 @@ class Frames:
                       self.ground_h[index], self.rtk_status[index], self.sync_offset_s[index],
                       [self.cameras[i] for i in index], [list(self.flags[i]) for i in index],
                       None if self.euler_deg is None else self.euler_deg[index],
-                      {k: v[index] for k, v in self.extra.items()})
+                      {k: v[index] for k, v in self.extra.items()}, self.reference,
+                      [self.ground_source[i] for i in index])
 
     def poses(self, index) -> FramePoses:
         """The poses of frames ``index``, which all have one camera (:func:`.poses.indices_by_camera`)."""
         return FramePoses(self.frame_id[index], self.lat[index], self.lon[index], self.height[index],
-                          self.quat[index], self.ground_h[index], self.cameras[index[0]])
+                          self.quat[index], self.ground_h[index], self.cameras[index[0]], self.reference,
+                          [self.ground_source[i] for i in index])
+
+    def all_poses(self) -> FramePoses:
+        """Every frame's pose as one :class:`FramePoses` (the first frame's camera stands for all: for checks
+        over the whole flight that use positions and heights, not projections)."""
+        return self.poses(np.arange(len(self)))
 
 
 @dataclass
@@ -210,6 +227,7 @@ def frame_records(frames: Frames, fp: Footprints):
                "qw": float(quat[i, 0]), "qx": float(quat[i, 1]), "qy": float(quat[i, 2]), "qz": float(quat[i, 3]),
                "roll_deg": float(roll[i]), "pitch_deg": float(pitch[i]), "yaw_deg": float(yaw[i]),
                "ground_h_m": _value(frames.ground_h[i]), "depth_m": _value(fp.depth_m[i]),
+               "height_ref": frames.reference.text, "ground_src": frames.ground_source[i],
                "rtk_status": int(frames.rtk_status[i]), "sync_offset_s": _value(frames.sync_offset_s[i]),
                "gsd_cm": _value(fp.gsd_cm[i]), "camera": json_of[id(cam)],
                "flags": ",".join(dict.fromkeys(frames.flags[i]))}
@@ -230,17 +248,18 @@ def rtk_flags(rtk_status: np.ndarray) -> list[list[str]]:
             for s in np.asarray(rtk_status).tolist()]
 
 
-def dem_ground_for(frames: Frames, dem, heights_datum: str, ground_reference: str):
-    """The DEM ground-model factory for ``frames``' footprints (None without a DEM), the DEM's vertical
-    reference checked once over the whole flight (:func:`..geometry.dem.check_vertical_datum`)."""
-    from ..geometry.dem import DemGround, check_vertical_datum
+def dem_ground_for(frames: Frames, dem, report=None):
+    """The DEM ground-model factory for ``frames``' footprints (None without a DEM): the DEM converted into the
+    frames' vertical reference and checked once against their ground over the whole flight
+    (:func:`..geometry.dem.check_vertical_datum`), the check's result noted in ``report``."""
+    from ..geometry.dem import DemGroundFactory, check_vertical_datum
 
     if dem is None:
         return None
-    flight = FramePoses(frames.frame_id, frames.lat, frames.lon, frames.height, frames.quat, frames.ground_h,
-                        frames.cameras[0])
-    offset = check_vertical_datum(dem, heights_datum, flight, ground_reference=ground_reference)
-    return lambda geometry: DemGround.from_dem(geometry, dem, heights_datum, vertical_offset_m=offset)
+    check = check_vertical_datum(dem, frames.all_poses())
+    if report is not None:
+        report.notes.append(f"DEM: {check.describe()}")
+    return DemGroundFactory(dem, vertical_offset_m=check.offset_m)
 
 
 def frames_from_records(records, source: str = "frame layer") -> Frames:
@@ -252,13 +271,17 @@ def frames_from_records(records, source: str = "frame layer") -> Frames:
     lat, lon, height, ground = (np.full(n, np.nan) for _ in range(4))
     quat = np.zeros((n, 4))
     cameras: list = [None] * n
+    ground_source: list = [NO_GROUND] * n
     frame_id = np.zeros(n, dtype=np.int64)
+    reference = ELLIPSOIDAL_REFERENCE
     for poses, idx in poses_from_records(records, source):
         lat[idx], lon[idx], height[idx], quat[idx], ground[idx] = (poses.lat, poses.lon, poses.height, poses.quat,
                                                                    poses.ground_height)
         frame_id[idx] = poses.frame_id
-        for i in idx:
+        reference = poses.reference
+        for i, s in zip(idx, poses.ground_source):
             cameras[i] = poses.camera
+            ground_source[i] = s
 
     def column(name, default=np.nan):
         return np.array([default if r.get(name) is None else float(r[name]) for r in records], dtype=float)
@@ -267,4 +290,5 @@ def frames_from_records(records, source: str = "frame layer") -> Frames:
                   ground, column("rtk_status", 1).astype(int), column("sync_offset_s"), cameras,
                   [[f for f in (r.get("flags") or "").split(",") if f] for r in records],
                   np.column_stack([column("roll_deg"), column("pitch_deg"), column("yaw_deg")]),
-                  {name: column(name) for name, _, _ in FRAME_EXTRA_FIELDS if name != "terrain_slope_deg"})
+                  {name: column(name) for name, _, _ in FRAME_EXTRA_FIELDS if name != "terrain_slope_deg"},
+                  reference, ground_source)

@@ -14,8 +14,9 @@ Frames and units
   ``(x0, dx, y0, dy)`` — ``x0, y0`` the outer corner of the top-left cell, ``dy < 0`` for rows running
   south. Heights are cell-centre values (GDAL "area" pixels), interpolated bilinearly between cell
   centres; no-data is NaN. The vertical reference is declared (``ellipsoidal``, ``msl`` with the geoid
-  undulation N, ellipsoidal = MSL + N, or ``unknown``) and checked against the poses'
-  (:func:`check_vertical_datum`): a DEM in another vertical reference is a configuration error.
+  undulation N, ellipsoidal = MSL + N, or ``unknown``), converted into the frames' own reference
+  (``heights.height_shift``) and checked against their ground (:func:`check_vertical_datum`): a DEM that then
+  disagrees with the flight is a configuration error.
 * :class:`Heightfield` is the DEM resampled once into the site's :class:`~.geodesy.LocalFrame` (ENU
   tangent frame at the origin): ``U = H(E, N)`` on a regular grid of local east/north, bilinear between
   nodes. All ray work happens there, in straight lines.
@@ -61,13 +62,21 @@ import numpy as np
 from ..errors import InputError, check_cancel
 from .geodesy import LocalFrame, ProjectedCRS, on_python_thread
 from .ground import GroundModel
+from .heights import (
+    ELLIPSOIDAL_REFERENCE,
+    MAX_UNDULATION_M,
+    MSL_REFERENCE,
+    SITE_LEVEL_SOURCES,
+    UNDER_FRAME_SOURCES,
+    UNKNOWN,
+    UNKNOWN_REFERENCE,
+    VerticalReference,
+    height_shift,
+)
 from .poses import FrameGeometry, FramePoses
 
+#: What a DEM's heights may be declared as measured from (the DEM_VERTICAL_DATUM choices, in order).
 VERTICAL_DATUMS = ("ellipsoidal", "msl", "unknown")
-POSE_DATUMS = ("ellipsoidal", "msl")
-GROUND_REFERENCES = ("altimeter", "takeoff")
-# Geoid undulations (EGM2008) lie within about −107 m … +86 m: a larger offset is not a datum mix-up.
-_MAX_GEOID_UNDULATION_M = 110.0
 #: How far (m) from the frames a drone's take-off point may lie when its height is checked against a DEM.
 TAKEOFF_REACH_M = 500.0
 
@@ -169,72 +178,128 @@ def _bilinear_nodes(z: np.ndarray, row, col) -> np.ndarray:
 
 
 # --------------------------------------------------------------------------- vertical datum
-def check_vertical_datum(dem: DemRaster, pose_heights_datum: str = "ellipsoidal",
-                         poses: FramePoses | None = None, tolerance_m: float = 5.0,
-                         ground_reference: str = "altimeter") -> float:
-    """Offset (m) to add to ``dem.heights`` to express them in the poses' vertical reference.
+#: The DEM check's tolerance (:func:`dem_tolerance_m`): this share of the flight's height above its ground, and
+#: at least :data:`DEM_TOLERANCE_MIN_M`. A DEM dz off moves a label at distance ρ·depth from the nadir by
+#: about ρ·dz/depth of ρ·depth: a few per cent of the depth is where labels at the image edge start to move
+#: by more than a label's radius, and well below any datum mix-up (tens of metres).
+DEM_TOLERANCE_FRACTION = 0.03
+DEM_TOLERANCE_MIN_M = 0.2
 
-    ``pose_heights_datum`` is the reference of the flight's heights (``ellipsoidal`` for RTK/INS logs,
-    which :class:`~.poses.FramePoses` assumes; ``msl`` for heights above mean sea level). Raises
-    :class:`~.errors.InputError` when the references differ and no geoid undulation converts between
-    them, and when the DEM's reference is ``unknown`` and cannot be checked. Given ``poses`` with ground
-    heights, the DEM is also checked against them, once over the whole flight (pass every frame):
 
-    * ``ground_reference="altimeter"``: each frame's ground height was measured under it (radar
-      altimeter), so the DEM's terrain there must agree: the median over the frames of DEM − ground
-      within ``tolerance_m``;
-    * ``ground_reference="takeoff"``: the ground height is that of the take-off point (a DJI drone's
-      ``AbsoluteAltitude − RelativeAltitude``), and the terrain under the frames honestly lies above or
-      below it by the site's relief. The flight's take-off height (median over the frames) must be a
-      height the DEM's terrain has within :data:`TAKEOFF_REACH_M` of the frames, give or take
-      ``tolerance_m``. A datum mix-up smaller than the relief there cannot be told from relief.
+def dem_tolerance_m(depth_m: float) -> float:
+    """How far (m) a DEM may lie from a flight's ground at ``depth_m`` m above it before it is refused."""
+    depth = float(depth_m) if depth_m is not None and math.isfinite(float(depth_m)) else 0.0
+    return max(DEM_TOLERANCE_MIN_M, DEM_TOLERANCE_FRACTION * depth)
 
-    A DEM that fails is in another vertical reference, or does not cover the flight.
-    """
-    if pose_heights_datum not in POSE_DATUMS:
-        raise InputError(f"the flight's vertical reference {pose_heights_datum!r} is not one of "
-                         f"{', '.join(POSE_DATUMS)}")
-    if ground_reference not in GROUND_REFERENCES:
-        raise ValueError(f"ground_reference must be one of {GROUND_REFERENCES}, got {ground_reference!r}")
-    undulation = dem.geoid_undulation_m
-    has_undulation = undulation is not None and math.isfinite(float(undulation))
-    ground = None if poses is None else np.asarray(poses.ground_height, dtype=float)
-    can_verify = ground is not None and bool(np.any(np.isfinite(ground)))
 
-    if dem.vertical_datum == pose_heights_datum:
-        offset = 0.0
-    elif dem.vertical_datum == "unknown":
-        if not can_verify:
+def dem_reference(dem: "DemRaster") -> VerticalReference:
+    """What the DEM's heights are measured from, as the user declared it."""
+    return {"ellipsoidal": ELLIPSOIDAL_REFERENCE, "msl": MSL_REFERENCE}.get(dem.vertical_datum, UNKNOWN_REFERENCE)
+
+
+@dataclass(frozen=True)
+class DemCheck:
+    """A DEM against a flight (:func:`check_vertical_datum`).
+
+    ``offset_m``: added to the DEM's heights to express them in the flight's vertical reference; ``conversion``:
+    how it was found, in words (empty: the same reference). What the flight's ground says of the converted DEM:
+    ``measured_m``, the median of DEM − ground under the frames whose ground was measured there (altimeter, tie
+    points, a DEM; NaN: none), and ``takeoff_miss_m``, how far the site-level ground (a take-off point, a flight
+    height, control points) lies outside the heights the terrain around the frames has (0: inside; NaN: none);
+    ``tolerance_m`` for both, from the flight's ``depth_m`` (median height above its ground)."""
+
+    offset_m: float
+    conversion: str
+    measured_m: float
+    takeoff_miss_m: float
+    tolerance_m: float
+    depth_m: float
+    n_under: int = 0
+    n_site: int = 0
+
+    def describe(self) -> str:
+        """The check's result in words, for the log."""
+        parts = [self.conversion or "DEM and frames in the same vertical reference"]
+        if math.isfinite(self.measured_m):
+            parts.append(f"terrain under {self.n_under} frame(s) {self.measured_m:+.2f} m from their measured ground "
+                         "(median)")
+        if math.isfinite(self.takeoff_miss_m):
+            parts.append("the take-off height is one the terrain around has" if self.takeoff_miss_m == 0 else
+                         f"the take-off height lies {abs(self.takeoff_miss_m):.2f} m "
+                         f"{'above' if self.takeoff_miss_m > 0 else 'below'} the terrain around")
+        parts.append(f"tolerance ±{self.tolerance_m:.2f} m at {self.depth_m:.1f} m above ground" if
+                     math.isfinite(self.depth_m) else f"tolerance ±{self.tolerance_m:.2f} m")
+        return "; ".join(parts)
+
+
+def check_vertical_datum(dem: "DemRaster", poses: FramePoses, tolerance_m: float | None = None) -> DemCheck:
+    """The DEM converted into the flight's vertical reference and checked against the flight's own ground.
+
+    The conversion is :func:`.heights.height_shift` from the DEM's declared reference to the frames'
+    (``poses.reference``), with the DEM's ``geoid_undulation_m`` as the N given, evaluated at the frames'
+    median position (N changes by centimetres over a few kilometres). A DEM or a flight whose reference is
+    unknown is taken as the other's and must then be confirmed by the flight's ground.
+
+    The check stands on each frame's ground source (``poses.ground_source``), over the whole flight (pass every
+    frame): where the ground was measured under the frame (altimeter, tie points, a DEM) the DEM's terrain there
+    must agree with it, median within the tolerance; where it is one height for the site (take-off, flight
+    height, control points, geotags) the terrain under the frames honestly lies above or below it by the site's
+    relief, so that height must be one the DEM's terrain has within :data:`TAKEOFF_REACH_M` of the frames, give
+    or take the tolerance (a mix-up smaller than the relief there cannot be told from relief). The tolerance
+    follows the flight's height above its ground (:func:`dem_tolerance_m`) unless ``tolerance_m`` is given.
+
+    Raises :class:`~.errors.InputError` when the references cannot be converted, when an unknown reference has
+    no ground to be checked against, and when the DEM fails the check (another vertical reference, wrong units,
+    or heights that do not cover the flight)."""
+    source, target = dem_reference(dem), poses.reference
+    lat, lon = np.asarray(poses.lat, dtype=float), np.asarray(poses.lon, dtype=float)
+    ground = np.asarray(poses.ground_height, dtype=float)
+    known = np.isfinite(ground)
+    under = known & np.isin(poses.ground_source, UNDER_FRAME_SOURCES)
+    site = known & np.isin(poses.ground_source, SITE_LEVEL_SOURCES)
+    if UNKNOWN in (source.kind, target.kind):
+        if not (under.any() or site.any()):
+            side = "DEM's" if source.kind == UNKNOWN else "flight's"
             raise InputError(
-                "the DEM's vertical reference is not declared and the flight has no ground heights "
-                f"to check it against; state whether its heights are ellipsoidal (WGS84) or above mean sea "
-                f"level (with the geoid undulation at the site), like the flight's {pose_heights_datum} heights",
+                f"the {side} vertical reference is not stated and the flight has no ground heights to check it "
+                f"against; state what the DEM's heights are measured from (the flight's are {target.describe()})",
                 source=dem.source)
-        offset = 0.0
-    elif not has_undulation:
-        raise InputError(
-            f"the DEM's heights are {_datum_words(dem.vertical_datum)} but the flight's are "
-            f"{_datum_words(pose_heights_datum)}: give the geoid undulation N at the site (ellipsoidal = "
-            "MSL + N, e.g. from EGM2008) or use a DEM in the flight's vertical reference", source=dem.source)
+        offset, conversion = 0.0, (f"the DEM's heights ({source.describe()}) taken as the flight's "
+                                   f"({target.describe()}), to be confirmed by the flight's ground")
     else:
-        # ellipsoidal = MSL + N
-        offset = float(undulation) if dem.vertical_datum == "msl" else -float(undulation)
+        try:
+            shift = height_shift(source, target, np.median(lat), np.median(lon), dem.geoid_undulation_m)
+        except InputError as exc:
+            raise InputError(f"the DEM's heights are {source.describe()}, the flight's {target.describe()}: "
+                             f"{exc}", source=dem.source, field=exc.field) from None
+        offset, conversion = shift.median_m, (f"DEM {shift.note}" if shift.note else "")
+    depth = float(np.median(poses.height[known] - ground[known])) if known.any() else math.nan
+    tolerance = dem_tolerance_m(depth) if tolerance_m is None else float(tolerance_m)
+    measured = _check_against_ground(dem, lat[under], lon[under], ground[under], offset, target, tolerance,
+                                     depth) if under.any() else math.nan
+    miss = _check_against_takeoff(dem, lat[site], lon[site], ground[site], offset, target, tolerance,
+                                  depth) if site.any() else math.nan
+    return DemCheck(offset, conversion, measured, miss, tolerance, depth, int(under.sum()), int(site.sum()))
 
-    if can_verify:
-        if ground_reference == "altimeter":
-            _check_against_altimeter(dem, poses, offset, pose_heights_datum, tolerance_m)
-        else:
-            _check_against_takeoff(dem, poses, offset, pose_heights_datum, tolerance_m)
-    return offset
+
+def check_flight(dem: "DemRaster", pose_groups, tolerance_m: float | None = None) -> DemCheck:
+    """:func:`check_vertical_datum` over every frame of a flight given as its camera groups
+    (``FramePoses`` sharing one vertical reference, as ``frame_records.poses_from_records`` gives them)."""
+    groups = list(pose_groups)
+    if not groups:
+        raise InputError("no frames to check the DEM against", source=dem.source)
+    first = groups[0]
+
+    def joined(name):
+        return np.concatenate([np.asarray(getattr(p, name)) for p in groups])
+
+    flight = FramePoses(joined("frame_id"), joined("lat"), joined("lon"), joined("height"), joined("quat"),
+                        joined("ground_height"), first.camera, first.reference, joined("ground_source"))
+    return check_vertical_datum(dem, flight, tolerance_m)
 
 
-def _datum_words(datum: str) -> str:
-    return {"ellipsoidal": "ellipsoidal (WGS84)", "msl": "above mean sea level",
-            "unknown": "in an undeclared reference"}[datum]
-
-
-def _datum_hint(offset_m: float) -> str:
-    if abs(offset_m) <= _MAX_GEOID_UNDULATION_M:
+def _hint(offset_m: float) -> str:
+    if abs(offset_m) <= MAX_UNDULATION_M:
         return (f" A near-constant offset of {offset_m:+.1f} m is what mixing mean-sea-level and ellipsoidal "
                 "heights gives (the geoid undulation); check the DEM's vertical reference and the undulation given.")
     return " An offset this large is not a geoid undulation: check the DEM's units, CRS and no-data value."
@@ -248,46 +313,59 @@ def _no_frame_over_the_dem(dem, n_frames):
         "check the DEM's CRS and that it covers the flight", source=dem.source)
 
 
-def _check_against_altimeter(dem, poses, offset, pose_heights_datum, tolerance_m):
-    ground = np.asarray(poses.ground_height, dtype=float)
-    terrain = dem.sample_geodetic(poses.lat, poses.lon) + offset
-    both = np.isfinite(ground) & np.isfinite(terrain)
+def _at_depth(tolerance_m, depth_m) -> str:
+    return (f"the ±{tolerance_m:.2f} m tolerance at {depth_m:.1f} m above ground" if math.isfinite(depth_m)
+            else f"the ±{tolerance_m:.2f} m tolerance")
+
+
+def _check_against_ground(dem, lat, lon, ground, offset, target, tolerance_m, depth_m) -> float:
+    """Median DEM − ground (m) under frames whose ground was measured there; refused beyond the tolerance."""
+    terrain = dem.sample_geodetic(lat, lon) + offset
+    both = np.isfinite(terrain)
     if not np.any(both):
-        raise _no_frame_over_the_dem(dem, int(np.isfinite(ground).sum()))
+        raise _no_frame_over_the_dem(dem, len(ground))
     diff = terrain[both] - ground[both]
     median = float(np.median(diff))
     if abs(median) <= tolerance_m:
-        return
+        return median
     raise InputError(
-        f"under {int(both.sum())} frames the DEM's terrain is {median:+.2f} m off the ground the altimeter "
-        f"measured (DEM − altimeter, median; range {diff.min():+.2f} … {diff.max():+.2f} m), more than the "
-        f"{tolerance_m:g} m tolerance: the DEM ({dem.vertical_datum}) is probably in another vertical "
-        f"reference than the flight ({pose_heights_datum}).{_datum_hint(median)}", source=dem.source)
+        f"under {int(both.sum())} frames the DEM's terrain is {median:+.2f} m off the ground measured under them "
+        f"(DEM − frames' ground, median; range {diff.min():+.2f} … {diff.max():+.2f} m), more than "
+        f"{_at_depth(tolerance_m, depth_m)}: the DEM ({_datum_words(dem)}) is probably in another vertical "
+        f"reference than the flight ({target.describe()}), or its heights are off.{_hint(median)}",
+        source=dem.source)
 
 
-def _check_against_takeoff(dem, poses, offset, pose_heights_datum, tolerance_m):
-    ground = np.asarray(poses.ground_height, dtype=float)
-    known = np.isfinite(ground)
-    x, y = ProjectedCRS(dem.crs).from_geodetic(np.asarray(poses.lat)[known], np.asarray(poses.lon)[known])
+def _datum_words(dem) -> str:
+    words = dem_reference(dem).describe()
+    return words if dem.geoid_undulation_m is None else f"{words}, N = {dem.geoid_undulation_m:g} m given"
+
+
+def _check_against_takeoff(dem, lat, lon, ground, offset, target, tolerance_m, depth_m) -> float:
+    """How far (m) the site-level ground lies outside the terrain around the frames; refused beyond the
+    tolerance."""
+    x, y = ProjectedCRS(dem.crs).from_geodetic(lat, lon)
     if not np.any(np.isfinite(dem.sample(x, y))):
-        raise _no_frame_over_the_dem(dem, int(known.sum()))
+        raise _no_frame_over_the_dem(dem, len(ground))
     cx, cy = dem.cell_centres()
     cols = (cx >= np.min(x) - TAKEOFF_REACH_M) & (cx <= np.max(x) + TAKEOFF_REACH_M)
     rows = (cy >= np.min(y) - TAKEOFF_REACH_M) & (cy <= np.max(y) + TAKEOFF_REACH_M)
     around = dem.heights[np.ix_(rows, cols)] + offset
     lowest, highest = float(np.nanmin(around)), float(np.nanmax(around))
-    takeoff = float(np.median(ground[known]))
+    takeoff = float(np.median(ground))
     miss = takeoff - highest if takeoff > highest else takeoff - lowest if takeoff < lowest else 0.0
     if abs(miss) <= tolerance_m:
-        return
+        return miss
     raise InputError(
-        f"the flight's take-off height ({takeoff:.2f} m, the median over {int(known.sum())} frames of absolute "
-        f"− relative altitude) lies {abs(miss):.2f} m {'above the highest' if miss > 0 else 'below the lowest'} "
-        f"terrain the DEM holds within {TAKEOFF_REACH_M:g} m of the frames ({lowest:.2f} … {highest:.2f} m in "
-        f"the flight's reference), more than the {tolerance_m:g} m tolerance: the DEM ({dem.vertical_datum}) is "
-        f"probably in another vertical reference than the flight ({pose_heights_datum}), or the flight's absolute "
-        f"heights are off (GNSS heights without an RTK fix often are, by 10 m or more).{_datum_hint(miss)}",
-        source=dem.source)
+        f"the flight's ground for the site ({takeoff:.2f} m, the median over {len(ground)} frames: a take-off "
+        f"point's height, a flight height or surveyed points) lies {abs(miss):.2f} m "
+        f"{'above the highest' if miss > 0 else 'below the lowest'} terrain the DEM holds within "
+        f"{TAKEOFF_REACH_M:g} m of the frames ({lowest:.2f} … {highest:.2f} m in the flight's reference, "
+        f"{target.describe()}), more than {_at_depth(tolerance_m, depth_m)}: the DEM ({_datum_words(dem)}) is "
+        "probably in another vertical reference than the flight, or the flight's absolute heights are off (a "
+        "drone without RTK measures them barometrically, often tens of metres off; its heights above the take-off "
+        "point are good). Use a DEM made from this flight (e.g. OpenDroneMap's DSM, in the frames' own heights), or "
+        f"refine the poses.{_hint(miss)}", source=dem.source)
 
 
 def _crs_name(crs) -> str:
@@ -694,15 +772,15 @@ class DemGround(GroundModel):
         self.nadir_height = np.where(np.isfinite(below), below, geometry.ground_point[:, 2])
 
     @classmethod
-    def from_dem(cls, geometry: FrameGeometry, dem: DemRaster, pose_heights_datum: str = "ellipsoidal",
-                 tolerance_m: float = 5.0, step_m: float | None = None,
-                 vertical_offset_m: float | None = None) -> "DemGround":
-        """Check the DEM's vertical reference against the poses, resample it into the geometry's local
-        frame over the area the frames can see, and build the ground model.
+    def from_dem(cls, geometry: FrameGeometry, dem: DemRaster, tolerance_m: float | None = None,
+                 step_m: float | None = None, vertical_offset_m: float | None = None) -> "DemGround":
+        """Convert the DEM into the poses' vertical reference and check it against their ground
+        (:func:`check_vertical_datum`), resample it into the geometry's local frame over the area the frames can
+        see, and build the ground model.
 
         ``vertical_offset_m``: the offset :func:`check_vertical_datum` already gave for the whole flight
         (the check is then not repeated on this geometry's frames alone)."""
-        offset = (check_vertical_datum(dem, pose_heights_datum, geometry.poses, tolerance_m)
+        offset = (check_vertical_datum(dem, geometry.poses, tolerance_m).offset_m
                   if vertical_offset_m is None else float(vertical_offset_m))
         full = _dem_extent_local(dem, geometry.local, ProjectedCRS(dem.crs), offset)
         seen = _visible_extent(geometry, float(np.nanmin(dem.heights)) + offset - geometry.local.h0)
@@ -750,15 +828,17 @@ class DemGround(GroundModel):
 @dataclass(frozen=True, eq=False)
 class DemGroundFactory:
     """The ground-model factory (``FrameGeometry -> DemGround``) core code takes as ``ground`` for a DEM:
-    :meth:`DemGround.from_dem` with the flight's vertical reference and the datum check's tolerance."""
+    :meth:`DemGround.from_dem`, the DEM converted into each geometry's vertical reference and checked against its
+    ground (``tolerance_m``: None follows the flight's height above ground), or shifted by ``vertical_offset_m``
+    when the whole flight was checked once already (:func:`check_vertical_datum`)."""
 
     dem: DemRaster
-    pose_heights_datum: str = "ellipsoidal"
-    tolerance_m: float = 5.0
+    tolerance_m: float | None = None
+    vertical_offset_m: float | None = None
     needs_ground_height = False
 
     def __call__(self, geometry: FrameGeometry) -> DemGround:
-        return DemGround.from_dem(geometry, self.dem, self.pose_heights_datum, self.tolerance_m)
+        return DemGround.from_dem(geometry, self.dem, self.tolerance_m, vertical_offset_m=self.vertical_offset_m)
 
 
 def _visible_extent(geometry: FrameGeometry, lowest_u: float, per_edge: int = 8):

@@ -1,10 +1,15 @@
 """Frame poses and the per-frame camera geometry derived from them.
 
 A :class:`FramePoses` is what a frame layer carries (docs/design.md#frame-layer): the IMU/body position in WGS84
-(lat, lon, ellipsoidal height), the attitude quaternion ``q = (qw, qx, qy, qz)`` with
-``v_ned = R(q) v_body`` (body = forward-right-down = the IMU frame of ``T_cam_imu``), and the
-ellipsoidal height of the level ground under the frame (from the altimeter, or NaN when a DEM
-supplies the ground).
+(lat, lon, height), the attitude quaternion ``q = (qw, qx, qy, qz)`` with ``v_ned = R(q) v_body`` (body =
+forward-right-down = the IMU frame of ``T_cam_imu``), the height of the level ground under the frame (NaN
+when none is known; a DEM then supplies the ground), what the heights are measured from and where each
+ground height came from (``heights.VerticalReference``, ``heights.GROUND_SOURCES``).
+
+The geometry treats the heights as ellipsoidal: a flight in another reference (DJI's mean-sea-level
+heights) is shifted by N along the vertical as a whole, which moves nothing in the image as long as every
+height it is compared with is in the same reference: the level ground is its own, geotags are placed on the
+ground the frame sees, and a DEM is converted into the flight's reference (``dem.check_vertical_datum``).
 
 :class:`FrameGeometry` turns these into camera centres and orientations in a
 :class:`~.geodesy.LocalFrame`, vectorised over frames.
@@ -17,13 +22,18 @@ import numpy as np
 
 from .camera import CameraModel
 from .geodesy import LocalFrame
+from .heights import ALTIMETER, ELLIPSOIDAL_REFERENCE, VerticalReference
 from .rigid import RigidTransform
 from .rotations import quat_to_rotmat
 
 
 @dataclass
 class FramePoses:
-    """Poses of F frames taken by one camera. Arrays have length F."""
+    """Poses of F frames taken by one camera. Arrays have length F.
+
+    ``reference``: what ``height`` and ``ground_height`` are measured from (default ellipsoidal, an RTK/INS
+    flight's); ``ground_source``: per frame, where its ground height came from (default: the altimeter).
+    """
 
     frame_id: np.ndarray
     lat: np.ndarray
@@ -32,6 +42,8 @@ class FramePoses:
     quat: np.ndarray
     ground_height: np.ndarray
     camera: CameraModel
+    reference: VerticalReference = ELLIPSOIDAL_REFERENCE
+    ground_source: np.ndarray | None = None
 
     def __post_init__(self):
         self.frame_id = np.asarray(self.frame_id)
@@ -39,7 +51,9 @@ class FramePoses:
             setattr(self, name, np.asarray(getattr(self, name), dtype=float).reshape(-1))
         self.quat = np.asarray(self.quat, dtype=float).reshape(-1, 4)
         n = len(self.lat)
-        for name in ("frame_id", "lon", "height", "quat", "ground_height"):
+        self.ground_source = np.asarray([ALTIMETER] * n if self.ground_source is None else self.ground_source,
+                                        dtype=object).reshape(-1)
+        for name in ("frame_id", "lon", "height", "quat", "ground_height", "ground_source"):
             if len(getattr(self, name)) != n:
                 raise ValueError(f"FramePoses.{name} has {len(getattr(self, name))} entries, expected {n}")
 
@@ -48,7 +62,8 @@ class FramePoses:
 
     def subset(self, index) -> "FramePoses":
         return FramePoses(self.frame_id[index], self.lat[index], self.lon[index], self.height[index],
-                          self.quat[index], self.ground_height[index], self.camera)
+                          self.quat[index], self.ground_height[index], self.camera, self.reference,
+                          self.ground_source[index])
 
 
 def indices_by_camera(cameras) -> list[np.ndarray]:

@@ -24,7 +24,7 @@ from __future__ import annotations
 
 import csv
 import json
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
@@ -33,6 +33,7 @@ from ..errors import check_cancel
 from ..field.geotags import PROVENANCES, REVIEW, UNLABELLED, Geotags
 from ..geometry.geodesy import LocalFrame
 from ..geometry.ground import LevelPlaneGround
+from ..geometry.heights import ELLIPSOIDAL_REFERENCE, convert_heights
 from ..geometry.poses import FrameGeometry, FramePoses
 from ..geometry.projection import Projection, project_in_view
 from .sparse_png import encode_gray_png
@@ -122,17 +123,20 @@ def project_labels(poses: FramePoses, geotags: Geotags, edge_buffer_px: float = 
     empty = [FrameLabels(f, np.empty(0, np.int64), np.empty((0, 2)), np.empty(0), np.empty(0, bool))
              for f in range(len(poses))]
     own_height = np.isfinite(geotags.height) if geotag_heights else np.zeros(len(geotags), dtype=bool)
+    surveyed = np.nan_to_num(geotags.height, nan=0.0)
     if geotag_heights and own_height.any():
-        flight_ground = float(np.median(geotags.height[own_height]))
-        poses = FramePoses(poses.frame_id, poses.lat, poses.lon, poses.height, poses.quat,
-                           np.where(np.isfinite(poses.ground_height), poses.ground_height, flight_ground),
-                           poses.camera)
+        # Surveyed heights are ellipsoidal; the frames' heights are in their own reference.
+        surveyed = np.where(own_height, convert_heights(surveyed, geotags.lat, geotags.lon, ELLIPSOIDAL_REFERENCE,
+                                                        poses.reference), 0.0)
+        flight_ground = float(np.median(surveyed[own_height]))
+        poses = replace(poses, ground_height=np.where(np.isfinite(poses.ground_height), poses.ground_height,
+                                                      flight_ground))
     usable = np.flatnonzero(~frames_without_ground(poses)) if ground is None else np.arange(len(poses))
     if len(usable) == 0 or len(geotags) == 0:
         return empty
     geom = FrameGeometry(poses.subset(usable), local)
     ground_model = (ground or LevelPlaneGround)(geom)
-    pts = local.from_geodetic(geotags.lat, geotags.lon, np.nan_to_num(geotags.height, nan=0.0))
+    pts = local.from_geodetic(geotags.lat, geotags.lon, surveyed)
     parts = []
     for own in (True, False):
         which = np.flatnonzero(own_height == own)

@@ -29,6 +29,15 @@ from ...errors import InputError, check_cancel
 from ...geometry.camera import CameraModel
 from ...geometry.dem import DemRaster
 from ...geometry.geodesy import LocalFrame, ProjectedCRS, ecef_to_geodetic, rotation_ecef_enu
+from ...geometry.heights import (
+    CONTROL_POINTS,
+    EGM96_REFERENCE,
+    ELLIPSOIDAL_REFERENCE,
+    GIVEN,
+    NO_GROUND,
+    TIE_POINTS,
+    VerticalReference,
+)
 from ...geometry.poses import FramePoses, indices_by_camera
 from ...geometry.rotations import R_ENU_NED, rotmat_to_quat
 from ..dji import T_CAM_GIMBAL
@@ -75,8 +84,11 @@ class ControlMarks:
 class CameraSolution:
     """Every image of a solution file; ``unaligned`` holds (name, reason) of images without a pose.
 
-    ``marks``: control points with image marks, where the solution has them; ``photos``: camera name →
-    image file the solution itself names (where it exists).
+    ``reference``: what the solution's heights are measured from — ellipsoidal (geocentric, a stated ENU
+    frame), the images' GPS reference (EGM96, as GNSS receivers report heights above sea level) for solutions
+    aligned to the images' GPS tags, or what the solution's CRS says. ``marks``: control points with image
+    marks, where the solution has them; ``photos``: camera name → image file the solution itself names (where
+    it exists).
     """
 
     format: str
@@ -85,14 +97,14 @@ class CameraSolution:
     unaligned: list = field(default_factory=list)
     points_ecef: np.ndarray | None = None
     notes: list = field(default_factory=list)
-    ellipsoidal: bool = False
+    reference: VerticalReference = EGM96_REFERENCE
     marks: ControlMarks | None = None
     photos: dict = field(default_factory=dict)
 
     @property
-    def height_datum(self) -> str:
-        """The vertical reference of the solution's heights, for the DEM check."""
-        return "ellipsoidal" if self.ellipsoidal else "msl"
+    def ellipsoidal(self) -> bool:
+        """The solution's heights are ellipsoidal for certain (geocentric, a stated ENU frame)."""
+        return self.reference == ELLIPSOIDAL_REFERENCE
 
 
 def read_camera_solution(path, images_folder=None, colmap_reference: str = "gps",
@@ -149,8 +161,11 @@ def match_images(names, folder) -> dict:
     return matched
 
 
-def solution_frames(solution: CameraSolution, images: dict, ground_height: float | None = None) -> Frames:
-    """Frames (body = the camera's gimbal frame, as for DJI images) of every aligned camera."""
+def solution_frames(solution: CameraSolution, images: dict, ground_height: float | None = None,
+                    ground_height_source: str = GIVEN) -> Frames:
+    """Frames (body = the camera's gimbal frame, as for DJI images) of every aligned camera; frames without
+    tie points in view stand on ``ground_height`` (in the solution's reference) where it is given, a ground of
+    source ``ground_height_source`` (the user's, or the control points' median)."""
     cams = solution.cameras
     n = len(cams)
     centres = np.array([c.centre_ecef for c in cams], dtype=float).reshape(n, 3)
@@ -167,18 +182,20 @@ def solution_frames(solution: CameraSolution, images: dict, ground_height: float
     cameras = [mounted[id(c.camera)] for c in cams]
     ground = _tie_point_ground(solution, lat, lon, h, r_ned_body, cameras)
     flags = [[SOLUTION_FLAG] + ([GEOTAG_HEIGHTS_FLAG] if solution.ellipsoidal else []) for _ in range(n)]
+    source = np.where(np.isfinite(ground), TIE_POINTS, NO_GROUND).astype(object)
     if ground_height is not None:
+        source[~np.isfinite(ground)] = ground_height_source
         ground = np.where(np.isfinite(ground), ground, float(ground_height))
     return Frames(
         frame_id=np.arange(n, dtype=np.int64),
         image=[str(images[c.name].resolve()) if c.name in images else c.name for c in cams],
         time_s=np.full(n, np.nan), lat=lat, lon=lon, height=h, quat=rotmat_to_quat(r_ned_body),
         ground_h=ground, rtk_status=np.full(n, RTK_NONE), sync_offset_s=np.full(n, np.nan),
-        cameras=cameras, flags=flags)
+        cameras=cameras, flags=flags, reference=solution.reference, ground_source=list(source))
 
 
 def _tie_point_ground(solution, lat, lon, h, r_ned_body, cameras) -> np.ndarray:
-    """Per frame, the median ellipsoidal height of the solution's tie points inside its image."""
+    """Per frame, the median height of the solution's tie points inside its image (the solution's reference)."""
     from scipy.spatial import cKDTree
 
     from ...geometry.poses import FrameGeometry
@@ -227,7 +244,8 @@ def import_camera_solution(path, images_folder=None, crs: ProjectedCRS | None = 
         raise InputError(f"has no aligned camera ({len(solution.unaligned)} not aligned)", source=solution.source)
     images = {**solution.photos, **match_images([c.name for c in solution.cameras], images_folder)}
     surveyed = _control_ground(solution) if ground_height is None else None
-    frames = solution_frames(solution, images, ground_height if surveyed is None else surveyed)
+    frames = solution_frames(solution, images, ground_height if surveyed is None else surveyed,
+                             GIVEN if surveyed is None else CONTROL_POINTS)
     report.counts.update({"format": solution.format, "aligned": len(solution.cameras),
                           "not_aligned": len(solution.unaligned)})
     if solution.unaligned:
@@ -254,7 +272,7 @@ def import_camera_solution(path, images_folder=None, crs: ProjectedCRS | None = 
         progress(0.3)
     crs = crs or ProjectedCRS.for_site(frames.lat, frames.lon)
     sub = None if progress is None else (lambda f: progress(0.3 + 0.7 * f))
-    ground = dem_ground_for(frames, dem, solution.height_datum, "altimeter")
+    ground = dem_ground_for(frames, dem, report)
     fp = compute_footprints(frames, crs, progress=sub, is_canceled=is_canceled, ground=ground)
     control = solution.marks
     check = _check_marks(control, solution, frames, fp, report) if control is not None else None

@@ -23,6 +23,7 @@ import numpy as np
 from ...errors import InputError
 from ...geometry.camera import CameraModel
 from ...geometry.geodesy import geodetic_to_ecef, rotation_ecef_enu
+from ...geometry.heights import EGM96_REFERENCE, ELLIPSOIDAL_REFERENCE
 from ...geometry.rigid import RigidTransform
 from ...geometry.similarity import fit_similarity_robust
 from . import CameraSolution, SolvedCamera, match_images
@@ -139,7 +140,8 @@ def read_colmap(folder, images_folder=None, reference: str = "gps") -> CameraSol
         r_ecef, centres_ecef = ecef_from_cam.rotation, ecef_from_cam.translation
         points = None if points is None else ecef_from_world.apply(points)
     cameras = [SolvedCamera(n, c, r, x) for n, c, r, x in zip(names, cams, r_ecef, centres_ecef)]
-    return CameraSolution("colmap", source, cameras, unaligned, points, notes, ellipsoidal=reference != "gps")
+    return CameraSolution("colmap", source, cameras, unaligned, points, notes,
+                          reference=EGM96_REFERENCE if reference == "gps" else ELLIPSOIDAL_REFERENCE)
 
 
 def _gps_alignment(names, centres, images_folder, source):

@@ -42,6 +42,7 @@ import numpy as np
 from ...errors import InputError
 from ...geometry.camera import CameraModel
 from ...geometry.geodesy import ensure_proj_data, on_python_thread
+from ...geometry.heights import ELLIPSOIDAL_REFERENCE
 from ..geotags import Geotags
 from . import CameraSolution, ControlMarks, SolvedCamera
 
@@ -268,8 +269,8 @@ def read_metashape(path) -> CameraSolution:
     frame = _first_frame(documents, chunk, chunk_dir, notes)
     photos = _photo_paths(documents, frame[0], frame[1], camera_names) if frame is not None else {}
     marks = _control_marks(chunk, frame[0] if frame is not None else None, camera_names, source, notes)
-    return CameraSolution("metashape", source, cameras, unaligned, notes=notes, ellipsoidal=True, marks=marks,
-                          photos=photos)
+    return CameraSolution("metashape", source, cameras, unaligned, notes=notes, reference=ELLIPSOIDAL_REFERENCE,
+                          marks=marks, photos=photos)
 
 
 class _Similarities:

@@ -39,9 +39,11 @@ Internal and External Camera Parameters defined?"):
   Metashape and COLMAP, ``cx_cv = cx − 0.5``, ``cy_cv = cy − 0.5``; the other choice would move every
   pixel by 0.7 px.
 * Heights are those of the project's output CRS: ellipsoidal or above a geoid, as the Pix4D project
-  was set up, and the files do not say which. They are used like the images' GPS heights of an
-  OpenSfM solution (not ``ellipsoidal``): labels do not use the geotags' own heights, and since these
-  files hold no tie points, frames take their ground from the DEM or ``ground_height``.
+  was set up, and the files do not say which. The CRS the user names (``SOLUTION_CRS``) says it when it has
+  a vertical part (a compound CRS such as ``EPSG:32654+5773``, EGM96); otherwise the heights are taken as
+  above mean sea level, geoid not named (Pix4D's usual output). Labels do not use the geotags' own heights
+  (not ``ellipsoidal``), and since these files hold no tie points, frames take their ground from the DEM or
+  ``ground_height``.
 """
 from __future__ import annotations
 
@@ -52,6 +54,7 @@ import numpy as np
 
 from ...errors import InputError
 from ...geometry.camera import CameraModel
+from ...geometry.heights import MSL_REFERENCE, crs_vertical_reference
 from ...geometry.geodesy import (
     ProjectedCRS,
     ensure_proj_data,
@@ -251,9 +254,11 @@ def read_pix4d(path, solution_crs: ProjectedCRS | None) -> CameraSolution:
                                       im.K[1, 2] - 0.5, (r1, r2, t1, t2, r3), skew=k * im.K[0, 1],
                                       source=f"pix4d:{path.name} camera {len(models) + 1}")
         cameras.append(SolvedCamera(im.name, models[key], r, x))
+    stated = crs_vertical_reference(solution_crs.crs)
+    reference = stated or MSL_REFERENCE
     notes = [f"Pix4D coordinates in {solution_crs.crs} (offset {offset[0]:.3f}, {offset[1]:.3f}, {offset[2]:.3f}); "
-             f"focal lengths × {k:.6f}, the CRS's grid scale at the cameras (projection and height). Heights are "
-             "the project's (ellipsoidal or geoid, as the Pix4D project was set up): treated like GPS heights, "
-             "so labels do not use the geotags' own heights. These files hold no tie points: give a DEM or "
-             "GROUND_HEIGHT_M (in the project's height reference) for footprints"]
-    return CameraSolution("pix4d", source, cameras, [], None, notes, ellipsoidal=False)
+             f"focal lengths × {k:.6f}, the CRS's grid scale at the cameras (projection and height). Heights "
+             f"{reference.describe()} ({'as the CRS states' if stated else 'the CRS has no vertical part'}; give a compound CRS such as EPSG:<zone>+5773 for EGM96 heights "
+             "to state it): labels do not use the geotags' own heights. These files hold no tie points: give a "
+             "DEM or GROUND_HEIGHT_M (in the project's height reference) for footprints"]
+    return CameraSolution("pix4d", source, cameras, [], None, notes, reference=reference)
