@@ -1,6 +1,7 @@
 """birdseye:importgeotags — rover survey (file or point layer) → styled PointZ geotag layer."""
 from __future__ import annotations
 
+import numpy as np
 from qgis.core import (
     QgsProcessingException,
     QgsProcessingOutputNumber,
@@ -18,10 +19,12 @@ from ...birdseye_qgis.core.field.geotags import (
     FORMATS,
     GEOTAG_FIELDS,
     ColumnMapping,
+    accuracy_fields,
     geotags_from_columns,
     prepare_geotags,
     read_geotags,
 )
+from ...birdseye_qgis.core.geometry.heights import MAX_UNDULATION_M, metres_per_unit
 from ...birdseye_qgis.qgis_enums import NUMBER_DOUBLE, SOURCE_VECTOR_POINT, WKB_POINT_Z
 from ...birdseye_qgis.qgis_io import layers
 from .base import BirdsEyeAlgorithm
@@ -34,7 +37,10 @@ class ImportGeotags(BirdsEyeAlgorithm):
     INPUT = "INPUT"
     INPUT_LAYER = "INPUT_LAYER"
     FORMAT = "FORMAT"
+    UNITS = "UNITS"
+    GEOID_UNDULATION_M = "GEOID_UNDULATION_M"
     FIX_FILTER = "FIX_FILTER"
+    MAX_H_ACCURACY_M = "MAX_H_ACCURACY_M"
     POLE_HEIGHT_M = "POLE_HEIGHT_M"
     OUTPUT_CRS = "OUTPUT_CRS"
     OUTPUT = "OUTPUT"
@@ -42,10 +48,17 @@ class ImportGeotags(BirdsEyeAlgorithm):
     FORMAT_NAMES = ["Automatic (from the content)", "BirdsEye rover CSV (no header)", "CSV with a header",
                     "NMEA GGA log"]
     FIX_FILTERS = ["All geotags (float and no-RTK flagged)", "RTK fixed only"]
+    #: UNITS choices and the unit each stands for (None: from the file).
+    UNIT_CHOICES = (
+        (QT_TRANSLATE_NOOP("ImportGeotags", "From the file (a unit in the column's name, the coordinate-system name, "
+                                            "a units column; else metres)"), None),
+        (QT_TRANSLATE_NOOP("ImportGeotags", "Metres"), "m"),
+        (QT_TRANSLATE_NOOP("ImportGeotags", "International feet (0.3048 m)"), "ft"),
+        (QT_TRANSLATE_NOOP("ImportGeotags", "US survey feet (1200/3937 m)"), "ftUS"))
     MAPPING = (("LAT_FIELD", "lat", "Latitude column (header CSV)"),
                ("LON_FIELD", "lon", "Longitude column (header CSV)"),
                ("HEIGHT_FIELD", "height", "Ellipsoidal height column/field"),
-               ("MSL_FIELD", "msl", "MSL height column/field"),
+               ("MSL_FIELD", "msl", "MSL (orthometric) height column/field"),
                ("FIX_FIELD", "fix", "Fix quality column/field"),
                ("LABEL_FIELD", "label", "Label column/field"))
 
@@ -60,7 +73,17 @@ class ImportGeotags(BirdsEyeAlgorithm):
         for name, _, text in self.MAPPING:
             self.addParameter(QgsProcessingParameterString(name, self.tr(text), optional=True))
         self.addParameter(QgsProcessingParameterEnum(
+            self.UNITS, self.tr("Unit of heights and accuracies"),
+            options=[self.tr(text) for text, _ in self.UNIT_CHOICES], defaultValue=0))
+        self.addParameter(QgsProcessingParameterNumber(
+            self.GEOID_UNDULATION_M, self.tr("Geoid undulation N for a file with only MSL heights (m; ellipsoidal = "
+                                             "MSL + N; empty: EGM96 from PROJ's grid)"),
+            NUMBER_DOUBLE, None, optional=True, minValue=-MAX_UNDULATION_M, maxValue=MAX_UNDULATION_M))
+        self.addParameter(QgsProcessingParameterEnum(
             self.FIX_FILTER, self.tr("Fix filter"), options=self.FIX_FILTERS, defaultValue=0))
+        self.addParameter(QgsProcessingParameterNumber(
+            self.MAX_H_ACCURACY_M, self.tr("Keep geotags with a horizontal accuracy within (m; empty: all)"),
+            NUMBER_DOUBLE, None, optional=True, minValue=0.001))
         self.addParameter(QgsProcessingParameterNumber(
             self.POLE_HEIGHT_M, self.tr("Antenna pole height (m), subtracted from heights"),
             NUMBER_DOUBLE, 0.0, minValue=0.0, maxValue=10.0))
@@ -70,6 +93,7 @@ class ImportGeotags(BirdsEyeAlgorithm):
             self.OUTPUT, self.tr("Geotags"), SOURCE_VECTOR_POINT))
         for name, text in (("GEOTAG_COUNT", "Geotags written"), ("BAD_ROWS", "Bad rows left out"),
                            ("NOT_FIXED_DROPPED", "Geotags dropped by the fix filter"),
+                           ("ACCURACY_DROPPED", "Geotags dropped by the accuracy filter"),
                            ("DUPLICATES", "Geotags flagged duplicate_2cm")):
             self.addOutput(QgsProcessingOutputNumber(name, self.tr(text)))
 
@@ -82,12 +106,17 @@ class ImportGeotags(BirdsEyeAlgorithm):
         mapping = {key: (self.parameterAsString(parameters, name, context) or "").strip() or None
                    for name, key, _ in self.MAPPING}
         chosen = self.run_core(layers.chosen_projected_crs, self.parameterAsCrs(parameters, self.OUTPUT_CRS, context))
+        units = self.UNIT_CHOICES[self.parameterAsEnum(parameters, self.UNITS, context)][1]
+        undulation = self._optional_number(parameters, self.GEOID_UNDULATION_M, context)
+        max_accuracy = self._optional_number(parameters, self.MAX_H_ACCURACY_M, context)
         if path:
             fmt = FORMATS[self.parameterAsEnum(parameters, self.FORMAT, context)]
-            tags = self.run_core(read_geotags, path, fmt, ColumnMapping(**mapping))
+            tags = self.run_core(read_geotags, path, fmt, ColumnMapping(**mapping), units, undulation)
         else:
-            tags = self.run_core(self._from_layer, source, context, mapping)
+            tags = self.run_core(self._from_layer, source, context, mapping, units)
         feedback.setProgress(40)
+        for note in tags.notes:
+            feedback.pushInfo(self.tr("Reading: {note}").format(note=note))
         if len(tags) == 0:
             first = f" The first: {tags.problems[0]}" if tags.problems else ""
             raise QgsProcessingException(self.tr("The input holds no usable geotag.") + first)
@@ -97,14 +126,28 @@ class ImportGeotags(BirdsEyeAlgorithm):
                                      n_problems=len(tags.problems), examples=examples), False)
         prepared = self.run_core(prepare_geotags, tags,
                                  fixed_only=self.parameterAsEnum(parameters, self.FIX_FILTER, context) == 1,
-                                 pole_height_m=self.parameterAsDouble(parameters, self.POLE_HEIGHT_M, context))
+                                 pole_height_m=self.parameterAsDouble(parameters, self.POLE_HEIGHT_M, context),
+                                 max_h_accuracy_m=max_accuracy)
         out = prepared.geotags
-        feedback.pushInfo("Fix quality of the input: " + ", ".join(f"{k}: {v}" for k, v in
-                                                                    prepared.counts_by_fix.items()))
+        feedback.pushInfo(self.tr("Fix quality of the input: {counts}").format(
+            counts=", ".join(f"{k}: {v}" for k, v in prepared.counts_by_fix.items())))
+        known = tags.h_acc[np.isfinite(tags.h_acc)]
+        if known.size:
+            feedback.pushInfo(self.tr("Horizontal accuracy of the input: median {median:.3f} m, worst {worst:.3f} m "
+                                      "({n_known} of {n_tags} geotags give one)").format(
+                median=float(np.median(known)), worst=float(known.max()), n_known=known.size, n_tags=len(tags)))
         if prepared.dropped_not_fixed:
             feedback.pushWarning(self.tr("{dropped_not_fixed} geotag(s) without an RTK fixed "
                                          "solution were left out (fix filter: RTK fixed only)").format(
                                      dropped_not_fixed=prepared.dropped_not_fixed))
+        if prepared.dropped_accuracy:
+            feedback.pushWarning(self.tr("{dropped} geotag(s) with a horizontal accuracy worse than {limit:g} m "
+                                         "were left out (MAX_H_ACCURACY_M)").format(
+                                     dropped=prepared.dropped_accuracy, limit=max_accuracy))
+        if prepared.unknown_accuracy:
+            feedback.pushWarning(self.tr("{unknown} geotag(s) have no horizontal accuracy in the input and were kept "
+                                         "(MAX_H_ACCURACY_M cannot judge them)").format(
+                                     unknown=prepared.unknown_accuracy))
         if prepared.duplicates:
             feedback.pushWarning(self.tr("{duplicates} geotag(s) lie within 2 cm of an earlier "
                                          "one (flag duplicate_2cm)").format(duplicates=prepared.duplicates))
@@ -121,16 +164,27 @@ class ImportGeotags(BirdsEyeAlgorithm):
                           feedback, 50.0, 100.0, len(out))
         layers.style_on_load(context, dest_id, "geotags.qml")
         return {"OUTPUT": dest_id, "GEOTAG_COUNT": n, "BAD_ROWS": len(tags.problems),
-                "NOT_FIXED_DROPPED": prepared.dropped_not_fixed, "DUPLICATES": prepared.duplicates}
+                "NOT_FIXED_DROPPED": prepared.dropped_not_fixed, "ACCURACY_DROPPED": prepared.dropped_accuracy,
+                "DUPLICATES": prepared.duplicates}
+
+    def _optional_number(self, parameters, name, context):
+        """An optional number parameter's value, None when left empty."""
+        return None if parameters.get(name) in (None, "") else self.parameterAsDouble(parameters, name, context)
 
     @staticmethod
-    def _from_layer(source, context, mapping):
-        attributes = [mapping[k] for k in ("height", "msl", "fix", "label")]
+    def _from_layer(source, context, mapping, units):
+        """Geotags from a point layer: heights from the mapped fields or Z, accuracies from fields with common
+        names (h_acc_m, hrms, …), all in ``units`` (None: metres)."""
+        h_acc_field, v_acc_field = accuracy_fields(source.fields().names())
+        named = {**{k: mapping[k] for k in ("height", "msl", "fix", "label")}, "h_acc": h_acc_field,
+                 "v_acc": v_acc_field}
         name = source.sourceName()
-        cols = layers.read_point_layer(source, context.transformContext(), attributes, name)
+        cols = layers.read_point_layer(source, context.transformContext(), list(named.values()), name)
         values = cols["attributes"]
         height = values[mapping["height"]] if mapping["height"] else cols["z"].tolist()
         return geotags_from_columns(
             cols["lat"], cols["lon"], height, values.get(mapping["msl"]), values.get(mapping["fix"]),
             values.get(mapping["label"]), cols["row"], source=name,
-            field_names={k: mapping[k] for k in ("height", "msl", "fix") if mapping[k]})
+            field_names={k: v for k, v in named.items() if v and k != "label"},
+            h_acc=values.get(h_acc_field), v_acc=values.get(v_acc_field),
+            unit_m=metres_per_unit(units or "m"))

@@ -8,8 +8,8 @@ import numpy as np
 
 from ..errors import check_cancel
 from ..geometry.geodesy import LocalFrame, ProjectedCRS
-from ..geometry.heights import ALTIMETER, ELLIPSOIDAL_REFERENCE, NO_GROUND, VerticalReference
 from ..geometry.ground import LevelPlaneGround
+from ..geometry.heights import ALTIMETER, ELLIPSOIDAL_REFERENCE, NO_GROUND, VerticalReference
 from ..geometry.poses import FrameGeometry, FramePoses, ground_height_from_altimeter, indices_by_camera
 from ..geometry.projection import footprints
 from .frame_records import FRAME_FIELDS, euler_degrees

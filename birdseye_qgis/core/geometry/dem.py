@@ -63,10 +63,15 @@ from ..errors import InputError, check_cancel
 from .geodesy import LocalFrame, ProjectedCRS, on_python_thread
 from .ground import GroundModel
 from .heights import (
+    CONTROL_POINTS,
     ELLIPSOIDAL_REFERENCE,
+    FLIGHT_HEIGHT,
+    GEOTAGS,
+    GIVEN,
     MAX_UNDULATION_M,
     MSL_REFERENCE,
     SITE_LEVEL_SOURCES,
+    TAKEOFF,
     UNDER_FRAME_SOURCES,
     UNKNOWN,
     UNKNOWN_REFERENCE,
@@ -224,7 +229,7 @@ class DemCheck:
             parts.append(f"terrain under {self.n_under} frame(s) {self.measured_m:+.2f} m from their measured ground "
                          "(median)")
         if math.isfinite(self.takeoff_miss_m):
-            parts.append("the take-off height is one the terrain around has" if self.takeoff_miss_m == 0 else
+            parts.append("the take-off height is one the terrain around has" if abs(self.takeoff_miss_m) < 0.005 else
                          f"the take-off height lies {abs(self.takeoff_miss_m):.2f} m "
                          f"{'above' if self.takeoff_miss_m > 0 else 'below'} the terrain around")
         parts.append(f"tolerance ±{self.tolerance_m:.2f} m at {self.depth_m:.1f} m above ground" if
@@ -276,9 +281,9 @@ def check_vertical_datum(dem: "DemRaster", poses: FramePoses, tolerance_m: float
     depth = float(np.median(poses.height[known] - ground[known])) if known.any() else math.nan
     tolerance = dem_tolerance_m(depth) if tolerance_m is None else float(tolerance_m)
     measured = _check_against_ground(dem, lat[under], lon[under], ground[under], offset, target, tolerance,
-                                     depth) if under.any() else math.nan
-    miss = _check_against_takeoff(dem, lat[site], lon[site], ground[site], offset, target, tolerance,
-                                  depth) if site.any() else math.nan
+                                     depth, conversion) if under.any() else math.nan
+    miss = _check_against_takeoff(dem, lat[site], lon[site], ground[site], poses.ground_source[site], offset,
+                                  target, tolerance, depth, conversion) if site.any() else math.nan
     return DemCheck(offset, conversion, measured, miss, tolerance, depth, int(under.sum()), int(site.sum()))
 
 
@@ -318,7 +323,7 @@ def _at_depth(tolerance_m, depth_m) -> str:
             else f"the ±{tolerance_m:.2f} m tolerance")
 
 
-def _check_against_ground(dem, lat, lon, ground, offset, target, tolerance_m, depth_m) -> float:
+def _check_against_ground(dem, lat, lon, ground, offset, target, tolerance_m, depth_m, conversion) -> float:
     """Median DEM − ground (m) under frames whose ground was measured there; refused beyond the tolerance."""
     terrain = dem.sample_geodetic(lat, lon) + offset
     both = np.isfinite(terrain)
@@ -331,9 +336,13 @@ def _check_against_ground(dem, lat, lon, ground, offset, target, tolerance_m, de
     raise InputError(
         f"under {int(both.sum())} frames the DEM's terrain is {median:+.2f} m off the ground measured under them "
         f"(DEM − frames' ground, median; range {diff.min():+.2f} … {diff.max():+.2f} m), more than "
-        f"{_at_depth(tolerance_m, depth_m)}: the DEM ({_datum_words(dem)}) is probably in another vertical "
-        f"reference than the flight ({target.describe()}), or its heights are off.{_hint(median)}",
+        f"{_at_depth(tolerance_m, depth_m)}{_converted(conversion)}: the DEM ({_datum_words(dem)}) is probably in "
+        f"another vertical reference than the flight ({target.describe()}), or its heights are off.{_hint(median)}",
         source=dem.source)
+
+
+def _converted(conversion: str) -> str:
+    return f" (converted: {conversion})" if conversion else ""
 
 
 def _datum_words(dem) -> str:
@@ -341,7 +350,14 @@ def _datum_words(dem) -> str:
     return words if dem.geoid_undulation_m is None else f"{words}, N = {dem.geoid_undulation_m:g} m given"
 
 
-def _check_against_takeoff(dem, lat, lon, ground, offset, target, tolerance_m, depth_m) -> float:
+#: What a site-level ground height is, in words, by its source.
+_SITE_GROUND_WORDS = {TAKEOFF: "take-off height", FLIGHT_HEIGHT: "take-off height (camera height − flight height)",
+                      GIVEN: "ground height given", CONTROL_POINTS: "control points' height",
+                      GEOTAGS: "geotags' height"}
+
+
+def _check_against_takeoff(dem, lat, lon, ground, sources, offset, target, tolerance_m, depth_m,
+                           conversion) -> float:
     """How far (m) the site-level ground lies outside the terrain around the frames; refused beyond the
     tolerance."""
     x, y = ProjectedCRS(dem.crs).from_geodetic(lat, lon)
@@ -356,13 +372,13 @@ def _check_against_takeoff(dem, lat, lon, ground, offset, target, tolerance_m, d
     miss = takeoff - highest if takeoff > highest else takeoff - lowest if takeoff < lowest else 0.0
     if abs(miss) <= tolerance_m:
         return miss
+    words = " or ".join(dict.fromkeys(_SITE_GROUND_WORDS[s] for s in sources))
     raise InputError(
-        f"the flight's ground for the site ({takeoff:.2f} m, the median over {len(ground)} frames: a take-off "
-        f"point's height, a flight height or surveyed points) lies {abs(miss):.2f} m "
+        f"the flight's {words} ({takeoff:.2f} m, the median over {len(ground)} frames) lies {abs(miss):.2f} m "
         f"{'above the highest' if miss > 0 else 'below the lowest'} terrain the DEM holds within "
         f"{TAKEOFF_REACH_M:g} m of the frames ({lowest:.2f} … {highest:.2f} m in the flight's reference, "
-        f"{target.describe()}), more than {_at_depth(tolerance_m, depth_m)}: the DEM ({_datum_words(dem)}) is "
-        "probably in another vertical reference than the flight, or the flight's absolute heights are off (a "
+        f"{target.describe()}), more than {_at_depth(tolerance_m, depth_m)}{_converted(conversion)}: the DEM "
+        f"({_datum_words(dem)}) is probably in another vertical reference than the flight, or the flight's absolute heights are off (a "
         "drone without RTK measures them barometrically, often tens of metres off; its heights above the take-off "
         "point are good). Use a DEM made from this flight (e.g. OpenDroneMap's DSM, in the frames' own heights), or "
         f"refine the poses.{_hint(miss)}", source=dem.source)

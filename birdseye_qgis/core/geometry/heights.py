@@ -115,7 +115,8 @@ EGM96_REFERENCE = VerticalReference(GEOID, "EGM96")
 #: heights minus a flight height the user gave; a ground height the user gave; the median surveyed height of
 #: control points or geotags). None: no ground.
 ALTIMETER, TIE_POINTS, DEM_GROUND = "altimeter", "tie_points", "dem"
-TAKEOFF, FLIGHT_HEIGHT, GIVEN, CONTROL_POINTS, GEOTAGS = "takeoff", "flight_height", "given", "control_points", "geotags"
+TAKEOFF, FLIGHT_HEIGHT, GIVEN = "takeoff", "flight_height", "given"
+CONTROL_POINTS, GEOTAGS = "control_points", "geotags"
 NO_GROUND = ""
 UNDER_FRAME_SOURCES = (ALTIMETER, TIE_POINTS, DEM_GROUND)
 SITE_LEVEL_SOURCES = (TAKEOFF, FLIGHT_HEIGHT, GIVEN, CONTROL_POINTS, GEOTAGS)
@@ -191,20 +192,19 @@ def _geoid_transformer(geoid: str):
     usable = [t for t in group.transformers if "ballpark" not in (t.description or "").lower()]
     if not group.best_available or not usable:
         raise GeoidGridMissing(
-            f"converting between ellipsoidal and {geoid} heights needs PROJ's {geoid} geoid grid ({' or '.join(grids)}), "
-            "which is not installed. Install it (Debian/Ubuntu: the package proj-data; OSGeo4W: proj-data; or copy "
-            f"https://cdn.proj.org/{grids[0]} into PROJ's user folder, {_proj_user_folder()}), or give the geoid "
-            "undulation N at the site (GEOID_UNDULATION_M, ellipsoidal = MSL + N)", field="GEOID_UNDULATION_M")
+            f"converting between ellipsoidal and {geoid} heights needs PROJ's {geoid} geoid grid "
+            f"({' or '.join(grids)}), which is not installed. Install it (Debian/Ubuntu: the package proj-data; "
+            f"OSGeo4W: proj-data; or copy https://cdn.proj.org/{grids[0]} into PROJ's user folder, "
+            f"{_proj_user_folder()}), or give the geoid undulation N at the site (GEOID_UNDULATION_M, ellipsoidal = "
+            "MSL + N)", field="GEOID_UNDULATION_M")
     return usable[0]
 
 
+@on_python_thread
 def _proj_user_folder() -> str:
-    try:
-        from pyproj.datadir import get_user_data_dir
+    from pyproj.datadir import get_user_data_dir  # pyproj ≥ 3.0, older than any QGIS 3.22 ships
 
-        return get_user_data_dir()
-    except Exception:  # an old pyproj without it: the message names the folder in words
-        return "the folder PROJ_DATA names"
+    return get_user_data_dir()
 
 
 @on_python_thread

@@ -67,14 +67,8 @@ import numpy as np
 
 from ..errors import InputError, check_cancel
 from ..geometry.camera import NADIR_ROTATION, CameraModel, write_kalibr_yaml
-from ..geometry.geodesy import (
-    LocalFrame,
-    ensure_proj_data,
-    meridian_convergence_deg,
-    on_python_thread,
-    proj_version,
-    utm_epsg,
-)
+from ..geometry.geodesy import LocalFrame, meridian_convergence_deg, proj_version, utm_epsg
+from ..geometry.heights import geoid_undulation
 from ..geometry.poses import FrameGeometry, FramePoses
 from ..geometry.projection import footprints
 from ..geometry.rigid import RigidTransform
@@ -273,20 +267,6 @@ def deployed_camera(width: int = 1920, height: int = 1200) -> CameraModel:
                        source="simulated")
 
 
-@on_python_thread
-def geoid_undulation(lat: float, lon: float) -> float:
-    """EGM96 geoid height N (m) at a site, from PROJ's grid (Debian's proj-data ships it)."""
-    ensure_proj_data()
-    import pyproj
-
-    transformer = pyproj.Transformer.from_crs("EPSG:4979", "EPSG:4326+5773", always_xy=True)
-    _, _, h_msl = transformer.transform(float(lon), float(lat), 0.0)
-    if not math.isfinite(h_msl) or h_msl == 0.0:
-        raise InputError("the EGM96 geoid grid (egm96_15.gtx) is not installed with PROJ; "
-                         "set GEOID_UNDULATION_M", field="GEOID_UNDULATION_M")
-    return -float(h_msl)
-
-
 @dataclass
 class CampaignResult:
     folder: Path
@@ -308,7 +288,7 @@ def simulate_campaign(config: CampaignConfig, output_folder, progress: Callable[
     seeds = np.random.SeedSequence(int(cfg.seed)).spawn(10)
     rng_flight, rng_pose, rng_radalt, rng_geotag, rng_photo, rng_time = (
         np.random.default_rng(s) for s in (seeds[1], seeds[2], seeds[3], seeds[4], seeds[5], seeds[6]))
-    undulation = (geoid_undulation(cfg.site_lat, cfg.site_lon) if cfg.geoid_undulation_m is None
+    undulation = (float(geoid_undulation(cfg.site_lat, cfg.site_lon)) if cfg.geoid_undulation_m is None
                   else float(cfg.geoid_undulation_m))
 
     dji = cfg.platform == "dji"

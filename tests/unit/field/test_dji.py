@@ -193,16 +193,25 @@ def test_flags_and_fallbacks(tmp_path):
 
 
 def test_images_that_cannot_be_placed_are_listed(tmp_path):
+    """What cannot be placed at all (no GPS, not a JPEG) is listed; an image whose height above the ground is
+    unknown (no relative altitude, flight height or DEM) is still imported, flagged, without a footprint."""
     write_jpeg(tmp_path / "DJI_0001.JPG", xmp=RTK_TAGS)
     write_jpeg(tmp_path / "phone.jpg", f35=26)                       # no DJI tags, no height above ground
+    write_jpeg(tmp_path / "indoors.jpg", f35=26, gps=None)           # no GPS fix
     (tmp_path / "broken.jpg").write_bytes(b"not a jpeg at all")
     (tmp_path / "notes.txt").write_text("ignored")
     result = import_dji_images(tmp_path)
-    assert result.frames.frame_id.tolist() == [0]
+    assert result.frames.frame_id.tolist() == [0, 3]
+    phone = 1
+    assert "no_ground_height" in result.frames.flags[phone] and math.isnan(result.frames.ground_h[phone])
+    assert result.frames.ground_source == ["takeoff", ""] and result.footprints.rings[phone] is None
+    assert result.report.counts["no_ground_height"] == 1
+    assert any("frame(s) flagged no_ground_height" in n and "Refine frame poses" in n for n in result.report.notes)
     reasons = {Path(e.source).name: str(e) for e in result.report.unplaced}
-    assert "no height above the ground" in reasons["phone.jpg"] and "not a JPEG" in reasons["broken.jpg"]
-    assert "2 of 3 image(s) cannot be placed" in result.report.errors[0]
+    assert "no GPS position" in reasons["indoors.jpg"] and "not a JPEG" in reasons["broken.jpg"]
+    assert "2 of 4 image(s) cannot be placed" in result.report.errors[0]
     (tmp_path / "DJI_0001.JPG").unlink()
+    (tmp_path / "phone.jpg").unlink()
     with pytest.raises(InputError, match="none of its 2 JPEG image"):
         import_dji_images(tmp_path)
     empty = tmp_path / "empty"

@@ -23,6 +23,7 @@ from birdseye.birdseye_qgis.core.field.drone_images import (
 )
 from birdseye.birdseye_qgis.core.field.frames import frame_records
 from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame
+from birdseye.birdseye_qgis.core.geometry.heights import EGM96_REFERENCE
 from birdseye.birdseye_qgis.core.geometry.rotations import euler_zyx_to_rotmat
 
 DATA = Path(__file__).resolve().parents[2] / "data"
@@ -164,12 +165,20 @@ def test_exif_only_frames_are_placed_like_the_dji_import(tmp_path, dji_reference
     assert meta.xmp == {} and meta.xmp_text == ""                       # the XMP is gone
     assert (meta.make, meta.model, meta.focal_mm, meta.focal_35mm, meta.focal_plane_px_per_mm) == (
         "DJI", "FC300S", 3.61, 20.0, None)                               # what the EXIF holds
-    with pytest.raises(InputError, match="none of its 6 JPEG.*FLIGHT_HEIGHT_M"):
-        import_drone_images(folder)
+    # Without a flight height or a DEM the frames are imported all the same, their ground unknown: flagged,
+    # without a footprint, and the report says what gives them one.
+    unknown = import_drone_images(folder)
+    assert len(unknown.frames) == 6 and unknown.report.unplaced == []
+    assert np.all(np.isnan(unknown.frames.ground_h)) and unknown.frames.ground_source == [""] * 6
+    assert all(ring is None for ring in unknown.footprints.rings)
+    assert all("no_ground_height" in f for f in unknown.frames.flags)
+    assert unknown.frames.reference == EGM96_REFERENCE
+    assert any("6 frame(s) flagged no_ground_height" in n and "FLIGHT_HEIGHT_M" in n for n in unknown.report.notes)
 
     result = import_drone_images(folder, flight_height_m=40.0)
     frames, ref = result.frames, dji_reference.frames
     assert len(frames) == 6 and result.report.unplaced == []
+    assert frames.ground_source == ["flight_height"] * 6 and ref.ground_source == ["takeoff"] * 6
     cams = frames.cameras
     assert all(c is cams[0] for c in cams) and cams[0].source == "exif:FocalLengthIn35mmFilm DJI FC300S"
     assert cams[0].fx == pytest.approx(20.0 / 36.0 * 400) and cams[0].dist == (0.0,) * 5
@@ -201,7 +210,7 @@ def test_exif_only_frames_over_a_dem(tmp_path, dji_reference):
     lat, lon = float(np.mean(dji_reference.frames.lat)), float(np.mean(dji_reference.frames.lon))
     dem = synthetic_terrain(lat, lon, "plane", base_height_m=150.0, size_m=600.0, cell_m=2.0, vertical_datum="msl")
     result = import_drone_images(folder, dem=dem)
-    assert all("ground_from_dem" in f for f in result.frames.flags)
+    assert all("ground_from_dem" in f for f in result.frames.flags) and result.frames.ground_source == ["dem"] * 6
     np.testing.assert_allclose(result.frames.ground_h, 150.0, atol=0.01)
     np.testing.assert_allclose(result.footprints.depth_m, result.frames.height - 150.0, atol=0.01)
 

@@ -1,5 +1,6 @@
 """DEM ground model: ray casting against closed forms, round trips, misses, holes, ridges, datum checks."""
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -14,6 +15,7 @@ from birdseye.birdseye_qgis.core.geometry.dem import (
     DemRaster,
     Heightfield,
     check_vertical_datum,
+    dem_tolerance_m,
     exceeds_flat_envelope,
     flat_envelope_warning,
     frame_terrain_slope,
@@ -21,6 +23,13 @@ from birdseye.birdseye_qgis.core.geometry.dem import (
     intersect_heightfield,
 )
 from birdseye.birdseye_qgis.core.geometry.ground import LevelPlaneGround
+from birdseye.birdseye_qgis.core.geometry.heights import (
+    EGM96_REFERENCE,
+    ELLIPSOIDAL_REFERENCE,
+    MSL_REFERENCE,
+    UNKNOWN_REFERENCE,
+    geoid_undulation,
+)
 from birdseye.birdseye_qgis.core.geometry.poses import FrameGeometry, FramePoses
 from birdseye.birdseye_qgis.core.geometry.projection import footprints, pixel_to_ground, project_pairs
 from birdseye.birdseye_qgis.core.geometry.rotations import euler_zyx_to_rotmat, rotmat_to_quat
@@ -380,43 +389,82 @@ def flat_dem(datum="ellipsoidal", height=400.0, undulation=None, lat=SITE[0], lo
                              vertical_datum=datum, geoid_undulation_m=undulation)
 
 
-def poses_over(ground_h, lat=SITE[0], lon=SITE[1]):
-    geom = make_geometry(make_camera(), [0.0, 20.0, -30.0], [0.0, 10.0, 25.0], 15.0, ground_h=ground_h,
+def poses_over(ground_h, lat=SITE[0], lon=SITE[1], reference=ELLIPSOIDAL_REFERENCE, source="altimeter", up=15.0):
+    """Three frames ``up`` m above the site's height (400 m + ``up``), their ground at ``ground_h`` in
+    ``reference``, measured as ``source`` says."""
+    geom = make_geometry(make_camera(), [0.0, 20.0, -30.0], [0.0, 10.0, 25.0], up, ground_h=ground_h,
                          site=(lat, lon, 400.0))
-    return geom.poses
+    return replace(geom.poses, reference=reference, ground_source=[source] * 3)
 
 
 def test_vertical_datum_configuration_errors_name_the_references():
-    with pytest.raises(InputError, match=r"mean sea level.*ellipsoidal.*geoid undulation"):
-        check_vertical_datum(flat_dem("msl", 370.0), "ellipsoidal")
-    with pytest.raises(InputError, match=r"not declared.*ellipsoidal \(WGS84\) or above mean sea level"):
-        check_vertical_datum(flat_dem("unknown"), "ellipsoidal", poses_over(np.nan))
-    with pytest.raises(InputError, match="not one of ellipsoidal, msl"):
-        check_vertical_datum(flat_dem(), "WGS84")
+    with pytest.raises(InputError, match=r"mean sea level with no geoid named.*GEOID_UNDULATION_M.*EGM96 puts it"):
+        check_vertical_datum(flat_dem("msl", 370.0), poses_over(400.0))
+    with pytest.raises(InputError, match=r"DEM's vertical reference is not stated.*no ground heights"):
+        check_vertical_datum(flat_dem("unknown"), poses_over(np.nan))
+    with pytest.raises(InputError, match=r"flight's vertical reference is not stated"):
+        check_vertical_datum(flat_dem(), poses_over(np.nan, reference=UNKNOWN_REFERENCE))
     with pytest.raises(InputError, match="vertical datum 'egm96'"):
         DemRaster(np.zeros((3, 3)), (0, 1, 0, -1), 32756, "egm96")
-    # Converting references with the undulation, both ways (ellipsoidal = MSL + N).
-    assert check_vertical_datum(flat_dem("msl", 370.0, undulation=30.0), "ellipsoidal", poses_over(400.0)) == 30.0
-    assert check_vertical_datum(flat_dem("ellipsoidal", 400.0, undulation=30.0), "msl", poses_over(370.0)) == -30.0
-    assert check_vertical_datum(flat_dem("unknown"), "ellipsoidal", poses_over(401.5)) == 0.0
+    # Converting references with the undulation given, both ways (ellipsoidal = MSL + N).
+    assert check_vertical_datum(flat_dem("msl", 370.0, undulation=30.0), poses_over(400.0)).offset_m == 30.0
+    assert check_vertical_datum(flat_dem("ellipsoidal", 400.0, undulation=30.0),
+                                poses_over(370.0, reference=MSL_REFERENCE)).offset_m == -30.0
+    # Unknown on one side: taken as the other's, confirmed by the ground (within ±0.45 m at 15 m).
+    assert check_vertical_datum(flat_dem("unknown"), poses_over(400.3)).offset_m == 0.0
+
+
+def test_like_is_compared_with_like_whatever_the_frames_heights_are_measured_from():
+    """DJI frames (EGM96 above sea level over a take-off point) against a DEM at their take-off ground,
+    given above sea level or as ellipsoidal heights: accepted either way, the DEM shifted into the frames'
+    heights by N — as given, else PROJ's EGM96 grid at the site."""
+    n_site = float(geoid_undulation(SITE[0], SITE[1]))
+    dji = poses_over(370.0, reference=EGM96_REFERENCE, source="takeoff")
+    as_msl = check_vertical_datum(flat_dem("msl", 370.0), dji)
+    assert as_msl.offset_m == 0.0 and "same mean sea level" in as_msl.conversion and as_msl.takeoff_miss_m == 0.0
+    assert check_vertical_datum(flat_dem("msl", 370.0, undulation=-28.7), dji).offset_m == 0.0
+    given = check_vertical_datum(flat_dem("ellipsoidal", 370.0 - 28.7, undulation=-28.7), dji)
+    assert given.offset_m == pytest.approx(28.7) and "N = -28.70 m as given" in given.conversion
+    from_grid = check_vertical_datum(flat_dem("ellipsoidal", 370.0 + n_site), dji)
+    # N at the frames' median position, 25 m from the site: within a millimetre of N there.
+    assert from_grid.offset_m == pytest.approx(-n_site, abs=1e-3) and "EGM96 grid" in from_grid.conversion
+    assert "take-off height is one the terrain around has" in from_grid.describe()
+    # Pose-log frames (ellipsoidal, altimeter) against the same DEM above sea level with N.
+    rtk = poses_over(370.0 + n_site)
+    assert check_vertical_datum(flat_dem("msl", 370.0, undulation=n_site), rtk).measured_m == pytest.approx(0.0)
+
+
+def test_the_tolerance_follows_the_height_above_ground_and_the_offset_is_reported():
+    """A few per cent of the flight's height above its ground, at least 0.2 m: a DEM 1 m off at 10 m above
+    ground is refused, at 40 m it is used and the offset said; what is within is measured either way."""
+    assert dem_tolerance_m(10.0) == pytest.approx(0.3) and dem_tolerance_m(40.0) == pytest.approx(1.2)
+    assert dem_tolerance_m(3.0) == 0.2 and dem_tolerance_m(float("nan")) == 0.2
+    low = poses_over(400.0, up=10.0)
+    with pytest.raises(InputError, match=r"\+1\.00 m off the ground measured.*±0\.30 m tolerance at 10\.0 m"):
+        check_vertical_datum(flat_dem("ellipsoidal", 401.0), low)
+    near = check_vertical_datum(flat_dem("ellipsoidal", 400.25), low)
+    assert near.measured_m == pytest.approx(0.25) and "+0.25 m from their measured ground" in near.describe()
+    high = check_vertical_datum(flat_dem("ellipsoidal", 401.0), poses_over(400.0, up=40.0))
+    assert high.measured_m == pytest.approx(1.0) and high.tolerance_m == pytest.approx(1.2)
+    assert "tolerance ±1.20 m at 40.0 m above ground" in high.describe()
 
 
 def test_a_dem_in_another_vertical_reference_is_caught_against_the_altimeter():
     # Declared ellipsoidal but really MSL: 38 m below the altimeter's ground under every frame.
     with pytest.raises(InputError) as err:
-        check_vertical_datum(flat_dem("ellipsoidal", 362.0), "ellipsoidal", poses_over([400.0, 400.5, 399.6]))
+        check_vertical_datum(flat_dem("ellipsoidal", 362.0), poses_over([400.0, 400.5, 399.6]))
     msg = str(err.value)
     assert "median" in msg and "-38.00 m" in msg and "-38.50" in msg and "-37.60" in msg
-    assert "5 m tolerance" in msg and "geoid undulation" in msg
+    assert "±0.45 m tolerance at 15.0 m above ground" in msg and "geoid undulation" in msg
     # A wrong undulation is caught the same way, with the configured tolerance.
-    with pytest.raises(InputError, match=r"\+8\.00 m.*2 m tolerance"):
-        check_vertical_datum(flat_dem("msl", 370.0, undulation=38.0), "ellipsoidal", poses_over(400.0), 2.0)
+    with pytest.raises(InputError, match=r"\+8\.00 m.*±2\.00 m tolerance"):
+        check_vertical_datum(flat_dem("msl", 370.0, undulation=38.0), poses_over(400.0), 2.0)
     # Hundreds of metres: not a datum, a unit or no-data problem.
     with pytest.raises(InputError, match="not a geoid undulation"):
-        check_vertical_datum(flat_dem("ellipsoidal", 1312.0), "ellipsoidal", poses_over(400.0))
+        check_vertical_datum(flat_dem("ellipsoidal", 1312.0), poses_over(400.0))
     # A DEM somewhere else (or in the wrong CRS) covers none of the frames.
     with pytest.raises(InputError, match="none of the 3 frames.*CRS"):
-        check_vertical_datum(flat_dem(lat=-27.0), "ellipsoidal", poses_over(400.0))
+        check_vertical_datum(flat_dem(lat=-27.0), poses_over(400.0))
     # Through the ground model's constructor too.
     geom = make_geometry(make_camera(), 0.0, 0.0, 15.0, ground_h=400.0)
     with pytest.raises(InputError, match="another vertical reference"):
@@ -436,45 +484,58 @@ def field_below_a_knoll(knoll_east_m, field=387.0, knoll=400.0, size_m=200.0, ce
 
 def test_take_off_height_passes_with_honest_relief_and_fails_with_a_datum_mix_up():
     # Frames over a field 13 m below the knoll the drone took off from: their ground is the take-off
-    # height (400 m). The altimeter rule refuses that relief; the take-off rule accepts it.
+    # height (400 m). Taken as a ground measured under the frames it would be refused; as a take-off it passes.
     dem = field_below_a_knoll(80.0)
     with pytest.raises(InputError, match="another vertical reference"):
-        check_vertical_datum(dem, "ellipsoidal", poses_over(400.0))
-    assert check_vertical_datum(dem, "ellipsoidal", poses_over(400.0), ground_reference="takeoff") == 0.0
+        check_vertical_datum(dem, poses_over(400.0))
+    assert check_vertical_datum(dem, poses_over(400.0, source="takeoff")).takeoff_miss_m == 0.0
     # The same terrain in MSL heights declared ellipsoidal (N = 38 m): the take-off height lies 38 m above
     # the highest terrain anywhere near the flight.
     wrong = field_below_a_knoll(80.0, field=349.0, knoll=362.0, vertical_datum="ellipsoidal")
     with pytest.raises(InputError) as err:
-        check_vertical_datum(wrong, "ellipsoidal", poses_over(400.0), ground_reference="takeoff")
+        check_vertical_datum(wrong, poses_over(400.0, source="takeoff"))
     msg = str(err.value)
     assert "take-off height (400.00 m" in msg and "38.00 m above the highest" in msg
-    assert "(349.00 … 362.00 m" in msg and "5 m tolerance" in msg and "geoid undulation" in msg
+    assert "(349.00 … 362.00 m" in msg and "±0.45 m tolerance" in msg and "geoid undulation" in msg
+    assert "barometrically" in msg
     # Declared correctly, with its undulation, it passes and gives the offset.
     msl = field_below_a_knoll(80.0, field=349.0, knoll=362.0, vertical_datum="msl", geoid_undulation_m=38.0)
-    assert check_vertical_datum(msl, "ellipsoidal", poses_over(400.0), ground_reference="takeoff") == 38.0
+    assert check_vertical_datum(msl, poses_over(400.0, source="takeoff")).offset_m == 38.0
     # Below the lowest terrain: a take-off 20 m under the field.
     with pytest.raises(InputError, match="20.00 m below the lowest"):
-        check_vertical_datum(dem, "ellipsoidal", poses_over(367.0), ground_reference="takeoff")
+        check_vertical_datum(dem, poses_over(367.0, source="takeoff"))
     with pytest.raises(InputError, match="none of the 3 frames"):
-        check_vertical_datum(dem, "ellipsoidal", poses_over(400.0, lat=-27.0), ground_reference="takeoff")
-    with pytest.raises(ValueError, match="ground_reference"):
-        check_vertical_datum(dem, "ellipsoidal", poses_over(400.0), ground_reference="radar")
+        check_vertical_datum(dem, poses_over(400.0, lat=-27.0, source="takeoff"))
+    # A flight height the user gave stands for a take-off ground too, and says so.
+    with pytest.raises(InputError, match=r"camera height − flight height\) \(367\.00 m"):
+        check_vertical_datum(dem, poses_over(367.0, source="flight_height"))
 
 
 def test_take_off_check_judges_the_flights_median_within_its_reach():
     dem = field_below_a_knoll(80.0)
-    # One frame with a wild height does not sink the flight; the flight's median decides.
-    assert check_vertical_datum(dem, "ellipsoidal", poses_over([400.0, 400.2, 470.0]),
-                                ground_reference="takeoff") == 0.0
+    # One frame with a wild height does not sink the flight; the flight's median (0.2 m above the knoll, within
+    # the tolerance) decides, and how far it lies above the terrain is reported.
+    check = check_vertical_datum(dem, poses_over([400.0, 400.2, 470.0], source="takeoff"))
+    assert check.takeoff_miss_m == pytest.approx(0.2) and "lies 0.20 m above the terrain around" in check.describe()
     with pytest.raises(InputError, match=r"take-off height \(470\.00 m, the median over 3 frames"):
-        check_vertical_datum(dem, "ellipsoidal", poses_over([470.0, 470.0, 400.0]), ground_reference="takeoff")
+        check_vertical_datum(dem, poses_over([470.0, 470.0, 400.0], source="takeoff"))
     # The take-off point counts within TAKEOFF_REACH_M of the frames (the easternmost frame is at 20 m),
     # not beyond.
     near = field_below_a_knoll(20.0 + TAKEOFF_REACH_M - 20.0, size_m=1400.0, cell_m=5.0)
     far = field_below_a_knoll(20.0 + TAKEOFF_REACH_M + 20.0, size_m=1400.0, cell_m=5.0)
-    assert check_vertical_datum(near, "ellipsoidal", poses_over(400.0), ground_reference="takeoff") == 0.0
+    assert check_vertical_datum(near, poses_over(400.0, source="takeoff")).takeoff_miss_m == 0.0
     with pytest.raises(InputError, match="13.00 m above the highest"):
-        check_vertical_datum(far, "ellipsoidal", poses_over(400.0), ground_reference="takeoff")
+        check_vertical_datum(far, poses_over(400.0, source="takeoff"))
+
+
+def test_frames_without_a_ground_are_not_checked_and_a_flight_mixes_sources_frame_by_frame():
+    """Each frame is checked by its own ground source: refined frames (tie points, under the frame) beside
+    unregistered ones (their take-off ground); frames with no ground take no part."""
+    dem = field_below_a_knoll(80.0)
+    mixed = replace(poses_over([387.1, 400.0, np.nan]), ground_source=["tie_points", "takeoff", ""])
+    check = check_vertical_datum(dem, mixed)
+    assert (check.n_under, check.n_site) == (1, 1) and check.measured_m == pytest.approx(-0.1)
+    assert check.takeoff_miss_m == 0.0
 
 
 def test_a_flight_level_offset_is_not_checked_again_per_geometry():

@@ -54,7 +54,6 @@ import numpy as np
 
 from ...errors import InputError
 from ...geometry.camera import CameraModel
-from ...geometry.heights import MSL_REFERENCE, crs_vertical_reference
 from ...geometry.geodesy import (
     ProjectedCRS,
     ensure_proj_data,
@@ -62,6 +61,7 @@ from ...geometry.geodesy import (
     on_python_thread,
     rotation_ecef_enu,
 )
+from ...geometry.heights import MSL_REFERENCE, crs_vertical_reference
 from . import CameraSolution, SolvedCamera
 
 PARAMETERS_SUFFIX = "calibrated_camera_parameters.txt"
@@ -256,9 +256,9 @@ def read_pix4d(path, solution_crs: ProjectedCRS | None) -> CameraSolution:
         cameras.append(SolvedCamera(im.name, models[key], r, x))
     stated = crs_vertical_reference(solution_crs.crs)
     reference = stated or MSL_REFERENCE
+    how = "as the CRS states" if stated else "the CRS has no vertical part; a compound CRS states it, e.g. +5773 EGM96"
     notes = [f"Pix4D coordinates in {solution_crs.crs} (offset {offset[0]:.3f}, {offset[1]:.3f}, {offset[2]:.3f}); "
              f"focal lengths × {k:.6f}, the CRS's grid scale at the cameras (projection and height). Heights "
-             f"{reference.describe()} ({'as the CRS states' if stated else 'the CRS has no vertical part'}; give a compound CRS such as EPSG:<zone>+5773 for EGM96 heights "
-             "to state it): labels do not use the geotags' own heights. These files hold no tie points: give a "
-             "DEM or GROUND_HEIGHT_M (in the project's height reference) for footprints"]
+             f"{reference.describe()} ({how}): labels do not use the geotags' own heights. These files hold no tie "
+             "points: give a DEM or GROUND_HEIGHT_M (in the project's height reference) for footprints"]
     return CameraSolution("pix4d", source, cameras, [], None, notes, reference=reference)
