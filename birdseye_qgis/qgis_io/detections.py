@@ -29,6 +29,8 @@ DETECTION_FIELDS = [
     ("dem_source", "string", "the DEM's file (ground = dem; empty otherwise)"),
     ("dem_datum", "string", "what the DEM's heights are measured from: ellipsoidal, msl or unknown"),
     ("dem_n_m", "double", "geoid undulation N given with the DEM (m; ellipsoidal = MSL + N), empty when none"),
+    ("height_ref", "string", "what Z, the ground point's height, is measured from: the frames' height_ref "
+                             "(ellipsoidal, EGM96, msl, unknown)"),
 ]
 GROUND_FIELDS = ("ground", "dem_source", "dem_datum", "dem_n_m")
 CLUSTER_FIELDS = [

@@ -8,6 +8,7 @@ and records for the core functions. Nothing here computes geometry.
 from __future__ import annotations
 
 import functools
+import json
 import tempfile
 from pathlib import Path
 
@@ -40,13 +41,14 @@ from ..__about__ import STYLE_DIR, tr
 from ..core.errors import InputError
 from ..core.field.frame_records import (
     CAMERA_FIELD,
-    FRAME_FIELD_NAMES,
     camera_cut_at,
     camera_part_fields,
     join_camera,
     split_cameras,
 )
+from ..core.field.frames import FRAME_LAYER_FIELDS
 from ..core.field.geotags import UNLABELLED, Geotags, geotag_ids
+from ..core.geometry.camera import CalibrationError, CameraModel
 from ..core.geometry.geodesy import ProjectedCRS, utm_epsg
 from ..core.geometry.heights import metres_per_unit
 from ..qgis_enums import (
@@ -320,17 +322,22 @@ _DBF_NAME_CHARS = 10
 
 
 def read_frame_layer(source, source_name: str | None = None) -> list[dict]:
-    """Records (dicts with the frame-layer field names) of a BirdsEye frame layer, in feature order,
-    for :func:`core.frame_records.poses_from_records`.
+    """Records (dicts with the :data:`FRAME_LAYER_FIELDS` names the layer has) of a BirdsEye frame layer, in
+    feature order, for :func:`core.frame_records.poses_from_records`, from any format QGIS saves to (§4.6).
 
-    A camera model split over ``camera``, ``camera_2``, … (a format with short text fields, §4.6) is
-    joined; one the layer's format cut is refused, saying what to do. A field name a Shapefile cut to 10
-    characters (``sync_offse``) is read as the field it stands for.
+    Each value has its field's schema type (int, float, str) or is None: NULL and empty text are one value,
+    as a CSV cannot tell them apart. A value that is not of its type (a word in a number field) is refused,
+    naming row and field. The camera model is text spelled as :func:`_camera_json` spells it, whatever the
+    format did to it, so frames of one camera group together and compare equal in every format. A camera
+    split over ``camera``, ``camera_2``, … (a format with short text fields) is joined; one the layer's
+    format cut is refused, saying what to do. A field name a Shapefile cut to 10 characters
+    (``sync_offse``) is read as the field it stands for.
     """
     name = source_name or (source.sourceName() if hasattr(source, "sourceName") else "frame layer")
     fields = source.fields()
     names = fields.names()
-    columns = {n: n if n in names else n[:_DBF_NAME_CHARS] for n in FRAME_FIELD_NAMES}
+    kinds = {n: kind for n, kind, _ in FRAME_LAYER_FIELDS if n != CAMERA_FIELD}
+    columns = {n: n if n in names else n[:_DBF_NAME_CHARS] for n in kinds}
     columns = {n: c for n, c in columns.items() if c in names}
     parts = [CAMERA_FIELD] + [f for f, _, _ in camera_part_fields(len(names)) if f in names] \
         if CAMERA_FIELD in names else []
@@ -338,22 +345,69 @@ def read_frame_layer(source, source_name: str | None = None) -> list[dict]:
     checked = set()
     records = []
     for row, feature in enumerate(source.getFeatures(), start=1):
-        rec = {n: _attribute(feature, c) for n, c in columns.items()}
-        if CAMERA_FIELD in rec:
-            texts = tuple(_attribute(feature, p) for p in parts)
-            rec[CAMERA_FIELD] = join_camera(texts)
+        rec = {n: _frame_value(feature[c], kinds[n], name, row, n) for n, c in columns.items()}
+        if parts:
+            texts = tuple(_frame_value(feature[p], "string", name, row, p) for p in parts)
             if texts not in checked:
                 _refuse_cut_camera(source, name, row, rec.get("frame_id"), texts, lengths)
                 checked.add(texts)
+            rec[CAMERA_FIELD] = _camera_json(join_camera(texts))
         records.append(rec)
     if not records:
         raise InputError("has no frames", source=name)
     return records
 
 
-def _attribute(feature, name: str):
-    v = feature[name]
-    return None if v is None or (hasattr(v, "isNull") and v.isNull()) else v
+def _frame_value(value, kind: str, source: str, row: int, field_name: str):
+    """A frame-layer attribute as its schema type ``kind`` ("int", "double", "string"); None for NULL or empty.
+
+    Formats hand values back in their own types: a CSV read through OGR every value as text and NULL as
+    empty text, the delimited-text provider a column of whole numbers as int, a Shapefile empty text as
+    NULL, GeoJSON a text that holds a JSON object (the camera) as that object: a dict, given back here
+    as JSON text.
+    """
+    if value is None or (hasattr(value, "isNull") and value.isNull()) or value == "":
+        return None
+    if kind == "string":
+        return json.dumps(value, separators=(",", ":")) if isinstance(value, (dict, list)) else str(value)
+    try:
+        number = float(value)
+    except (TypeError, ValueError):
+        raise InputError(f"{value!r} is not a number", source=source, row=row, field=field_name) from None
+    if kind == "double":
+        return number
+    if not number.is_integer():
+        raise InputError(f"{value!r} is not a whole number", source=source, row=row, field=field_name)
+    return int(number)
+
+
+@functools.lru_cache(maxsize=64)
+def _camera_json(text: str | None) -> str | None:
+    """The camera model ``text`` in one spelling: :meth:`CameraModel.to_json`'s, with every number in a list a
+    float and no negative zero; two texts of the same numbers give the same text. Frames are grouped, and
+    cameras compared, by this text (``geometry.poses.indices_by_camera``), and a format may keep a camera's
+    numbers but not their spelling: QGIS hands a GeoJSON camera back as a dict in which 0.0 and −0.0 are 0 and
+    the keys are sorted. Text that is no camera model is returned as it is, for :func:`poses_from_records` to
+    refuse with its row."""
+    if not text:
+        return text
+    try:
+        camera = CameraModel.from_json(text)
+    except CalibrationError:
+        return text
+    return json.dumps(_plain_numbers(camera.to_dict()), separators=(",", ":"))
+
+
+def _plain_numbers(value, in_list: bool = False):
+    """``value`` (a camera's dict) with −0.0 as 0.0 and the numbers in its lists as floats: every list in a
+    camera's JSON (``dist``, ``T_cam_imu``, ``t_imu_rad``) holds floats."""
+    if isinstance(value, dict):
+        return {k: _plain_numbers(v) for k, v in value.items()}
+    if isinstance(value, list):
+        return [_plain_numbers(v, True) for v in value]
+    if isinstance(value, float) or (in_list and isinstance(value, int) and not isinstance(value, bool)):
+        return float(value) + 0.0  # -0.0 + 0.0 is 0.0
+    return value
 
 
 def _refuse_cut_camera(source, name: str, row: int, frame_id, texts, lengths) -> None:

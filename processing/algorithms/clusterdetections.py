@@ -153,7 +153,8 @@ class ClusterDetections(ClusteringParametersMixin, DemParametersMixin, BirdsEyeA
         s = clustering.summary
         rings = cluster_hulls(xy, clustering.detection_cluster, n, HULL_BUFFER_M)
         rx, ry = to_layer_xy(local, rings.reshape(-1, 2), crs)
-        rx, ry = rx.reshape(n, -1), ry.reshape(n, -1)
+        # Every hull has the same number of vertices (reshape(0, -1) cannot infer them when no cluster formed).
+        rx, ry = np.reshape(rx, rings.shape[:2]), np.reshape(ry, rings.shape[:2])
         cx, cy = to_layer_xy(local, s.centroid, crs)
         records = ({"cluster_id": k, "centroid_x": float(cx[k]), "centroid_y": float(cy[k]),
                     "n_detections": int(s.n_detections[k]), "n_frames": int(s.n_frames[k]),

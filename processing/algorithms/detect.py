@@ -91,7 +91,13 @@ class Detect(DemParametersMixin, BirdsEyeAlgorithm):
         records = self.run_core(layers.read_frame_layer, source, self.tr(self.FRAMES))
         groups = self.run_core(poses_from_records, records, source.sourceName() or self.FRAMES)
         crs = source.sourceCrs()
-        to_crs = ProjectedCRS(layers.pyproj_crs(crs))
+        if crs.isValid():
+            to_crs = ProjectedCRS(layers.pyproj_crs(crs))
+        else:  # a frame layer saved as CSV and read back through OGR names no CRS: the site's UTM zone
+            to_crs, crs = layers.output_crs(None, np.concatenate([p.lat for p, _ in groups]),
+                                            np.concatenate([p.lon for p, _ in groups]))
+            feedback.pushWarning(self.tr("{FRAMES} has no CRS: the detections are written in {crs}, the UTM zone "
+                                         "of the site.").format(FRAMES=self.FRAMES, crs=crs.authid()))
 
         fields = layers.qgs_fields(DETECTION_FIELDS)
         sink, dest_id = self.parameterAsSink(parameters, self.OUTPUT, context, fields, WKB_POINT_Z, crs)
@@ -116,7 +122,7 @@ class Detect(DemParametersMixin, BirdsEyeAlgorithm):
         local = local_frame_around(groups)
         threshold = model.metadata.default_threshold if request.threshold is None else request.threshold
         # Every detection carries the ground it was placed on: scoring and the review stand on the same one.
-        placed_on = ground_attributes(self.ground_record(self.dem))
+        placed_on = {**ground_attributes(self.ground_record(self.dem)), "height_ref": groups[0][0].reference.text}
         ground = self.dem_ground(self.dem, [poses for poses, _ in groups], feedback)
         total = sum(len(p) for p, _ in groups)
         counts = dict(detections=0, processed=0, skipped=0, edge=0, no_ground=0)

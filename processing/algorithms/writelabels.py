@@ -265,10 +265,13 @@ class WriteLabels(ReviewParametersMixin, DemParametersMixin, BirdsEyeAlgorithm):
                                      value=len(tiles['missing_images']), value2=tiles['missing_images'][0]), False)
 
     def _write_copy(self, parameters, context, name, source, extra: QgsField, values, style):
-        """A copy of ``source`` with one more field; the user's input layer is never modified."""
-        fields = QgsFields(source.fields())
-        if fields.indexOf(extra.name()) >= 0:
-            fields.remove(fields.indexOf(extra.name()))
+        """A copy of ``source`` with one more field; the user's input layer is never modified. A JSON field (a
+        GeoJSON layer hands a frame's camera back as one) is copied as text, which every format can store."""
+        fields = QgsFields()
+        for field in source.fields():
+            if field.name() != extra.name():
+                fields.append(layers.qgs_field(field.name(), "string") if field.typeName().upper() == "JSON"
+                              else field)
         fields.append(extra)
         sink, dest_id = self.parameterAsSink(parameters, name, context, fields, source.wkbType(),
                                              source.sourceCrs())
@@ -279,7 +282,9 @@ class WriteLabels(ReviewParametersMixin, DemParametersMixin, BirdsEyeAlgorithm):
             out.setGeometry(feature.geometry())
             for field in source.fields():
                 if field.name() != extra.name():
-                    out[field.name()] = feature[field.name()]
+                    kept = feature[field.name()]
+                    out[field.name()] = json.dumps(kept, separators=(",", ":")) if isinstance(kept, (dict, list)) \
+                        else kept
             out[extra.name()] = int(value)
             sink.addFeature(out, QgsFeatureSink.Flag.FastInsert)
         layers.style_on_load(context, dest_id, style)

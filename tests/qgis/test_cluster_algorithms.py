@@ -95,7 +95,7 @@ def frame_layer(east=0.0, north=0.0, camera=None, images=None):
                   "lon": float(lon[k]), "height_m": float(h[k]), "qw": float(q[0]), "qx": float(q[1]),
                   "qy": float(q[2]), "qz": float(q[3]), "roll_deg": 0.0, "pitch_deg": 0.0, "yaw_deg": 0.0,
                   "ground_h_m": SITE.h0, "depth_m": 10.0, "rtk_status": 3, "sync_offset_s": 0.0, "gsd_cm": 1.0,
-                  "camera": cam.to_json(), "flags": ""}
+                  "height_ref": "ellipsoidal", "ground_src": "altimeter", "camera": cam.to_json(), "flags": ""}
         f = QgsFeature(layer.fields())
         f.setAttributes([values[n] for n, _, _ in FRAME_FIELDS])
         feats.append(f)

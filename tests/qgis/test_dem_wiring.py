@@ -4,7 +4,7 @@ from __future__ import annotations
 import json
 
 import pytest
-from qgis.core import QgsRasterLayer
+from qgis.core import QgsProcessingException, QgsRasterLayer
 from test_writelabels import write_geotiff
 
 from birdseye.birdseye_qgis.core.sim.campaign import CampaignConfig, simulate_campaign
@@ -27,17 +27,19 @@ def import_frames(folder, **extra):
         "CALIBRATION": str(folder / "calibration.yaml"), "OUTPUT": "TEMPORARY_OUTPUT", **extra})["OUTPUT"]
 
 
-def test_footprints_drape_on_a_sloped_dem_and_steep_frames_are_flagged(campaign, tmp_path):
-    site = json.loads((campaign / "truth" / "campaign.json").read_text())["site"]
-    dem = synthetic_terrain(site["lat"], site["lon"], kind="plane", slope_deg=20.0, aspect_deg=90.0,
-                            base_height_m=site["ground_height_m"], size_m=60.0, cell_m=0.5,
-                            vertical_datum="ellipsoidal")
-    layer = QgsRasterLayer(write_geotiff(dem, tmp_path / "slope.tif"), "slope")
-    level = {f["frame_id"]: f for f in import_frames(campaign).getFeatures()}
-    draped = {f["frame_id"]: f for f in import_frames(campaign, DEM=layer, DEM_VERTICAL_DATUM=0).getFeatures()}
+def test_footprints_drape_on_a_sloped_dem_and_steep_frames_are_flagged(birdseye_provider, tmp_path):
+    """A flight over a 20° slope (simulated, noise off; the altimeter measures the slope under each frame), imported
+    with the slope's DEM: every footprint follows the slope and is flagged steep; the level import claims none."""
+    from registry import simulated_terrain_campaign
+
+    sloped = simulated_terrain_campaign(tmp_path / "slope", {
+        "SEED": 5, "N_TARGETS": 3, "FIELD_WIDTH_M": 6.0, "FIELD_LENGTH_M": 5.0, "IMAGE_WIDTH": 320,
+        "IMAGE_HEIGHT": 200, "NOISE_OFF": True, "TERRAIN": 1, "SLOPE_DEG": 20.0, "SLOPE_ASPECT_DEG": 90.0})
+    level = {f["frame_id"]: f for f in import_frames(tmp_path / "slope").getFeatures()}
+    draped = {f["frame_id"]: f for f in sloped["frames"].getFeatures()}
     assert level.keys() == draped.keys()
     for fid, f in draped.items():
-        assert f["terrain_slope_deg"] == pytest.approx(20.0, abs=0.2)
+        assert f["terrain_slope_deg"] == pytest.approx(20.0, abs=0.3)
         assert "steep_terrain" in f["flags"] and "steep_terrain" not in (level[fid]["flags"] or "")
         zs = [v.z() for v in f.geometry().vertices()]
         assert max(zs) - min(zs) > 0.5  # the ring follows the slope; the level ring is flat
@@ -50,7 +52,8 @@ def test_footprints_drape_on_a_sloped_dem_and_steep_frames_are_flagged(campaign,
 
 def test_detect_back_projects_onto_the_dem(campaign, tmp_path):
     """On flat terrain a DEM at the true ground and the altimeter's level plane put detections at the
-    same place; on a DEM 1 m higher they move towards the nadir by the similar-triangle amount."""
+    same place; on a DEM 0.25 m higher (within the tolerance at 10 m above ground) they move up with it. A DEM
+    1 m off at 10 m is refused, naming the offset."""
     import processing
 
     site = json.loads((campaign / "truth" / "campaign.json").read_text())["site"]
@@ -67,12 +70,16 @@ def test_detect_back_projects_onto_the_dem(campaign, tmp_path):
 
     level = detections()
     assert level, "the demo model finds the simulated burrows"
-    for name, offset in (("same", 0.0), ("raised", 1.0)):
+    def dem_at(name, offset):
         dem = synthetic_terrain(site["lat"], site["lon"], kind="plane", slope_deg=0.0,
                                 base_height_m=site["ground_height_m"] + offset, size_m=60.0, cell_m=0.5,
                                 vertical_datum="ellipsoidal")
-        layer = QgsRasterLayer(write_geotiff(dem, tmp_path / f"{name}.tif"), name)
-        on_dem = detections(DEM=layer, DEM_VERTICAL_DATUM=0)
+        return QgsRasterLayer(write_geotiff(dem, tmp_path / f"{name}.tif"), name)
+
+    with pytest.raises(QgsProcessingException, match=r"\+1\.00 m off the ground measured.*±0\.30 m tolerance"):
+        detections(DEM=dem_at("metre", 1.0), DEM_VERTICAL_DATUM=0)
+    for name, offset in (("same", 0.0), ("raised", 0.25)):
+        on_dem = detections(DEM=dem_at(name, offset), DEM_VERTICAL_DATUM=0)
         assert on_dem.keys() == level.keys()
         for key, p in on_dem.items():
             q = level[key]

@@ -94,7 +94,8 @@ def scene(tmp_path_factory):
                "lon": lon[k], "height_m": h[k], "qw": q[k, 0], "qx": q[k, 1], "qy": q[k, 2], "qz": q[k, 3],
                "roll_deg": roll[k], "pitch_deg": pitch[k], "yaw_deg": yaw[k], "ground_h_m": 400.0,
                "depth_m": float(geom.depth_below()[k]), "rtk_status": 3, "sync_offset_s": 0.0,
-               "gsd_cm": float(geom.gsd_m()[k] * 100), "camera": cam.to_json(), "flags": ""}
+               "gsd_cm": float(geom.gsd_m()[k] * 100), "height_ref": "ellipsoidal", "ground_src": "altimeter",
+               "camera": cam.to_json(), "flags": ""}
         f = QgsFeature(layer.fields())
         f.setAttributes([v.item() if isinstance(v, np.generic) else v for v in (rec[n] for n, _, _ in FRAME_FIELDS)])
         x, y = utm.from_geodetic(lat[k], lon[k])

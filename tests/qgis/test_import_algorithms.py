@@ -255,7 +255,8 @@ def test_import_dji_images_brighton_beach(birdseye_provider, tmp_path):
 
 
 def test_import_drone_images_exif_only(birdseye_provider, tmp_path):
-    """The Brighton frames without their XMP (a drone writing only EXIF): placed with FLIGHT_HEIGHT_M."""
+    """The Brighton frames without their XMP (a drone writing only EXIF): without a flight height imported with
+    their ground unknown (flagged, no footprint); placed with FLIGHT_HEIGHT_M."""
     from qgis.core import QgsApplication
 
     alg = QgsApplication.processingRegistry().algorithmById("birdseye:importdjiimages")
@@ -264,8 +265,14 @@ def test_import_drone_images_exif_only(birdseye_provider, tmp_path):
     folder.mkdir()
     for path in sorted(BRIGHTON.glob("*.JPG")):
         strip_xmp(path, folder / path.name)
-    message = run_failing("importdjiimages", {"IMAGES": str(folder)})
-    assert "none of its 6 JPEG" in message and "FLIGHT_HEIGHT_M" in message
+    unknown = Recorder()
+    result = run("importdjiimages", {"IMAGES": str(folder)}, unknown)
+    assert result["FRAME_COUNT"] == 6 and result["UNPLACED_COUNT"] == 0
+    features = list(result["OUTPUT"].getFeatures())
+    assert all(f.geometry().isNull() and "no_ground_height" in f["flags"] and f["ground_src"] == "" and
+               f["height_ref"] == "EGM96" for f in features)
+    assert any("no_ground_height" in w and "FLIGHT_HEIGHT_M" in w and "Refine frame poses" in w
+               for w in unknown.warnings)
     feedback = Recorder()
     result = run("importdjiimages", {"IMAGES": str(folder), "FLIGHT_HEIGHT_M": 40.0}, feedback)
     assert result["FRAME_COUNT"] == 6 and result["UNPLACED_COUNT"] == 0

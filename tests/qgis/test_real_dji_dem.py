@@ -101,3 +101,39 @@ def test_a_dem_off_by_more_than_the_depth_allows_is_refused_naming_the_offset(br
     off = brighton["flat"]("off", brighton["takeoff"] + 3.0, "msl")
     with pytest.raises(QgsProcessingException, match=r"take-off height.*3\.00 m below the lowest.*tolerance"):
         labels(brighton, "off", DEM=off, DEM_VERTICAL_DATUM=1)
+
+
+DSM = BRIGHTON / "dsm_odm_50cm.tif"
+
+
+def test_opendronemaps_dsm_of_the_flight_is_accepted_and_gives_the_same_labels_both_ways(brighton):
+    """OpenDroneMap's surface model of the same flight (in the frames' own heights above sea level, ODM aligned
+    it to them; tests/data/brighton_beach/README.md): accepted — the take-off height, 158.51 m, is one the beach
+    has (156.2 … 168.6 m) — and the labels on it are the same whether the DSM is given above sea level or as
+    ellipsoidal heights (+ N, given or from PROJ's EGM96 grid). Geotags beyond the DSM get no label."""
+    from osgeo import gdal
+
+    base, n_site = brighton["base"], brighton["n_site"]
+    source = gdal.Open(str(DSM))
+    heights = source.GetRasterBand(1).ReadAsArray().astype(float)
+    nodata = heights == -9999.0
+    for name, n in (("dsm_n", -28.7), ("dsm_grid", n_site)):
+        ds = gdal.GetDriverByName("GTiff").CreateCopy(str(base / f"{name}.tif"), source)
+        ds.GetRasterBand(1).WriteArray(np.where(nodata, -9999.0, heights + n))
+        ds = None
+    log = []
+    as_msl = labels(brighton, "dsm_msl", DEM=QgsRasterLayer(str(DSM), "ODM DSM"), DEM_VERTICAL_DATUM=1)
+    given = labels(brighton, "dsm_ell_n", DEM=QgsRasterLayer(str(base / "dsm_n.tif"), "ODM DSM + N"),
+                   DEM_VERTICAL_DATUM=0, GEOID_UNDULATION_M=-28.7)
+    grid = labels(brighton, "dsm_ell_grid", DEM=QgsRasterLayer(str(base / "dsm_grid.tif"), "ODM DSM + N(EGM96)"),
+                  DEM_VERTICAL_DATUM=0)
+    level = labels(brighton, "level_for_dsm")
+    assert 30 <= len(as_msl) < len(level)
+    for other in (given, grid):
+        assert other.keys() == as_msl.keys()
+        # float32 heights: 0.03 mm at 160 m, a thousandth of a pixel here.
+        assert max(np.hypot(*(other[k] - as_msl[k])) for k in as_msl) < 0.01
+    moved = np.array([np.hypot(*(as_msl[k] - level[k])) for k in as_msl if k in level])
+    log.append(f"ODM DSM: {len(as_msl)} labels (level plane {len(level)}); moved from the level plane's by median "
+               f"{np.median(moved):.2f} px, max {moved.max():.2f} px (the beach's relief around the take-off height)")
+    print("\n".join(log))

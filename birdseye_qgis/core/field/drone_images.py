@@ -68,7 +68,7 @@ from .dji import (
     read_dji_metadata,
 )
 from .frames import Frames, compute_footprints, dem_ground_for
-from .import_report import FlightImport, ImportReport
+from .import_report import UNBOUNDED_NOTE, FlightImport, ImportReport
 from .pose_log import RTK_NONE
 
 #: Pix4D's camera frame (body FRD of a nadir camera, image top to the nose) → our gimbal frame: Ry(−90°).
@@ -311,7 +311,7 @@ def import_drone_images(folder, calibration: CameraModel | None = None, crs: Pro
             report.notes.append(f"{n} frame(s) flagged {flag}: {text}")
     n = sum("footprint_unbounded" in f for f in frames.flags)
     if n:
-        report.notes.append(f"{n} frame(s) look above the horizon and have no footprint (flag footprint_unbounded)")
+        report.notes.append(f"{n} frame(s) {UNBOUNDED_NOTE} (flag footprint_unbounded)")
     return FlightImport(frames, fp, [], report)
 
 

@@ -152,7 +152,7 @@ def compute_footprints(frames: Frames, crs: ProjectedCRS, per_edge: int = 4, blo
     grid convergence); ring points go local → WGS84 → ``crs``. ``ground`` builds another ground model
     from a :class:`FrameGeometry` (a DEM's ``DemGround.from_dem``); with it every frame is placed and
     the terrain slope under each footprint is measured. A frame without a ground height (level plane),
-    or whose border rays do not all reach the ground (a view above the horizon), gets no ring and the
+    or whose border rays do not all reach the ground (past the DEM, or above the horizon), gets no ring and the
     flag ``no_ground_height`` / ``footprint_unbounded`` (added to ``frames.flags``).
     """
     n = len(frames)

@@ -55,10 +55,15 @@ def apply_rtk_filter(frames: Frames, fixed_only: bool, report: ImportReport) -> 
     return frames
 
 
+#: What flag ``footprint_unbounded`` means, for import reports.
+UNBOUNDED_NOTE = ("see past the ground: some of their border's rays reach no DEM cell (the DEM does not cover their "
+                  "whole view) or look above the horizon; they are kept without a footprint")
+
+
 def report_ground(report: ImportReport, frames: Frames) -> None:
     for flag, text in (("no_ground_height", "have no ground height (no good altimeter reading nearby); "
                         "they are kept without a footprint"),
-                       ("footprint_unbounded", "look above the horizon; they are kept without a footprint"),
+                       ("footprint_unbounded", UNBOUNDED_NOTE),
                        ("steep_terrain", f"lie on terrain steeper than the level plane's {FLAT_ENVELOPE_DEG:g}° "
                                          "envelope; give the DEM to Write labels and Detect too")):
         n = sum(flag in f for f in frames.flags)

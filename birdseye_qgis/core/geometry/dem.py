@@ -313,7 +313,8 @@ def _hint(offset_m: float) -> str:
 def _no_frame_over_the_dem(dem, n_frames):
     x, y = dem.cell_centres()
     return InputError(
-        f"none of the {n_frames} frames with a ground height lies over the DEM "
+        f"none of the {n_frames} frames with a ground height lies over (or, for a take-off ground, within "
+        f"{TAKEOFF_REACH_M:g} m of) the DEM's terrain "
         f"(DEM extent x {x.min():.1f}…{x.max():.1f}, y {min(y):.1f}…{max(y):.1f} in {_crs_name(dem.crs)}): "
         "check the DEM's CRS and that it covers the flight", source=dem.source)
 
@@ -361,12 +362,13 @@ def _check_against_takeoff(dem, lat, lon, ground, sources, offset, target, toler
     """How far (m) the site-level ground lies outside the terrain around the frames; refused beyond the
     tolerance."""
     x, y = ProjectedCRS(dem.crs).from_geodetic(lat, lon)
-    if not np.any(np.isfinite(dem.sample(x, y))):
-        raise _no_frame_over_the_dem(dem, len(ground))
     cx, cy = dem.cell_centres()
     cols = (cx >= np.min(x) - TAKEOFF_REACH_M) & (cx <= np.max(x) + TAKEOFF_REACH_M)
     rows = (cy >= np.min(y) - TAKEOFF_REACH_M) & (cy <= np.max(y) + TAKEOFF_REACH_M)
     around = dem.heights[np.ix_(rows, cols)] + offset
+    # The terrain around, not only under the cameras: a DSM of the field may leave out the take-off point.
+    if not np.any(np.isfinite(around)):
+        raise _no_frame_over_the_dem(dem, len(ground))
     lowest, highest = float(np.nanmin(around)), float(np.nanmax(around))
     takeoff = float(np.median(ground))
     miss = takeoff - highest if takeoff > highest else takeoff - lowest if takeoff < lowest else 0.0

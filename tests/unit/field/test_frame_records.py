@@ -13,6 +13,7 @@ from birdseye.birdseye_qgis.core.field.frame_records import (
     split_cameras,
 )
 from birdseye.birdseye_qgis.core.geometry.camera import CameraModel
+from birdseye.birdseye_qgis.core.geometry.heights import EGM96_REFERENCE, ELLIPSOIDAL_REFERENCE
 from birdseye.birdseye_qgis.core.geometry.rotations import euler_zyx_to_rotmat, rotmat_to_quat
 
 CAM_A = CameraModel(1920, 1200, 4264.0, 4262.0, 958.0, 592.0)
@@ -77,3 +78,24 @@ def test_a_cut_camera_is_told_from_a_whole_or_a_broken_one():
     assert camera_cut_at([text[:100]], [0]) is None                   # no field length: no evidence of a cut
     assert camera_cut_at(["{not json"], [254]) is None                # broken, but not by the field
     assert camera_cut_at([None], [254]) is None and camera_cut_at([""], [254]) is None
+
+
+def test_every_frame_says_what_its_heights_are_measured_from():
+    """height_ref (one per layer) and ground_src (per frame) travel into the poses; a layer written before the
+    fields existed reads as it always did (ellipsoidal, the altimeter's ground); a mix of references, or a
+    reference nobody knows, is refused naming the row."""
+    dji = [record(i, CAM_A, height_ref="EGM96", ground_src="takeoff") for i in range(2)]
+    refined = dji + [record(2, CAM_A, height_ref="EGM96", ground_src="tie_points")]
+    poses, _ = poses_from_records(refined)[0]
+    assert poses.reference == EGM96_REFERENCE and poses.ground_source.tolist() == ["takeoff", "takeoff", "tie_points"]
+    old = [{k: v for k, v in record(i, CAM_A).items() if k not in ("height_ref", "ground_src")} for i in range(2)]
+    poses, _ = poses_from_records(old)[0]
+    assert poses.reference == ELLIPSOIDAL_REFERENCE and poses.ground_source.tolist() == ["altimeter"] * 2
+    mixed = dji + [record(2, CAM_B, height_ref="ellipsoidal", ground_src="altimeter")]
+    with pytest.raises(InputError, match=r"frames\.gpkg, field 'height_ref': mixes vertical references: above mean "
+                                         r"sea level \(EGM96 geoid\) \(rows 1, 2\); ellipsoidal \(WGS84\) \(rows 3\)"):
+        poses_from_records(mixed, source="frames.gpkg")
+    with pytest.raises(InputError, match=r"row 2, field 'height_ref': 'NAVD88' is not a vertical reference"):
+        poses_from_records([dji[0], record(1, CAM_A, height_ref="NAVD88")], source="frames.gpkg")
+    with pytest.raises(InputError, match=r"row 1, field 'ground_src': 'radar' is not a ground source"):
+        poses_from_records([record(0, CAM_A, height_ref="EGM96", ground_src="radar")], source="frames.gpkg")
