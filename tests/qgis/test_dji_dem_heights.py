@@ -191,3 +191,24 @@ def test_cluster_evaluate_and_the_review_stand_on_the_dem_with_the_frames_refere
     # The review reopens the recorded DEM (and the N recorded with the detections).
     inputs = read_review_inputs([layer], flight["frames"], flight["geotags"])
     assert inputs.ground_fallback == ""
+
+
+def test_the_sweep_and_screening_place_their_detections_on_the_dem_in_the_frames_reference(flight, tmp_path):
+    """The sweep and checkpoint screening detect again: with the DEM (ellipsoidal, N given) they convert it into
+    the DJI frames' heights as Detect does, and count every flown-over target in view."""
+    from birdseye.processing.algorithms.detect import DEFAULT_MODEL
+
+    dem = {"DEM": flight["dem"], "DEM_VERTICAL_DATUM": 0, "GEOID_UNDULATION_M": N}
+    swept = run("sweepoperatingpoints", {"CHECKPOINTS": [str(DEFAULT_MODEL)], "FRAMES": [flight["frames"]],
+                                         "GEOTAGS": flight["geotags"], "THRESHOLDS": "0.05", "EPS_M": "0.2",
+                                         "MIN_SAMPLES": "1", "EPS_PRED_M": "0.2", "OUTPUT_TABLE": str(tmp_path / "s.csv"),
+                                         "OUTPUT_JSON": None, "OUTPUT_PLOT": None, **dem})
+    (row,) = rows(swept["OUTPUT_TABLE"])
+    assert int(row["n_in_view"]) == DJI_SLOPE["N_TARGETS"] and int(row["n_recovered"]) >= 1
+    out = tmp_path / "screen.json"
+    run("screencheckpoints", {"CHECKPOINTS": [str(DEFAULT_MODEL)], "FRAMES": [flight["frames"]],
+                              "GEOTAGS": flight["geotags"], "BLOCK_FRAMES": 0, "MIN_SAMPLES": 1,
+                              "OUTPUT_TABLE": str(tmp_path / "screen.csv"), "OUTPUT_JSON": str(out),
+                              "OUTPUT_PLOT": None, **dem})
+    (screened,) = json.loads(out.read_text(encoding="utf-8"))["checkpoints"]
+    assert screened["n_in_view"] == DJI_SLOPE["N_TARGETS"]
