@@ -77,8 +77,7 @@ def main():
         print(f"refineposes: {refinement.n_registered}/{len(frames)} registered, mean reprojection "
               f"{np.mean(rms):.2f} px, {ours:.1f} s = {60 * len(frames) / ours:.1f} images/min ("
               + ", ".join(f"{k} {v:.1f} s" for k, v in refinement.seconds.items()) + f"), peak {peak_mb:.0f} MB RSS")
-        if refinement.focal is not None:
-            fix = refinement.focal
+        for fix in refinement.focal:
             print(f"nominal camera: focal {fix.nominal_px:.1f} px nominal, {fix.adjusted_px:.1f} px from the bundle "
                   f"adjustment, {fix.final_px:.1f} px " + ("fixed by the flying height" if fix.determined else
                                                           "kept nominal (the block cannot tell)")

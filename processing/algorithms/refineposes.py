@@ -16,20 +16,23 @@ from qgis.core import (
 )
 from qgis.PyQt.QtCore import QT_TRANSLATE_NOOP
 
-from ...birdseye_qgis.core.field.frames import compute_footprints, frames_from_records
+from ...birdseye_qgis.core.field.frames import compute_footprints, dem_ground_for, frames_from_records
 from ...birdseye_qgis.core.field.import_report import FlightImport, ImportReport
 from ...birdseye_qgis.core.field.refinement import (
     REFINE_FIELDS,
     RefineOptions,
+    ground_text,
     refine_frames,
     refinement_report_html,
+    terrain_grounds,
 )
 from ...birdseye_qgis.qgis_enums import NUMBER_INTEGER, SOURCE_VECTOR_POINT, SOURCE_VECTOR_POLYGON
 from ...birdseye_qgis.qgis_io import layers
+from ..parameters.dem import DemParametersMixin
 from .base import BirdsEyeAlgorithm
 
 
-class RefinePoses(BirdsEyeAlgorithm):
+class RefinePoses(DemParametersMixin, BirdsEyeAlgorithm):
     ALG_ID = "refineposes"
     DISPLAY_NAME = QT_TRANSLATE_NOOP("RefinePoses", "Refine frame poses (structure from motion)")
     GROUP = "field"
@@ -56,9 +59,10 @@ class RefinePoses(BirdsEyeAlgorithm):
             self.REFINE_INTRINSICS, self.tr("Refine focal length and distortion (only with relief, oblique views or "
                                             "ground control)"), defaultValue=False))
         self.addParameter(QgsProcessingParameterFeatureSource(
-            self.GEOTAGS, self.tr("Geotags with surveyed heights (optional: the ground that fixes the focal length "
-                                  "of a nominal camera; else the frames' ground heights)"),
+            self.GEOTAGS, self.tr("Geotags with surveyed heights (optional: the ground for a nominal camera's focal "
+                                  "length where frames have an RTK fix or no ground; else compared with theirs)"),
             [SOURCE_VECTOR_POINT], optional=True))
+        self.add_dem_parameters()
         self.addParameter(QgsProcessingParameterFeatureSink(
             self.OUTPUT, self.tr("Refined frames"), SOURCE_VECTOR_POLYGON))
         self.addParameter(QgsProcessingParameterFileDestination(
@@ -81,12 +85,26 @@ class RefinePoses(BirdsEyeAlgorithm):
         heights = None if geotag_source is None else self.run_core(
             layers.read_geotag_layer, geotag_source, context.transformContext()).height
         if heights is not None and np.isfinite(heights).any():
-            feedback.pushInfo(self.tr("{n} geotags with a surveyed height: the ground plane at {h:.2f} m").format(
-                n=int(np.isfinite(heights).sum()), h=float(np.nanmedian(heights))))
+            feedback.pushInfo(self.tr("{n} geotags with a surveyed height: the ground plane at {h:.2f} m "
+                                      "(ellipsoidal)").format(n=int(np.isfinite(heights).sum()),
+                                                              h=float(np.nanmedian(heights))))
+        undulation = (self.parameterAsDouble(parameters, self.GEOID_UNDULATION_M, context)
+                      if parameters.get(self.GEOID_UNDULATION_M) not in (None, "") else None)
+        dem = self.read_dem(parameters, context, source, feedback)
+        self.report_dem(feedback, dem)
+        terrain = None
+        if dem is not None:
+            terrain, check = self.run_core(terrain_grounds, frames, dem)
+            feedback.pushInfo(self.tr("DEM against the frames: {check}").format(check=check.describe()))
         progress, is_canceled = self.progress_callbacks(feedback, 0.0, 85.0)
         with tempfile.TemporaryDirectory(prefix="birdseye-sfm-") as workdir:
             refined, refinement, values = self.run_core(refine_frames, frames, workdir, options, progress, is_canceled,
-                                                        heights)
+                                                        heights, undulation, terrain)
+        for choice in refinement.grounds:
+            feedback.pushInfo(self.tr("Ground of the GNSS camera-to-ground distances: {text}").format(
+                text=ground_text(choice, frames)))
+            if choice.warning:
+                feedback.pushWarning(self.tr("Warning: {text}").format(text=choice.warning))
         feedback.pushInfo(self.tr("Registered {n} of {total} frames in {seconds:.0f} s ({rate:.1f} images per "
                                   "minute); intrinsics {intrinsics}").format(
                               n=refinement.n_registered, total=len(frames), seconds=sum(refinement.seconds.values()),
@@ -106,8 +124,10 @@ class RefinePoses(BirdsEyeAlgorithm):
                                              f"{Path(image).name}: {why}" for image, why in missing[:5])), False)
         chosen = self.run_core(layers.chosen_projected_crs, source.sourceCrs(), self.FRAMES)
         crs, qgs_crs = self.run_core(layers.output_crs, chosen, refined.lat, refined.lon)
-        fp = self.run_core(compute_footprints, refined, crs)
-        result = FlightImport(refined, fp, [], ImportReport(name))
+        report = ImportReport(name)
+        fp = self.run_core(compute_footprints, refined, crs, ground=self.run_core(dem_ground_for, refined, dem, report))
+        layers.report_to_feedback(feedback, report)
+        result = FlightImport(refined, fp, [], report)
         outputs = self.run_core(layers.write_frames, self, parameters, context, feedback, result, qgs_crs,
                                 extra_fields=REFINE_FIELDS, extra_values=values)
         outputs[self.REGISTERED_COUNT] = refinement.n_registered

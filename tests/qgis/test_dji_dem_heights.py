@@ -201,8 +201,9 @@ def test_the_sweep_and_screening_place_their_detections_on_the_dem_in_the_frames
     dem = {"DEM": flight["dem"], "DEM_VERTICAL_DATUM": 0, "GEOID_UNDULATION_M": N}
     swept = run("sweepoperatingpoints", {"CHECKPOINTS": [str(DEFAULT_MODEL)], "FRAMES": [flight["frames"]],
                                          "GEOTAGS": flight["geotags"], "THRESHOLDS": "0.05", "EPS_M": "0.2",
-                                         "MIN_SAMPLES": "1", "EPS_PRED_M": "0.2", "OUTPUT_TABLE": str(tmp_path / "s.csv"),
-                                         "OUTPUT_JSON": None, "OUTPUT_PLOT": None, **dem})
+                                         "MIN_SAMPLES": "1", "EPS_PRED_M": "0.2",
+                                         "OUTPUT_TABLE": str(tmp_path / "s.csv"), "OUTPUT_JSON": None,
+                                         "OUTPUT_PLOT": None, **dem})
     (row,) = rows(swept["OUTPUT_TABLE"])
     assert int(row["n_in_view"]) == DJI_SLOPE["N_TARGETS"] and int(row["n_recovered"]) >= 1
     out = tmp_path / "screen.json"

@@ -8,8 +8,9 @@ median ≤ 1 px, 95 % ≤ 3 px). Geotags are exact (RTK_SIGMA_M 0, fixed solutio
 poses move the labels.
 
 Real frames: the six Brighton Beach DJI Phantom 3 images (960 px copies in tests/data; no DewarpData, so
-the camera is only nominal): all registered, sub-pixel, the focal length fixed by the flying height (or
-by surveyed geotag heights), the attitude fields of the refined nadir frames not flipped.
+the camera is only nominal): all registered, sub-pixel, the focal length fixed by the flying height, the
+attitude fields of the refined nadir frames not flipped. The focal length against geotags' surveyed heights, in
+their own (ellipsoidal) reference: test_refine_geoid.py.
 """
 from __future__ import annotations
 
@@ -55,19 +56,6 @@ def test_refined_poses_bring_dji_labels_onto_the_rendered_holes(birdseye_provide
 BRIGHTON = Path(__file__).resolve().parents[1] / "data" / "brighton_beach_960"
 
 
-def flat_geotags(lat, lon, height):
-    from qgis.core import QgsFeature, QgsGeometry, QgsPoint, QgsVectorLayer
-
-    layer = QgsVectorLayer("PointZ?crs=EPSG:4326", "geotags", "memory")
-    features = []
-    for y, x in zip(lat, lon):
-        feature = QgsFeature(layer.fields())
-        feature.setGeometry(QgsGeometry(QgsPoint(float(x), float(y), float(height))))
-        features.append(feature)
-    layer.dataProvider().addFeatures(features)
-    return layer
-
-
 @pytest.mark.timeout(900)
 def test_real_dji_frames_with_a_nominal_camera_all_register_below_a_pixel(birdseye_provider, tmp_path):
     images = tmp_path / "images"
@@ -90,15 +78,6 @@ def test_real_dji_frames_with_a_nominal_camera_all_register_below_a_pixel(birdse
     # Nadir gimbals, refined a few degrees off the vertical: heading stays in yaw, roll stays small.
     for old, new in zip(before, rows):
         assert abs(new["roll_deg"]) < 15 and abs((new["yaw_deg"] - old["yaw_deg"] + 180) % 360 - 180) < 15
-
-    # Surveyed ground 2 m below the frames' own: the camera-to-ground distance grows by 2 m, the focal length
-    # by the same factor.
-    ground = before[0]["ground_h_m"]
-    depth = np.median([f["height_m"] for f in before]) - ground
-    geotags = flat_geotags([f["lat"] for f in before], [f["lon"] for f in before], ground - 2.0)
-    again = run("refineposes", {"FRAMES": frames, "GEOTAGS": geotags, "OUTPUT": "TEMPORARY_OUTPUT"})["OUTPUT"]
-    lower = json.loads(next(again.getFeatures())["camera"])["fx"]
-    assert lower / focal == pytest.approx((depth + 2.0) / depth, rel=0.01)
 
 
 @pytest.mark.timeout(900)

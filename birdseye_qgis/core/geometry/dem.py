@@ -380,10 +380,10 @@ def _check_against_takeoff(dem, lat, lon, ground, sources, offset, target, toler
         f"{'above the highest' if miss > 0 else 'below the lowest'} terrain the DEM holds within "
         f"{TAKEOFF_REACH_M:g} m of the frames ({lowest:.2f} … {highest:.2f} m in the flight's reference, "
         f"{target.describe()}), more than {_at_depth(tolerance_m, depth_m)}{_converted(conversion)}: the DEM "
-        f"({_datum_words(dem)}) is probably in another vertical reference than the flight, or the flight's absolute heights are off (a "
-        "drone without RTK measures them barometrically, often tens of metres off; its heights above the take-off "
-        "point are good). Use a DEM made from this flight (e.g. OpenDroneMap's DSM, in the frames' own heights), or "
-        f"refine the poses.{_hint(miss)}", source=dem.source)
+        f"({_datum_words(dem)}) is probably in another vertical reference than the flight, or the flight's absolute "
+        "heights are off (a drone without RTK measures them barometrically, often tens of metres off; its heights "
+        "above the take-off point are good). Use a DEM made from this flight (e.g. OpenDroneMap's DSM, in the "
+        f"frames' own heights), or refine the poses.{_hint(miss)}", source=dem.source)
 
 
 def _crs_name(crs) -> str:
@@ -889,15 +889,11 @@ class FrameSlope:
     n_samples: np.ndarray
 
 
-def frame_terrain_slope(geometry: FrameGeometry, ground: DemGround, grid=(9, 7), progress=None,
-                        is_canceled=None, chunk: int = 2000) -> FrameSlope:
-    """Fit a plane to the terrain each frame sees and return its slope and aspect.
-
-    The samples are the terrain points of a ``grid`` (columns × rows) of pixels spread over the whole
-    image, cast with ``ground`` — so they lie inside the footprint, on the visible terrain, at any DEM
-    resolution. The plane ``U = a + b·E + c·N`` is fitted by least squares in the local frame; the
-    slope is the angle between its normal and the frame's up (the level plane's normal).
-    """
+def terrain_in_view(geometry: FrameGeometry, ground: DemGround, grid=(9, 7), progress=None, is_canceled=None,
+                    chunk: int = 2000) -> np.ndarray:
+    """Local points (F, K, 3) where a ``grid`` (columns × rows, K = columns·rows) of pixels spread over the whole
+    image meets the terrain, per frame; NaN where the ray misses it — so they lie inside the footprint, on the
+    visible terrain, at any DEM resolution."""
     cam = geometry.camera
     uu, vv = np.meshgrid(np.linspace(-0.5, cam.width - 0.5, grid[0]), np.linspace(-0.5, cam.height - 0.5, grid[1]))
     uv = np.column_stack([uu.ravel(), vv.ravel()])
@@ -912,6 +908,18 @@ def frame_terrain_slope(geometry: FrameGeometry, ground: DemGround, grid=(9, 7),
         pts[frames] = np.where(ok[:, None], p, np.nan).reshape(len(frames), k, 3)
         if progress is not None:
             progress(frames[-1] / max(f_total - 1, 1))
+    return pts
+
+
+def frame_terrain_slope(geometry: FrameGeometry, ground: DemGround, grid=(9, 7), progress=None,
+                        is_canceled=None, chunk: int = 2000) -> FrameSlope:
+    """Fit a plane to the terrain each frame sees and return its slope and aspect.
+
+    The samples are :func:`terrain_in_view`'s. The plane ``U = a + b·E + c·N`` is fitted by least squares in the
+    local frame; the slope is the angle between its normal and the frame's up (the level plane's normal).
+    """
+    pts = terrain_in_view(geometry, ground, grid, progress, is_canceled, chunk)
+    f_total, k = pts.shape[:2]
     valid = np.isfinite(pts[..., 2])
     count = valid.sum(axis=1)
     with np.errstate(invalid="ignore", divide="ignore"):

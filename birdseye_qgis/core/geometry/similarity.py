@@ -132,7 +132,8 @@ def fit_similarity_robust(source, target, sigma=None, rotation_pairs=None) -> Ro
     the least median σ-normalised residual; it tolerates up to half the positions being gross outliers,
     where a least-squares start would be dragged towards them. Then repeatedly: inliers are the positions
     within max(:data:`OUTLIER_FACTOR` × the inliers' median residual, 5 σ), least squares on them, until the
-    set no longer changes. ``sigma`` None: equal weights and no σ floor.
+    set no longer changes. ``sigma`` None: equal weights and no σ floor. Positions that are not finite are
+    refused (:class:`.errors.InputError`).
 
     The positions count as one line (rotation from ``rotation_pairs``) when either set is collinear or, with
     ``sigma`` and ``rotation_pairs``, when the targets' RMS spread across their main line is too small for
@@ -142,6 +143,8 @@ def fit_similarity_robust(source, target, sigma=None, rotation_pairs=None) -> Ro
     """
     source = np.asarray(source, dtype=float)
     target = np.asarray(target, dtype=float)
+    if not (np.isfinite(source).all() and np.isfinite(target).all()):
+        raise InputError("the positions to align are not all finite numbers")
     n = len(source)
     # Exact positions leave residuals of rounding size, some more than 5× their median: a numerical floor.
     floor = 1e-6 * float(np.ptp(target, axis=0).max()) if n else 0.0

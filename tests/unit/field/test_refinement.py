@@ -213,25 +213,36 @@ def ambiguous_block(folder, focal, depth_factor, seed=0):
     return centres, rotations
 
 
+def ambiguous_inputs(tmp_path, focal=1150.0, depth_factor=1.15, ground_z=0.0):
+    """The block of :func:`ambiguous_block` as COLMAP would hand it over, nominal camera 1100 px, each frame's
+    ground at ``ground_z`` (local; NaN: none): the reconstruction, the inputs, the names and the collected
+    frames."""
+    import pycolmap
+
+    from birdseye.birdseye_qgis.core.field.refinement import _collect
+
+    centres, rotations = ambiguous_block(tmp_path / "model", focal, depth_factor)
+    rec = pycolmap.Reconstruction(str(tmp_path / "model"))
+    nominal = CameraModel(W, H, 1100.0, 1100.0, W / 2 - 0.5, H / 2 - 0.5)
+    inputs = [FrameInput(None, nominal, c, r, 0.03, ground_z, True) for c, r in zip(centres, rotations)]
+    names = [f"img{i:02d}.jpg" for i in range(len(centres))]
+    result = [RefinedFrame(False) for _ in names]
+    _collect(rec, inputs, names, result)
+    return rec, inputs, names, result
+
+
 @pytest.mark.parametrize("surveyed", [True, False])
 def test_a_nominal_focal_length_is_fixed_by_the_flying_height(tmp_path, surveyed):
     """The block left the focal length 15 % long and every depth 15 % deep; GNSS height minus the surveyed
     ground (z = 0) brings both back: f within 0.3 % of the truth, the ground within 5 cm. Without a surveyed
     ground the block cannot tell, and the nominal focal length (1100 px) is kept, said so."""
-    import pycolmap
-
     from birdseye.birdseye_qgis.core.field.refinement import _collect, _fix_focal
 
-    centres, rotations = ambiguous_block(tmp_path / "model", 1150.0, 1.15)
-    rec = pycolmap.Reconstruction(str(tmp_path / "model"))
-    nominal = CameraModel(W, H, 1100.0, 1100.0, W / 2 - 0.5, H / 2 - 0.5)
-    inputs = [FrameInput(None, nominal, c, r, 0.03, 0.0 if surveyed else math.nan, True)
-              for c, r in zip(centres, rotations)]
-    names = [f"img{i:02d}.jpg" for i in range(len(centres))]
-    result = [RefinedFrame(False) for _ in names]
-    _collect(rec, inputs, names, result)
-    fix = _fix_focal(rec, inputs, names, result, None)
+    rec, inputs, names, result = ambiguous_inputs(tmp_path, ground_z=0.0 if surveyed else math.nan)
+    rec, (fix,), stopped = _fix_focal(rec, inputs, names, result, None)
+    assert stopped == "" and fix.settled
     assert fix.determined == surveyed and fix.adjusted_px == pytest.approx(1150.0)
+    _collect(rec, inputs, names, result)
     refinement = Refinement(result)
     align_to_gnss(refinement, inputs)
     if surveyed:
@@ -239,7 +250,101 @@ def test_a_nominal_focal_length_is_fixed_by_the_flying_height(tmp_path, surveyed
         assert fix.final_px == pytest.approx(F_TRUE, rel=0.003)
         assert all(abs(f.ground_z_local) < 0.05 for f in refinement.frames)
     else:
-        assert fix.final_px == 1100.0 and "surveyed ground height" in fix.reason
+        assert fix.final_px == pytest.approx(1100.0) and "no ground height" in fix.reason
         # Nominal focal 10 % long: the block's ground lies ~10 % too deep, as a nominal camera must leave it.
         assert np.median([f.ground_z_local for f in refinement.frames]) == pytest.approx(-4.0, abs=0.5)
     assert max(f.reprojection_rms_px for f in refinement.frames) < 0.1
+
+
+def test_a_focal_length_far_off_is_fixed_in_bounded_passes(tmp_path, monkeypatch):
+    """Focal length and depths 80 % too long: no pass stretches the block by more than MAX_FOCAL_STEP, and the
+    passes still end at the true focal length."""
+    from birdseye.birdseye_qgis.core.field import refinement as module
+
+    rec, inputs, names, result = ambiguous_inputs(tmp_path, focal=1800.0, depth_factor=1.8)
+    stretches = []
+    readjust = module._readjust
+    monkeypatch.setattr(module, "_readjust", lambda rec, factor, sim, origin, stretch: (
+        stretches.append(stretch), readjust(rec, factor, sim, origin, stretch))[1])
+    rec, (fix,), stopped = module._fix_focal(rec, inputs, names, result, None)
+    assert stopped == "" and fix.determined and fix.settled
+    assert len(stretches) >= 2 and max(max(s, 1 / s) for s in stretches) <= module.MAX_FOCAL_STEP + 1e-9
+    assert fix.final_px == pytest.approx(F_TRUE, rel=0.003)
+
+
+def test_a_depth_ratio_outside_the_range_keeps_the_nominal_focal_length(tmp_path):
+    """A ground 20 m above the true one makes the block's camera-to-ground distance 2.3 × the GNSS one: the
+    heights or the ground are wrong, so the nominal focal length comes back instead of one 2.3 × too short."""
+    from birdseye.birdseye_qgis.core.field.refinement import _fix_focal
+
+    rec, inputs, names, result = ambiguous_inputs(tmp_path, ground_z=20.0)
+    rec, (fix,), _ = _fix_focal(rec, inputs, names, result, None)
+    assert not fix.determined and "outside 0.5–2" in fix.reason
+    assert fix.final_px == pytest.approx(1100.0, rel=0.003)
+
+
+def test_a_pass_that_breaks_the_block_is_undone_with_the_reason(tmp_path, monkeypatch):
+    """A bundle adjustment that leaves a point not finite (as the unseen Brighton frames' second pass did): the
+    pass is undone, the block of the pass before kept, the reason returned; nothing raises."""
+    from birdseye.birdseye_qgis.core.field import refinement as module
+
+    rec, inputs, names, result = ambiguous_inputs(tmp_path)
+    adjust = module._bundle_adjust
+
+    def breaking(rec):
+        summary = adjust(rec)
+        next(iter(rec.points3D.values())).xyz = np.full(3, np.nan)
+        return summary
+
+    monkeypatch.setattr(module, "_bundle_adjust", breaking)
+    kept, (fix,), stopped = module._fix_focal(rec, inputs, names, result, None)
+    assert kept is not rec and "not finite" in stopped and "pass 1" in stopped
+    assert fix.final_px == pytest.approx(1150.0) and not fix.settled
+    assert np.isfinite([p.xyz for p in kept.points3D.values()]).all()
+
+
+def two_lines(flip_first: bool):
+    """Two parallel flight lines of six frames 12 m apart, 40 m up, single-point GNSS (σ 3 m: too coarse to fix the
+    rotation about the lines, so the attitudes do); the SfM block as in :func:`block`. With ``flip_first`` the
+    first line's metadata attitudes are turned 180° about the vertical, as a heading logged the wrong way."""
+    along = np.arange(6) * 14.0
+    centres = np.column_stack([np.concatenate([along, along]), np.repeat([0.0, 12.0], 6), np.full(12, 40.0)])
+    rotations = np.stack([so3_exp(np.array([0.0, 0.0, 0.3])) @ NADIR for _ in centres])
+    s, t = 4.0, np.array([100.0, -50.0, 3.0])
+    sfm_centres = (centres - t) @ TRUE_ROTATION / s
+    sfm_rotations = np.einsum("ji,njk->nik", TRUE_ROTATION, rotations)
+    meta = rotations.copy()
+    if flip_first:
+        meta[:6] = np.einsum("ij,njk->nik", so3_exp(np.array([0.0, 0.0, math.pi])), rotations[:6])
+    return centres, rotations, meta, sfm_centres, sfm_rotations
+
+
+def test_a_flight_line_logged_180_degrees_off_is_left_out_of_the_rotation():
+    """The real frames DJI_0024–0029 of Brighton Beach carry a gimbal yaw 180° off their images. Averaged with the
+    other line's, their attitudes turn the block to no line's rotation (there: a mirror image, negative scale,
+    which the focal-length fix then stretched to NaN); the attitudes that agree fix the rotation, the others
+    are named."""
+    from birdseye.birdseye_qgis.core.geometry.similarity import fit_similarity_robust
+
+    centres, rotations, meta, sfm_c, sfm_r = two_lines(flip_first=True)
+    naive = fit_similarity_robust(sfm_c, centres, np.full(12, 3.0), rotation_pairs=(sfm_r, meta))
+    assert naive.line and abs(naive.similarity.scale - 4.0) > 1.0  # what both lines' attitudes together give
+    inputs = [FrameInput(None, CAMERA, c, r, 3.0) for c, r in zip(centres, meta)]
+    refinement = refinement_of(sfm_c, sfm_r)
+    align_to_gnss(refinement, inputs)
+    assert refinement.collinear and refinement.similarity.scale == pytest.approx(4.0)
+    for frame, c, r in zip(refinement.frames, centres, rotations):
+        np.testing.assert_allclose(frame.centre, c, atol=1e-6)
+        np.testing.assert_allclose(frame.r_local_cam, r, atol=1e-9)
+    assert [round(f.rotation_change_deg) for f in refinement.frames] == [180] * 6 + [0] * 6
+    note = " ".join(refinement.notes)
+    assert "6 frame(s) have a metadata attitude 180°" in note and "frame 1, frame 2" in note
+
+
+def test_agreeing_attitudes_are_used_as_given():
+    centres, rotations, meta, sfm_c, sfm_r = two_lines(flip_first=False)
+    inputs = [FrameInput(None, CAMERA, c, r, 3.0) for c, r in zip(centres, meta)]
+    refinement = refinement_of(sfm_c, sfm_r)
+    align_to_gnss(refinement, inputs)
+    assert refinement.collinear and not refinement.notes
+    np.testing.assert_allclose([f.centre for f in refinement.frames], centres, atol=1e-6)
