@@ -1,6 +1,29 @@
 """Running BirdsEye algorithms through the Processing registry, as the toolbox does, for the QGIS tests."""
 import csv
 
+from qgis.core import QgsProcessingFeedback
+
+
+class Recorder(QgsProcessingFeedback):
+    """Feedback that keeps what an algorithm reported (``errors``, ``warnings``, ``infos``), so tests can read
+    the log; it still goes to QGIS's own log too."""
+
+    def __init__(self):
+        super().__init__()
+        self.errors, self.warnings, self.infos = [], [], []
+
+    def reportError(self, error, fatalError=False):  # noqa: N802, N803 — QGIS's names
+        self.errors.append(error)
+        super().reportError(error, fatalError)
+
+    def pushWarning(self, warning):  # noqa: N802 — QGIS's name
+        self.warnings.append(warning)
+        super().pushWarning(warning)
+
+    def pushInfo(self, info):  # noqa: N802 — QGIS's name
+        self.infos.append(info)
+        super().pushInfo(info)
+
 
 def run(alg_id, params, feedback=None):
     """``birdseye:<alg_id>`` with ``params``; its results."""

@@ -18,10 +18,10 @@ from qgis.core import (
     QgsGeometry,
     QgsPointXY,
     QgsProcessingException,
-    QgsProcessingFeedback,
     QgsRasterLayer,
     QgsVectorLayer,
 )
+from registry import Recorder
 
 from birdseye.birdseye_qgis.core.detect.model_metadata import ModelMetadata, embed_metadata
 from birdseye.birdseye_qgis.core.field.frame_records import FRAME_FIELDS, euler_degrees
@@ -116,7 +116,7 @@ def test_detections_are_written_on_the_ground_in_the_layer_crs(birdseye_provider
     out = result["OUTPUT"]
     assert out.crs().authid() == UTM and out.wkbType() == 1001  # PointZ
     assert out.fields().names() == ["frame_id", "u", "v", "score", "model", "model_digest", "threshold", "ground",
-                                    "dem_source", "dem_datum", "dem_n_m"]
+                                    "dem_source", "dem_datum", "dem_n_m", "height_ref"]
     feats = list(out.getFeatures())
     expected = sum(len(v) for v in scene["views"].values())
     assert result["DETECTION_COUNT"] == len(feats) == expected >= 6
@@ -125,7 +125,7 @@ def test_detections_are_written_on_the_ground_in_the_layer_crs(birdseye_provider
     assert result["MODEL_DIGEST"] == digest and result["THRESHOLD_USED"] == pytest.approx(0.3)
     for f in feats:
         assert f["model"] == "m.onnx" and f["model_digest"] == digest and f["threshold"] == pytest.approx(0.3)
-        assert f["ground"] == "level" and not f["dem_source"]
+        assert f["ground"] == "level" and not f["dem_source"] and f["height_ref"] == "ellipsoidal"
         truth = scene["views"][f["frame_id"]]
         assert np.min(np.hypot(truth[:, 0] - f["u"], truth[:, 1] - f["v"])) < 0.05
         p = f.geometry().constGet()
@@ -216,19 +216,6 @@ def test_the_bundled_model_finds_simulated_burrows_end_to_end(birdseye_provider,
     assert in_view.sum() >= 4
     assert (d[in_view] <= 0.2).mean() >= 0.8
 
-
-class WarningsKept(QgsProcessingFeedback):
-    """A Processing feedback that keeps the warnings it is given."""
-
-    def __init__(self):
-        super().__init__()
-        self.warnings = []
-
-    def pushWarning(self, text):
-        self.warnings.append(text)
-        super().pushWarning(text)
-
-
 def without_ground_height(layer):
     """The frame layer with every frame's ground height gone, as a camera solution with no tie points
     in view writes it."""
@@ -263,7 +250,7 @@ def test_frames_without_a_ground_height_are_placed_on_a_dem_or_named_as_skipped(
     level_gsd = {f["frame_id"]: f["gsd_cm"] for f in scene["layer"].getFeatures()}  # cm/px at ground 400 m
 
     # Without a DEM nothing can be placed: each frame is named in a warning, no traceback.
-    feedback = WarningsKept()
+    feedback = Recorder()
     result = processing.run("birdseye:detect", {"FRAMES": frames, "MODEL": model, "OUTPUT": "TEMPORARY_OUTPUT"},
                             feedback=feedback)
     assert result["FRAMES_SKIPPED"] == 3 and result["FRAMES_PROCESSED"] == 0 and result["DETECTION_COUNT"] == 0
@@ -294,7 +281,7 @@ def test_frames_without_a_ground_height_are_placed_on_a_dem_or_named_as_skipped(
     # A DEM 10 m lower doubles the ground resolution (10 m → 20 m below the camera): the coarse-frame
     # warning names the frames, which only a GSD taken from the DEM can give them.
     seen.clear()
-    feedback = WarningsKept()
+    feedback = Recorder()
     processing.run("birdseye:detect", {"FRAMES": frames, "MODEL": model, "DEM_VERTICAL_DATUM": 0,
                                        "DEM": flat_dem_layer(frames, 390.0, tmp_path / "low.tif"),
                                        "OUTPUT": "TEMPORARY_OUTPUT"}, feedback=feedback)
@@ -345,7 +332,7 @@ def test_the_algorithms_after_detect_name_frames_without_a_ground_height(birdsey
                                None),
     }
     for alg, (params, warning) in calls.items():
-        feedback = WarningsKept()
+        feedback = Recorder()
         if warning is None:
             with pytest.raises(QgsProcessingException, match=r"placed on the DEM .*at\.tif.*give that DEM \(DEM"):
                 processing.run(f"birdseye:{alg}", params, feedback=feedback)

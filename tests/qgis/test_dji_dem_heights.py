@@ -19,8 +19,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from qgis.core import QgsProcessingException, QgsProcessingFeedback, QgsRasterLayer
-from registry import rows, run
+from qgis.core import QgsProcessingException, QgsRasterLayer
+from registry import Recorder, rows, run
 from test_writelabels import write_geotiff
 
 from birdseye.birdseye_qgis.core.geometry.dem import DemGround, DemRaster
@@ -45,17 +45,6 @@ def read_geotiff(path, datum) -> DemRaster:
     band = ds.GetRasterBand(1)
     return DemRaster(band.ReadAsArray().astype(float), (x0, dx, y0, dy), ds.GetProjection(), datum,
                      nodata=band.GetNoDataValue(), source=str(path))
-
-
-class Log(QgsProcessingFeedback):
-    def __init__(self):
-        super().__init__()
-        self.infos = []
-
-    def pushInfo(self, info):
-        self.infos.append(info)
-        super().pushInfo(info)
-
 
 @pytest.fixture(scope="module")
 def flight(birdseye_provider, tmp_path_factory):
@@ -139,7 +128,7 @@ def test_without_n_the_egm96_grid_stands_in_and_a_wrong_n_is_not_used_silently(f
 
 
 def test_detections_on_the_dem_lie_where_their_rays_meet_the_true_terrain(flight):
-    log = Log()
+    log = Recorder()
     detected = run("detect", {"FRAMES": flight["frames"], "THRESHOLD": 0.05, "DEM": flight["dem"],
                               "DEM_VERTICAL_DATUM": 0, "GEOID_UNDULATION_M": N, "OUTPUT": "TEMPORARY_OUTPUT"}, log)
     assert any("DEM against the frames" in line and "N = -30.00 m as given" in line for line in log.infos)

@@ -21,9 +21,8 @@ from qgis.core import (
     QgsFeatureRequest,
     QgsProcessingContext,
     QgsProcessingException,
-    QgsProcessingFeedback,
 )
-from registry import rows, run, simulated_terrain_campaign
+from registry import Recorder, rows, run, simulated_terrain_campaign
 
 from birdseye.birdseye_qgis.core.geometry.camera import load_calibration
 from birdseye.birdseye_qgis.core.geometry.ground_record import DEM, LEVEL_PLANE
@@ -178,17 +177,6 @@ def test_the_review_stands_on_the_recorded_dem_and_falls_back_with_the_reason(sl
     ground, reason = review_ground(gone, inputs.pose_groups)
     assert ground is None and "moved.tif: cannot be opened" in reason
 
-
-class Warnings(QgsProcessingFeedback):
-    def __init__(self):
-        super().__init__()
-        self.warnings = []
-
-    def pushWarning(self, warning):  # noqa: N802 — QGIS's name
-        self.warnings.append(warning)
-        super().pushWarning(warning)
-
-
 def test_write_labels_judges_a_review_of_dem_detections_on_that_dem(slope, tmp_path):
     """A review of DEM-placed detections, acted on by Write labels: with its DEM the review's in-view test
     stands on the terrain, silently; without one the level plane stands in, and the log says so. Every
@@ -222,7 +210,7 @@ def test_write_labels_judges_a_review_of_dem_detections_on_that_dem(slope, tmp_p
     base = {"GEOTAGS": slope["geotags"], "FRAMES": slope["frames"], "WRITE_RASTERS": False,
             "REVIEW": verdicts, "REVIEW_DETECTIONS": [slope["detections"]], "OUTPUT_FRAMES": None,
             "OUTPUT_GEOTAGS": None}
-    on_dem, without = Warnings(), Warnings()
+    on_dem, without = Recorder(), Recorder()
     with_dem = run("writelabels", {**base, "DEM": slope["dem"], "DEM_VERTICAL_DATUM": 0,
                                    "OUTPUT_FOLDER": str(tmp_path / "dem")}, on_dem)
     level = run("writelabels", {**base, "OUTPUT_FOLDER": str(tmp_path / "level")}, without)

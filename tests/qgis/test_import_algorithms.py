@@ -16,11 +16,11 @@ from qgis.core import (
     QgsPoint,
     QgsProcessingContext,
     QgsProcessingException,
-    QgsProcessingFeedback,
     QgsProject,
     QgsVectorLayer,
     QgsWkbTypes,
 )
+from registry import Recorder
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "data"))
 from strip_xmp import strip_xmp
@@ -33,24 +33,6 @@ from birdseye.birdseye_qgis.core.field.geotags import GEOTAG_FIELD_NAMES
 from birdseye.birdseye_qgis.qgis_io import layers
 
 BRIGHTON = Path(__file__).resolve().parents[1] / "data" / "brighton_beach"
-
-
-class Recorder(QgsProcessingFeedback):
-    """Feedback that keeps what the algorithm reported, so tests can read the log."""
-
-    def __init__(self):
-        super().__init__()
-        self.errors, self.warnings, self.infos = [], [], []
-
-    def reportError(self, error, fatalError=False):
-        self.errors.append(error)
-
-    def pushWarning(self, warning):
-        self.warnings.append(warning)
-
-    def pushInfo(self, info):
-        self.infos.append(info)
-
 
 def run(alg_id, params, feedback=None):
     import processing

@@ -14,12 +14,12 @@ from qgis.core import (
     QgsPointXY,
     QgsProcessingContext,
     QgsProcessingException,
-    QgsProcessingFeedback,
     QgsProject,
     QgsVectorLayer,
     QgsWkbTypes,
 )
 from qgis.PyQt.QtCore import QVariant
+from registry import Recorder
 
 from birdseye.birdseye_qgis.core.geometry.camera import CameraModel, write_kalibr_yaml
 from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame, ProjectedCRS
@@ -28,22 +28,6 @@ from birdseye.birdseye_qgis.core.plan.mission_files import parse_dji_kmz, parse_
 LAT0, LON0 = 48.1371, 11.5754  # UTM zone 32N
 UTM = "EPSG:32632"
 TOL_DEG = 1e-7
-
-
-class CapturingFeedback(QgsProcessingFeedback):
-    def __init__(self):
-        super().__init__()
-        self.errors, self.warnings, self.infos = [], [], []
-
-    def reportError(self, error, fatalError=False):
-        self.errors.append(error)
-
-    def pushWarning(self, warning):
-        self.warnings.append(warning)
-
-    def pushInfo(self, info):
-        self.infos.append(info)
-
 
 def geotag_layer(xy_m, crs=UTM, ids=None, name="geotags"):
     """A memory point layer with an ``id`` field; ``xy_m`` are east/north metres from the site origin,
@@ -71,7 +55,7 @@ def geotag_layer(xy_m, crs=UTM, ids=None, name="geotags"):
 def run(params, feedback=None):
     import processing
 
-    feedback = feedback or CapturingFeedback()
+    feedback = feedback or Recorder()
     context = QgsProcessingContext()
     context.setProject(QgsProject.instance())
     result = processing.run("birdseye:planflight", params, context=context, feedback=feedback)
@@ -80,7 +64,7 @@ def run(params, feedback=None):
 
 def run_fails(params):
     """The message a user sees when the run is refused (the exception, and the log if any)."""
-    feedback = CapturingFeedback()
+    feedback = Recorder()
     with pytest.raises(QgsProcessingException) as failure:
         run(params, feedback)
     return " ".join([str(failure.value)] + feedback.errors)

@@ -17,33 +17,15 @@ from qgis.core import (
     QgsGeometry,
     QgsPointXY,
     QgsProcessingException,
-    QgsProcessingFeedback,
     QgsProject,
     QgsVectorLayer,
 )
+from registry import Recorder
 
 from birdseye.birdseye_qgis.core.field.geotags import GEOTAG_FIELD_NAMES
 
 EMLID = Path(__file__).resolve().parents[1] / "data" / "rover" / "emlid_flow_reach_rs4_ftus.csv"
 US_FT = 1200.0 / 3937.0
-
-
-class Recorder(QgsProcessingFeedback):
-    """Feedback that keeps what the algorithm reported."""
-
-    def __init__(self):
-        super().__init__()
-        self.errors, self.warnings, self.infos = [], [], []
-
-    def reportError(self, error, fatalError=False):
-        self.errors.append(error)
-
-    def pushWarning(self, warning):
-        self.warnings.append(warning)
-
-    def pushInfo(self, info):
-        self.infos.append(info)
-
 
 def run(params, feedback=None):
     import processing

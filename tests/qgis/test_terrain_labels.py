@@ -26,7 +26,6 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from qgis.core import QgsProcessingFeedback
 
 from birdseye.birdseye_qgis.core.design.terrain_slope import slope_error_px
 from birdseye.birdseye_qgis.core.geometry.camera import load_calibration
@@ -34,24 +33,13 @@ from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame
 from birdseye.birdseye_qgis.core.geometry.poses import FrameGeometry, FramePoses
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "data"))
-from registry import rows, run, simulated_terrain_campaign
+from registry import Recorder, rows, run, simulated_terrain_campaign
 from rendered_holes import dark_core_centroid
 
 SLOPE_DEG = 20.0
 CAMPAIGN = {"SEED": 7, "N_TARGETS": 14, "FIELD_WIDTH_M": 8.0, "FIELD_LENGTH_M": 6.0, "IMAGE_WIDTH": 640,
             "IMAGE_HEIGHT": 400, "FPS": 2.0, "N_MISSED": 0, "N_SPURIOUS": 0, "NOISE_OFF": True,
             "TERRAIN": 1, "SLOPE_DEG": SLOPE_DEG, "SLOPE_ASPECT_DEG": 250.0}
-
-
-class Warnings(QgsProcessingFeedback):
-    def __init__(self):
-        super().__init__()
-        self.warnings = []
-
-    def pushWarning(self, warning):
-        self.warnings.append(warning)
-        super().pushWarning(warning)
-
 
 @pytest.fixture(scope="module")
 def campaign(birdseye_provider, tmp_path_factory):
@@ -64,7 +52,7 @@ def campaign(birdseye_provider, tmp_path_factory):
     common = {"GEOTAGS": geotags, "FRAMES": frames, "SIGMA_PX": 5.0, "WRITE_RASTERS": False,
               "OUTPUT_FRAMES": None, "OUTPUT_GEOTAGS": None}
     run("writelabels", {**common, "DEM": dem, "DEM_VERTICAL_DATUM": 0, "OUTPUT_FOLDER": str(base / "dem")})
-    level_feedback = Warnings()
+    level_feedback = Recorder()
     run("writelabels", {**common, "OUTPUT_FOLDER": str(base / "level")}, level_feedback)
     key = lambda r: (int(r["frame_id"]), int(r["geotag_id"]))
     return {"folder": folder, "frames": frames, "level_warnings": level_feedback.warnings,
