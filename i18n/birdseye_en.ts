@@ -690,32 +690,32 @@ error</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="231"/>
+        <location filename="../processing/algorithms/writelabels.py" line="232"/>
         <source>{n_labels} labels in {n_frames_with_labels} of {n_frames} frames (labels per labelled frame: mean {mean:g}, max {max}); {n_geotags_in_view} of {n_geotags} geotags in view (frames per geotag: mean {mean2:g}, max {max2})</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="250"/>
+        <location filename="../processing/algorithms/writelabels.py" line="251"/>
         <source>{n_occluded} projections were hidden behind terrain (not written)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="253"/>
+        <location filename="../processing/algorithms/writelabels.py" line="254"/>
         <source>{n_edge} projections fell within the edge buffer (not written)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="258"/>
+        <location filename="../processing/algorithms/writelabels.py" line="259"/>
         <source>{n_never} geotag(s) never in view of any frame: {shown}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="262"/>
+        <location filename="../processing/algorithms/writelabels.py" line="263"/>
         <source>{value} image(s) could not be read for tiles; first: {value2}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/dem.py" line="138"/>
+        <location filename="../processing/parameters/dem.py" line="146"/>
         <source>DEM {source}: {value}×{value2} cells of {cell_size_m:g} m, heights {value3:.1f}…{value4:.1f} m ({vertical_datum})</source>
         <translation type="unfinished"></translation>
     </message>
@@ -886,7 +886,7 @@ pip&apos;s log is below; the packages already there are unchanged.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/dem.py" line="90"/>
+        <location filename="../processing/parameters/dem.py" line="92"/>
         <source>{GROUND_MODEL}: the method&apos;s plane stands in for the level ground; with a terrain model ({DEM}) the terrain is the ground. Give one or the other.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -918,12 +918,12 @@ QGIS&apos;s own packages are not changed. pip downloads them from the Python Pac
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="241"/>
+        <location filename="../processing/algorithms/writelabels.py" line="242"/>
         <source>Of these, review targets: {n_in_view} of {n_targets} in view, {n_labels} labels.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="246"/>
+        <location filename="../processing/algorithms/writelabels.py" line="247"/>
         <source>Hard negatives: {n_in_view} of {n_clusters} in view, in {n_frames} frame(s); {n_tiles} hard-negative tile(s) written.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -953,17 +953,17 @@ QGIS&apos;s own packages are not changed. pip downloads them from the Python Pac
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/qgis_io/layers.py" line="364"/>
+        <location filename="../birdseye_qgis/qgis_io/layers.py" line="419"/>
         <source>the camera model of frame {frame} was cut at {length} characters: {format} keeps at most {length} characters in a text field and a camera model needs about 500: the layer was probably saved to it after the import (Save Features As…). Save the original frame layer as a GeoPackage (.gpkg) instead, or run the import again with its output written to a GeoPackage (or to this format: the import then splits the camera over fields camera, camera_2, …).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/qgis_io/layers.py" line="364"/>
+        <location filename="../birdseye_qgis/qgis_io/layers.py" line="419"/>
         <source>the layer&apos;s file format (e.g. ESRI Shapefile)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/qgis_io/layers.py" line="409"/>
+        <location filename="../birdseye_qgis/qgis_io/layers.py" line="464"/>
         <source>The output&apos;s format keeps at most {n} characters in a text field: each frame&apos;s camera model goes on in fields {fields}; keep them with the layer.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -988,8 +988,13 @@ QGIS&apos;s own packages are not changed. pip downloads them from the Python Pac
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/dem.py" line="128"/>
+        <location filename="../processing/parameters/dem.py" line="136"/>
         <source>{layer}: its detections were placed on {recorded}; {DEM} is {given}. Check that both hold the same terrain in the same vertical reference.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/parameters/dem.py" line="120"/>
+        <source>DEM against the frames: {check}</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
@@ -1084,7 +1089,7 @@ QGIS&apos;s own packages are not changed. pip downloads them from the Python Pac
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="173"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="174"/>
         <source>OUTPUT_POINTS: the point layer cannot be created.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1243,23 +1248,23 @@ QGIS&apos;s own packages are not changed. pip downloads them from the Python Pac
 <context>
     <name>DemParametersMixin</name>
     <message>
-        <location filename="../processing/parameters/dem.py" line="60"/>
+        <location filename="../processing/parameters/dem.py" line="61"/>
         <source>Terrain model (DEM/DSM raster, projected CRS in metres; empty: level ground)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/dem.py" line="63"/>
+        <location filename="../processing/parameters/dem.py" line="64"/>
         <source>DEM heights are measured from</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/dem.py" line="66"/>
-        <source>Geoid undulation N at the site (m; ellipsoidal = MSL + N)</source>
+        <location filename="../processing/parameters/dem.py" line="72"/>
+        <source>Ground model without a DEM</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/dem.py" line="70"/>
-        <source>Ground model without a DEM</source>
+        <location filename="../processing/parameters/dem.py" line="67"/>
+        <source>Geoid undulation N at the site (m; ellipsoidal = MSL + N; empty: EGM96 from PROJ&apos;s grid where one is needed)</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
@@ -1379,17 +1384,17 @@ QGIS&apos;s own packages are not changed. pip downloads them from the Python Pac
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/detect.py" line="102"/>
+        <location filename="../processing/algorithms/detect.py" line="108"/>
         <source>{detections} detections in {processed} frames ({value:.2f} per frame); {edge} dropped within {edge_buffer_px:g} px of the border, {no_ground} whose ray missed the ground; {skipped} frames skipped.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/detect.py" line="132"/>
+        <location filename="../processing/algorithms/detect.py" line="139"/>
         <source>Frame {frame_id}: {skipped}; skipped.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/detect.py" line="151"/>
+        <location filename="../processing/algorithms/detect.py" line="158"/>
         <source>{n_coarse} frame(s) (e.g. {items}) are coarser than 1.5× the model's resolution of {resolution_cm:g} cm/px: targets look smaller than in training, so expect fewer detections (fly lower or use a model trained at that resolution).</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1401,6 +1406,11 @@ QGIS&apos;s own packages are not changed. pip downloads them from the Python Pac
     <message>
         <location filename="../processing/algorithms/detect.py" line="42"/>
         <source>Frames (from Import flight log, Import drone images or Import camera solution)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/detect.py" line="99"/>
+        <source>{FRAMES} has no CRS: the detections are written in {crs}, the UTM zone of the site.</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
@@ -1729,78 +1739,138 @@ QGIS&apos;s own packages are not changed. pip downloads them from the Python Pac
 <context>
     <name>ImportGeotags</name>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="53"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="66"/>
         <source>Geotag file (rover CSV, CSV with header, NMEA)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="56"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="69"/>
         <source>…or a point layer</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="58"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="71"/>
         <source>File format</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="62"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="82"/>
         <source>Fix filter</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="64"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="87"/>
         <source>Antenna pole height (m), subtracted from heights</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="67"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="90"/>
         <source>Output CRS (empty: UTM zone of the site)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="69"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="92"/>
         <source>Geotags</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="80"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="104"/>
         <source>Give either a geotag file (INPUT) or a point layer (INPUT_LAYER), not both and not neither.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="93"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="122"/>
         <source>The input holds no usable geotag.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="112"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="155"/>
         <source>No geotag is left to write (all were filtered out).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="96"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="125"/>
         <source>{n_problems} bad row(s) left out; first: {examples}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="105"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="140"/>
         <source>{dropped_not_fixed} geotag(s) without an RTK fixed solution were left out (fix filter: RTK fixed only)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="109"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="152"/>
         <source>{duplicates} geotag(s) lie within 2 cm of an earlier one (flag duplicate_2cm)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="114"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="157"/>
         <source>Output CRS: {value}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="32"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="35"/>
         <source>Import geotags</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/importgeotags.py" line="52"/>
+        <source>From the file (a unit in the column&apos;s name, the coordinate-system name, a units column; else metres)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/importgeotags.py" line="52"/>
+        <source>Metres</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/importgeotags.py" line="52"/>
+        <source>International feet (0.3048 m)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/importgeotags.py" line="52"/>
+        <source>US survey feet (1200/3937 m)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/importgeotags.py" line="75"/>
+        <source>Unit of heights and accuracies</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/importgeotags.py" line="78"/>
+        <source>Geoid undulation N for a file with only MSL heights (m; ellipsoidal = MSL + N; empty: EGM96 from PROJ&apos;s grid)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/importgeotags.py" line="84"/>
+        <source>Keep geotags with a horizontal accuracy within (m; empty: all)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/importgeotags.py" line="119"/>
+        <source>Reading: {note}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/importgeotags.py" line="132"/>
+        <source>Fix quality of the input: {counts}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/importgeotags.py" line="136"/>
+        <source>Horizontal accuracy of the input: median {median:.3f} m, worst {worst:.3f} m ({n_known} of {n_tags} geotags give one)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/importgeotags.py" line="144"/>
+        <source>{dropped} geotag(s) with a horizontal accuracy worse than {limit:g} m were left out (MAX_H_ACCURACY_M)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/importgeotags.py" line="148"/>
+        <source>{unknown} geotag(s) have no horizontal accuracy in the input and were kept (MAX_H_ACCURACY_M cannot judge them)</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
@@ -2056,88 +2126,103 @@ QGIS&apos;s own packages are not changed. pip downloads them from the Python Pac
 <context>
     <name>RefinePoses</name>
     <message>
-        <location filename="../processing/algorithms/refineposes.py" line="34"/>
+        <location filename="../processing/algorithms/refineposes.py" line="37"/>
         <source>Refine frame poses (structure from motion)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/refineposes.py" line="49"/>
+        <location filename="../processing/algorithms/refineposes.py" line="52"/>
         <source>Image size for feature extraction (px, longer side)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/refineposes.py" line="52"/>
+        <location filename="../processing/algorithms/refineposes.py" line="55"/>
         <source>Features per image (at most)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/refineposes.py" line="55"/>
+        <location filename="../processing/algorithms/refineposes.py" line="58"/>
         <source>Refine focal length and distortion (only with relief, oblique views or ground control)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/refineposes.py" line="62"/>
+        <location filename="../processing/algorithms/refineposes.py" line="66"/>
         <source>Refined frames</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/refineposes.py" line="64"/>
+        <location filename="../processing/algorithms/refineposes.py" line="68"/>
         <source>Report (HTML)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/refineposes.py" line="66"/>
+        <location filename="../processing/algorithms/refineposes.py" line="70"/>
         <source>Frames registered</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/refineposes.py" line="71"/>
+        <location filename="../processing/algorithms/refineposes.py" line="75"/>
         <source>FRAMES is required.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/refineposes.py" line="78"/>
+        <location filename="../processing/algorithms/refineposes.py" line="82"/>
         <source>{n} frames; SIFT features at {size} px, at most {features} per image</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/refineposes.py" line="90"/>
+        <location filename="../processing/algorithms/refineposes.py" line="108"/>
         <source>Registered {n} of {total} frames in {seconds:.0f} s ({rate:.1f} images per minute); intrinsics {intrinsics}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/refineposes.py" line="95"/>
+        <location filename="../processing/algorithms/refineposes.py" line="113"/>
         <source>Aligned to the GNSS positions: residual RMS {rms:.3f} m</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/refineposes.py" line="104"/>
+        <location filename="../processing/algorithms/refineposes.py" line="122"/>
         <source>{n} frame(s) keep their metadata pose (flag not_refined); first: {items}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/refineposes.py" line="120"/>
+        <location filename="../processing/algorithms/refineposes.py" line="140"/>
         <source>OUTPUT_REPORT: cannot write {path} ({error})</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/refineposes.py" line="46"/>
+        <location filename="../processing/algorithms/refineposes.py" line="49"/>
         <source>Frames (from Import drone images, Import flight log or Import camera solution)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/refineposes.py" line="58"/>
-        <source>Geotags with surveyed heights (optional: the ground that fixes the focal length of a nominal camera; else the frames&apos; ground heights)</source>
+        <location filename="../processing/algorithms/refineposes.py" line="116"/>
+        <source>Camera-to-ground distance of the block / (GNSS height − ground height): {ratio:.4f}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/refineposes.py" line="84"/>
-        <source>{n} geotags with a surveyed height: the ground plane at {h:.2f} m</source>
+        <location filename="../processing/algorithms/refineposes.py" line="61"/>
+        <source>Geotags with surveyed heights (optional: the ground for a nominal camera&apos;s focal length where frames have an RTK fix or no ground; else compared with theirs)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/refineposes.py" line="88"/>
+        <source>{n} geotags with a surveyed height: the ground plane at {h:.2f} m (ellipsoidal)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
         <location filename="../processing/algorithms/refineposes.py" line="98"/>
-        <source>Camera-to-ground distance of the block / (GNSS height − ground height): {ratio:.4f}</source>
+        <source>DEM against the frames: {check}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/refineposes.py" line="104"/>
+        <source>Ground of the GNSS camera-to-ground distances: {text}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/refineposes.py" line="107"/>
+        <source>Warning: {text}</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
