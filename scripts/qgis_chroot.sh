@@ -39,6 +39,7 @@ debian_packages=(
     # package test's bare profile starts from that; Debian unstable's QGIS no longer pulls it in.
     python3-scipy
     xvfb xauth fonts-dejavu-core  # headless X server and a font for the desktop tests
+    proj-data gdal-bin  # PROJ's EGM96 geoid grid (heights); gdaltransform, PROJ's command line the height tests check against
     pyqt5-dev-tools qttools5-dev-tools  # pylupdate5 and lrelease (tests/e2e/test_package.py)
     make ca-certificates  # the package test runs `make package`; pip needs the CA bundle
 )

@@ -18,6 +18,7 @@ debian_packages=(
     qgis python3-qgis qgis-providers  # QGIS 3.22 desktop, qgis_process and the Python bindings
     python3-venv python3-pyproj python3-numpy  # the venv's base; numpy 1.x that GDAL was built with
     xvfb xauth fonts-dejavu-core  # headless X server and a font for the desktop test
+    proj-data gdal-bin  # PROJ's EGM96 geoid grid (heights); gdaltransform, PROJ's command line the height tests check against
     pyqt5-dev-tools qttools5-dev-tools  # pylupdate5 and lrelease for `make translations`
 )
 system_python=/usr/bin/python3
