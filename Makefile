@@ -23,10 +23,10 @@ help:
 	@echo "make setup         install missing Debian packages and the pinned Python packages into $(VENV)"
 	@echo "make lint          ruff, flake8-qgis and the Qt 6 / QGIS API name check (run by make test)"
 	@echo "make bench         run each benchmarks/bench_*.py and print its figures and ratios"
-	@echo "make package       build/birdseye-<version>.zip, the plugin zip for QGIS's 'Install from ZIP'"
+	@echo "make package       build/birdseye.<version>.zip (QGIS's 'Install from ZIP') and build/plugins.xml (a plugin repository)"
 	@echo "make qgis-process ARGS='run birdseye:<id> -- PARAM=value'   run qgis_process with the plugin loaded"
 	@echo "make chain-model   regenerate resources/models/birdseye_chain.model3 (Graphical Modeler model)"
-	@echo "make translations  update i18n/birdseye_en.ts from the tr() strings; compile other i18n/*.ts to .qm"
+	@echo "make translations  update i18n/birdseye_en.ts from the tr() strings and help texts; compile other i18n/*.ts to .qm"
 	@echo "make clean         remove build/, birdseye-demo/ and caches (keeps $(VENV)); distclean also $(VENV)"
 
 setup:
@@ -74,8 +74,11 @@ bench: setup
 		QT_QPA_PLATFORM=offscreen $(PYTHON) "$$bench"; \
 	done
 
+# build/birdseye.<version>.zip and build/plugins.xml, the plugin repository file a user adds in QGIS's
+# Plugin Manager. PLUGIN_BASE_URL: the web folder the two files will be served from (for plugins.xml's
+# download_url), e.g. make package PLUGIN_BASE_URL=https://example.org/qgis/; empty: build/ as a file:// URL.
 package:
-	@/usr/bin/python3 scripts/package.py --out build
+	@/usr/bin/python3 scripts/package.py --out build $(if $(PLUGIN_BASE_URL),--base-url '$(PLUGIN_BASE_URL)')
 
 qgis-process: setup
 	@scripts/qgis_process.sh $(ARGS)
@@ -83,13 +86,14 @@ qgis-process: setup
 chain-model: setup
 	QT_QPA_PLATFORM=offscreen $(PYTHON) scripts/make_chain_model.py
 
-# Every file with tr() strings (core/ has none: it never imports Qt). English is the source language:
-# birdseye_en.ts lists the strings; a translator copies it to birdseye_<locale>.ts and fills it in
-# (Qt Linguist), and this target compiles it to the .qm the plugin loads for that QGIS locale.
+# Every file with tr() strings (core/ has none: it never imports Qt), then every block of the help texts
+# (scripts/help_catalogue.py; one recipe line, so the catalogue is never left without them). English is
+# the source language: birdseye_en.ts lists the strings; a translator copies it to birdseye_<locale>.ts
+# and fills it in (Qt Linguist), and this target compiles it to the .qm the plugin loads for that QGIS locale.
 TR_SOURCES = $(sort __init__.py $(shell find birdseye_qgis processing -name '*.py' -not -path '*/core/*'))
 translations: setup
-	@PYTHONWARNINGS=ignore::DeprecationWarning pylupdate5 -noobsolete $(TR_SOURCES) -ts i18n/birdseye_en.ts
-	@echo "i18n/birdseye_en.ts: $$(grep -c '<source>' i18n/birdseye_en.ts) strings from $(words $(TR_SOURCES)) files"
+	@PYTHONWARNINGS=ignore::DeprecationWarning pylupdate5 -noobsolete $(TR_SOURCES) -ts i18n/birdseye_en.ts && /usr/bin/python3 scripts/help_catalogue.py i18n/birdseye_en.ts
+	@echo "i18n/birdseye_en.ts: $$(grep -c '<source>' i18n/birdseye_en.ts) strings from $(words $(TR_SOURCES)) files and $$(ls resources/help/*.md | wc -l) help texts"
 	@shopt -s nullglob; for ts in i18n/birdseye_*.ts; do \
 		[[ $$ts == i18n/birdseye_en.ts ]] || lrelease -silent "$$ts" -qm "$${ts%.ts}.qm"; \
 	done

@@ -4,6 +4,7 @@ from __future__ import annotations
 import importlib
 import inspect
 import pkgutil
+import warnings
 
 from qgis.core import Qgis, QgsMessageLog, QgsProcessingProvider
 from qgis.PyQt.QtGui import QIcon
@@ -11,6 +12,12 @@ from qgis.PyQt.QtGui import QIcon
 from ..birdseye_qgis.__about__ import ICON_PATH, LOG_TAG, NAME
 from .algorithms import base
 from .algorithms.base import BirdsEyeAlgorithm
+
+# A matplotlib installed with pip beside the system's (Debian's python3-matplotlib, whose mpl_toolkits is found
+# first) warns "Unable to import Axes3D" when it is first imported, by an algorithm or a dock: its 3D projection
+# comes from the other installation. BirdsEye draws no 3D plot, so that one warning is dropped, for the whole
+# plugin, from the moment QGIS loads it.
+warnings.filterwarnings("ignore", message="Unable to import Axes3D", category=UserWarning)
 
 
 def algorithm_classes() -> list[type[BirdsEyeAlgorithm]]:

@@ -31,6 +31,7 @@ import argparse
 import json
 import math
 import os
+import re
 import shutil
 import sys
 import time
@@ -48,7 +49,7 @@ GROUP_ORDER = ["survey", "flight", "labels", "detections", "clusters", "plan", "
 FARM_MAP = "farm map"
 # OpenStreetMap's standard tiles as QGIS's own XYZ connection reads them; context when zoomed out.
 OSM_SOURCE = "type=xyz&url=https://tile.openstreetmap.org/{z}/{x}/{y}.png&zmin=0&zmax=19"
-OSM_NAME = "OpenStreetMap (online basemap)"
+OSM_NAME = "OpenStreetMap (web)"
 OSM_RIGHTS = "© OpenStreetMap contributors, ODbL (https://www.openstreetmap.org/copyright)"
 
 SIGMAS = "0.01,0.01,0.06,0.04,0.04,0.13"  # the deployed platform's pose noise Σ0 (m, m, m, °, °, °)
@@ -57,10 +58,12 @@ ALTITUDE_M = 10.0  # flying height of the simulated flights and of the sensor bo
 
 @dataclass(frozen=True)
 class Flight:
-    """One simulated flight: ``key`` names its files and steps, ``title`` its layers."""
+    """One simulated flight: ``key`` names its files and steps, ``title`` the progress lines and summary,
+    ``tag`` its layers ("Frames · training 1")."""
 
     key: str
     title: str
+    tag: str
     seed: int
     training: bool
     field_offset: int  # fields lie side by side, this many field spacings east of the first (a farm's paddocks)
@@ -90,10 +93,38 @@ SIZES = {
     "small": DemoSize(6, 4.0, 3.0, 480, 300, 1.0, 2.0, 112, 15.0),
 }
 FLIGHTS = [
-    Flight("train1", "training flight 1", 11, True, 0),
-    Flight("train2", "training flight 2", 12, True, 1),
-    Flight("heldout", "held-out flight", 13, False, 2),
+    Flight("train1", "training flight 1", "training 1", 11, True, 0),
+    Flight("train2", "training flight 2", "training 2", 12, True, 1),
+    Flight("heldout", "held-out flight", "held-out", 13, False, 2),
 ]
+# What a loaded layer is called, "<kind> · <tag>": the kind first and short, so the Layers panel shows the whole
+# name (or at least the part that tells two layers apart) at its default width; the algorithms' own output
+# names are longer ("Frames with label counts").
+LAYER_KINDS = {
+    ("importgeotags", "OUTPUT"): "Geotags",
+    ("importflightlog", "OUTPUT"): "Frames",
+    ("importflightlog", "OUTPUT_TRACK"): "Flight line",
+    ("writelabels", "OUTPUT_FRAMES"): "Labels",
+    ("writelabels", "OUTPUT_GEOTAGS"): "Sightings",
+    ("detect", "OUTPUT"): "Detections",
+    ("clusterdetections", "OUTPUT"): "Clusters",
+    ("clusterdetections", "OUTPUT_POINTS"): "Points",
+    ("planflight", "OUTPUT_WAYPOINTS"): "Waypoints",
+    ("planflight", "OUTPUT_ROUTE"): "Route",
+    ("comparedetectors", "OUTPUT"): "Changes",
+}
+# Warnings the simulation causes on purpose: (a regular expression matching the start of the message, why it is
+# expected). The demo prints them as notes saying why; any other warning stays a warning.
+SIMULATED_RTK_FLOAT = (r"\d+ frame\(s\) have no RTK fixed solution",
+                       "the simulator puts an RTK-float episode into every flight")
+SIMULATED_ALTIMETER_DROPOUT = (r"\d+ frame\(s\) had an altimeter reading below SNR",
+                               "the simulated radar altimeter has a low-SNR burst about once a minute")
+FLIGHT_LOG_EXPECTED = (SIMULATED_RTK_FLOAT, SIMULATED_ALTIMETER_DROPOUT)
+PLAN_EXPECTED = (
+    (r"the camera footprint at \S+ m keeps geotags in view",
+     "the demo flies at 10 m, where a frame keeps less than the default 2 m around a waypoint in view"),
+    (r"no HOME given", "the demo plans without a take-off point"),
+)
 SITE_LAT, SITE_LON = -27.55, 151.95
 
 
@@ -111,10 +142,12 @@ class Step:
     """One algorithm run: ``birdseye:<alg_id>`` with ``params``; its layers go into ``group``.
 
     ``name`` is how later steps refer to this step's outputs, e.g. ``"{campaign_heldout[CALIBRATION]}"``;
-    ``{out}`` is the demo folder. Loaded layers are named "<output description> (<layer_suffix>)"; the
-    outputs named in ``hidden`` start unticked in the Layers panel (they repeat what other layers show).
-    ``maps`` names outputs that are files rather than layer destinations, with their layer titles, to
-    load as rasters into ``map_group``.
+    ``{out}`` is the demo folder. Loaded layers are named "<kind> · <tag>", the kind from ``kinds`` (output
+    name → kind), else :data:`LAYER_KINDS`, else the output's description; the outputs named in ``hidden``
+    start unticked in the Layers panel (they repeat what other layers show), those in ``legend`` with their
+    legend open (what the map opens on needs reading). ``maps`` names outputs that are files rather than layer
+    destinations, with their kinds, to load as rasters into ``map_group``.
+    ``expected`` lists the warnings the step gives on purpose (:data:`FLIGHT_LOG_EXPECTED`).
     """
 
     name: str
@@ -122,10 +155,17 @@ class Step:
     title: str
     params: dict = field(default_factory=dict)
     group: str | None = None
-    layer_suffix: str = ""
+    tag: str = ""
+    kinds: dict = field(default_factory=dict)
     hidden: tuple = ()
+    legend: tuple = ()
     maps: tuple = ()
     map_group: str | None = None
+    expected: tuple = ()
+
+    def layer_name(self, output: str, description: str) -> str:
+        kind = self.kinds.get(output) or LAYER_KINDS.get((self.alg_id, output)) or description
+        return f"{kind} · {self.tag}" if self.tag else kind
 
 
 def build_steps(size: DemoSize, model: Path | None) -> list[Step]:
@@ -140,19 +180,20 @@ def build_steps(size: DemoSize, model: Path | None) -> list[Step]:
             "IMAGE_WIDTH": size.image_width, "IMAGE_HEIGHT": size.image_height, "SIGMAS": SIGMAS,
             "SITE_LAT": SITE_LAT, "SITE_LON": field_longitude(flight.field_offset * size.field_spacing_m),
             "OUTPUT_FOLDER": f"{{out}}/campaigns/{flight.key}"},
-            layer_suffix=flight.title, maps=(("ORTHOMOSAIC", "Orthomosaic"),), map_group=FARM_MAP))
+            tag=flight.tag, maps=(("ORTHOMOSAIC", "Mosaic"),), map_group=FARM_MAP))
     for flight in FLIGHTS:
         campaign = f"campaign_{flight.key}"
         steps.append(Step(f"geotags_{flight.key}", "importgeotags", f"Import the geotags of the {flight.title}", {
             "INPUT": f"{{{campaign}[GEOTAGS]}}", "OUTPUT": f"{{out}}/survey/geotags_{flight.key}.gpkg"},
-            group="survey", layer_suffix=flight.title))
+            group="survey", tag=flight.tag, legend=() if flight.training else ("OUTPUT",)))
         steps.append(Step(f"flight_{flight.key}", "importflightlog", f"Import the {flight.title}'s log", {
             "POSE_LOG": f"{{{campaign}[POSES]}}", "IMAGES": f"{{{campaign}[OUTPUT_FOLDER]}}",
             "CALIBRATION": f"{{{campaign}[CALIBRATION]}}",
             "FPS": size.training_fps if flight.training else size.held_out_fps,
             "OUTPUT": f"{{out}}/flight/frames_{flight.key}.gpkg",
-            "OUTPUT_TRACK": f"{{out}}/flight/track_{flight.key}.gpkg"}, group="flight", layer_suffix=flight.title,
-            hidden=("OUTPUT",) if flight.training else ()))  # the map shows the held-out flight's frames
+            "OUTPUT_TRACK": f"{{out}}/flight/track_{flight.key}.gpkg"}, group="flight", tag=flight.tag,
+            hidden=("OUTPUT",) if flight.training else (),  # the map shows the held-out flight's frames
+            expected=FLIGHT_LOG_EXPECTED))
     for flight in FLIGHTS:
         if flight.training:
             steps.append(Step(f"labels_{flight.key}", "writelabels", f"Write labels for the {flight.title}", {
@@ -161,19 +202,19 @@ def build_steps(size: DemoSize, model: Path | None) -> list[Step]:
                 "NEGATIVE_RATIO": 1.5, "OUTPUT_FOLDER": f"{{out}}/labels/{flight.key}",
                 "OUTPUT_FRAMES": f"{{out}}/labels/frames_labelled_{flight.key}.gpkg",
                 "OUTPUT_GEOTAGS": f"{{out}}/labels/geotags_seen_{flight.key}.gpkg"},
-                group="labels", layer_suffix=flight.title, hidden=("OUTPUT_FRAMES", "OUTPUT_GEOTAGS")))
+                group="labels", tag=flight.tag, hidden=("OUTPUT_FRAMES", "OUTPUT_GEOTAGS")))
     h = held_out.key
     detect = {"FRAMES": f"{{flight_{h}[OUTPUT]}}", "OUTPUT": "{out}/detections/detections.gpkg"}
     if model is not None:
         detect["MODEL"] = str(model)
     steps += [
         Step("detect", "detect", f"Detect targets on the {held_out.title}", detect, group="detections",
-             layer_suffix=held_out.title),
+             tag=held_out.tag, legend=("OUTPUT",)),
         Step("clusters", "clusterdetections", "Cluster the detections", {
             "DETECTIONS": "{detect[OUTPUT]}", "GEOTAGS": f"{{geotags_{h}[OUTPUT]}}",
             "FRAMES": f"{{flight_{h}[OUTPUT]}}", "OUTPUT": "{out}/clusters/clusters.gpkg",
-            "OUTPUT_POINTS": "{out}/clusters/cluster_points.gpkg"}, group="clusters", layer_suffix=held_out.title,
-            hidden=("OUTPUT_POINTS",)),
+            "OUTPUT_POINTS": "{out}/clusters/cluster_points.gpkg"}, group="clusters", tag=held_out.tag,
+            hidden=("OUTPUT_POINTS",), legend=("OUTPUT",)),
         Step("evaluation", "evaluatedetections", "Evaluate recall and GMCF against the survey", {
             "DETECTIONS": ["{detect[OUTPUT]}"], "GEOTAGS": f"{{geotags_{h}[OUTPUT]}}",
             "FRAMES": [f"{{flight_{h}[OUTPUT]}}"], "OUTPUT_JSON": "{out}/evaluation.json",
@@ -183,7 +224,7 @@ def build_steps(size: DemoSize, model: Path | None) -> list[Step]:
             "ALTITUDE_M": ALTITUDE_M, "OUTPUT_WAYPOINTS": "{out}/plan/waypoints.gpkg",
             "OUTPUT_ROUTE": "{out}/plan/route.gpkg", "OUTPUT_KMZ": "{out}/plan/mission.kmz",
             "OUTPUT_PLAN": "{out}/plan/mission.plan", "OUTPUT_LITCHI": "{out}/plan/mission_litchi.csv",
-            "OUTPUT_KML": "{out}/plan/mission.kml"}, group="plan", layer_suffix="next flight"),
+            "OUTPUT_KML": "{out}/plan/mission.kml"}, group="plan", tag="next flight", expected=PLAN_EXPECTED),
         Step("bound", "sensorbound", "Sensor bound for the simulated platform", {
             "CALIBRATION": f"{{campaign_{h}[CALIBRATION]}}", "ALTITUDES": f"{ALTITUDE_M:g}", "SIGMAS": SIGMAS,
             "OUTPUT_JSON": "{out}/sensor_bound.json", "OUTPUT_REPORT": "{out}/sensor_bound.html"}),
@@ -212,7 +253,9 @@ class TerminalFeedback:
     """Factory for a QgsProcessingFeedback that draws a progress bar and prints messages, indented."""
 
     @staticmethod
-    def create():
+    def create(expected=()):
+        """``expected``: (regular expression, reason) of warnings the step gives on purpose; a warning whose
+        start matches one is printed as a note with its reason, every other one as a warning."""
         from qgis.core import QgsProcessingFeedback
 
         class Feedback(QgsProcessingFeedback):
@@ -221,6 +264,7 @@ class TerminalFeedback:
                 self.live = sys.stdout.isatty()
                 self.last_shown = -10
                 self.errors: list[str] = []
+                self.expected = [(re.compile(pattern), reason) for pattern, reason in expected]
                 self.progressChanged.connect(self.show_progress)
 
             def show_progress(self, percent: float) -> None:
@@ -243,7 +287,11 @@ class TerminalFeedback:
 
             def pushWarning(self, warning):
                 self.end_line()
-                print(f"    warning: {warning}", flush=True)
+                reason = next((why for pattern, why in self.expected if pattern.match(warning)), None)
+                if reason is None:
+                    print(f"    warning: {warning}", flush=True)
+                else:
+                    print(f"    note: {warning} (expected: {reason})", flush=True)
 
             def reportError(self, error, fatalError=False):
                 self.end_line()
@@ -257,9 +305,6 @@ class TerminalFeedback:
 def start_qgis():
     """A headless QgsApplication with Processing and the BirdsEye provider, settings kept in build/."""
     os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
-    # The venv's matplotlib sees Debian's older mpl_toolkits and warns that 3-D plots are unavailable;
-    # the reports draw 2-D plots only, so the warning would only be noise on the demo's screen.
-    warnings.filterwarnings("ignore", message="Unable to import Axes3D")
     os.environ["QGIS_CUSTOM_CONFIG_PATH"] = str(REPO_ROOT / "build" / "qgis-demo")
     PLUGIN_PATH.mkdir(parents=True, exist_ok=True)
     link = PLUGIN_PATH / "birdseye"
@@ -277,6 +322,9 @@ def start_qgis():
     from processing.core.Processing import Processing
 
     Processing.initialize()
+    # The venv's matplotlib sees Debian's older mpl_toolkits and warns that 3-D plots are unavailable; the
+    # reports draw 2-D plots only. Set after QGIS's start-up, whose qgis.utils puts a "default" filter first.
+    warnings.filterwarnings("ignore", message="Unable to import Axes3D")
     from birdseye.processing.provider import BirdsEyeProvider
 
     provider = BirdsEyeProvider()
@@ -324,7 +372,8 @@ def layer_destinations(algorithm) -> set[str]:
 
 
 def run_step(step: Step, values: dict, project) -> tuple[dict, list]:
-    """Run one step; returns (results, [(loaded and styled layer, hidden?)]). Raises DemoError when it fails."""
+    """Run one step; returns (results, [(loaded and styled layer, hidden?, legend open?)]). Raises DemoError
+    when it fails."""
     import processing
     from qgis.core import (
         QgsApplication,
@@ -348,7 +397,7 @@ def run_step(step: Step, values: dict, project) -> tuple[dict, list]:
 
     context = QgsProcessingContext()
     context.setProject(project)
-    feedback = TerminalFeedback.create()
+    feedback = TerminalFeedback.create(step.expected)
     try:
         # onFinish that does nothing: keep results as paths; the layers are loaded below.
         results = processing.run(algorithm, params, onFinish=lambda *_: None, feedback=feedback,
@@ -368,24 +417,24 @@ def run_step(step: Step, values: dict, project) -> tuple[dict, list]:
         post_processor = details.postProcessor()
         if post_processor is not None:
             post_processor.postProcessLayer(layer, context, feedback)
-        name = details.name or layer.name()
-        layer.setName(f"{name} ({step.layer_suffix})" if step.layer_suffix else name)
-        layers.append((layer, details.outputName in step.hidden))
+        layer.setName(step.layer_name(details.outputName, details.name or layer.name()))
+        layers.append((layer, details.outputName in step.hidden, details.outputName in step.legend))
     return dict(results), layers
 
 
 def load_maps(step: Step, results: dict) -> list:
-    """The rasters ``step.maps`` names, as (layer, hidden) pairs. Raises DemoError when one cannot be opened."""
+    """The rasters ``step.maps`` names, as (layer, hidden, legend open) triples. Raises DemoError when one cannot
+    be opened."""
     from qgis.core import QgsRasterLayer
 
     layers = []
-    for output, title in step.maps:
+    for output, kind in step.maps:
         path = results.get(output) or ""
-        layer = QgsRasterLayer(path, f"{title} ({step.layer_suffix})" if step.layer_suffix else title)
+        layer = QgsRasterLayer(path, step.layer_name(output, kind))
         if not layer.isValid():
             raise DemoError(f"step '{step.title}': its output {output} ({path or 'not written'}) cannot be opened "
                             "as a raster layer")
-        layers.append((layer, False))
+        layers.append((layer, False, False))
     return layers
 
 
@@ -400,7 +449,7 @@ def osm_basemap():
     metadata.setRights([OSM_RIGHTS])
     metadata.setAbstract("Online map tiles for context around the farm; not needed to draw the project.")
     layer.setMetadata(metadata)
-    return layer, True
+    return layer, True, False
 
 
 def draw_rank(layer) -> int:
@@ -414,8 +463,9 @@ def draw_rank(layer) -> int:
 
 
 def add_to_group(project, group_name: str | None, layers: list[tuple], order=GROUP_ORDER) -> None:
-    """Add (layer, hidden) pairs under their group (``order``: the groups in workflow order), points first;
-    hidden ones start unticked."""
+    """Add (layer, hidden, legend open) triples under their group (``order``: the groups in workflow order),
+    points first; hidden ones start unticked, the others as one line in the Layers panel unless their legend
+    starts open."""
     root = project.layerTreeRoot()
     target = root
     if group_name:
@@ -423,24 +473,29 @@ def add_to_group(project, group_name: str | None, layers: list[tuple], order=GRO
         if target is None:  # keep the groups in workflow order whatever order they are filled in
             position = sum(1 for g in order[:order.index(group_name)] if root.findGroup(g))
             target = root.insertGroup(position, group_name)
-    for layer, hidden in sorted(layers, key=lambda pair: draw_rank(pair[0])):
+    for layer, hidden, legend in sorted(layers, key=lambda entry: draw_rank(entry[0])):
         project.addMapLayer(layer, False)
         node = target.addLayer(layer)
-        node.setExpanded(False)  # one line per layer in the Layers panel; the legend is a click away
+        node.setExpanded(legend)
         node.setItemVisibilityChecked(not hidden)
 
 
-def finish_project(project, farm_layers: list, order=GROUP_ORDER) -> None:
-    """Drawing order points > lines > polygons > maps whatever the group, later steps over earlier ones
-    (clusters over frames); open on the farm (``farm_layers``: its fields' maps)."""
+def finish_project(project, farm_layers: list, order=GROUP_ORDER, on_top=("survey", "plan")) -> None:
+    """Drawing order points > lines > polygons > maps whatever the group; within each, the groups ``on_top``
+    first (the survey, whose hollow rings keep the waypoints and detections on a geotag visible, then the plan),
+    then later steps over earlier ones (clusters over frames). The project opens on the farm (``farm_layers``:
+    its fields' maps)."""
     from qgis.core import QgsRectangle, QgsReferencedRectangle
 
     root = project.layerTreeRoot()
-    workflow_position = {name: k for k, name in enumerate(order)}
+    position = {name: k - len(order) - len(on_top) for k, name in enumerate(on_top)}
+    position.update({name: -k for k, name in enumerate(order) if name not in on_top})
     ordered = sorted(root.layerOrder(), key=lambda layer: (
-        draw_rank(layer), -workflow_position.get(root.findLayer(layer.id()).parent().name(), -1)))
+        draw_rank(layer), position.get(root.findLayer(layer.id()).parent().name(), 1)))
     root.setHasCustomLayerOrder(True)
     root.setCustomLayerOrder(ordered)
+    for group in root.findGroups():  # a group of unticked layers is one line until someone opens it
+        group.setExpanded(any(node.itemVisibilityChecked() for node in group.findLayers()))
     extent = QgsRectangle()  # null on 3.22 and later: the first combine takes that extent (no setMinimal)
     for layer in farm_layers:
         extent.combineExtentWith(layer.extent())
@@ -583,7 +638,7 @@ def run(out: Path, size: DemoSize, model: Path | None) -> int:
             add_to_group(project, step.map_group, maps)
             if (layers or maps) and not project.crs().isValid():
                 project.setCrs((layers or maps)[0][0].crs())
-            farm_layers += [layer for layer, _ in maps]
+            farm_layers += [layer for layer, *_ in maps]
             timings.append((step.title, seconds))
             print(f"    done in {seconds:.1f} s", flush=True)
 

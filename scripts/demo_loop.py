@@ -50,15 +50,16 @@ GROUPS = ["survey", "flight", "detections", "review", "labels", "model", "compar
 class Campaign:
     key: str
     title: str
+    tag: str               # names its layers: "Frames · review 1"
     seed: int
     review: bool           # reviewed and relabelled (True) or kept for the test (False)
     offset: int            # paddocks side by side, this many spacings east of the first
 
 
-CAMPAIGNS = [Campaign("review1", "review campaign 1", 401, True, 0),
-             Campaign("review2", "review campaign 2", 402, True, 1),
-             Campaign("test1", "test campaign 1", 501, False, 2),
-             Campaign("test2", "test campaign 2", 502, False, 3)]
+CAMPAIGNS = [Campaign("review1", "review campaign 1", "review 1", 401, True, 0),
+             Campaign("review2", "review campaign 2", "review 2", 402, True, 1),
+             Campaign("test1", "test campaign 1", "test 1", 501, False, 2),
+             Campaign("test2", "test campaign 2", "test 2", 502, False, 3)]
 
 
 @dataclass(frozen=True)
@@ -83,20 +84,20 @@ def campaign_steps(size: demo.DemoSize) -> list[demo.Step]:
             "LOOK_ALIKE_DENSITY": LOOK_ALIKES, "SITE_LAT": demo.SITE_LAT,
             "SITE_LON": demo.field_longitude(c.offset * size.field_spacing_m),
             "OUTPUT_FOLDER": f"{{out}}/campaigns/{c.key}"},
-            layer_suffix=c.title, maps=(("ORTHOMOSAIC", "Orthomosaic"),), map_group="farm map"))
+            tag=c.tag, maps=(("ORTHOMOSAIC", "Mosaic"),), map_group="farm map"))
         steps.append(demo.Step(f"geotags_{c.key}", "importgeotags", f"Import the geotags of the {c.title}", {
             "INPUT": f"{{campaign_{c.key}[GEOTAGS]}}", "OUTPUT": f"{{out}}/survey/geotags_{c.key}.gpkg"},
-            group="survey", layer_suffix=c.title))
+            group="survey", tag=c.tag))
         steps.append(demo.Step(f"flight_{c.key}", "importflightlog", f"Import the {c.title}'s log", {
             "POSE_LOG": f"{{campaign_{c.key}[POSES]}}", "IMAGES": f"{{campaign_{c.key}[OUTPUT_FOLDER]}}",
             "CALIBRATION": f"{{campaign_{c.key}[CALIBRATION]}}",
             "FPS": size.training_fps if c.review else size.held_out_fps,
             "OUTPUT": f"{{out}}/flight/frames_{c.key}.gpkg", "OUTPUT_TRACK": f"{{out}}/flight/track_{c.key}.gpkg"},
-            group="flight", layer_suffix=c.title, hidden=("OUTPUT",)))
+            group="flight", tag=c.tag, hidden=("OUTPUT",), expected=demo.FLIGHT_LOG_EXPECTED))
         steps.append(demo.Step(f"detect_{c.key}", "detect", f"Detect on the {c.title} with the bundled model", {
             "FRAMES": f"{{flight_{c.key}[OUTPUT]}}", "MODEL": str(demo.BUNDLED_MODEL),
             "OUTPUT": f"{{out}}/detections/bundled_{c.key}.gpkg"},
-            group="detections", layer_suffix=f"bundled model, {c.title}", hidden=("OUTPUT",)))
+            group="detections", tag=c.tag, kinds={"OUTPUT": "Bundled model"}, hidden=("OUTPUT",)))
     return steps
 
 
@@ -108,7 +109,7 @@ def review_steps(size: demo.DemoSize) -> list[demo.Step]:
         steps.append(demo.Step(f"clusters_{c.key}", "clusterdetections", f"Cluster the {c.title}'s detections", {
             "DETECTIONS": f"{{detect_{c.key}[OUTPUT]}}", "GEOTAGS": f"{{geotags_{c.key}[OUTPUT]}}",
             "FRAMES": f"{{flight_{c.key}[OUTPUT]}}", "OUTPUT": f"{{out}}/review/clusters_{c.key}.gpkg",
-            "OUTPUT_POINTS": None}, group="review", layer_suffix=c.title))
+            "OUTPUT_POINTS": None}, group="review", tag=c.tag))
     return steps
 
 
@@ -137,14 +138,14 @@ def relabel_and_train_steps(size: demo.DemoSize, minutes: float) -> list[demo.St
         steps.append(demo.Step(f"retrained_{c.key}", "detect", f"Detect on the {c.title} with the retrained model", {
             "FRAMES": f"{{flight_{c.key}[OUTPUT]}}", "MODEL": "{train[OUTPUT_MODEL]}",
             "OUTPUT": f"{{out}}/detections/retrained_{c.key}.gpkg"},
-            group="detections", layer_suffix=f"retrained model, {c.title}", hidden=("OUTPUT",)))
+            group="detections", tag=c.tag, kinds={"OUTPUT": "Retrained model"}, hidden=("OUTPUT",)))
         steps.append(demo.Step(f"compare_{c.key}", "comparedetectors", f"Compare both models on the {c.title}", {
             "DETECTIONS_OLD": f"{{detect_{c.key}[OUTPUT]}}", "DETECTIONS_NEW": f"{{retrained_{c.key}[OUTPUT]}}",
             "FRAMES": f"{{flight_{c.key}[OUTPUT]}}", "GEOTAGS": f"{{geotags_{c.key}[OUTPUT]}}",
             "OUTPUT": f"{{out}}/comparison/changes_{c.key}.gpkg",
             "OUTPUT_JSON": f"{{out}}/comparison/comparison_{c.key}.json",
             "OUTPUT_REPORT": f"{{out}}/comparison/comparison_{c.key}.html"},
-            group="comparison", layer_suffix=c.title))
+            group="comparison", tag=c.tag))
     return steps
 
 
@@ -308,11 +309,11 @@ def run(out: Path, size_name: str, minutes: float | None) -> int:
             demo.add_to_group(project, step.map_group, maps, GROUPS)
             if (layers or maps) and not project.crs().isValid():
                 project.setCrs((layers or maps)[0][0].crs())
-            farm_layers += [layer for layer, _ in maps]
+            farm_layers += [layer for layer, *_ in maps]
             print(f"    done in {time.monotonic() - step_start:.1f} s", flush=True)
         add_verdict_layers(project, values)
         demo.add_to_group(project, "farm map", [demo.osm_basemap()], GROUPS)
-        demo.finish_project(project, farm_layers, GROUPS)
+        demo.finish_project(project, farm_layers, GROUPS, on_top=("survey",))
         project_path = out / PROJECT_NAME
         if not project.write(str(project_path)):
             raise demo.DemoError(f"could not write {project_path}: {project.error()}")
@@ -352,10 +353,10 @@ def add_verdict_layers(project, values: dict) -> None:
     layers = []
     for c in CAMPAIGNS:
         if c.review:
-            layer = QgsVectorLayer(values[f"review_{c.key}"]["VERDICTS"], f"Verdicts ({c.title})", "ogr")
+            layer = QgsVectorLayer(values[f"review_{c.key}"]["VERDICTS"], f"Verdicts · {c.tag}", "ogr")
             if not layer.isValid():
                 raise demo.DemoError(f"the verdict log of the {c.title} cannot be opened as a layer")
-            layers.append((layer, False))
+            layers.append((layer, False, False))
     demo.add_to_group(project, "review", layers, GROUPS)
 
 

@@ -1,27 +1,42 @@
-"""Build the plugin zip a user installs with QGIS's "Install from ZIP": build/birdseye-<version>.zip.
+"""Build the plugin zip a user installs with QGIS's "Install from ZIP", build/birdseye.<version>.zip, and
+the plugin repository file beside it, build/plugins.xml, that a user adds in QGIS's Plugin Manager.
 
 The zip holds one top folder, ``birdseye/`` (the name QGIS installs the plugin under), with only what
 the plugin needs at run time: the files and folders in :data:`INCLUDED` (the bundled ONNX model and
 the ranges of ``requirements.txt`` included) and the compiled translations ``i18n/*.qm``. Tests,
 benchmarks, scripts, the venv, build output, caches and hidden files stay out. The zip is then checked
 as plugins.qgis.org's upload validator checks it (:func:`repository_problems`); any problem fails the
-build. Runs with Debian's python3 (no QGIS needed).
+build.
 
-    /usr/bin/python3 scripts/package.py [--out build]
+``plugins.xml`` describes the zip in the format QGIS's plugin installer reads from a plugin repository
+(``python/pyplugin_installer/installer_data.py``, ``Repositories.xmlDownloaded``; the elements
+plugins.qgis.org writes): one ``<pyqgis_plugin name=… version=…>`` whose elements come from
+metadata.txt, ``file_name`` the zip's name and ``download_url`` where the zip is fetched from:
+``--base-url`` + the zip's name, or, without it, the zip's own ``file://`` URL (a repository on this
+machine or a shared folder mounted at the same path). QGIS takes the plugin's id from ``file_name``, up
+to the first dot, which is why the zip is named ``birdseye.<version>.zip`` (plugins.qgis.org's own
+naming), not ``birdseye-<version>.zip``. The file is checked against metadata.txt and the zip
+(:func:`repository_file_problems`). Runs with Debian's python3 (no QGIS needed).
+
+    /usr/bin/python3 scripts/package.py [--out build] [--base-url https://example.org/qgis/]
 """
 from __future__ import annotations
 
 import argparse
 import configparser
 import io
+import os
 import re
 import sys
+import xml.etree.ElementTree as ET
 import zipfile
+from datetime import datetime, timezone
 from pathlib import Path
-from urllib.parse import urlparse
+from urllib.parse import urljoin, urlparse
 
 REPO_ROOT = Path(__file__).resolve().parents[1]
 PLUGIN_FOLDER = "birdseye"
+REPOSITORY_FILE = "plugins.xml"
 # requirements.txt: the ranges BirdsEye › Install dependencies… installs from (birdseye_qgis/dependencies.py)
 INCLUDED = ["__init__.py", "metadata.txt", "LICENSE", "README.md", "requirements.txt",
             "birdseye_qgis", "processing", "models", "resources"]
@@ -38,10 +53,26 @@ URL_METADATA = ("tracker", "repository", "homepage")
 FORBIDDEN_DIRS = ("__MACOSX", ".git", "__pycache__")
 
 
+def read_metadata(text: str) -> configparser.SectionProxy:
+    """The ``[general]`` section of a metadata.txt, keys case-sensitive (``qgisMinimumVersion``)."""
+    parser = configparser.ConfigParser(interpolation=None)
+    parser.optionxform = str
+    parser.read_string(text)
+    return parser["general"]
+
+
+def plugin_metadata(root: Path = REPO_ROOT) -> configparser.SectionProxy:
+    return read_metadata((root / "metadata.txt").read_text(encoding="utf-8"))
+
+
 def plugin_version(root: Path = REPO_ROOT) -> str:
-    metadata = configparser.ConfigParser(interpolation=None)
-    metadata.read(root / "metadata.txt", encoding="utf-8")
-    return metadata["general"]["version"]
+    return plugin_metadata(root)["version"]
+
+
+def archive_name(version: str) -> str:
+    """``birdseye.<version>.zip``: QGIS's installer takes a repository plugin's id from its file name up to
+    the first dot, so the name must start with the plugin folder and a dot."""
+    return f"{PLUGIN_FOLDER}.{version}.zip"
 
 
 def packaged_files(root: Path = REPO_ROOT) -> list[Path]:
@@ -66,7 +97,7 @@ def packaged_files(root: Path = REPO_ROOT) -> list[Path]:
 
 def build(out_dir: Path, root: Path = REPO_ROOT) -> Path:
     out_dir.mkdir(parents=True, exist_ok=True)
-    archive = out_dir / f"{PLUGIN_FOLDER}-{plugin_version(root)}.zip"
+    archive = out_dir / archive_name(plugin_version(root))
     tmp = archive.with_suffix(".zip.part")
     with zipfile.ZipFile(tmp, "w", compression=zipfile.ZIP_DEFLATED) as zf:
         for relative in packaged_files(root):
@@ -153,9 +184,121 @@ def repository_problems(archive: Path, new_plugin: bool = True) -> list[str]:
     return problems
 
 
+def download_url(archive: Path, base_url: str | None = None) -> str:
+    """Where plugins.xml says the zip is: ``base_url`` + its name, else its own ``file://`` URL."""
+    if not base_url:
+        return archive.resolve().as_uri()
+    return urljoin(base_url if base_url.endswith("/") else base_url + "/", archive.name)
+
+
+def _flag(value: str) -> str:
+    return "True" if value.strip().lower() in ("true", "yes", "1") else "False"
+
+
+def plugins_xml(archive: Path, url: str, now: datetime | None = None) -> str:
+    """The plugin repository file for ``archive``, from the metadata.txt inside it.
+
+    The elements and their spelling are those QGIS's installer reads (``installer_data.py``:
+    ``pyqgis_plugin`` with the attributes ``name`` and ``version``; ``file_name``, ``download_url``,
+    ``qgis_minimum_version``, ``qgis_maximum_version``, ``experimental``, ``deprecated``, ``description``,
+    ``about``, ``author_name``, ``author_email``, ``homepage``, ``tracker``, ``repository``, ``tags``,
+    ``category``, ``changelog``, ``create_date``, ``update_date``), in the order plugins.qgis.org writes
+    them; ``uploaded_by``, ``server`` and ``supports_qt6`` are written for people and other tools (QGIS
+    3.22–3.40 do not read them). ``now`` (UTC) dates the file; default: ``SOURCE_DATE_EPOCH`` if set,
+    else the current time.
+    """
+    with zipfile.ZipFile(archive) as zf:
+        general = read_metadata(zf.read(f"{PLUGIN_FOLDER}/metadata.txt").decode("utf-8"))
+    if now is None:
+        epoch = os.environ.get("SOURCE_DATE_EPOCH")
+        now = datetime.fromtimestamp(int(epoch), timezone.utc) if epoch else datetime.now(timezone.utc)
+    stamp = now.replace(microsecond=0).isoformat()
+    minimum = general["qgisMinimumVersion"].strip()
+    root = ET.Element("plugins")
+    plugin = ET.SubElement(root, "pyqgis_plugin", name=general["name"].strip(), version=general["version"].strip())
+    fields = [
+        ("description", general.get("description", "")),
+        ("about", general.get("about", "")),
+        ("version", general["version"]),
+        ("trusted", "False"),
+        ("qgis_minimum_version", minimum),
+        # QGIS's own default for a missing maximum: the minimum's major version .99
+        ("qgis_maximum_version", general.get("qgisMaximumVersion", "").strip() or f"{minimum.split('.')[0]}.99"),
+        ("homepage", general.get("homepage", "")),
+        ("file_name", archive.name),
+        ("icon", ""),  # a relative path would be taken from the web server's root: the installed plugin's icon is used
+        ("author_name", general.get("author", "")),
+        ("author_email", general.get("email", "")),
+        ("download_url", url),
+        ("uploaded_by", general.get("author", "")),
+        ("create_date", stamp),
+        ("update_date", stamp),
+        ("experimental", _flag(general.get("experimental", "False"))),
+        ("deprecated", _flag(general.get("deprecated", "False"))),
+        ("tracker", general.get("tracker", "")),
+        ("repository", general.get("repository", "")),
+        ("tags", general.get("tags", "")),
+        ("category", general.get("category", "")),
+        ("changelog", general.get("changelog", "")),
+        ("server", _flag(general.get("server", "False"))),
+        ("supports_qt6", _flag(general.get("supportsQt6", "False"))),
+    ]
+    for tag, text in fields:
+        ET.SubElement(plugin, tag).text = text.strip()
+    ET.indent(root)
+    return "<?xml version='1.0' encoding='UTF-8'?>\n" + ET.tostring(root, encoding="unicode") + "\n"
+
+
+def write_repository_file(archive: Path, base_url: str | None = None) -> Path:
+    """``plugins.xml`` beside ``archive`` (written under a temporary name, then renamed)."""
+    path = archive.parent / REPOSITORY_FILE
+    tmp = path.with_suffix(".xml.part")
+    tmp.write_text(plugins_xml(archive, download_url(archive, base_url)), encoding="utf-8")
+    tmp.replace(path)
+    return path
+
+
+def repository_file_problems(path: Path, archive: Path) -> list[str]:
+    """Where ``plugins.xml`` disagrees with the zip it describes (empty: it matches): one plugin, named and
+    versioned as the zip's metadata.txt, with its QGIS range, the zip's file name, an id (the file name up
+    to the first dot, as QGIS's installer takes it) equal to the zip's top folder, and a download URL that
+    ends with the zip's name."""
+    try:
+        root = ET.parse(path).getroot()
+    except ET.ParseError as exc:
+        return [f"{path.name} is not well-formed XML: {exc}"]
+    plugins = root.findall("pyqgis_plugin")
+    if root.tag != "plugins" or len(plugins) != 1:
+        return [f"{path.name} must hold <plugins> with exactly one <pyqgis_plugin>"]
+    plugin = plugins[0]
+    with zipfile.ZipFile(archive) as zf:
+        general = read_metadata(zf.read(f"{PLUGIN_FOLDER}/metadata.txt").decode("utf-8"))
+        top = zf.namelist()[0].split("/")[0]
+    expected = {"@name": general["name"], "@version": general["version"], "version": general["version"],
+                "qgis_minimum_version": general["qgisMinimumVersion"],
+                "qgis_maximum_version": general.get("qgisMaximumVersion", ""),
+                "experimental": _flag(general.get("experimental", "False")), "file_name": archive.name}
+    problems = []
+    for key, want in expected.items():
+        got = plugin.get(key[1:]) if key.startswith("@") else plugin.findtext(key)
+        if (got or "").strip() != want.strip():
+            problems.append(f"{path.name}: {key.lstrip('@')} is '{got}', the zip says '{want.strip()}'")
+    file_name = (plugin.findtext("file_name") or "").strip()
+    if file_name.partition(".")[0] != top:
+        problems.append(f"{path.name}: QGIS would install '{file_name}' as plugin '{file_name.partition('.')[0]}', "
+                        f"but the zip's folder is '{top}'")
+    url = (plugin.findtext("download_url") or "").strip()
+    if not url.split("?")[0].endswith("/" + archive.name) or not urlparse(url).scheme:
+        problems.append(f"{path.name}: download_url '{url}' is not a full URL of {archive.name}")
+    return problems
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--out", type=Path, default=REPO_ROOT / "build", help="output folder")
+    parser.add_argument("--base-url", default=os.environ.get("PLUGIN_BASE_URL") or None,
+                        help="the web (or file://) folder the zip will be served from, for plugins.xml's "
+                             "download_url (default: $PLUGIN_BASE_URL, else the output folder as a file:// URL)")
     args = parser.parse_args()
     archive = build(args.out)
     with zipfile.ZipFile(archive) as zf:
@@ -166,6 +309,12 @@ def main() -> None:
     if problems:
         sys.exit("package: plugins.qgis.org would refuse it:\n  - " + "\n  - ".join(problems))
     print("package: passes plugins.qgis.org's upload checks (size, paths, folders, metadata, icon, LICENSE)")
+    repository = write_repository_file(archive, args.base_url)
+    problems = repository_file_problems(repository, archive)
+    if problems:
+        sys.exit("package: the plugin repository file does not match the zip:\n  - " + "\n  - ".join(problems))
+    url = ET.parse(repository).getroot().findtext("pyqgis_plugin/download_url")
+    print(f"{repository}: plugin repository file, download_url {url}")
 
 
 if __name__ == "__main__":

@@ -22,6 +22,14 @@ class InputError(ValueError):
         super().__init__(f"{', '.join(where)}: {message}" if where else message)
 
 
+def detached(error: InputError) -> InputError:
+    """``error`` kept for a report of bad input left out, without its traceback and chained exceptions: they
+    hold the frames of the reader and of all its callers, and whatever those hold open (an algorithm's output
+    file, which QGIS then cannot load), in a reference cycle with the error until the garbage collector runs."""
+    error.__traceback__ = error.__context__ = error.__cause__ = None
+    return error
+
+
 class Cancelled(Exception):
     """Raised inside core loops when the caller's cancel callback returns True."""
 

@@ -15,7 +15,7 @@ from pathlib import Path
 from typing import Callable, Sequence
 
 from qgis.core import QgsApplication
-from qgis.PyQt.QtCore import Qt, QThread, pyqtSignal
+from qgis.PyQt.QtCore import QEvent, QRect, QSize, Qt, QThread, QTimer, pyqtSignal
 from qgis.PyQt.QtGui import QFontDatabase
 from qgis.PyQt.QtWidgets import (
     QAbstractItemView,
@@ -26,6 +26,7 @@ from qgis.PyQt.QtWidgets import (
     QPlainTextEdit,
     QProgressBar,
     QPushButton,
+    QStyle,
     QTreeWidget,
     QTreeWidgetItem,
     QVBoxLayout,
@@ -154,6 +155,11 @@ class DependenciesDialog(QDialog):
         for column in (PACKAGE_COLUMN, VERSION_COLUMN, STATE_COLUMN):
             header.setSectionResizeMode(column, QHeaderView.ResizeMode.ResizeToContents)
         header.setStretchLastSection(True)
+        # "Needed by" lists many algorithms: wrapped to the column, never cut off (a tree sizes its rows for one
+        # line unless told otherwise).
+        self.table.setWordWrap(True)
+        self.table.viewport().installEventFilter(self)
+        self.table.itemChanged.connect(self._explain_install_button)   # a tick or an untick
         self.progress = QProgressBar()
         self.progress.setRange(0, 100)
         self.progress.setVisible(False)
@@ -211,6 +217,7 @@ class DependenciesDialog(QDialog):
                 item.setFlags(item.flags() & ~Qt.ItemFlag.ItemIsEnabled)
             item.setToolTip(NEEDED_BY_COLUMN, item.text(NEEDED_BY_COLUMN))
             self.table.addTopLevelItem(item)
+        self._wrap_needed_by()
         needed = [s for s in self.statuses if s.needs_install and (s.package.use.always or s.package.use.sometimes)]
         if needed:
             self.intro.setText(tr(
@@ -223,8 +230,34 @@ class DependenciesDialog(QDialog):
         else:
             self.intro.setText(tr("Every Python package BirdsEye's algorithms need is installed in the Python "
                                   "QGIS runs."))
-        self.install_button.setEnabled(any(s.needs_install for s in self.statuses))
+        self._explain_install_button()
         self.refresh_group()
+
+    def _wrap_needed_by(self, *_) -> None:
+        """Each row as tall as its "Needed by" text wrapped to the column's width."""
+        margin = self.table.style().pixelMetric(QStyle.PixelMetric.PM_FocusFrameHMargin, None, self.table) + 1
+        width = max(1, self.table.header().sectionSize(NEEDED_BY_COLUMN) - 2 * margin)
+        metrics = self.table.fontMetrics()
+        for i in range(self.table.topLevelItemCount()):
+            item = self.table.topLevelItem(i)
+            text = metrics.boundingRect(QRect(0, 0, width, 100_000), int(Qt.TextFlag.TextWordWrap),
+                                        item.text(NEEDED_BY_COLUMN))
+            item.setSizeHint(NEEDED_BY_COLUMN, QSize(width, text.height() + 2 * margin))
+
+    def _explain_install_button(self, *_) -> None:
+        """Install is enabled when a package is ticked; greyed out, its tooltip says why."""
+        if self.is_running():
+            return
+        missing = [s for s in self.statuses if s.needs_install]
+        ticked = bool(self.checked_packages())
+        self.install_button.setEnabled(ticked)
+        if ticked:
+            self.install_button.setToolTip(tr("Install the ticked packages into {folder}").format(folder=self.folder))
+        elif missing:
+            self.install_button.setToolTip(tr("Tick a package in the list to install it."))
+        else:
+            self.install_button.setToolTip(tr("Nothing to install: every package in the list is installed or has "
+                                              "no release for this Python."))
 
     def refresh_group(self) -> None:
         """The optional PyTorch group: its state in its folder and what installing it does."""
@@ -238,8 +271,14 @@ class DependenciesDialog(QDialog):
                 title=self.group.title, build=self.group.build.upper(), state=state, folder=self.group_folder,
                 why=tr(", an NVIDIA driver is present") if self.group.build == "cuda" else ""))
         missing = [s for s in self.group_statuses if s.needs_install]
-        self.group_button.setText(tr("Install {title}").format(title=self.group.title))
         self.group_button.setEnabled(bool(missing))
+        if missing:
+            self.group_button.setText(tr("Install {title}").format(title=self.group.title))
+            self.group_button.setToolTip(tr("Install {names} into {folder}").format(
+                names=", ".join(s.package.requirement for s in missing), folder=self.group_folder))
+        else:   # greyed out: say so on the button itself, not only in a tooltip
+            self.group_button.setText(tr("{title} is installed").format(title=self.group.title))
+            self.group_button.setToolTip(tr("Nothing to install: {state}.").format(state=state))
 
     def checked_packages(self) -> list[RuntimePackage]:
         by_name = {s.package.distribution: s.package for s in self.statuses}
@@ -273,6 +312,8 @@ class DependenciesDialog(QDialog):
         self.status.setText(tr("Installing {names}…").format(names=", ".join(p.requirement for p in packages)))
         self.install_button.setEnabled(False)
         self.group_button.setEnabled(False)
+        for button in (self.install_button, self.group_button):
+            button.setToolTip(tr("pip is installing; press Cancel to stop it."))
         self.table.setEnabled(False)
         self.close_button.setText(tr("Cancel"))
         self._busy = True
@@ -307,8 +348,8 @@ class DependenciesDialog(QDialog):
     def _finished(self) -> None:
         self.table.setEnabled(True)
         self.close_button.setText(tr("Close"))
-        self.refresh()
         self._busy = False
+        self.refresh()
 
     def reject(self) -> None:
         """Close; while pip runs, Cancel (and Esc) stop it first."""
@@ -317,6 +358,11 @@ class DependenciesDialog(QDialog):
             self.status.setText(tr("Cancelling…"))
             return
         super().reject()
+
+    def eventFilter(self, watched, event) -> bool:  # noqa: N802 — Qt's name
+        if watched is self.table.viewport() and event.type() == QEvent.Type.Resize:
+            QTimer.singleShot(0, self._wrap_needed_by)   # once the column has its new width
+        return super().eventFilter(watched, event)
 
     def closeEvent(self, event) -> None:  # noqa: N802 — Qt's name
         if self.is_running():

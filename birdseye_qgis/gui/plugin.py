@@ -10,7 +10,7 @@ import importlib
 import importlib.util
 from typing import NamedTuple
 
-from qgis.core import Qgis, QgsApplication, QgsMessageLog
+from qgis.core import Qgis, QgsApplication, QgsMessageLog, QgsProject
 from qgis.PyQt.QtCore import QT_TRANSLATE_NOOP, QCoreApplication, QLocale, Qt, QTranslator
 from qgis.PyQt.QtGui import QIcon
 from qgis.PyQt.QtWidgets import QMenu, QPushButton, QToolBar
@@ -22,6 +22,7 @@ except ImportError:
 
 from ..__about__ import I18N_DIR, ICON_PATH, LOG_TAG, PLUGIN_ROOT, tr
 from ..dependencies import activate, package_folder, statuses
+from ..qgis_io import layer_kinds
 
 # The name QGIS imported the plugin under ("birdseye" when installed from the zip), so dock modules
 # are found whatever the plugin folder is called.
@@ -120,6 +121,8 @@ class BirdsEyePlugin:
     # ------------------------------------------------------------------ desktop
     def initGui(self) -> None:
         self.initProcessing()
+        # From QGIS's start on, so "the most recent layer" of every layer choice is the one added last.
+        layer_kinds.track(QgsProject.instance())
         main_window = self.iface.mainWindow()
         icon = QIcon(str(PLUGIN_ROOT / ALGORITHMS_ICON))
 

@@ -12,14 +12,15 @@ metres above the ground.
 """
 from __future__ import annotations
 
+import html
 from pathlib import Path
 
-from qgis.core import Qgis, QgsProject
 from qgis.gui import QgsDockWidget, QgsDoubleSpinBox, QgsFileWidget, QgsSpinBox
-from qgis.PyQt.QtCore import Qt, QTimer
+from qgis.PyQt.QtCore import QT_TRANSLATE_NOOP, Qt, QTimer
 from qgis.PyQt.QtGui import QBrush, QColor, QFont, QGuiApplication
 from qgis.PyQt.QtWidgets import (
     QAbstractItemView,
+    QAbstractSpinBox,
     QComboBox,
     QFormLayout,
     QFrame,
@@ -38,7 +39,7 @@ from qgis.PyQt.QtWidgets import (
     QWidget,
 )
 
-from ..__about__ import LOG_TAG, tr
+from ..__about__ import tr
 from ..core.design.bound_report import (
     ACCEPT_COLOUR,
     REJECT_COLOUR,
@@ -61,25 +62,59 @@ from ..core.design.sensor_bound import (
 from ..core.errors import InputError
 from ..core.geometry.camera import CALIBRATION_FILE_FILTER, load_calibration
 from ..core.labels.training_set import label_sigma_px
-from ..qgis_io.project_settings import store_sigma_label_px
 
 SENSOR_BOUND_ALG = "birdseye:sensorbound"
+WRITE_LABELS_ALG = "birdseye:writelabels"
 PRESET_DEPLOYED = DEPLOYED.name
 PRESET_CUSTOM = "Custom"
 PRESETS = tuple(p.name for p in PLATFORMS) + (PRESET_CUSTOM,)
+#: Names shorter than the platform's, where its own would not fit a dock (the item's tooltip gives it whole).
+PRESET_LABELS = {"dji_metadata": QT_TRANSLATE_NOOP("@default", "DJI RTK drone, poses from photos")}
 LIVE_DELAY_MS = 250
+#: The narrowest the dock gets (QGIS's usual dock width): every field, header and cell fits it
+#: (tests/gui/test_docks_desktop.py looks).
+MINIMUM_WIDTH = 360
 PREVIEW_MAX_POINTS = 150_000
 AXIS_TIPS = {
-    "x": "Horizontal position error across the flight direction (image right), metres.",
-    "y": "Horizontal position error along the flight direction (image down), metres.",
-    "z": "Vertical position / altimeter error (along the optical axis), metres.",
-    "roll": "Roll attitude error, degrees; the camera mount says which way it turns the camera.",
-    "pitch": "Pitch attitude error, degrees; the camera mount says which way it turns the camera.",
-    "yaw": "Heading error (about the vertical / optical axis), degrees.",
+    "x": QT_TRANSLATE_NOOP("@default", "Horizontal position error across the flight direction (image right), metres."),
+    "y": QT_TRANSLATE_NOOP("@default", "Horizontal position error along the flight direction (image down), metres."),
+    "z": QT_TRANSLATE_NOOP("@default", "Vertical position / altimeter error (along the optical axis), metres."),
+    "roll": QT_TRANSLATE_NOOP("@default", "Roll attitude error, degrees; the camera mount says which way it turns "
+                                          "the camera."),
+    "pitch": QT_TRANSLATE_NOOP("@default", "Pitch attitude error, degrees; the camera mount says which way it turns "
+                                           "the camera."),
+    "yaw": QT_TRANSLATE_NOOP("@default", "Heading error (about the vertical / optical axis), degrees."),
 }
+#: The axes in words, their symbol after (the pose-noise labels) and alone (the budget table's rows, whose
+#: tooltips give the symbol).
+AXIS_NAMES = {"x": QT_TRANSLATE_NOOP("@default", "Across (x)"), "y": QT_TRANSLATE_NOOP("@default", "Along (y)"),
+              "z": QT_TRANSLATE_NOOP("@default", "Height (z)"), "roll": QT_TRANSLATE_NOOP("@default", "Roll"),
+              "pitch": QT_TRANSLATE_NOOP("@default", "Pitch"), "yaw": QT_TRANSLATE_NOOP("@default", "Yaw")}
+AXIS_WORDS = {"x": QT_TRANSLATE_NOOP("@default", "Across"), "y": QT_TRANSLATE_NOOP("@default", "Along"),
+              "z": QT_TRANSLATE_NOOP("@default", "Height"), "roll": QT_TRANSLATE_NOOP("@default", "Roll"),
+              "pitch": QT_TRANSLATE_NOOP("@default", "Pitch"), "yaw": QT_TRANSLATE_NOOP("@default", "Yaw")}
+#: Short names of the camera mounts for the dock's narrow combo box; each item's tooltip spells the mount out.
+MOUNT_NAMES = {"method": QT_TRANSLATE_NOOP("@default", "As the method"),
+               "nadir_top_forward": QT_TRANSLATE_NOOP("@default", "Nadir, image top forward")}
+#: What the numbers mean, for the tooltips of the results table and the note under it.
+SPREAD_TIP = QT_TRANSLATE_NOOP("@default", "The spread of a label is the variance of where pose noise moves it, in "
+                                           "square pixels (px²): its standard deviation squared.")
+TOTAL_TIP = QT_TRANSLATE_NOOP("@default", "Total spread, sup tr Σ: the largest sum of the spreads along u and v over "
+                                          "the image (px²), the trace of the label covariance Σ. Quick to check and "
+                                          "pessimistic: it is never smaller than the largest spread.")
+LARGEST_TIP = QT_TRANSLATE_NOOP("@default", "Largest spread, sup λmax: the largest spread in the worst direction over "
+                                            "the image (px²), the largest eigenvalue λmax of the label covariance Σ. "
+                                            "This is what the tolerance limits.")
+TRACE_BOUND_TIP = QT_TRANSLATE_NOOP("@default", "Trace bound: safety factor κ* = λ_target / total spread. Sufficient "
+                                                "but pessimistic: when it accepts, the exact bound accepts too.")
+EXACT_BOUND_TIP = QT_TRANSLATE_NOOP("@default", "Exact bound: safety factor κ* = λ_target / largest spread, the exact "
+                                                "eigenvalue bound. Accept (✓) when κ* ≥ 1: every variance of the pose "
+                                                "noise may grow by κ* (every σ by √κ*) and labels still stay within "
+                                                "their tolerance.")
 
 
-def _spin(decimals: int, minimum: float, maximum: float, step: float, suffix: str) -> QgsDoubleSpinBox:
+def _spin(decimals: int, minimum: float, maximum: float, step: float, suffix: str,
+          arrows: bool = True) -> QgsDoubleSpinBox:
     spin = QgsDoubleSpinBox()
     spin.setDecimals(decimals)
     spin.setRange(minimum, maximum)
@@ -87,15 +122,76 @@ def _spin(decimals: int, minimum: float, maximum: float, step: float, suffix: st
     spin.setSuffix(suffix)
     spin.setShowClearButton(False)
     spin.setKeyboardTracking(True)  # every keystroke restarts the live-update timer
-    _shrinkable(spin)
+    _shrinkable(spin, arrows)
     return spin
 
 
-def _shrinkable(widget) -> None:
-    """Let a spin box shrink below the width of its widest possible value, so the dock stays narrow."""
+def _shrinkable(widget, arrows: bool = True) -> None:
+    """Let a spin box shrink below the width of its widest possible value, so the dock stays narrow.
+
+    Without ``arrows`` (values one types, such as a focal length to 0.0001 px) the arrows' room goes to the text.
+    """
     widget.setAlignment(Qt.AlignmentFlag.AlignRight)
     widget.setMinimumWidth(64)
     widget.setSizePolicy(QSizePolicy.Policy.Expanding, QSizePolicy.Policy.Fixed)
+    if not arrows:
+        widget.setButtonSymbols(QAbstractSpinBox.ButtonSymbols.NoButtons)
+
+
+def _form(group: QGroupBox) -> QFormLayout:
+    """A form whose fields go under their label when the dock is too narrow for both on one line."""
+    form = QFormLayout(group)
+    form.setFieldGrowthPolicy(QFormLayout.FieldGrowthPolicy.AllNonFixedFieldsGrow)
+    form.setRowWrapPolicy(QFormLayout.RowWrapPolicy.WrapLongRows)
+    return form
+
+
+def _pair(first, second, between: str = "") -> QWidget:
+    """Two fields side by side in one form row (``between``: a word or sign set between them)."""
+    row = QWidget()
+    box = QHBoxLayout(row)
+    box.setContentsMargins(0, 0, 0, 0)
+    box.addWidget(first, 1)
+    if between:
+        box.addWidget(QLabel(between))
+    box.addWidget(second, 1)
+    return row
+
+
+def sigma_text(value: float, unit: str) -> str:
+    """A sigma for the narrow budget table, to about three significant digits: metres in millimetres below 1 m
+    (0.1 mm below 10 cm; a thin space before the unit), degrees to 0.001°."""
+    if unit != "m":
+        return f"{value:.3f}°"
+    if value >= 1.0:
+        return f"{value:.2f}\u2009m"
+    return f"{1000.0 * value:.{1 if value < 0.1 else 0}f}\u2009mm"
+
+
+def spread_text(px2: float) -> str:
+    """A spread (px²) to three significant digits, without an exponent below 10⁶ px²."""
+    return f"{px2:.3g}" if px2 < 1000 else f"{px2:,.0f}".replace(",", "\u2009")
+
+
+def summary_line(entry: dict) -> str:
+    """The exact bound's verdict at one altitude, in words (rich text)."""
+    accepted = entry["verdict_exact"] == "accept"
+    verdict = (tr("✓ labels stay within their tolerance") if accepted
+               else tr("✗ labels leave their tolerance"))
+    return tr("<b>{altitude} m</b>: <span style='color:{colour}'><b>{verdict}</b></span> (safety factor κ* {kappa})"
+              ).format(altitude=f"{entry['altitude_m']:g}", colour=ACCEPT_COLOUR if accepted else REJECT_COLOUR,
+                       verdict=verdict, kappa=format_kappa(entry["kappa_exact"]))
+
+
+def where_in_frame(u: float, v: float, width: int, height: int) -> str:
+    """Where a pixel lies, in words: a corner, an edge or inside the frame."""
+    side_u = tr("left") if u <= 0 else tr("right") if u >= width - 1 else ""
+    side_v = tr("top") if v <= 0 else tr("bottom") if v >= height - 1 else ""
+    if side_u and side_v:
+        return tr("the {v}-{u} corner").format(v=side_v, u=side_u)
+    if side_u or side_v:
+        return tr("the {side} edge").format(side=side_u or side_v)
+    return tr("inside the frame")
 
 
 def _cell(text: str, tip: str = "",
@@ -108,17 +204,22 @@ def _cell(text: str, tip: str = "",
     return item
 
 
-def _verdict_cell(kappa, verdict: str) -> QTableWidgetItem:
+def kappa_text(kappa) -> str:
+    """κ* for a narrow cell: three significant digits from 0.01 to 999, beyond that only which side it is."""
+    if kappa is None:
+        return "∞"   # a zero budget
+    if kappa < 0.01:
+        return "< 0.01"
+    return "> 999" if kappa >= 999.5 else format_kappa(kappa)
+
+
+def _verdict_cell(kappa, verdict: str, bound_tip: str) -> QTableWidgetItem:
     accepted = verdict == "accept"
-    item = _cell(f"{format_kappa(kappa)}  {'✓' if accepted else '✗'}",
-                 (tr("Accept") if accepted else tr("Reject")) + tr(
-                     ": κ* = λ_target / sup; every variance of the budget may grow by this factor. "
-                     "Accept when κ* ≥ 1."), Qt.AlignmentFlag.AlignCenter)
+    item = _cell(f"{kappa_text(kappa)} {'✓' if accepted else '✗'}",
+                 (tr("Accepted: κ* = {k}") if accepted else tr("Rejected: κ* = {k}")).format(k=format_kappa(kappa))
+                 + ". " + bound_tip, Qt.AlignmentFlag.AlignCenter)
     item.setBackground(QBrush(QColor(ACCEPT_COLOUR if accepted else REJECT_COLOUR)))
     item.setForeground(QBrush(QColor("white")))
-    font = item.font()
-    font.setBold(True)
-    item.setFont(font)
     return item
 
 
@@ -145,6 +246,7 @@ class SensorBoundDock(QgsDockWidget):
         self._timer.setInterval(LIVE_DELAY_MS)
         self._timer.timeout.connect(self.recompute)
         self._build()
+        self.setMinimumWidth(MINIMUM_WIDTH)
         self.apply_preset(PRESET_DEPLOYED)
         self.recompute()
 
@@ -154,6 +256,13 @@ class SensorBoundDock(QgsDockWidget):
         layout = QVBoxLayout(body)
         layout.setContentsMargins(6, 6, 6, 6)
         layout.setSpacing(8)
+        # The answer first, above the inputs: on a laptop screen the tables are a scroll away.
+        self.summary_label = QLabel()
+        self.summary_label.setObjectName("boundSummary")
+        self.summary_label.setWordWrap(True)
+        self.summary_label.setTextFormat(Qt.TextFormat.RichText)
+        self.summary_label.setToolTip(tr(EXACT_BOUND_TIP))
+        layout.addWidget(self.summary_label)
         layout.addWidget(self._camera_group())
         layout.addWidget(self._noise_group())
         layout.addWidget(self._mission_group())
@@ -171,12 +280,14 @@ class SensorBoundDock(QgsDockWidget):
 
     def _camera_group(self) -> QGroupBox:
         group = QGroupBox(tr("Camera"))
-        form = QFormLayout(group)
-        form.setFieldGrowthPolicy(QFormLayout.FieldGrowthPolicy.AllNonFixedFieldsGrow)
+        form = _form(group)
         self.preset_combo = QComboBox()
-        self.preset_combo.addItems([tr(name) for name in PRESETS])
-        self.preset_combo.setSizeAdjustPolicy(QComboBox.SizeAdjustPolicy.AdjustToMinimumContentsLengthWithIcon)
-        self.preset_combo.setMinimumContentsLength(12)
+        for index, preset in enumerate(PLATFORMS):
+            self.preset_combo.addItem(tr(PRESET_LABELS.get(preset.key, preset.name)))
+            self.preset_combo.setItemData(index, tr(preset.name), Qt.ItemDataRole.ToolTipRole)
+        self.preset_combo.addItem(tr(PRESET_CUSTOM))
+        # As wide as the longest name: where the dock is narrower, the form puts it under its label.
+        self.preset_combo.setSizeAdjustPolicy(QComboBox.SizeAdjustPolicy.AdjustToContents)
         self.preset_combo.setToolTip(tr("A platform sets the camera and the pose-noise budget together."))
         self.preset_combo.activated.connect(lambda index: self.apply_preset(PRESETS[index]))
         form.addRow(tr("Platform"), self.preset_combo)
@@ -185,35 +296,36 @@ class SensorBoundDock(QgsDockWidget):
         self.calibration_widget.setDialogTitle(tr("Camera calibration (Kalibr or OpenCV YAML)"))
         self.calibration_widget.setToolTip(tr("Load fx, fy, cx, cy and the image size from a Kalibr camchain "
                                               "or OpenCV YAML file."))
+        self.calibration_widget.lineEdit().setPlaceholderText(tr("a Kalibr or OpenCV YAML file"))
         self.calibration_widget.fileChanged.connect(self.load_calibration)
         form.addRow(tr("Calibration"), self.calibration_widget)
 
-        grid = QGridLayout()
-        grid.setHorizontalSpacing(6)
-        self.fx_spin, self.fy_spin = (_spin(4, 1.0, 1e6, 1.0, " px") for _ in range(2))
-        self.cx_spin, self.cy_spin = (_spin(4, -1e6, 1e6, 1.0, " px") for _ in range(2))
+        self.fx_spin, self.fy_spin = (_spin(4, 1.0, 1e6, 1.0, " px", arrows=False) for _ in range(2))
+        self.cx_spin, self.cy_spin = (_spin(4, -1e6, 1e6, 1.0, " px", arrows=False) for _ in range(2))
         self.width_spin, self.height_spin = QgsSpinBox(), QgsSpinBox()
         for spin in (self.width_spin, self.height_spin):
             spin.setRange(1, 100_000)
             spin.setSuffix(" px")
             spin.setShowClearButton(False)
-            _shrinkable(spin)
-        cells = [("f<sub>x</sub>", self.fx_spin, "Focal length along u"), ("f<sub>y</sub>", self.fy_spin,
-                 "Focal length along v"), ("c<sub>x</sub>", self.cx_spin, "Principal point, u"),
-                 ("c<sub>y</sub>", self.cy_spin, "Principal point, v"), (tr("Width"), self.width_spin,
-                 "Image width"), (tr("Height"), self.height_spin, "Image height")]
-        for k, (label, widget, tip) in enumerate(cells):
-            widget.setToolTip(tr(tip) + " [px]")
-            grid.addWidget(QLabel(label), k // 2, 2 * (k % 2))
-            grid.addWidget(widget, k // 2, 2 * (k % 2) + 1)
+            _shrinkable(spin, arrows=False)
+        for widget, tip in ((self.fx_spin, tr("Focal length fx: along u (image right), in pixels")),
+                            (self.fy_spin, tr("Focal length fy: along v (image down), in pixels")),
+                            (self.cx_spin, tr("Principal point cx: where the optical axis meets the image, u (px)")),
+                            (self.cy_spin, tr("Principal point cy: where the optical axis meets the image, v (px)")),
+                            (self.width_spin, tr("Image width W (px)")), (self.height_spin, tr("Image height H (px)"))):
+            widget.setToolTip(tip)
             widget.valueChanged.connect(self._platform_edited)
-        grid.setColumnStretch(1, 1)
-        grid.setColumnStretch(3, 1)
-        form.addRow(grid)
+        for label, first, second, between, tip in (
+                (tr("Focal length"), self.fx_spin, self.fy_spin, "", tr("fx, fy (px)")),
+                (tr("Principal point"), self.cx_spin, self.cy_spin, "", tr("cx, cy (px)")),
+                (tr("Image size"), self.width_spin, self.height_spin, "×", tr("width × height (px)"))):
+            name = QLabel(label)
+            name.setToolTip(tip)
+            form.addRow(name, _pair(first, second, between))
         return group
 
     def _noise_group(self) -> QGroupBox:
-        group = QGroupBox(tr("Pose noise (1σ)"))
+        group = QGroupBox(tr("Pose noise, one standard deviation (1σ)"))
         group.setToolTip(TRANSLATION_CONVENTION)
         grid = QGridLayout(group)
         grid.setHorizontalSpacing(6)
@@ -222,7 +334,7 @@ class SensorBoundDock(QgsDockWidget):
             spin = _spin(4, 0.0, 10.0, 0.001, " m") if unit == "m" else _spin(3, 0.0, 45.0, 0.01, " °")
             spin.setToolTip(tr(AXIS_TIPS[axis]))
             spin.valueChanged.connect(self._platform_edited)
-            label = QLabel(f"σ {axis}")
+            label = QLabel(tr(AXIS_NAMES[axis]))
             label.setToolTip(spin.toolTip())
             row, column = i % 3, 2 * (i // 3)
             grid.addWidget(label, row, column)
@@ -232,13 +344,15 @@ class SensorBoundDock(QgsDockWidget):
         self.mount_combo.setSizeAdjustPolicy(QComboBox.SizeAdjustPolicy.AdjustToMinimumContentsLengthWithIcon)
         self.mount_combo.setMinimumContentsLength(12)
         for index, mount in enumerate(MOUNTS):
-            self.mount_combo.addItem(tr(mount.name))
-            self.mount_combo.setItemData(index, mount.convention, Qt.ItemDataRole.ToolTipRole)
+            self.mount_combo.addItem(tr(MOUNT_NAMES[mount.key]))
+            self.mount_combo.setItemData(index, f"{tr(mount.name)}. {mount.convention}", Qt.ItemDataRole.ToolTipRole)
         self.mount_combo.setToolTip(tr("How roll, pitch and yaw turn the camera. As the method: about the camera's "
                                        "x, y and optical axes; nadir, image top towards the nose: roll and pitch "
                                        "trade places."))
         self.mount_combo.currentIndexChanged.connect(self._platform_edited)
-        grid.addWidget(QLabel(tr("Mount")), 3, 0)
+        mount_label = QLabel(tr("Mount"))
+        mount_label.setToolTip(self.mount_combo.toolTip())
+        grid.addWidget(mount_label, 3, 0)
         grid.addWidget(self.mount_combo, 3, 1, 1, 3)
         grid.setColumnStretch(1, 1)
         grid.setColumnStretch(3, 1)
@@ -246,29 +360,32 @@ class SensorBoundDock(QgsDockWidget):
 
     def _mission_group(self) -> QGroupBox:
         group = QGroupBox(tr("Label tolerance and altitudes"))
-        form = QFormLayout(group)
-        form.setFieldGrowthPolicy(QFormLayout.FieldGrowthPolicy.AllNonFixedFieldsGrow)
-        row = QHBoxLayout()
+        form = _form(group)
         self.tolerance_spin = _spin(1, 0.1, 1000.0, 1.0, " px")
-        self.tolerance_spin.setToolTip(tr("Label radius r at 3σ: the label must stay within r px of the target."))
+        self.tolerance_spin.setToolTip(tr("Label tolerance: the radius r, in pixels, within which a label must stay "
+                                          "around its target, at 3σ (99.7 % of the time)."))
         self.tolerance_spin.valueChanged.connect(self._mission_edited)
+        tolerance_label = QLabel(tr("Label radius r (3σ)"))
+        tolerance_label.setToolTip(self.tolerance_spin.toolTip())
+        form.addRow(tolerance_label, self.tolerance_spin)
         self.sigma_label = QLabel()
         self.sigma_label.setWordWrap(True)
-        self.sigma_label.setToolTip(tr("σ_label = r/3: the Gaussian sigma of the soft labels "
-                                       "(λ_target = σ_label²)."))
-        row.addWidget(self.tolerance_spin, 1)
-        row.addWidget(self.sigma_label)
-        form.addRow(tr("Tolerance r (3σ)"), row)
+        self.sigma_label.setToolTip(tr("σ_label = r/3: the Gaussian sigma of the soft labels Write labels draws; "
+                                       "its square λ_target = σ_label² is the spread a label may have."))
+        form.addRow(self.sigma_label)
         self.altitudes_edit = QLineEdit()
         self.altitudes_edit.setPlaceholderText(tr("e.g. 10, 20"))
         self.altitudes_edit.setToolTip(tr("Heights above the ground in metres, separated by commas."))
         self.altitudes_edit.textEdited.connect(self._mission_edited)
-        form.addRow(tr("Altitudes [m]"), self.altitudes_edit)
+        altitudes_label = QLabel(tr("Altitudes (m)"))
+        altitudes_label.setToolTip(self.altitudes_edit.toolTip())
+        form.addRow(altitudes_label, self.altitudes_edit)
         return group
 
     def _results_group(self) -> QGroupBox:
         group = QGroupBox(tr("Verdicts"))
         box = QVBoxLayout(group)
+        box.setContentsMargins(2, 6, 2, 6)   # the tables need the width
         self.status_label = QLabel()
         self.status_label.setWordWrap(True)
         self.status_label.setTextInteractionFlags(Qt.TextInteractionFlag.TextSelectableByMouse)
@@ -276,33 +393,52 @@ class SensorBoundDock(QgsDockWidget):
 
         self.results_table = QTableWidget(0, 5)
         self.results_table.setHorizontalHeaderLabels(
-            [tr("Altitude"), tr("sup tr Σ\n[px²]"), tr("sup λmax\n[px²]"), tr("κ* trace"), tr("κ* exact")])
-        self.results_table.horizontalHeaderItem(1).setToolTip(tr("Largest trace of the label covariance over the "
-                                                                 "frame (the linear, pessimistic criterion)."))
-        self.results_table.horizontalHeaderItem(2).setToolTip(tr("Largest eigenvalue of the label covariance over "
-                                                                 "the frame (the exact criterion)."))
+            [tr("Altitude"), tr("Total\nspread"), tr("Largest\nspread"), tr("Trace\nbound"), tr("Exact\nbound")])
+        for column, tip in enumerate((tr("Height above the ground."), tr(TOTAL_TIP), tr(LARGEST_TIP),
+                                      tr(TRACE_BOUND_TIP), tr(EXACT_BOUND_TIP))):
+            self.results_table.horizontalHeaderItem(column).setToolTip(tip)
         self._style_table(self.results_table)
+        for column in (0, 1, 2):   # short numbers; the verdicts take the rest
+            self.results_table.horizontalHeader().setSectionResizeMode(column, QHeaderView.ResizeMode.ResizeToContents)
         box.addWidget(self.results_table)
+        note = QLabel(tr("Spread: how far pose noise scatters a label, in px² (a variance). Bounds: the safety "
+                         "factor κ* by which the pose noise may grow, ✓ when κ* ≥ 1; the exact bound decides, the "
+                         "trace bound is a quicker, pessimistic check."))
+        note.setWordWrap(True)
+        note.setStyleSheet("color:#555;")
+        note.setToolTip(tr(SPREAD_TIP))
+        box.addWidget(note)
 
         row = QHBoxLayout()
-        row.addWidget(QLabel(tr("Details for")))
+        details = QLabel(tr("Details for"))
+        row.addWidget(details)
         self.altitude_combo = QComboBox()
-        self.altitude_combo.setToolTip(tr("The altitude whose budget table and λ_max field are shown."))
+        self.altitude_combo.setToolTip(tr("The altitude whose budget table and spread map are shown."))
         self.altitude_combo.currentIndexChanged.connect(self._show_selected_altitude)
         row.addWidget(self.altitude_combo)
+        row.addStretch(1)
+        box.addLayout(row)
         self.worst_label = QLabel()
         self.worst_label.setWordWrap(True)
-        row.addWidget(self.worst_label, 1)
-        box.addLayout(row)
+        self.worst_label.setToolTip(tr("The pixel (u, v) where the largest spread occurs; pixel (0, 0) is the "
+                                       "centre of the top-left pixel."))
+        box.addWidget(self.worst_label)
         self.budget_table = QTableWidget(len(AXES), 4)
         self.budget_table.setHorizontalHeaderLabels(
-            [tr("Your σ"), tr("Balanced σ\n(trace)"), tr("Balanced σ\n(exact)"), tr("Share of\nerror")])
-        self.budget_table.horizontalHeaderItem(2).setToolTip(tr(
-            "The largest budget with no axis starved (maximum Σ log σ²) that meets the exact bound."))
-        self.budget_table.horizontalHeaderItem(3).setToolTip(tr(
-            "Each axis's share of the error of your budget at the worst pixel: improve the largest first."))
+            [tr("Your σ"), tr("Balanced\ntrace"), tr("Balanced\nexact"), tr("Share of\nerror")])
+        for column, tip in enumerate((
+                tr("The pose noise you entered (1σ)."),
+                tr("The largest budget with no axis starved (maximum Σ log σ²) that meets the trace bound: "
+                   "each axis takes a sixth of it."),
+                tr("The largest budget with no axis starved (maximum Σ log σ²) that meets the exact bound."),
+                tr("Each axis's share of the error of your budget at the worst pixel: improve the largest "
+                   "first."))):
+            self.budget_table.horizontalHeaderItem(column).setToolTip(tip)
         self._style_table(self.budget_table)
-        self.budget_table.setVerticalHeaderLabels(list(AXES))
+        self.budget_table.horizontalHeader().setSectionResizeMode(3, QHeaderView.ResizeMode.ResizeToContents)
+        self.budget_table.setVerticalHeaderLabels([tr(AXIS_WORDS[axis]) for axis in AXES])
+        for row_index, axis in enumerate(AXES):
+            self.budget_table.verticalHeaderItem(row_index).setToolTip(f"{axis}: {tr(AXIS_TIPS[axis])}")
         self.budget_table.verticalHeader().setVisible(True)
         box.addWidget(self.budget_table)
         return group
@@ -313,23 +449,36 @@ class SensorBoundDock(QgsDockWidget):
         table.setSelectionMode(QAbstractItemView.SelectionMode.NoSelection)
         table.setFocusPolicy(Qt.FocusPolicy.NoFocus)
         table.setAlternatingRowColors(True)
+        table.setWordWrap(False)
         table.verticalHeader().setVisible(False)
         table.horizontalHeader().setSectionResizeMode(QHeaderView.ResizeMode.Stretch)
         table.horizontalHeader().setDefaultAlignment(Qt.AlignmentFlag.AlignCenter)
+        table.horizontalHeader().setMinimumSectionSize(24)
         table.setVerticalScrollBarPolicy(Qt.ScrollBarPolicy.ScrollBarAlwaysOff)
         table.setHorizontalScrollBarPolicy(Qt.ScrollBarPolicy.ScrollBarAlwaysOff)
         table.setSizePolicy(QSizePolicy.Policy.Expanding, QSizePolicy.Policy.Fixed)
 
     def _plot_group(self) -> QGroupBox:
-        from matplotlib.backends.backend_qtagg import FigureCanvasQTAgg
-        from matplotlib.figure import Figure
+        import warnings
 
-        group = QGroupBox(tr("λ_max field — red: the tolerance λ_target"))
+        with warnings.catch_warnings():
+            # A pip matplotlib beside the system's reports that 3-D plots are unavailable; this one is 2-D.
+            warnings.filterwarnings("ignore", message="Unable to import Axes3D")
+            from matplotlib.backends.backend_qtagg import FigureCanvasQTAgg
+            from matplotlib.figure import Figure
+
+        group = QGroupBox(tr("Spread over the image"))
         box = QVBoxLayout(group)
         box.setContentsMargins(4, 4, 4, 4)
+        caption = QLabel(tr("The largest spread λmax (px²) at each pixel; red: the tolerance λ_target, ○ the worst "
+                            "pixel, + the principal point."))
+        caption.setWordWrap(True)
+        caption.setStyleSheet("color:#555;")
+        box.addWidget(caption)
         self.figure = Figure(figsize=(4.2, 3.2), dpi=90)
         self.canvas = FigureCanvasQTAgg(self.figure)
         self.field_plot = LmaxFieldPlot(self.figure)
+        self.field_plot.legend.set_visible(False)   # the caption names the marks: the legend is wider than a dock
         self.canvas.setMinimumHeight(270)
         self.canvas.setSizePolicy(QSizePolicy.Policy.Expanding, QSizePolicy.Policy.Expanding)
         box.addWidget(self.canvas)
@@ -341,10 +490,10 @@ class SensorBoundDock(QgsDockWidget):
         self.full_button.setToolTip(tr("Re-evaluate on the full-resolution grid (stride 1 px), as the "
                                        "Processing algorithm does by default."))
         self.full_button.clicked.connect(lambda: self.recompute(full_resolution=True))
-        self.sigma_button = QPushButton(tr("Use σ_label in Write labels"))
-        self.sigma_button.setToolTip(tr("Store σ_label = r/3 px in the project; Write labels uses it as its "
-                                        "default label sigma (SIGMA_PX)."))
-        self.sigma_button.clicked.connect(self.store_sigma_label)
+        self.sigma_button = QPushButton(tr("Write labels with this σ…"))
+        self.sigma_button.setToolTip(tr("Open Write labels with its label sigma (SIGMA_PX) set to σ_label = r/3 px "
+                                        "from this tolerance; you see the value before you run it."))
+        self.sigma_button.clicked.connect(self.open_write_labels)
         self.processing_button = QPushButton(tr("Run in Processing…"))
         self.processing_button.setToolTip(tr("Open the Sensor bound algorithm with these values, to write the "
                                              "JSON results, the HTML report and the λ_max raster."))
@@ -356,6 +505,14 @@ class SensorBoundDock(QgsDockWidget):
 
     # ================================================================== inputs
     def camera(self) -> Intrinsics:
+        """The intrinsics shown; those of the calibration file, to every digit, while they come from one."""
+        if self._calibration is not None:
+            camera = self._calibration[1]
+            return Intrinsics(fx=camera.fx, fy=camera.fy, cx=camera.cx, cy=camera.cy, width=camera.width,
+                              height=camera.height)
+        return self._shown_camera()
+
+    def _shown_camera(self) -> Intrinsics:
         return Intrinsics(fx=self.fx_spin.value(), fy=self.fy_spin.value(), cx=self.cx_spin.value(),
                           cy=self.cy_spin.value(), width=self.width_spin.value(), height=self.height_spin.value())
 
@@ -376,6 +533,10 @@ class SensorBoundDock(QgsDockWidget):
     def sigma_label_px(self) -> float:
         """σ_label = r/3 px."""
         return label_sigma_px(self.tolerance_px())
+
+    def preset(self) -> str:
+        """The name of the platform the inputs are (``PRESET_CUSTOM`` when they are none of them)."""
+        return PRESETS[self.preset_combo.currentIndex()]
 
     def apply_preset(self, name: str) -> None:
         """Set the inputs to a platform preset: camera, pose sigmas, mount, tolerance r and altitudes."""
@@ -423,9 +584,11 @@ class SensorBoundDock(QgsDockWidget):
         self._update_sigma_label()
 
     def _matches(self, camera) -> bool:
-        mine = self.camera()
-        return all(abs(getattr(mine, k) - getattr(camera, k)) <= 1e-9 * max(1.0, abs(getattr(camera, k)))
-                   for k in ("fx", "fy", "cx", "cy", "width", "height"))
+        """True when the spins show ``camera``, to the digits they show (a file may hold more)."""
+        spins = {"fx": self.fx_spin, "fy": self.fy_spin, "cx": self.cx_spin, "cy": self.cy_spin,
+                 "width": self.width_spin, "height": self.height_spin}
+        return all(abs(spin.value() - getattr(camera, key)) <= 0.5 * 10.0 ** -getattr(spin, "decimals", int)()
+                   for key, spin in spins.items())
 
     def _sync_preset(self) -> None:
         """Show the platform the inputs match (camera, sigmas and mount), else Custom."""
@@ -451,7 +614,7 @@ class SensorBoundDock(QgsDockWidget):
             self.schedule()
 
     def _update_sigma_label(self) -> None:
-        self.sigma_label.setText(tr("σ_label = {value:.2f} px").format(value=self.sigma_label_px()))
+        self.sigma_label.setText(tr("Label sigma σ_label = r/3 = {value:.2f} px").format(value=self.sigma_label_px()))
 
     # ================================================================== evaluation
     def schedule(self) -> None:
@@ -479,33 +642,38 @@ class SensorBoundDock(QgsDockWidget):
             return False
         self.result, self.full_resolution = result, full_resolution
         grid = (tr("every pixel") if stride == 1
-                else tr("preview grid: every {s} px and the frame edges").format(s=stride))
+                else tr("a preview: every {s} px and the frame edges").format(s=stride))
         self.status_label.setStyleSheet("")
         for widget in self._result_widgets:
             widget.setEnabled(True)
-        self.status_label.setText(tr("λ_target = (r/3)² = {lam:.4g} px² · {grid}").format(
-            lam=result["inputs"]["lambda_target_px2"], grid=grid))
+        self.status_label.setText(tr("A label may spread λ_target = (r/3)² = {lam:.4g} px². Evaluated at {grid}.")
+                                  .format(lam=result["inputs"]["lambda_target_px2"], grid=grid))
         self._fill_results()
         return True
 
     def _show_error(self, message: str) -> None:
         self.status_label.setStyleSheet(f"color: {REJECT_COLOUR}; font-weight: bold;")
         self.status_label.setText(message)
+        self.summary_label.setText(f"<span style='color:{REJECT_COLOUR}'><b>"
+                                   + tr("Cannot evaluate:") + f"</b> {html.escape(message)}</span>")
         for widget in self._result_widgets:
             widget.setEnabled(False)
 
     def _fill_results(self) -> None:
         entries = self.result["altitudes"]
+        self.summary_label.setText("<br>".join(summary_line(e) for e in entries))
         table = self.results_table
         table.setRowCount(len(entries))
         for row, e in enumerate(entries):
-            u, v = e["worst_pixel"]
+            (u, v), (ut, vt) = e["worst_pixel"], e["worst_pixel_trace"]
             table.setItem(row, 0, _cell(f"{e['altitude_m']:g} m", align=Qt.AlignmentFlag.AlignCenter))
-            table.setItem(row, 1, _cell(f"{e['sup_trace_px2']:.4g}"))
-            table.setItem(row, 2, _cell(f"{e['sup_lmax_px2']:.4g}", tr("worst pixel ({u:.0f}, {v:.0f})").format(
-                u=u, v=v)))
-            table.setItem(row, 3, _verdict_cell(e["kappa_trace"], e["verdict_trace"]))
-            table.setItem(row, 4, _verdict_cell(e["kappa_exact"], e["verdict_exact"]))
+            table.setItem(row, 1, _cell(spread_text(e["sup_trace_px2"]), tr(
+                "sup tr Σ = {value:.6g} px² at pixel ({u:.0f}, {v:.0f})").format(value=e["sup_trace_px2"], u=ut,
+                                                                                 v=vt)))
+            table.setItem(row, 2, _cell(spread_text(e["sup_lmax_px2"]), tr(
+                "sup λmax = {value:.6g} px² at pixel ({u:.0f}, {v:.0f})").format(value=e["sup_lmax_px2"], u=u, v=v)))
+            table.setItem(row, 3, _verdict_cell(e["kappa_trace"], e["verdict_trace"], tr(TRACE_BOUND_TIP)))
+            table.setItem(row, 4, _verdict_cell(e["kappa_exact"], e["verdict_exact"], tr(EXACT_BOUND_TIP)))
         _fit_height(table)
         shown = max(0, self.altitude_combo.currentIndex())
         self.altitude_combo.blockSignals(True)
@@ -520,8 +688,10 @@ class SensorBoundDock(QgsDockWidget):
             return
         entry = self.result["altitudes"][max(0, self.altitude_combo.currentIndex())]
         inputs = self.result["inputs"]
-        self.worst_label.setText(tr("worst at ({u:.0f}, {v:.0f})").format(
-            u=entry["worst_pixel"][0], v=entry["worst_pixel"][1]))
+        u, v = entry["worst_pixel"]
+        size = inputs["intrinsics"]
+        self.worst_label.setText(tr("Worst pixel ({u:.0f}, {v:.0f}): {where}.").format(
+            u=u, v=v, where=where_in_frame(u, v, size["width"], size["height"])))
         share_max = max(entry["budget_share"])
         for row, (unit, mine, trace, exact, share) in enumerate(zip(
                 SIGMA_UNITS, inputs["sigmas"], entry["balanced_trace_sigma"], entry["balanced_exact_sigma"],
@@ -531,8 +701,9 @@ class SensorBoundDock(QgsDockWidget):
                 font = QFont(share_item.font())
                 font.setBold(True)
                 share_item.setFont(font)
-            for column, item in enumerate((_cell(format_sigma(mine, unit)), _cell(format_sigma(trace, unit)),
-                                           _cell(format_sigma(exact, unit)), share_item)):
+            for column, item in enumerate((_cell(sigma_text(mine, unit), format_sigma(mine, unit)),
+                                           _cell(sigma_text(trace, unit), format_sigma(trace, unit)),
+                                           _cell(sigma_text(exact, unit), format_sigma(exact, unit)), share_item)):
                 self.budget_table.setItem(row, column, item)
         _fit_height(self.budget_table)
         self._draw_plot(entry)
@@ -545,16 +716,12 @@ class SensorBoundDock(QgsDockWidget):
         self.canvas.draw_idle()
 
     # ================================================================== hand-over
-    def store_sigma_label(self) -> float:
-        """Store σ_label = r/3 px in the current project for ``writelabels`` (see qgis_io.project_settings)."""
-        sigma = self.sigma_label_px()
-        store_sigma_label_px(QgsProject.instance(), sigma)
-        if self.iface is not None:
-            self.iface.messageBar().pushMessage(
-                LOG_TAG, tr("σ_label = {s:.2f} px stored in the project: Write labels will use it as its label "
-                               "sigma (project variable @birdseye_sigma_label_px).").format(s=sigma),
-                Qgis.MessageLevel.Success, 6)
-        return sigma
+    def open_write_labels(self) -> None:
+        """Open ``birdseye:writelabels`` with SIGMA_PX = σ_label = r/3 px: the hand-over is a parameter value the
+        user sees in the dialog, never a value kept out of sight that would change a result."""
+        import processing  # QGIS's Processing framework: this plugin's own package is only imported relatively
+
+        processing.execAlgorithmDialog(WRITE_LABELS_ALG, {"SIGMA_PX": round(self.sigma_label_px(), 2)})
 
     def processing_parameters(self) -> dict:
         """The dock's inputs as ``birdseye:sensorbound`` parameters."""

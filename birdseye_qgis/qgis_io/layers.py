@@ -428,13 +428,15 @@ def _refuse_cut_camera(source, name: str, row: int, frame_id, texts, lengths) ->
 
 # ------------------------------------------------------------------------------------------ outputs
 def report_to_feedback(feedback, report) -> None:
-    """Bad input left out → errors (non-fatal); other notes → warnings; counts → info."""
+    """An ``ImportReport`` in the Processing log: bad input left out and notes (something to check) → warnings —
+    the run succeeded with the rest, so nothing here is an error (qgis_process would print ERROR and exit 0);
+    findings (results: what was read, a check's figures) and counts → information."""
     if feedback is None:
         return
-    for message in report.errors:
-        feedback.reportError(message, False)
-    for message in report.notes:
+    for message in report.errors + report.notes:
         feedback.pushWarning(message)
+    for message in report.findings:
+        feedback.pushInfo(message)
     if report.counts:
         feedback.pushInfo(", ".join(f"{k}: {v:.4g}" if isinstance(v, float) else f"{k}: {v}"
                                     for k, v in report.counts.items()))

@@ -21,7 +21,7 @@ Nothing the user decided may be lost:
   same transaction as the verdict that moves it, so a resumed review opens exactly where it stopped.
 
 :class:`VerdictStore` and :class:`ReviewSession` need only sqlite3 (and OGR to create a new
-GeoPackage); :func:`read_review_inputs` and :func:`layer_digest` are the QGIS side.
+GeoPackage); :func:`open_store`, :func:`read_review_inputs` and :func:`layer_digest` are the QGIS side.
 """
 from __future__ import annotations
 
@@ -99,6 +99,8 @@ class VerdictStore:
 
     def __init__(self, path, create: bool = True):
         self.path = Path(path)
+        #: True when this opening added the log's tables to the file (see :func:`open_store`).
+        self.created_tables = False
         if not self.path.exists():
             if not create:
                 raise InputError("does not exist", source=str(self.path))
@@ -134,6 +136,7 @@ class VerdictStore:
                 c.execute("INSERT INTO gpkg_spatial_ref_sys (srs_name, srs_id, organization, organization_coordsys_id,"
                           " definition) VALUES ('WGS 84 geodetic', 4326, 'EPSG', 4326, ?)", (_WGS84_WKT,))
             now = utc_now()
+            self.created_tables = True
             if VERDICT_TABLE not in tables:
                 columns = ",\n".join(f'"{n}" {t}' for n, t, _ in VERDICT_COLUMNS)
                 c.execute(f'CREATE TABLE "{VERDICT_TABLE}" (fid INTEGER PRIMARY KEY AUTOINCREMENT NOT NULL, '
@@ -343,6 +346,28 @@ class ReviewSession:
 
 
 # ====================================================================================== QGIS side
+def open_store(path, project) -> VerdictStore:
+    """The verdict log at ``path`` (created when missing), with ``project``'s layers of that file reopened
+    when its tables were just added.
+
+    QGIS's OGR provider shares one open dataset among the layers of a GeoPackage. One opened before the
+    verdict table existed does not know it, so the verdict layer the review shows would be opened through it
+    and fail ("OGR: Cannot reopen …: Cannot find layer birdseye_verdicts"). Reloading the layers that hold the
+    file (e.g. the detections the log sits beside) opens it anew.
+    """
+    from qgis.core import QgsProviderRegistry, QgsVectorLayer
+
+    store = VerdictStore(path)
+    if store.created_tables:
+        registry = QgsProviderRegistry.instance()
+        for layer in project.mapLayers().values():
+            if isinstance(layer, QgsVectorLayer) and layer.providerType() == "ogr":
+                source = registry.decodeUri("ogr", layer.source()).get("path") or ""
+                if source and os.path.realpath(source) == os.path.realpath(store.path):
+                    layer.dataProvider().reloadData()
+    return store
+
+
 def _plain(value):
     """A QVariant-free Python value (NULL → None)."""
     if value is None or (hasattr(value, "isNull") and value.isNull()):

@@ -8,7 +8,6 @@ from qgis.core import (
     QgsProcessingException,
     QgsProcessingOutputNumber,
     QgsProcessingParameterFeatureSink,
-    QgsProcessingParameterFeatureSource,
 )
 from qgis.PyQt.QtCore import QT_TRANSLATE_NOOP
 
@@ -24,7 +23,7 @@ from ...birdseye_qgis.qgis_enums import (
     WKB_POINT,
     WKB_POLYGON,
 )
-from ...birdseye_qgis.qgis_io import layers
+from ...birdseye_qgis.qgis_io import layer_kinds, layers
 from ...birdseye_qgis.qgis_io.detections import (
     CLUSTER_FIELDS,
     POINT_FIELDS,
@@ -34,6 +33,7 @@ from ...birdseye_qgis.qgis_io.detections import (
 )
 from ..parameters.clustering import ClusteringParametersMixin
 from ..parameters.dem import DemParametersMixin
+from ..parameters.layer_parameters import source_parameter
 from .base import BirdsEyeAlgorithm
 
 
@@ -48,14 +48,15 @@ class ClusterDetections(ClusteringParametersMixin, DemParametersMixin, BirdsEyeA
     OUTPUT_POINTS = "OUTPUT_POINTS"
 
     def initAlgorithm(self, config=None):
-        self.addParameter(QgsProcessingParameterFeatureSource(
-            self.DETECTIONS, self.tr("Detections (from Detect targets)"), [SOURCE_VECTOR_POINT]))
+        self.addParameter(source_parameter(
+            self.DETECTIONS, self.tr("Detections (from Detect targets)"), layer_kinds.DETECTIONS,
+            [SOURCE_VECTOR_POINT]))
         self.add_clustering_parameters(with_prediction=False)
-        self.addParameter(QgsProcessingParameterFeatureSource(
-            self.GEOTAGS, self.tr("Geotags (optional: fills matched_geotag_ids and hit)"),
+        self.addParameter(source_parameter(
+            self.GEOTAGS, self.tr("Geotags (to mark the clusters hitting one)"), layer_kinds.GEOTAGS,
             [SOURCE_VECTOR_POINT], optional=True))
-        self.addParameter(QgsProcessingParameterFeatureSource(
-            self.FRAMES, self.tr("Frames of the flight (optional: only in-view geotags can match)"),
+        self.addParameter(source_parameter(
+            self.FRAMES, self.tr("Frames (only geotags in view match)"), layer_kinds.FRAMES,
             [SOURCE_VECTOR], optional=True))
         self.add_matching_parameters()
         self.add_dem_parameters()
@@ -181,5 +182,5 @@ class ClusterDetections(ClusteringParametersMixin, DemParametersMixin, BirdsEyeA
                     "n_detections": int(pts.count[k]), "score": float(max_score[k])} for k in range(len(pts)))
         geometries = (QgsGeometry.fromPointXY(QgsPointXY(x, y)) for x, y in zip(px.tolist(), py.tolist()))
         self.run_core(layers.write_records, sink, fields, records, geometries, feedback, 90.0, 100.0, len(pts))
-        layers.style_on_load(context, dest_id, "detections.qml")
+        layers.style_on_load(context, dest_id, "cluster_points.qml")
         return dest_id

@@ -10,9 +10,7 @@ from qgis.core import (
     QgsProcessingException,
     QgsProcessingOutputNumber,
     QgsProcessingParameterFeatureSink,
-    QgsProcessingParameterFeatureSource,
     QgsProcessingParameterFileDestination,
-    QgsProcessingParameterVectorLayer,
 )
 from qgis.PyQt.QtCore import QT_TRANSLATE_NOOP
 
@@ -20,7 +18,7 @@ from ...birdseye_qgis.core.geometry.ground_record import common_ground
 from ...birdseye_qgis.core.scoring.compare import CHANGE_FIELDS, compare_detectors
 from ...birdseye_qgis.core.scoring.reports import comparison_report_html
 from ...birdseye_qgis.qgis_enums import SOURCE_VECTOR, SOURCE_VECTOR_POINT, WKB_POINT
-from ...birdseye_qgis.qgis_io import layers
+from ...birdseye_qgis.qgis_io import layer_kinds, layers
 from ...birdseye_qgis.qgis_io.detections import (
     read_detections,
     read_pose_groups,
@@ -29,6 +27,7 @@ from ...birdseye_qgis.qgis_io.detections import (
 )
 from ..parameters.clustering import ClusteringParametersMixin
 from ..parameters.dem import DemParametersMixin
+from ..parameters.layer_parameters import source_parameter, vector_parameter
 from .base import BirdsEyeAlgorithm
 
 
@@ -46,20 +45,24 @@ class CompareDetectors(ClusteringParametersMixin, DemParametersMixin, BirdsEyeAl
     OUTPUT_REPORT = "OUTPUT_REPORT"
 
     def initAlgorithm(self, config=None):
-        self.addParameter(QgsProcessingParameterFeatureSource(
-            self.DETECTIONS_OLD, self.tr("Detections of the old detector (before)"), [SOURCE_VECTOR_POINT]))
-        self.addParameter(QgsProcessingParameterFeatureSource(
-            self.DETECTIONS_NEW, self.tr("Detections of the new detector (after), same flight"),
+        # The new detector's layer starts on the latest detection layer; the old one, the frames and the geotags on
+        # the latest over the same ground (the old detector's: the one before).
+        self.addParameter(source_parameter(
+            self.DETECTIONS_OLD, self.tr("Detections of the old detector (before)"), layer_kinds.DETECTIONS,
+            [SOURCE_VECTOR_POINT], start=1, near=self.DETECTIONS_NEW))
+        self.addParameter(source_parameter(
+            self.DETECTIONS_NEW, self.tr("Detections of the new detector (same flight)"), layer_kinds.DETECTIONS,
             [SOURCE_VECTOR_POINT]))
-        self.addParameter(QgsProcessingParameterFeatureSource(
-            self.FRAMES, self.tr("Frames of the flight (both detectors ran on them)"), [SOURCE_VECTOR]))
-        self.addParameter(QgsProcessingParameterFeatureSource(
-            self.GEOTAGS, self.tr("Geotags"), [SOURCE_VECTOR_POINT]))
+        self.addParameter(source_parameter(
+            self.FRAMES, self.tr("Frames of the flight"), layer_kinds.FRAMES, [SOURCE_VECTOR],
+            near=self.DETECTIONS_NEW))
+        self.addParameter(source_parameter(
+            self.GEOTAGS, self.tr("Geotags"), layer_kinds.GEOTAGS, [SOURCE_VECTOR_POINT], near=self.DETECTIONS_NEW))
         self.add_clustering_parameters()
         self.add_dem_parameters()
-        self.addParameter(QgsProcessingParameterVectorLayer(
-            self.REVIEW, self.tr("Review verdicts (optional: adds the POST scores of both)"), [SOURCE_VECTOR],
-            optional=True))
+        self.addParameter(vector_parameter(
+            self.REVIEW, self.tr("Review verdicts (for scores after review)"), layer_kinds.VERDICTS,
+            [SOURCE_VECTOR], optional=True))
         self.addParameter(QgsProcessingParameterFeatureSink(
             self.OUTPUT, self.tr("What changed"), SOURCE_VECTOR_POINT))
         self.addParameter(QgsProcessingParameterFileDestination(

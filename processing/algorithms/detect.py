@@ -6,7 +6,6 @@ from qgis.core import (
     QgsProcessingOutputNumber,
     QgsProcessingOutputString,
     QgsProcessingParameterFeatureSink,
-    QgsProcessingParameterFeatureSource,
     QgsProcessingParameterFile,
     QgsProcessingParameterFolderDestination,
     QgsProcessingParameterNumber,
@@ -19,12 +18,14 @@ from ...birdseye_qgis.core.errors import InputError
 from ...birdseye_qgis.core.field.frame_records import local_frame_around, poses_from_records
 from ...birdseye_qgis.core.geometry.geodesy import ProjectedCRS
 from ...birdseye_qgis.qgis_enums import NUMBER_DOUBLE, SOURCE_VECTOR_POINT, SOURCE_VECTOR_POLYGON, WKB_POINT_Z
-from ...birdseye_qgis.qgis_io import layers
+from ...birdseye_qgis.qgis_io import layer_kinds, layers
 from ...birdseye_qgis.qgis_io.detections import DETECTION_FIELDS, ground_attributes
 from ..parameters.dem import DemParametersMixin
+from ..parameters.layer_parameters import source_parameter
 from .base import BirdsEyeAlgorithm
 
 DEFAULT_MODEL = BUNDLED_MODEL
+
 
 class Detect(DemParametersMixin, BirdsEyeAlgorithm):
     ALG_ID = "detect"
@@ -39,17 +40,16 @@ class Detect(DemParametersMixin, BirdsEyeAlgorithm):
     MODEL_DIGEST = "MODEL_DIGEST"
 
     def initAlgorithm(self, config=None):
-        self.addParameter(QgsProcessingParameterFeatureSource(
-            self.FRAMES, self.tr("Frames (from Import flight log, Import drone images or Import camera solution)"),
-            [SOURCE_VECTOR_POLYGON, SOURCE_VECTOR_POINT]))
+        self.addParameter(source_parameter(
+            self.FRAMES, self.tr("Frames"), layer_kinds.FRAMES, [SOURCE_VECTOR_POLYGON, SOURCE_VECTOR_POINT]))
         self.addParameter(QgsProcessingParameterFile(
-            self.MODEL, self.tr("ONNX heatmap model (empty: the bundled demo model)"),
+            self.MODEL, self.tr("ONNX model (empty: the bundled one)"),
             fileFilter="ONNX models (*.onnx)", defaultValue=str(DEFAULT_MODEL), optional=True))
         self.addParameter(QgsProcessingParameterNumber(
-            self.THRESHOLD, self.tr("Probability threshold (empty: the model's default)"),
+            self.THRESHOLD, self.tr("Threshold (empty: the model's own)"),
             NUMBER_DOUBLE, optional=True, minValue=0.0, maxValue=1.0))
         self.addParameter(QgsProcessingParameterNumber(
-            self.EDGE_BUFFER_PX, self.tr("Edge buffer (px): detections closer to the image border are dropped"),
+            self.EDGE_BUFFER_PX, self.tr("Edge buffer at the image border (px)"),
             NUMBER_DOUBLE, 0.0, minValue=0.0))
         self.add_dem_parameters(ground_model=True)
         self.addParameter(QgsProcessingParameterFeatureSink(

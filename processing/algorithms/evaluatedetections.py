@@ -7,12 +7,10 @@ from pathlib import Path
 from qgis.core import (
     QgsProcessingException,
     QgsProcessingOutputNumber,
-    QgsProcessingParameterFeatureSource,
     QgsProcessingParameterFile,
     QgsProcessingParameterFileDestination,
     QgsProcessingParameterMultipleLayers,
     QgsProcessingParameterString,
-    QgsProcessingParameterVectorLayer,
 )
 from qgis.PyQt.QtCore import QT_TRANSLATE_NOOP
 
@@ -22,10 +20,12 @@ from ...birdseye_qgis.core.scoring.evaluation import evaluate_flights
 from ...birdseye_qgis.core.scoring.operating_point import OperatingPoint
 from ...birdseye_qgis.core.scoring.reports import evaluation_report_html
 from ...birdseye_qgis.qgis_enums import SOURCE_VECTOR, SOURCE_VECTOR_POINT
+from ...birdseye_qgis.qgis_io import layer_kinds
 from ...birdseye_qgis.qgis_io.detections import read_verdicts
 from ...birdseye_qgis.qgis_io.layers import read_geotag_layer
 from ..parameters.clustering import ClusteringParametersMixin
 from ..parameters.dem import DemParametersMixin
+from ..parameters.layer_parameters import source_parameter, vector_parameter
 from .base import BirdsEyeAlgorithm
 
 
@@ -57,21 +57,20 @@ class EvaluateDetections(ClusteringParametersMixin, DemParametersMixin, BirdsEye
     def initAlgorithm(self, config=None):
         self.addParameter(QgsProcessingParameterMultipleLayers(
             self.DETECTIONS, self.tr("Detection layers (one per flight)"), SOURCE_VECTOR_POINT))
-        self.addParameter(QgsProcessingParameterFeatureSource(
-            self.GEOTAGS, self.tr("Geotags"), [SOURCE_VECTOR_POINT]))
+        self.addParameter(source_parameter(
+            self.GEOTAGS, self.tr("Geotags"), layer_kinds.GEOTAGS, [SOURCE_VECTOR_POINT]))
         self.addParameter(QgsProcessingParameterMultipleLayers(
             self.FRAMES, self.tr("Frame layers (one per flight, same order)"), SOURCE_VECTOR))
         self.add_clustering_parameters()
         self.add_dem_parameters()
-        self.addParameter(QgsProcessingParameterVectorLayer(
-            self.REVIEW, self.tr("Review verdicts (optional: adds the POST scores)"), [SOURCE_VECTOR],
-            optional=True))
+        self.addParameter(vector_parameter(
+            self.REVIEW, self.tr("Review verdicts (for scores after review)"), layer_kinds.VERDICTS,
+            [SOURCE_VECTOR], optional=True))
         self.addParameter(QgsProcessingParameterFile(
-            self.PREREGISTRATION, self.tr("Sealed selection rule (optional: verified, its operating point is used)"),
+            self.PREREGISTRATION, self.tr("Sealed selection rule (JSON)"),
             optional=True, fileFilter="Preregistration (*.json)"))
         self.addParameter(QgsProcessingParameterString(
-            self.ARM, self.tr("Arm to score (its name in the sealed rule; needed when arms share the checkpoint)"),
-            optional=True))
+            self.ARM, self.tr("Arm to score (its name in the rule)"), optional=True))
         self.addParameter(QgsProcessingParameterFileDestination(
             self.OUTPUT_JSON, self.tr("Scores (JSON)"), "JSON (*.json)"))
         self.addParameter(QgsProcessingParameterFileDestination(

@@ -29,14 +29,16 @@ from ...birdseye_qgis.qgis_enums import (
 )
 from ...birdseye_qgis.qgis_io import layers
 from ..parameters.dem import DemParametersMixin
-from .base import BirdsEyeAlgorithm
+from .base import BirdsEyeAlgorithm, rounded
 
+#: Decimals of the label check layer's computed figures: 0.01 px, 1 mm (the marks keep the solution's own).
+MARK_CHECK_DECIMALS = {"u_label": 2, "v_label": 2, "error_px": 2, "error_m": 3}
 #: COLMAP_REFERENCE choices, in the order of :data:`COLMAP_REFERENCE_LABELS`.
 COLMAP_REFERENCES = ("gps", "ecef", "enu")
 COLMAP_REFERENCE_LABELS = (
     QT_TRANSLATE_NOOP("ImportCameras", "Align to the images' GPS tags (needs IMAGES)"),
-    QT_TRANSLATE_NOOP("ImportCameras", "Already georegistered in ECEF (model_aligner --alignment_type ecef)"),
-    QT_TRANSLATE_NOOP("ImportCameras", "East-north-up at the origin given in ENU_ORIGIN"),
+    QT_TRANSLATE_NOOP("ImportCameras", "Georegistered in ECEF (COLMAP's model_aligner)"),
+    QT_TRANSLATE_NOOP("ImportCameras", "East-north-up at ENU_ORIGIN"),
 )
 
 
@@ -62,35 +64,33 @@ class ImportCameras(DemParametersMixin, BirdsEyeAlgorithm):
 
     def initAlgorithm(self, config=None):
         self.addParameter(QgsProcessingParameterFile(
-            self.CAMERAS, self.tr("Camera solution (Metashape cameras .xml, OpenSfM/ODM reconstruction.json, a "
-                                  "COLMAP model folder, or Pix4D's calibrated_camera_parameters.txt)"),
+            self.CAMERAS, self.tr("Metashape .psx/.psz or other camera solution"),
             behavior=FILE_BEHAVIOR_FILE,
-            fileFilter="Camera solutions (*.xml *.json *.bin *.txt);;All files (*)"))
+            fileFilter=self.tr("Camera solutions") + " (*.psx *.psz *.xml *.json *.bin *.txt);;"
+                       + self.tr("All files") + " (*)"))
         self.addParameter(QgsProcessingParameterFile(
-            self.IMAGES, self.tr("Folder of the images (optional; matched by file name)"),
-            behavior=FILE_BEHAVIOR_FOLDER, optional=True))
+            self.IMAGES, self.tr("Image folder (matched by file name)"), behavior=FILE_BEHAVIOR_FOLDER, optional=True))
         self.addParameter(QgsProcessingParameterNumber(
-            self.GROUND_HEIGHT_M, self.tr("Ground height for frames without tie points (m, same reference as the "
-                                          "solution; optional)"),
+            self.GROUND_HEIGHT_M, self.tr("Ground height without tie points (m)"),
             NUMBER_DOUBLE, None, optional=True, minValue=-1000.0, maxValue=9000.0))
         self.addParameter(QgsProcessingParameterEnum(
             self.COLMAP_REFERENCE, self.tr("A COLMAP model's frame"),
             options=[self.tr(label) for label in COLMAP_REFERENCE_LABELS], defaultValue=0))
         self.addParameter(QgsProcessingParameterString(
-            self.ENU_ORIGIN, self.tr("ENU origin of a COLMAP model: lat, lon, ellipsoidal height"), optional=True))
-        self.addParameter(QgsProcessingParameterCrs(
-            self.SOLUTION_CRS, self.tr("CRS of a Pix4D project's coordinates (its output CRS: projected, metres)"),
+            self.ENU_ORIGIN, self.tr("COLMAP ENU origin: lat, lon, height (m)"),
             optional=True))
         self.addParameter(QgsProcessingParameterCrs(
-            self.OUTPUT_CRS, self.tr("Output CRS (empty: UTM zone of the site)"), optional=True))
+            self.SOLUTION_CRS, self.tr("Output CRS of a Pix4D project"), optional=True))
+        self.addParameter(QgsProcessingParameterCrs(
+            self.OUTPUT_CRS, self.tr("Output CRS (empty: the site's UTM zone)"), optional=True))
         self.add_dem_parameters()
         self.addParameter(QgsProcessingParameterFeatureSink(
             self.OUTPUT, self.tr("Solved frames"), SOURCE_VECTOR_POLYGON))
         self.addParameter(QgsProcessingParameterFeatureSink(
-            self.OUTPUT_CONTROL, self.tr("Control points (surveyed markers, a geotag layer)"), SOURCE_VECTOR_POINT,
+            self.OUTPUT_CONTROL, self.tr("Control points (as geotags)"), SOURCE_VECTOR_POINT,
             optional=True, createByDefault=True))
         self.addParameter(QgsProcessingParameterFeatureSink(
-            self.OUTPUT_MARK_CHECK, self.tr("Label check: each pinned image mark and its label's distance"),
+            self.OUTPUT_MARK_CHECK, self.tr("Label check (pinned image marks)"),
             SOURCE_VECTOR_POINT, optional=True, createByDefault=True))
         self.addOutput(QgsProcessingOutputNumber(self.FRAME_COUNT, self.tr("Frames written")))
         self.addOutput(QgsProcessingOutputNumber(self.NOT_ALIGNED_COUNT, self.tr("Cameras the solution did not "
@@ -153,7 +153,7 @@ class ImportCameras(DemParametersMixin, BirdsEyeAlgorithm):
             outputs[self.OUTPUT_CONTROL] = dest_id
         if check is None:
             return outputs
-        summary = check.summary()
+        summary = rounded(check.summary(), {"median_px": 2, "p90_px": 2})
         outputs[self.MARKS_MEDIAN_PX] = summary.get("median_px")
         outputs[self.MARKS_P90_PX] = summary.get("p90_px")
         fields = layers.qgs_fields(MARK_CHECK_FIELDS)
@@ -162,7 +162,9 @@ class ImportCameras(DemParametersMixin, BirdsEyeAlgorithm):
             x, y = crs_core.from_geodetic(check.mark_lat, check.mark_lon)
             z = np.nan_to_num(points.height)[check.point_idx]
             geometries = (layers.point_z(*p) if np.all(np.isfinite(p)) else None for p in zip(x, y, z))
-            layers.write_records(sink, fields, check.records(result.frames.frame_id, result.frames.image), geometries)
+            records = (rounded(record, MARK_CHECK_DECIMALS)
+                       for record in check.records(result.frames.frame_id, result.frames.image))
+            layers.write_records(sink, fields, records, geometries)
             layers.style_on_load(context, dest_id, "mark_check.qml", self.tr("Label check (pinned marks)"))
             outputs[self.OUTPUT_MARK_CHECK] = dest_id
         return outputs

@@ -35,13 +35,13 @@ class ImportDjiImages(DemParametersMixin, BirdsEyeAlgorithm):
         self.addParameter(QgsProcessingParameterFile(
             self.IMAGES, self.tr("Folder of drone images (JPEG)"), behavior=FILE_BEHAVIOR_FOLDER))
         self.addParameter(QgsProcessingParameterFile(
-            self.CALIBRATION, self.tr("Camera calibration (optional; Kalibr or OpenCV YAML)"), optional=True,
+            self.CALIBRATION, self.tr("Camera calibration (YAML)"), optional=True,
             fileFilter="Calibration (*.yaml *.yml);;All files (*)"))
         self.addParameter(QgsProcessingParameterCrs(
-            self.OUTPUT_CRS, self.tr("Output CRS (empty: UTM zone of the site)"), optional=True))
+            self.OUTPUT_CRS, self.tr("Output CRS (empty: the site's UTM zone)"), optional=True))
         self.addParameter(QgsProcessingParameterNumber(
-            self.FLIGHT_HEIGHT_M, self.tr("Flight height above the take-off ground (m; for images without a "
-                                          "relative altitude)"), NUMBER_DOUBLE, None, optional=True, minValue=0.5))
+            self.FLIGHT_HEIGHT_M, self.tr("Flight height above take-off (m)"), NUMBER_DOUBLE,
+            None, optional=True, minValue=0.5))
         self.add_dem_parameters()
         self.addParameter(QgsProcessingParameterFeatureSink(
             self.OUTPUT, self.tr("Drone frames"), SOURCE_VECTOR_POLYGON))

@@ -41,7 +41,7 @@ class ImportFlightLog(DemParametersMixin, BirdsEyeAlgorithm):
             self.POSE_LOG, self.tr("Pose log (BirdsEye CSV or flight_data.db)"),
             fileFilter="Pose logs (*.csv *.txt *.db *.sqlite);;All files (*)"))
         self.addParameter(QgsProcessingParameterFile(
-            self.IMAGES, self.tr("Image folder (images.csv or <sec>.<nsec>.png|jpg files)"),
+            self.IMAGES, self.tr("Image folder"),
             behavior=FILE_BEHAVIOR_FOLDER, optional=True))
         self.addParameter(QgsProcessingParameterFile(
             self.CALIBRATION, self.tr("Camera calibration (Kalibr camchain or OpenCV YAML)"),
@@ -54,9 +54,9 @@ class ImportFlightLog(DemParametersMixin, BirdsEyeAlgorithm):
         self.addParameter(QgsProcessingParameterEnum(
             self.RTK_FILTER, self.tr("RTK filter"), options=self.RTK_FILTERS, defaultValue=0))
         self.addParameter(QgsProcessingParameterCrs(
-            self.UTM_CRS, self.tr("UTM zone of flight_data.db x, y (only for flight_data.db)"), optional=True))
+            self.UTM_CRS, self.tr("UTM zone of flight_data.db x, y"), optional=True))
         self.addParameter(QgsProcessingParameterCrs(
-            self.OUTPUT_CRS, self.tr("Output CRS (empty: UTM zone of the site)"), optional=True))
+            self.OUTPUT_CRS, self.tr("Output CRS (empty: the site's UTM zone)"), optional=True))
         self.add_dem_parameters()
         self.addParameter(QgsProcessingParameterFeatureSink(
             self.OUTPUT, self.tr("Frames"), SOURCE_VECTOR_POLYGON))

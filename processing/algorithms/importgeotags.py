@@ -8,7 +8,6 @@ from qgis.core import (
     QgsProcessingParameterCrs,
     QgsProcessingParameterEnum,
     QgsProcessingParameterFeatureSink,
-    QgsProcessingParameterFeatureSource,
     QgsProcessingParameterFile,
     QgsProcessingParameterNumber,
     QgsProcessingParameterString,
@@ -26,7 +25,8 @@ from ...birdseye_qgis.core.field.geotags import (
 )
 from ...birdseye_qgis.core.geometry.heights import MAX_UNDULATION_M, metres_per_unit
 from ...birdseye_qgis.qgis_enums import NUMBER_DOUBLE, SOURCE_VECTOR_POINT, WKB_POINT_Z
-from ...birdseye_qgis.qgis_io import layers
+from ...birdseye_qgis.qgis_io import layer_kinds, layers
+from ..parameters.layer_parameters import source_parameter
 from .base import BirdsEyeAlgorithm
 
 
@@ -50,8 +50,7 @@ class ImportGeotags(BirdsEyeAlgorithm):
     FIX_FILTERS = ["All geotags (float and no-RTK flagged)", "RTK fixed only"]
     #: UNITS choices and the unit each stands for (None: from the file).
     UNIT_CHOICES = (
-        (QT_TRANSLATE_NOOP("ImportGeotags", "From the file (a unit in the column's name, the coordinate-system name, "
-                                            "a units column; else metres)"), None),
+        (QT_TRANSLATE_NOOP("ImportGeotags", "From the file (else metres)"), None),
         (QT_TRANSLATE_NOOP("ImportGeotags", "Metres"), "m"),
         (QT_TRANSLATE_NOOP("ImportGeotags", "International feet (0.3048 m)"), "ft"),
         (QT_TRANSLATE_NOOP("ImportGeotags", "US survey feet (1200/3937 m)"), "ftUS"))
@@ -64,10 +63,10 @@ class ImportGeotags(BirdsEyeAlgorithm):
 
     def initAlgorithm(self, config=None):
         self.addParameter(QgsProcessingParameterFile(
-            self.INPUT, self.tr("Geotag file (rover CSV, CSV with header, NMEA)"), optional=True,
+            self.INPUT, self.tr("Geotag file (CSV or NMEA)"), optional=True,
             fileFilter="Geotags (*.csv *.txt *.nmea *.log *.gga);;All files (*)"))
-        self.addParameter(QgsProcessingParameterFeatureSource(
-            self.INPUT_LAYER, self.tr("…or a point layer"), [SOURCE_VECTOR_POINT], optional=True))
+        self.addParameter(source_parameter(
+            self.INPUT_LAYER, self.tr("…or a point layer"), layer_kinds.GEOTAGS, [SOURCE_VECTOR_POINT], optional=True))
         self.addParameter(QgsProcessingParameterEnum(
             self.FORMAT, self.tr("File format"), options=self.FORMAT_NAMES, defaultValue=0))
         for name, _, text in self.MAPPING:
@@ -76,13 +75,12 @@ class ImportGeotags(BirdsEyeAlgorithm):
             self.UNITS, self.tr("Unit of heights and accuracies"),
             options=[self.tr(text) for text, _ in self.UNIT_CHOICES], defaultValue=0))
         self.addParameter(QgsProcessingParameterNumber(
-            self.GEOID_UNDULATION_M, self.tr("Geoid undulation N for a file with only MSL heights (m; ellipsoidal = "
-                                             "MSL + N; empty: EGM96 from PROJ's grid)"),
+            self.GEOID_UNDULATION_M, self.tr("Geoid undulation N (m; empty: EGM96)"),
             NUMBER_DOUBLE, None, optional=True, minValue=-MAX_UNDULATION_M, maxValue=MAX_UNDULATION_M))
         self.addParameter(QgsProcessingParameterEnum(
             self.FIX_FILTER, self.tr("Fix filter"), options=self.FIX_FILTERS, defaultValue=0))
         self.addParameter(QgsProcessingParameterNumber(
-            self.MAX_H_ACCURACY_M, self.tr("Keep geotags with a horizontal accuracy within (m; empty: all)"),
+            self.MAX_H_ACCURACY_M, self.tr("Largest horizontal accuracy kept (m)"),
             NUMBER_DOUBLE, None, optional=True, minValue=0.001))
         self.addParameter(QgsProcessingParameterNumber(
             self.POLE_HEIGHT_M, self.tr("Antenna pole height (m), subtracted from heights"),
@@ -120,10 +118,10 @@ class ImportGeotags(BirdsEyeAlgorithm):
         if len(tags) == 0:
             first = f" The first: {tags.problems[0]}" if tags.problems else ""
             raise QgsProcessingException(self.tr("The input holds no usable geotag.") + first)
-        if tags.problems:
+        if tags.problems:  # a warning: the run goes on with the good rows and its output loads
             examples = "; ".join(str(e) for e in tags.problems[:5])
-            feedback.reportError(self.tr("{n_problems} bad row(s) left out; first: {examples}").format(
-                                     n_problems=len(tags.problems), examples=examples), False)
+            feedback.pushWarning(self.tr("{n_problems} bad row(s) left out; first: {examples}").format(
+                                     n_problems=len(tags.problems), examples=examples))
         prepared = self.run_core(prepare_geotags, tags,
                                  fixed_only=self.parameterAsEnum(parameters, self.FIX_FILTER, context) == 1,
                                  pole_height_m=self.parameterAsDouble(parameters, self.POLE_HEIGHT_M, context),

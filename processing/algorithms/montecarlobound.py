@@ -60,7 +60,7 @@ class MonteCarloBoundAlgorithm(DesignParametersMixin, BirdsEyeAlgorithm):
         self.addParameter(QgsProcessingParameterFileDestination(
             self.OUTPUT_JSON, self.tr("Results (JSON)"), "JSON files (*.json)"))
         self.addParameter(QgsProcessingParameterFileDestination(
-            self.OUTPUT_PNG, self.tr("Scaling-study plot (PNG, one panel per altitude)"), "PNG files (*.png)",
+            self.OUTPUT_PNG, self.tr("Scaling-study plot (PNG)"), "PNG files (*.png)",
             optional=True, createByDefault=True))
 
     def processAlgorithm(self, parameters, context, feedback):

@@ -20,7 +20,6 @@ from qgis.core import (
     QgsProcessingParameterFileDestination,
     QgsProcessingParameterNumber,
     QgsProcessingParameterPoint,
-    QgsProcessingParameterVectorLayer,
 )
 from qgis.PyQt.QtCore import QT_TRANSLATE_NOOP
 
@@ -55,7 +54,8 @@ from ...birdseye_qgis.qgis_enums import (
     WKB_LINE_STRING,
     WKB_POINT_Z,
 )
-from ...birdseye_qgis.qgis_io import layers
+from ...birdseye_qgis.qgis_io import layer_kinds, layers
+from ..parameters.layer_parameters import vector_parameter
 from ..parameters.review import ReviewParametersMixin
 from .base import BirdsEyeAlgorithm
 
@@ -96,30 +96,28 @@ class PlanFlight(ReviewParametersMixin, BirdsEyeAlgorithm):
                     ("OUTPUT_KML", "kml", "Google Earth (KML)", "KML (*.kml)")]
 
     def initAlgorithm(self, config=None):
-        self.addParameter(QgsProcessingParameterVectorLayer(
-            self.GEOTAGS, self.tr("Geotags (point layer)"), [SOURCE_VECTOR_POINT]))
+        self.addParameter(vector_parameter(
+            self.GEOTAGS, self.tr("Geotags"), layer_kinds.GEOTAGS, [SOURCE_VECTOR_POINT]))
         self.addParameter(QgsProcessingParameterBoolean(
             self.SELECTED_ONLY, self.tr("Selected geotags only"), defaultValue=False))
         self.addParameter(QgsProcessingParameterField(
-            self.ID_FIELD, self.tr("Geotag id field (empty: 'id' if present, else the row number)"),
+            self.ID_FIELD, self.tr("Geotag id field (empty: 'id')"),
             parentLayerParameterName=self.GEOTAGS, optional=True))
         self.addParameter(QgsProcessingParameterPoint(
-            self.HOME, self.tr("Home: take-off and landing point (optional)"), optional=True))
-        self._number(self.ALTITUDE_M, "Flight altitude above the ground, relative to take-off [m] (2–120)",
-                     FlightSettings.altitude_m)
+            self.HOME, self.tr("Home: take-off and landing point"), optional=True))
+        # Not bounded here: the plan's own check says why 2–120 m (rotor wash, the legal ceiling).
+        self._number(self.ALTITUDE_M, "Flight altitude above take-off [m]", FlightSettings.altitude_m)
         self._number(self.SPEED_MS, "Flight speed [m/s]", 3.0, minimum=0.0)
-        self._number(self.MERGE_RADIUS_M, "Merge radius: geotags within this ground distance share a waypoint [m]",
-                     2.0, minimum=0.0)
+        self._number(self.MERGE_RADIUS_M, "Merge radius of one waypoint [m]", 2.0, minimum=0.0)
         self.addParameter(QgsProcessingParameterFile(
-            self.CAMERA, self.tr("Camera calibration (Kalibr or OpenCV YAML; optional)"), optional=True,
+            self.CAMERA, self.tr("Camera calibration (YAML)"), optional=True,
             fileFilter="Calibration (*.yaml *.yml);;All files (*)"))
         self._number(self.FOOTPRINT_MARGIN_PX, "Edge margin kept around geotags in the image [px]", 50.0,
                      minimum=0.0, advanced=True)
         self._number(self.HOVER_S, "Hover at each waypoint [s]", 2.0, minimum=0.0)
         self.addParameter(QgsProcessingParameterEnum(
             self.CAPTURE, self.tr("Capture"), options=[label for _, label in self.CAPTURE_OPTIONS], defaultValue=0))
-        self._number(self.CAPTURE_INTERVAL_S, "Capture interval for timed capture [s] (0: from the camera)", 2.0,
-                     minimum=0.0)
+        self._number(self.CAPTURE_INTERVAL_S, "Timed capture interval [s] (0: from the camera)", 2.0, minimum=0.0)
         self._number(self.FORWARD_OVERLAP_PCT, "Forward overlap for the suggested interval [%]", 80.0,
                      minimum=0.0, maximum=99.0, advanced=True)
         self._number(self.MAX_WAYPOINTS, "Most waypoints per mission", 99, integer=True, minimum=1)
@@ -132,9 +130,8 @@ class PlanFlight(ReviewParametersMixin, BirdsEyeAlgorithm):
         self.addParameter(force)
         self.add_review_parameters(with_frames=True, edge_buffer=True)
         self.addParameter(QgsProcessingParameterBoolean(
-            self.UNRESOLVED_ONLY, self.tr("With REVIEW: fly only to the unresolved clusters (the geotags then "
-                                          "only tell which clusters they match)"), defaultValue=False))
-        crs = QgsProcessingParameterCrs(self.OUTPUT_CRS, self.tr("Output CRS (empty: UTM zone of the site)"),
+            self.UNRESOLVED_ONLY, self.tr("With REVIEW: fly only to the unresolved clusters"), defaultValue=False))
+        crs = QgsProcessingParameterCrs(self.OUTPUT_CRS, self.tr("Output CRS (empty: the site's UTM zone)"),
                                         optional=True)
         crs.setFlags(crs.flags() | PARAMETER_ADVANCED)
         self.addParameter(crs)

@@ -39,10 +39,10 @@ class ProcessOdm(BirdsEyeAlgorithm):
         self.addParameter(QgsProcessingParameterString(
             self.TOKEN, self.tr("Access token (if the node asks for one)"), optional=True))
         self.addParameter(QgsProcessingParameterString(
-            self.ODM_OPTIONS, self.tr("OpenDroneMap options (name=value, separated by commas)"), optional=True,
+            self.ODM_OPTIONS, self.tr("OpenDroneMap options (name=value, …)"), optional=True,
             multiLine=True))
         self.addParameter(QgsProcessingParameterCrs(
-            self.OUTPUT_CRS, self.tr("Output CRS (empty: UTM zone of the site)"), optional=True))
+            self.OUTPUT_CRS, self.tr("Output CRS (empty: the site's UTM zone)"), optional=True))
         self.addParameter(QgsProcessingParameterFolderDestination(
             self.OUTPUT_FOLDER, self.tr("Folder for the downloaded reconstruction")))
         self.addParameter(QgsProcessingParameterFeatureSink(

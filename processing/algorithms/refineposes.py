@@ -10,7 +10,6 @@ from qgis.core import (
     QgsProcessingOutputNumber,
     QgsProcessingParameterBoolean,
     QgsProcessingParameterFeatureSink,
-    QgsProcessingParameterFeatureSource,
     QgsProcessingParameterFileDestination,
     QgsProcessingParameterNumber,
 )
@@ -27,9 +26,14 @@ from ...birdseye_qgis.core.field.refinement import (
     terrain_grounds,
 )
 from ...birdseye_qgis.qgis_enums import NUMBER_INTEGER, SOURCE_VECTOR_POINT, SOURCE_VECTOR_POLYGON
-from ...birdseye_qgis.qgis_io import layers
+from ...birdseye_qgis.qgis_io import layer_kinds, layers
 from ..parameters.dem import DemParametersMixin
-from .base import BirdsEyeAlgorithm
+from ..parameters.layer_parameters import source_parameter
+from .base import BirdsEyeAlgorithm, rounded
+
+#: Decimals of the refinement's figures in the refined frame layer: 0.01 px, 1 mm, 0.001°.
+LAYER_DECIMALS = {"reprojection_rms_px": 2, "position_change_m": 3, "rotation_change_deg": 3,
+                  "alignment_residual_m": 3}
 
 
 class RefinePoses(DemParametersMixin, BirdsEyeAlgorithm):
@@ -46,22 +50,19 @@ class RefinePoses(DemParametersMixin, BirdsEyeAlgorithm):
     REGISTERED_COUNT = "REGISTERED_COUNT"
 
     def initAlgorithm(self, config=None):
-        self.addParameter(QgsProcessingParameterFeatureSource(
-            self.FRAMES, self.tr("Frames (from Import drone images, Import flight log or Import camera solution)"),
-            [SOURCE_VECTOR_POLYGON]))
+        self.addParameter(source_parameter(
+            self.FRAMES, self.tr("Frames (with their images)"), layer_kinds.FRAMES, [SOURCE_VECTOR_POLYGON]))
         self.addParameter(QgsProcessingParameterNumber(
-            self.MATCH_SIZE_PX, self.tr("Image size for feature extraction (px, longer side)"),
+            self.MATCH_SIZE_PX, self.tr("Feature image size (px, longer side)"),
             NUMBER_INTEGER, 2000, minValue=400, maxValue=10000))
         self.addParameter(QgsProcessingParameterNumber(
             self.MAX_FEATURES, self.tr("Features per image (at most)"), NUMBER_INTEGER, 8192,
             minValue=500, maxValue=65536))
         self.addParameter(QgsProcessingParameterBoolean(
-            self.REFINE_INTRINSICS, self.tr("Refine focal length and distortion (only with relief, oblique views or "
-                                            "ground control)"), defaultValue=False))
-        self.addParameter(QgsProcessingParameterFeatureSource(
-            self.GEOTAGS, self.tr("Geotags with surveyed heights (optional: the ground for a nominal camera's focal "
-                                  "length where frames have an RTK fix or no ground; else compared with theirs)"),
-            [SOURCE_VECTOR_POINT], optional=True))
+            self.REFINE_INTRINSICS, self.tr("Refine focal length and distortion"), defaultValue=False))
+        self.addParameter(source_parameter(
+            self.GEOTAGS, self.tr("Geotags with surveyed heights"), layer_kinds.GEOTAGS, [SOURCE_VECTOR_POINT],
+            optional=True))
         self.add_dem_parameters()
         self.addParameter(QgsProcessingParameterFeatureSink(
             self.OUTPUT, self.tr("Refined frames"), SOURCE_VECTOR_POLYGON))
@@ -104,7 +105,7 @@ class RefinePoses(DemParametersMixin, BirdsEyeAlgorithm):
             feedback.pushInfo(self.tr("Ground of the GNSS camera-to-ground distances: {text}").format(
                 text=ground_text(choice, frames)))
             if choice.warning:
-                feedback.pushWarning(self.tr("Warning: {text}").format(text=choice.warning))
+                feedback.pushWarning(choice.warning)
         feedback.pushInfo(self.tr("Registered {n} of {total} frames in {seconds:.0f} s ({rate:.1f} images per "
                                   "minute); intrinsics {intrinsics}").format(
                               n=refinement.n_registered, total=len(frames), seconds=sum(refinement.seconds.values()),
@@ -129,7 +130,8 @@ class RefinePoses(DemParametersMixin, BirdsEyeAlgorithm):
         layers.report_to_feedback(feedback, report)
         result = FlightImport(refined, fp, [], report)
         outputs = self.run_core(layers.write_frames, self, parameters, context, feedback, result, qgs_crs,
-                                extra_fields=REFINE_FIELDS, extra_values=values)
+                                extra_fields=REFINE_FIELDS,
+                                extra_values=[rounded(v, LAYER_DECIMALS) for v in values])
         outputs[self.REGISTERED_COUNT] = refinement.n_registered
         report_path = self.parameterAsFileOutput(parameters, self.OUTPUT_REPORT, context)
         if report_path:

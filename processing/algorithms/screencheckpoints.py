@@ -10,7 +10,6 @@ from qgis.core import (
     QgsProcessingException,
     QgsProcessingOutputNumber,
     QgsProcessingParameterEnum,
-    QgsProcessingParameterFeatureSource,
     QgsProcessingParameterFileDestination,
     QgsProcessingParameterMultipleLayers,
     QgsProcessingParameterNumber,
@@ -34,11 +33,13 @@ from ...birdseye_qgis.core.scoring.screening import (
     screen_checkpoints,
 )
 from ...birdseye_qgis.qgis_enums import NUMBER_DOUBLE, NUMBER_INTEGER, SOURCE_FILE, SOURCE_VECTOR, SOURCE_VECTOR_POINT
+from ...birdseye_qgis.qgis_io import layer_kinds
 from ...birdseye_qgis.qgis_io.detections import read_pose_groups
 from ...birdseye_qgis.qgis_io.layers import read_geotag_layer
 from ...birdseye_qgis.qgis_io.outputs import write_output, write_rows_csv
 from ..parameters.clustering import ClusteringParametersMixin
 from ..parameters.dem import DemParametersMixin
+from ..parameters.layer_parameters import source_parameter
 from .base import BirdsEyeAlgorithm
 
 
@@ -74,23 +75,23 @@ class ScreenCheckpoints(ClusteringParametersMixin, DemParametersMixin, BirdsEyeA
     OUTPUT_PLOT = "OUTPUT_PLOT"
     N_HEALTHY = "N_HEALTHY"
     PRESET_NAMES = (QT_TRANSLATE_NOOP("ScreenCheckpoints", "Method: blocks of 500 frames, threshold 0.03"),
-                    QT_TRANSLATE_NOOP("ScreenCheckpoints", "BirdsEye: whole flights, each checkpoint's own threshold"))
+                    QT_TRANSLATE_NOOP("ScreenCheckpoints", "BirdsEye: whole flights, each model's threshold"))
 
     def initAlgorithm(self, config=None):
         self.addParameter(QgsProcessingParameterMultipleLayers(
             self.CHECKPOINTS, self.tr("ONNX checkpoints"), SOURCE_FILE))
         self.addParameter(QgsProcessingParameterMultipleLayers(
             self.FRAMES, self.tr("Validation flights (frame layers with their images)"), SOURCE_VECTOR))
-        self.addParameter(QgsProcessingParameterFeatureSource(
-            self.GEOTAGS, self.tr("Geotags"), [SOURCE_VECTOR_POINT]))
+        self.addParameter(source_parameter(
+            self.GEOTAGS, self.tr("Geotags"), layer_kinds.GEOTAGS, [SOURCE_VECTOR_POINT]))
         self.addParameter(QgsProcessingParameterEnum(
-            self.PRESET, self.tr("Preset (blocks and threshold; the two fields below override it)"),
+            self.PRESET, self.tr("Preset (blocks and threshold)"),
             options=[self.tr(name) for name in self.PRESET_NAMES], defaultValue=0))
         self.addParameter(QgsProcessingParameterNumber(
-            self.THRESHOLD, self.tr("Detection threshold (empty: the preset's)"),
+            self.THRESHOLD, self.tr("Threshold (empty: the preset's)"),
             NUMBER_DOUBLE, None, optional=True, minValue=0.001, maxValue=0.999))
         self.addParameter(QgsProcessingParameterNumber(
-            self.BLOCK_FRAMES, self.tr("Frames per block (0: each flight whole; empty: the preset's)"),
+            self.BLOCK_FRAMES, self.tr("Frames per block (0: whole flights)"),
             NUMBER_INTEGER, None, optional=True, minValue=0))
         self.add_clustering_parameters()
         self.add_dem_parameters(ground_model=True)
@@ -101,7 +102,7 @@ class ScreenCheckpoints(ClusteringParametersMixin, DemParametersMixin, BirdsEyeA
             self.COLLAPSED_BELOW, self.tr("Collapsed if the distinct-position fraction is below"),
             NUMBER_DOUBLE, DEFAULT_COLLAPSED_BELOW, minValue=0.0, maxValue=1.0))
         self.addParameter(QgsProcessingParameterNumber(
-            self.SPARSE_BELOW, self.tr("Too sparse if detections per frame in the worst block are below"),
+            self.SPARSE_BELOW, self.tr("Too sparse below (detections/frame, worst block)"),
             NUMBER_DOUBLE, DEFAULT_SPARSE_BELOW, minValue=0.0))
         self.addParameter(QgsProcessingParameterFileDestination(
             self.OUTPUT_TABLE, self.tr("Checkpoint table (CSV)"), "CSV (*.csv)"))

@@ -55,23 +55,23 @@ class SealPreregistration(ClusteringParametersMixin, BirdsEyeAlgorithm):
 
     def initAlgorithm(self, config=None):
         self.addParameter(QgsProcessingParameterMultipleLayers(
-            self.CHECKPOINTS, self.tr("ONNX checkpoints (without ARMS or ARM_LINES: one arm each)"),
+            self.CHECKPOINTS, self.tr("ONNX checkpoints (one arm each)"),
             SOURCE_FILE, optional=True))
         self.addParameter(QgsProcessingParameterFile(
-            self.ARMS, self.tr("Arms file (from Select arms: each arm with its own operating point)"),
+            self.ARMS, self.tr("Arms file (JSON, from Select arms)"),
             optional=True, fileFilter="JSON (*.json)"))
         self.addParameter(QgsProcessingParameterString(
-            self.ARM_LINES, self.tr("Or arms typed one per line: name: checkpoint file, threshold, eps_m, "
-                                    "min_samples, eps_pred_m"), "", multiLine=True, optional=True))
+            self.ARM_LINES, self.tr("Or arms typed, one per line"), "",
+            multiLine=True, optional=True))
         self.addParameter(QgsProcessingParameterNumber(
-            self.THRESHOLD, self.tr("Detection threshold of the arms (without ARMS or ARM_LINES)"),
+            self.THRESHOLD, self.tr("Detection threshold of the checkpoints' arms"),
             NUMBER_DOUBLE, 0.5, minValue=0.001, maxValue=0.999))
         self.add_clustering_parameters()
         self.addParameter(QgsProcessingParameterFile(
-            self.DESCRIPTIVE, self.tr("Descriptive configurations (optional: a sweep or screen JSON, recorded only)"),
+            self.DESCRIPTIVE, self.tr("Sweep or screen JSON (recorded only)"),
             optional=True, fileFilter="JSON (*.json)"))
         self.addParameter(QgsProcessingParameterString(
-            self.NOTE, self.tr("Note (what was chosen on which flights, what will be scored)"), "", multiLine=True,
+            self.NOTE, self.tr("Note (what was chosen and why)"), "", multiLine=True,
             optional=True))
         self.addParameter(QgsProcessingParameterFileDestination(
             self.OUTPUT, self.tr("Sealed rule (JSON)"), "JSON (*.json)"))

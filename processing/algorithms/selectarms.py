@@ -23,7 +23,7 @@ class SelectArms(BirdsEyeAlgorithm):
         self.addParameter(QgsProcessingParameterFile(
             self.SWEEP, self.tr("Sweep (the JSON output of Sweep operating points)"), fileFilter="JSON (*.json)"))
         self.addParameter(QgsProcessingParameterFileDestination(
-            self.OUTPUT, self.tr("Arms (JSON, read by Seal a preregistered selection rule)"), "JSON (*.json)"))
+            self.OUTPUT, self.tr("Arms (JSON)"), "JSON (*.json)"))
 
     def processAlgorithm(self, parameters, context, feedback):
         path = self.parameterAsFile(parameters, self.SWEEP, context)

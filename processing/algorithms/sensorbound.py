@@ -34,7 +34,7 @@ class SensorBoundAlgorithm(DesignParametersMixin, BirdsEyeAlgorithm):
         self.add_sigmas_parameter()
         self.add_tolerance_parameter()
         self.addParameter(QgsProcessingParameterNumber(
-            self.STRIDE_PX, self.tr("Grid stride [px] (1 = every pixel)"), NUMBER_INTEGER,
+            self.STRIDE_PX, self.tr("Grid stride (px; 1: every pixel)"), NUMBER_INTEGER,
             defaultValue=1, minValue=1))
         self.addParameter(QgsProcessingParameterFileDestination(
             self.OUTPUT_JSON, self.tr("Results (JSON)"), "JSON files (*.json)"))
@@ -42,7 +42,7 @@ class SensorBoundAlgorithm(DesignParametersMixin, BirdsEyeAlgorithm):
             self.OUTPUT_REPORT, self.tr("Report with plots (HTML)"), "HTML files (*.html)", optional=True,
             createByDefault=True))
         self.addParameter(QgsProcessingParameterFileDestination(
-            self.OUTPUT_RASTER, self.tr("λ_max field, one band per altitude (GeoTIFF in pixel coordinates)"),
+            self.OUTPUT_RASTER, self.tr("λ_max field (GeoTIFF)"),
             "GeoTIFF files (*.tif *.tiff)", optional=True, createByDefault=False))
 
     def processAlgorithm(self, parameters, context, feedback):
@@ -89,16 +89,16 @@ class SensorBoundAlgorithm(DesignParametersMixin, BirdsEyeAlgorithm):
 
         Pixel coordinates, no CRS: map x = u + 0.5 and y = −(v + 0.5), the way QGIS places an image
         without georeferencing (its pixel i spans x ∈ [i, i+1]), so at stride 1 the raster lies exactly
-        over the frame opened in QGIS, plus the grid's extra column u = W and row v = H.
+        over the frame opened in QGIS.
         """
         from osgeo import gdal
 
         us, vs = frame_grid(camera, stride)
-        n_u, n_v = int(camera.width) // stride + 1, int(camera.height) // stride + 1
+        n_u, n_v = (int(camera.width) - 1) // stride + 1, (int(camera.height) - 1) // stride + 1
         if (n_u, n_v) != (us.size, vs.size):
             feedback.pushWarning(self.tr(
-                "{name}: the stride {stride} px does not divide the frame size, so the raster stops at the last "
-                "multiple of the stride; the JSON suprema still include the frame edges.").format(
+                "{name}: with the stride {stride} px the raster's regular grid does not reach the last pixel, so it "
+                "stops at the last multiple of the stride; the JSON suprema still include the frame edges.").format(
                 name=self.OUTPUT_RASTER, stride=stride))
         Path(path).parent.mkdir(parents=True, exist_ok=True)
         dataset = gdal.GetDriverByName("GTiff").Create(

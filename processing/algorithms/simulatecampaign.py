@@ -53,19 +53,19 @@ NUMBERS = [
     ("N_SPURIOUS", "Spurious geotags (no target)", INT, DEFAULTS.n_spurious, 0, 5000, True),
     ("RTK_FLOAT_EPISODES", "RTK-float episodes in the pose log", INT, DEFAULTS.rtk_float_episodes, 0, 100, True),
     ("ORTHO_PIXEL_M", "Orthomosaic pixel size (m)", DOUBLE, DEFAULTS.ortho_pixel_m, *ORTHO_PIXEL_RANGE_M, True),
-    ("LOOK_ALIKE_DENSITY", "Look-alikes (dark patches, depressions, stones…): times the default density", DOUBLE,
+    ("LOOK_ALIKE_DENSITY", "Look-alike density (× the default)", DOUBLE,
      DEFAULTS.look_alike_density, 0.0, 20.0, True),
 ]
-PLATFORM_LABELS = ("RTK INS payload (pose log, radar altimeter)",
-                   "DJI drone (the pose in each JPEG's own metadata, with its errors)")
+PLATFORM_LABELS = ("RTK INS payload (pose log, altimeter)",
+                   "DJI drone (poses in its JPEGs' metadata)")
 # The terrain, after the TERRAIN choice (same layout as NUMBERS).
-TERRAIN_LABELS = ("Flat (level ground)", "Plane (a uniform slope)", "Hills (the slope plus smooth random hills)")
+TERRAIN_LABELS = ("Flat (level ground)", "Plane (a uniform slope)", "Hills (the slope plus random hills)")
 TERRAIN_NUMBERS = [
     ("SLOPE_DEG", "Terrain slope (deg; plane and hills)", DOUBLE, DEFAULTS.slope_deg, 0.0, 45.0, False),
-    ("SLOPE_ASPECT_DEG", "Direction the slope faces, downhill (deg clockwise from true north)", DOUBLE,
+    ("SLOPE_ASPECT_DEG", "Slope aspect, downhill (deg from north)", DOUBLE,
      DEFAULTS.slope_aspect_deg, 0.0, 360.0, False),
     ("RELIEF_M", "Hill relief, peak to peak (m; hills)", DOUBLE, DEFAULTS.relief_m, 0.0, 50.0, False),
-    ("HILL_WAVELENGTH_M", "Hill wavelength: one hill and valley every … (m; hills)", DOUBLE,
+    ("HILL_WAVELENGTH_M", "Hill wavelength (m; hills)", DOUBLE,
      DEFAULTS.hill_wavelength_m, 5.0, 1000.0, True),
 ]
 
@@ -92,8 +92,10 @@ class SimulateCampaign(BirdsEyeAlgorithm):
         for advanced in (False, True):
             for name, label, kind, default, lo, hi, is_advanced in NUMBERS:
                 if is_advanced == advanced:
-                    self._add(QgsProcessingParameterNumber(
-                        name, self.tr(label), kind, default, minValue=lo, maxValue=hi), advanced)
+                    number = QgsProcessingParameterNumber(name, self.tr(label), kind, default, minValue=lo, maxValue=hi)
+                    if name in ("SITE_LAT", "SITE_LON"):  # degrees of a position: 6 decimals, 0.1 m
+                        number.setMetadata({"widget_wrapper": {"decimals": 6}})
+                    self._add(number, advanced)
             if not advanced:
                 self.addParameter(QgsProcessingParameterString(
                     self.SIGMAS, self.tr("Pose noise Σ0: x, y, z (m), roll, pitch, yaw (deg)"),
@@ -101,7 +103,7 @@ class SimulateCampaign(BirdsEyeAlgorithm):
                 self.addParameter(QgsProcessingParameterBoolean(
                     self.NOISE_OFF, self.tr("Noise off (ideal poses, altimeter and geotags)"), False))
                 self.addParameter(QgsProcessingParameterBoolean(
-                    self.RENDER, self.tr("Render frames and the orthomosaic (off: poses and geotags only)"), True))
+                    self.RENDER, self.tr("Render frames and the orthomosaic"), True))
                 self.addParameter(QgsProcessingParameterEnum(
                     self.PLATFORM, self.tr("Platform"), options=[self.tr(t) for t in PLATFORM_LABELS],
                     defaultValue=PLATFORMS.index(DEFAULTS.platform)))
@@ -113,13 +115,13 @@ class SimulateCampaign(BirdsEyeAlgorithm):
                     self._add(QgsProcessingParameterNumber(
                         name, self.tr(label), kind, default, minValue=lo, maxValue=hi), advanced)
         self._add(QgsProcessingParameterNumber(
-            self.SIDE_OVERLAP, self.tr("Side overlap of neighbouring lines (fraction; empty: {ins:g} for the payload, "
-                                    "{dji:g} for a DJI drone)").format(**DEFAULT_SIDE_OVERLAP),
+            self.SIDE_OVERLAP, self.tr("Side overlap (fraction; empty: {ins:g} payload, {dji:g} DJI)").format(
+                **DEFAULT_SIDE_OVERLAP),
             DOUBLE, None, optional=True, minValue=0.0, maxValue=0.9), True)
         self._add(QgsProcessingParameterBoolean(
             self.DJI_DEWARPED, self.tr("DJI drone undistorts its JPEGs (DewarpFlag 1)"), DEFAULTS.dji_dewarped), True)
         geoid = QgsProcessingParameterNumber(
-            self.GEOID_UNDULATION_M, self.tr("Geoid undulation N for altMSL (m; empty: EGM96 at the site)"),
+            self.GEOID_UNDULATION_M, self.tr("Geoid undulation N for altMSL (m; empty: EGM96)"),
             DOUBLE, None, optional=True, minValue=-120.0, maxValue=120.0)
         self._add(geoid, True)
         self.addParameter(QgsProcessingParameterFolderDestination(self.OUTPUT_FOLDER, self.tr("Output folder")))

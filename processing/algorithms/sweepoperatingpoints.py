@@ -8,7 +8,6 @@ import numpy as np
 from qgis.core import (
     QgsProcessingException,
     QgsProcessingOutputNumber,
-    QgsProcessingParameterFeatureSource,
     QgsProcessingParameterFileDestination,
     QgsProcessingParameterMultipleLayers,
     QgsProcessingParameterNumber,
@@ -36,10 +35,12 @@ from ...birdseye_qgis.core.scoring.sweep import (
     sweep,
 )
 from ...birdseye_qgis.qgis_enums import NUMBER_DOUBLE, SOURCE_FILE, SOURCE_VECTOR, SOURCE_VECTOR_POINT
+from ...birdseye_qgis.qgis_io import layer_kinds
 from ...birdseye_qgis.qgis_io.detections import read_detections, read_pose_groups
 from ...birdseye_qgis.qgis_io.layers import read_geotag_layer
 from ...birdseye_qgis.qgis_io.outputs import write_output, write_rows_csv
 from ..parameters.dem import DemParametersMixin
+from ..parameters.layer_parameters import source_parameter
 from .base import BirdsEyeAlgorithm
 
 
@@ -47,10 +48,10 @@ def _listed(values) -> str:
     return ",".join(f"{v:g}" for v in values)
 
 
-LISTS = (("THRESHOLDS", "Detection thresholds (comma-separated probabilities; used with CHECKPOINTS)",
+LISTS = (("THRESHOLDS", "Thresholds (comma-separated, for CHECKPOINTS)",
           _listed(METHOD_GRID["thresholds"])),
          ("EPS_M", "DBSCAN radii EPS (m, comma-separated)", _listed(METHOD_GRID["eps_m"])),
-         ("MIN_SAMPLES", "DBSCAN minimum points (comma-separated whole numbers)", _listed(METHOD_GRID["min_samples"])),
+         ("MIN_SAMPLES", "DBSCAN minimum points (comma-separated)", _listed(METHOD_GRID["min_samples"])),
          ("EPS_PRED_M", "Match radii EPS_PRED (m, comma-separated)", _listed(METHOD_GRID["eps_pred_m"])))
 
 
@@ -91,23 +92,22 @@ class SweepOperatingPoints(DemParametersMixin, BirdsEyeAlgorithm):
 
     def initAlgorithm(self, config=None):
         self.addParameter(QgsProcessingParameterMultipleLayers(
-            self.CHECKPOINTS, self.tr("ONNX checkpoints (run over FRAMES, peaks extracted at every threshold)"),
+            self.CHECKPOINTS, self.tr("ONNX checkpoints (run over FRAMES)"),
             SOURCE_FILE, optional=True))
         self.addParameter(QgsProcessingParameterMultipleLayers(
-            self.DETECTIONS, self.tr("Or detection layers (checkpoints × flights × thresholds, from Detect)"),
+            self.DETECTIONS, self.tr("Or detection layers (from Detect)"),
             SOURCE_VECTOR_POINT, optional=True))
-        self.addParameter(QgsProcessingParameterFeatureSource(
-            self.GEOTAGS, self.tr("Geotags"), [SOURCE_VECTOR_POINT]))
+        self.addParameter(source_parameter(
+            self.GEOTAGS, self.tr("Geotags"), layer_kinds.GEOTAGS, [SOURCE_VECTOR_POINT]))
         self.addParameter(QgsProcessingParameterMultipleLayers(
-            self.FRAMES, self.tr("Frame layers (with CHECKPOINTS: one per flight; with DETECTIONS: one per "
-                                 "detection layer, same order)"), SOURCE_VECTOR))
+            self.FRAMES, self.tr("Frame layers (one per flight or detection layer)"), SOURCE_VECTOR))
         for name, text, default in LISTS:
             self.addParameter(QgsProcessingParameterString(name, self.tr(text), default))
         self.addParameter(QgsProcessingParameterNumber(
             self.DEDUP_CM, self.tr("De-duplication grid cell (cm)"), NUMBER_DOUBLE,
             DEFAULT_DEDUP_CM, minValue=0.1, maxValue=100.0))
         self.addParameter(QgsProcessingParameterNumber(
-            self.EDGE_BUFFER_PX, self.tr("Edge buffer (px) of the in-view test and of CHECKPOINTS' detections"),
+            self.EDGE_BUFFER_PX, self.tr("Edge buffer at the image border (px)"),
             NUMBER_DOUBLE, DEFAULT_EDGE_BUFFER_PX, minValue=0.0, maxValue=1000.0))
         self.add_dem_parameters(ground_model=True)
         self.addParameter(QgsProcessingParameterNumber(
@@ -119,7 +119,7 @@ class SweepOperatingPoints(DemParametersMixin, BirdsEyeAlgorithm):
         self.addParameter(QgsProcessingParameterFileDestination(
             self.OUTPUT_TABLE, self.tr("Configurations (CSV)"), "CSV (*.csv)"))
         self.addParameter(QgsProcessingParameterFileDestination(
-            self.OUTPUT_JSON, self.tr("Configurations and Pareto front (JSON, read by Select arms)"), "JSON (*.json)",
+            self.OUTPUT_JSON, self.tr("Configurations and Pareto front (JSON)"), "JSON (*.json)",
             optional=True, createByDefault=True))
         self.addParameter(QgsProcessingParameterFileDestination(
             self.OUTPUT_PLOT, self.tr("Frontier plot (PNG)"), "PNG (*.png)", optional=True, createByDefault=True))

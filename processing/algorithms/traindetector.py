@@ -68,30 +68,24 @@ class TrainDetector(BirdsEyeAlgorithm):
 
     def initAlgorithm(self, config=None):
         self.addParameter(QgsProcessingParameterMultipleLayers(
-            self.LABELS, self.tr("Write-labels output folders (with tiles; pick a folder or any file in it, "
-                                 "e.g. its summary.json)"), SOURCE_FILE))
+            self.LABELS, self.tr("Write-labels folders (with tiles)"), SOURCE_FILE))
         self.addParameter(QgsProcessingParameterMultipleLayers(
-            self.FRAMES, self.tr("Frame layers the labels were written from, for each frame's ground sample "
-                                 "distance (one per labels folder, in the same order, or one for all)"),
-            SOURCE_VECTOR, optional=True))
+            self.FRAMES, self.tr("Frame layers (for each frame's GSD)"), SOURCE_VECTOR, optional=True))
         self.addParameter(QgsProcessingParameterNumber(
-            self.GSD_CM, self.tr("Ground sample distance of every frame (cm/px), instead of frame layers"),
-            NUMBER_DOUBLE, optional=True, minValue=0.001))
+            self.GSD_CM, self.tr("Or one GSD for every frame (cm/px)"), NUMBER_DOUBLE, optional=True,
+            minValue=0.001))
         self.addParameter(QgsProcessingParameterEnum(
-            self.BACKBONE, self.tr("Network: small (from scratch, offline) or an ImageNet-pretrained encoder"),
-            list(BACKBONES), defaultValue=0))
+            self.BACKBONE, self.tr("Network (small: from scratch)"), list(BACKBONES), defaultValue=0))
         self.addParameter(QgsProcessingParameterFile(
-            self.WEIGHTS, self.tr("ImageNet weights file (.pth) of a pretrained encoder (empty: torchvision's "
-                                  "cache; nothing is downloaded)"), FILE_BEHAVIOR_FILE,
-            fileFilter="PyTorch weights (*.pth *.pt)", optional=True))
+            self.WEIGHTS, self.tr("ImageNet weights of the encoder (.pth)"),
+            FILE_BEHAVIOR_FILE, fileFilter="PyTorch weights (*.pth *.pt)", optional=True))
         self.addParameter(QgsProcessingParameterFile(
-            self.INIT, self.tr("Fine-tune from an earlier model: its weights (.pt), or a BirdsEye ONNX model of the "
-                               "small network such as the bundled one (empty: start afresh)"),
+            self.INIT, self.tr("Earlier model to fine-tune (.pt, .onnx)"),
             FILE_BEHAVIOR_FILE, fileFilter="BirdsEye models (*.pt *.onnx)", optional=True))
         self.addParameter(QgsProcessingParameterNumber(
             self.MINUTES, self.tr("Training time budget (minutes)"), NUMBER_DOUBLE, 20.0, minValue=0.05))
         self.addParameter(QgsProcessingParameterNumber(
-            self.RESOLUTION_CM, self.tr("Model resolution (cm/px): tiles are resampled to it"), NUMBER_DOUBLE, 1.0,
+            self.RESOLUTION_CM, self.tr("Model resolution (cm/px)"), NUMBER_DOUBLE, 1.0,
             minValue=0.01))
         self.addParameter(QgsProcessingParameterNumber(
             self.VALIDATION_FRACTION, self.tr("Share of the frames held out for validation (0–0.5)"), NUMBER_DOUBLE,
@@ -100,12 +94,12 @@ class TrainDetector(BirdsEyeAlgorithm):
             self.SEED, self.tr("Random seed"), NUMBER_INTEGER, 0, minValue=0))
         advanced = [
             QgsProcessingParameterNumber(
-                self.THRESHOLD, self.tr("Default threshold written into the model (empty: best F1 on the held-out "
-                                        "tiles)"), NUMBER_DOUBLE, optional=True, minValue=0.0, maxValue=1.0),
+                self.THRESHOLD, self.tr("Default threshold (empty: held-out F1)"), NUMBER_DOUBLE,
+                optional=True, minValue=0.0, maxValue=1.0),
             QgsProcessingParameterNumber(
                 self.THREADS, self.tr("CPU threads for training (0: all cores)"), NUMBER_INTEGER, 0, minValue=0),
             QgsProcessingParameterFile(
-                self.PYTHON, self.tr("Python with PyTorch to train in (empty: the one Install dependencies set up)"),
+                self.PYTHON, self.tr("Python with PyTorch"),
                 FILE_BEHAVIOR_FILE, fileFilter="All files (*)", optional=True),
         ]
         for parameter in advanced:

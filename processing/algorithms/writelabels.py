@@ -15,11 +15,9 @@ from qgis.core import (
     QgsProcessingOutputNumber,
     QgsProcessingParameterBoolean,
     QgsProcessingParameterFeatureSink,
-    QgsProcessingParameterFeatureSource,
     QgsProcessingParameterFile,
     QgsProcessingParameterFolderDestination,
     QgsProcessingParameterNumber,
-    QgsProject,
 )
 from qgis.PyQt.QtCore import QT_TRANSLATE_NOOP
 
@@ -34,11 +32,14 @@ from ...birdseye_qgis.core.labels.training_set import (
     review_label_inputs,
 )
 from ...birdseye_qgis.qgis_enums import NUMBER_DOUBLE, NUMBER_INTEGER, SOURCE_VECTOR_POINT, SOURCE_VECTOR_POLYGON
-from ...birdseye_qgis.qgis_io import layers
-from ...birdseye_qgis.qgis_io.project_settings import read_sigma_label_px
+from ...birdseye_qgis.qgis_io import layer_kinds, layers
 from ..parameters.dem import DemParametersMixin
+from ..parameters.layer_parameters import source_parameter
 from ..parameters.review import ReviewParametersMixin
 from .base import BirdsEyeAlgorithm
+
+#: SIGMA_PX's default: the label σ of core's LabelRequest.
+DEFAULT_SIGMA_PX = LabelRequest.sigma_px
 
 
 def sigma_from_bound_json(path: str) -> float:
@@ -79,19 +80,18 @@ class WriteLabels(ReviewParametersMixin, DemParametersMixin, BirdsEyeAlgorithm):
     OUTPUT_GEOTAGS = "OUTPUT_GEOTAGS"
 
     def initAlgorithm(self, config=None):
-        self.addParameter(QgsProcessingParameterFeatureSource(
-            self.GEOTAGS, self.tr("Geotags (surveyed targets)"), [SOURCE_VECTOR_POINT]))
-        self.addParameter(QgsProcessingParameterFeatureSource(
-            self.FRAMES, self.tr("Frames (from Import flight log, Import drone images or Import camera solution)"),
-            [SOURCE_VECTOR_POLYGON]))
+        self.addParameter(source_parameter(  # the survey of the frames' field
+            self.GEOTAGS, self.tr("Geotags (surveyed targets)"), layer_kinds.GEOTAGS, [SOURCE_VECTOR_POINT],
+            near=self.FRAMES))
+        self.addParameter(source_parameter(self.FRAMES, self.tr("Frames"), layer_kinds.FRAMES, [SOURCE_VECTOR_POLYGON]))
         self.addParameter(QgsProcessingParameterNumber(
-            self.SIGMA_PX, self.tr("Soft-label σ (px); empty: the sensor-bound dock's value, else 10"),
-            NUMBER_DOUBLE, None, optional=True, minValue=0.5, maxValue=500.0))
+            self.SIGMA_PX, self.tr("Soft-label σ (px)"), NUMBER_DOUBLE, DEFAULT_SIGMA_PX, minValue=0.5,
+            maxValue=500.0))
         self.addParameter(QgsProcessingParameterFile(
-            self.SENSOR_BOUND_JSON, self.tr("…or σ from a sensorbound result (JSON): r / 3"), optional=True,
+            self.SENSOR_BOUND_JSON, self.tr("…or σ = r/3 from a sensorbound JSON"), optional=True,
             fileFilter="JSON (*.json)"))
         self.addParameter(QgsProcessingParameterNumber(
-            self.EDGE_BUFFER_PX, self.tr("Edge buffer (px): geotags this close to the border are 'edge', not labels"),
+            self.EDGE_BUFFER_PX, self.tr("Edge buffer at the image border (px)"),
             NUMBER_DOUBLE, 0.0, minValue=0.0, maxValue=1000.0))
         self.add_dem_parameters(ground_model=True)
         self.addParameter(QgsProcessingParameterBoolean(
@@ -124,19 +124,14 @@ class WriteLabels(ReviewParametersMixin, DemParametersMixin, BirdsEyeAlgorithm):
             self.addOutput(QgsProcessingOutputNumber(name, self.tr(text)))
 
     def sigma(self, parameters, context, feedback) -> float:
+        """σ_label (px) from the parameters alone: r / 3 of SENSOR_BOUND_JSON when one is given, else SIGMA_PX."""
         bound = self.parameterAsFile(parameters, self.SENSOR_BOUND_JSON, context)
-        if parameters.get(self.SIGMA_PX) is not None:
-            if bound:
-                feedback.pushWarning(self.tr("SIGMA_PX is given: SENSOR_BOUND_JSON is ignored"))
-            return self.parameterAsDouble(parameters, self.SIGMA_PX, context)
         if bound:
-            return sigma_from_bound_json(bound)
-        value = read_sigma_label_px(context.project() or QgsProject.instance())
-        if value is not None:
-            feedback.pushInfo(self.tr("σ = {value:g} px from the project (sensor-bound "
-                                      "calculator)").format(value=value))
+            value = sigma_from_bound_json(bound)
+            feedback.pushInfo(self.tr("σ = r / 3 = {value:g} px from {path} (SENSOR_BOUND_JSON; SIGMA_PX is not "
+                                      "used)").format(value=value, path=bound))
             return value
-        return 10.0
+        return self.parameterAsDouble(parameters, self.SIGMA_PX, context)
 
     def processAlgorithm(self, parameters, context, feedback):
         steps = QgsProcessingMultiStepFeedback(4, feedback)

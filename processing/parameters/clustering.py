@@ -29,7 +29,7 @@ class ClusteringParametersMixin:
             self.EPS_M, self.tr("DBSCAN radius EPS (m)"), NUMBER_DOUBLE, DEFAULT_EPS_M,
             minValue=0.001, maxValue=50.0), advanced)
         self._add_number(QgsProcessingParameterNumber(
-            self.MIN_SAMPLES, self.tr("DBSCAN minimum points per neighbourhood (itself included)"),
+            self.MIN_SAMPLES, self.tr("DBSCAN minimum points (itself included)"),
             NUMBER_INTEGER, DEFAULT_MIN_SAMPLES, minValue=1, maxValue=1000), advanced)
         if with_prediction:
             self.add_matching_parameters(advanced=advanced)
@@ -38,7 +38,7 @@ class ClusteringParametersMixin:
         """EPS_PRED_M and EDGE_BUFFER_PX: when a geotag counts as seen and as matched by a cluster.
         ``edge_buffer=False`` where the algorithm has its own EDGE_BUFFER_PX (Write labels)."""
         self._add_number(QgsProcessingParameterNumber(
-            self.EPS_PRED_M, self.tr("Match radius geotag ↔ cluster core points EPS_PRED (m)"),
+            self.EPS_PRED_M, self.tr("Geotag match radius EPS_PRED (m)"),
             NUMBER_DOUBLE, DEFAULT_EPS_PRED_M, minValue=0.001, maxValue=50.0), advanced)
         if edge_buffer:
             self._add_number(QgsProcessingParameterNumber(

@@ -30,11 +30,11 @@ from ...birdseye_qgis.core.geometry.heights import MAX_UNDULATION_M
 from ...birdseye_qgis.qgis_enums import NUMBER_DOUBLE, PARAMETER_ADVANCED
 from ...birdseye_qgis.qgis_io import layers
 
-DATUM_LABELS = ("Ellipsoidal (WGS84), like RTK and INS heights",
-                "Mean sea level (like DJI and EXIF heights; N needed against ellipsoidal frames)",
-                "Unknown: check it against the frames' own ground")
-GROUND_MODEL_LABELS = ("Level ground at the tilt-corrected altimeter depth",
-                       "The method's plane: normal to the optical axis at the raw altimeter range")
+DATUM_LABELS = ("Ellipsoid (WGS84), as RTK heights",
+                "Mean sea level, as DJI and EXIF heights",
+                "Unknown: check it against the frames")
+GROUND_MODEL_LABELS = ("Level ground (tilt-corrected altimeter)",
+                       "The method's plane (raw altimeter range)")
 METHOD_PLANE = 1
 # The window of the DEM read around a layer: its extent grown by this fraction of its larger side, and at
 # least by DEM_WINDOW_MARGIN_M. Footprints stored on the level plane grow where the terrain drops below
@@ -59,14 +59,13 @@ class DemParametersMixin:
         """DEM, DEM_VERTICAL_DATUM, GEOID_UNDULATION_M and, with ``ground_model`` (where labels or detections
         are placed), GROUND_MODEL."""
         self.addParameter(QgsProcessingParameterRasterLayer(
-            self.DEM, self.tr("Terrain model (DEM/DSM raster, projected CRS in metres; empty: level ground)"),
+            self.DEM, self.tr("Terrain model (DEM; empty: level ground)"),
             optional=True))
         self.addParameter(QgsProcessingParameterEnum(
-            self.DEM_VERTICAL_DATUM, self.tr("DEM heights are measured from"), options=list(DATUM_LABELS),
-            defaultValue=2))
+            self.DEM_VERTICAL_DATUM, self.tr("DEM heights are measured from"),
+            options=[self.tr(label) for label in DATUM_LABELS], defaultValue=2))
         self.addParameter(QgsProcessingParameterNumber(
-            self.GEOID_UNDULATION_M, self.tr("Geoid undulation N at the site (m; ellipsoidal = MSL + N; empty: "
-                                             "EGM96 from PROJ's grid where one is needed)"),
+            self.GEOID_UNDULATION_M, self.tr("Geoid undulation N (m; empty: EGM96)"),
             NUMBER_DOUBLE, None, optional=True, minValue=-MAX_UNDULATION_M, maxValue=MAX_UNDULATION_M))
         if ground_model:
             choice = QgsProcessingParameterEnum(

@@ -52,39 +52,39 @@ class DesignParametersMixin:
         """PLATFORM (a preset: camera and pose sigmas), CALIBRATION (optional file, overrides the camera)
         and FX, FY, CX, CY, WIDTH, HEIGHT (px)."""
         self.addParameter(QgsProcessingParameterEnum(
-            self.PLATFORM, self.tr("Platform preset (camera, pose sigmas and mount; Custom: the values below)"),
+            self.PLATFORM, self.tr("Platform preset (Custom: the values below)"),
             options=[self.tr("Custom")] + [self.tr(p.name) for p in PLATFORMS], defaultValue=0))
         self.addParameter(QgsProcessingParameterFile(
-            self.CALIBRATION, self.tr("Camera calibration (Kalibr or OpenCV YAML; overrides the intrinsics below)"),
+            self.CALIBRATION, self.tr("Camera calibration (YAML)"),
             behavior=FILE_BEHAVIOR_FILE, fileFilter=CALIBRATION_FILE_FILTER, optional=True))
         cam = DEPLOYED_CAMERA
         for name, label, default in (
-                (self.FX, "Focal length fx [px]", cam.fx), (self.FY, "Focal length fy [px]", cam.fy),
-                (self.CX, "Principal point cx [px]", cam.cx), (self.CY, "Principal point cy [px]", cam.cy)):
+                (self.FX, "Focal length fx (px)", cam.fx), (self.FY, "Focal length fy (px)", cam.fy),
+                (self.CX, "Principal point cx (px)", cam.cx), (self.CY, "Principal point cy (px)", cam.cy)):
             self.addParameter(QgsProcessingParameterNumber(
                 name, self.tr(label), NUMBER_DOUBLE, defaultValue=default))
-        for name, label, default in ((self.WIDTH, "Image width [px]", cam.width),
-                                     (self.HEIGHT, "Image height [px]", cam.height)):
+        for name, label, default in ((self.WIDTH, "Image width (px)", cam.width),
+                                     (self.HEIGHT, "Image height (px)", cam.height)):
             self.addParameter(QgsProcessingParameterNumber(
                 name, self.tr(label), NUMBER_INTEGER, defaultValue=default, minValue=1))
 
     def add_sigmas_parameter(self) -> None:
         """SIGMAS and MOUNT, which says how the roll, pitch and yaw sigmas turn the camera."""
         self.addParameter(QgsProcessingParameterString(
-            self.SIGMAS, self.tr("Pose sigmas, 1σ (x, y, z in metres; roll, pitch, yaw in degrees)"),
+            self.SIGMAS, self.tr("Pose sigmas 1σ: x, y, z (m), roll, pitch, yaw (°)"),
             defaultValue=format_number_list(DEPLOYED_SIGMAS)))
         self.addParameter(QgsProcessingParameterEnum(
-            self.MOUNT, self.tr("Camera mount (how roll, pitch and yaw turn the camera)"),
+            self.MOUNT, self.tr("Camera mount"),
             options=[self.tr(m.name) for m in MOUNTS], defaultValue=MOUNTS.index(DEPLOYED.mount)))
 
     def add_altitudes_parameter(self, name: str = "ALTITUDES") -> None:
         self.addParameter(QgsProcessingParameterString(
-            name, self.tr("Altitudes above the ground [m], comma-separated"),
+            name, self.tr("Altitudes above the ground (m, comma-separated)"),
             defaultValue=format_number_list(DEPLOYED_ALTITUDES_M)))
 
     def add_tolerance_parameter(self) -> None:
         self.addParameter(QgsProcessingParameterNumber(
-            self.TOLERANCE_PX, self.tr("Label tolerance r [px] (label radius at 3σ)"),
+            self.TOLERANCE_PX, self.tr("Label tolerance r (px, label radius at 3σ)"),
             NUMBER_DOUBLE, defaultValue=DEPLOYED_TOLERANCE_PX))
 
     # ------------------------------------------------------------------ readers

@@ -6,16 +6,17 @@ from __future__ import annotations
 from qgis.core import (
     QgsProcessingException,
     QgsProcessingParameterMultipleLayers,
-    QgsProcessingParameterVectorLayer,
 )
 
 from ...birdseye_qgis.core.geometry.ground_record import DEM
 from ...birdseye_qgis.core.scoring.evaluation import Flight, evaluate_flights
 from ...birdseye_qgis.core.scoring.reviewed_clusters import outcome_counts, reviewed_clusters
 from ...birdseye_qgis.qgis_enums import SOURCE_VECTOR, SOURCE_VECTOR_POINT
+from ...birdseye_qgis.qgis_io import layer_kinds
 from ...birdseye_qgis.qgis_io.detections import read_detections, read_verdicts
 from ...birdseye_qgis.qgis_io.layers import read_geotag_layer
 from .clustering import ClusteringParametersMixin
+from .layer_parameters import vector_parameter
 
 
 class ReviewParametersMixin(ClusteringParametersMixin):
@@ -29,15 +30,15 @@ class ReviewParametersMixin(ClusteringParametersMixin):
         """REVIEW and REVIEW_DETECTIONS (and REVIEW_FRAMES when the algorithm has no frame layer of its
         own), then the clustering the review was scored with, as advanced parameters.
         ``edge_buffer=False`` where the algorithm's own EDGE_BUFFER_PX serves the in-view test."""
-        self.addParameter(QgsProcessingParameterVectorLayer(
-            self.REVIEW, self.tr("Review verdicts (the review dock's birdseye_verdicts table; optional)"),
+        self.addParameter(vector_parameter(
+            self.REVIEW, self.tr("Review verdicts (birdseye_verdicts)"), layer_kinds.VERDICTS,
             [SOURCE_VECTOR], optional=True))
         self.addParameter(QgsProcessingParameterMultipleLayers(
-            self.REVIEW_DETECTIONS, self.tr("Detection layers the review judged (with REVIEW)"),
+            self.REVIEW_DETECTIONS, self.tr("Detection layers the review judged"),
             SOURCE_VECTOR_POINT, optional=True))
         if with_frames:
             self.addParameter(QgsProcessingParameterMultipleLayers(
-                self.REVIEW_FRAMES, self.tr("Frame layers of those detections (one per layer, same order)"),
+                self.REVIEW_FRAMES, self.tr("Their frame layers (same order)"),
                 SOURCE_VECTOR, optional=True))
         self.add_clustering_parameters(with_prediction=False, advanced=True)
         self.add_matching_parameters(edge_buffer=edge_buffer, advanced=True)

@@ -119,5 +119,6 @@ def test_the_project_opens_with_every_layer_valid(loop, qgis_app):
     groups = [g.name() for g in project.layerTreeRoot().findGroups()]
     assert {"survey", "flight", "detections", "review", "comparison", "farm map"} <= set(groups)
     names = [layer.name() for layer in layers]
-    assert any(n.startswith("Verdicts (review campaign 1") for n in names)
-    assert sum(n.startswith("What changed") for n in names) == len(TESTED)
+    assert len(set(names)) == len(names), sorted(names)
+    assert "Verdicts · review 1" in names and "Verdicts · review 2" in names
+    assert sum(n.startswith("Changes · test") for n in names) == len(TESTED)

@@ -1,6 +1,8 @@
 """`make package`: the zip a user installs with "Install from ZIP", checked as plugins.qgis.org would,
 then installed into a fresh QGIS profile — by QGIS's own Install-from-ZIP code in the real desktop, and
-by unzipping for ``qgis_process`` — and loaded from there.
+by unzipping for ``qgis_process`` — and loaded from there; and the plugin repository file beside it
+(plugins.xml), checked against the zip and then added, read and installed from by QGIS's own plugin
+installer in the real desktop, as a user does in the Plugin Manager.
 
 The installed copy is loaded with Debian's Python only (no .venv on PYTHONPATH), as on a user's
 machine: every algorithm must still register, which holds the plugin to lazy heavy imports.
@@ -51,9 +53,17 @@ def package() -> Path:
     assert result.returncode == 0, result.stdout + result.stderr
     metadata = configparser.ConfigParser(interpolation=None)
     metadata.read(REPO_ROOT / "metadata.txt", encoding="utf-8")
-    archive = REPO_ROOT / "build" / f"birdseye-{metadata['general']['version']}.zip"
+    archive = REPO_ROOT / "build" / f"birdseye.{metadata['general']['version']}.zip"
     assert archive.is_file(), f"make package did not write {archive}"
     return archive
+
+
+@pytest.fixture(scope="module")
+def repository_file(package) -> Path:
+    """build/plugins.xml, written by the same `make package` beside the zip."""
+    path = package.parent / "plugins.xml"
+    assert path.is_file(), f"make package did not write {path}"
+    return path
 
 
 @pytest.fixture(scope="module")
@@ -183,6 +193,71 @@ def test_validator_refuses_what_the_repository_refuses(package, tmp_path, case):
 def test_validator_enforces_the_size_limit(package, monkeypatch):
     monkeypatch.setattr(package_script, "MAX_UPLOAD_BYTES", package.stat().st_size - 1)
     assert ["accepts at most" in p for p in package_script.repository_problems(package)] == [True]
+
+
+# ------------------------------------------------------------------------------ the plugin repository file
+def _metadata() -> configparser.SectionProxy:
+    parser = configparser.ConfigParser(interpolation=None)
+    parser.optionxform = str
+    parser.read(REPO_ROOT / "metadata.txt", encoding="utf-8")
+    return parser["general"]
+
+
+def test_repository_file_describes_the_zip(package, repository_file):
+    """plugins.xml in the format QGIS's installer reads: one <pyqgis_plugin> whose name, version, QGIS range,
+    file name and download URL are metadata.txt's and the zip's; the plugin id QGIS derives from the file
+    name (up to the first dot) is the zip's folder."""
+    general = _metadata()
+    root = ET.parse(repository_file).getroot()
+    assert root.tag == "plugins"
+    (plugin,) = root.findall("pyqgis_plugin")
+    text = {child.tag: (child.text or "").strip() for child in plugin}
+    assert plugin.get("name") == general["name"] == "BirdsEye"
+    assert plugin.get("version") == text["version"] == general["version"]
+    assert text["qgis_minimum_version"] == general["qgisMinimumVersion"]
+    assert text["qgis_maximum_version"] == general["qgisMaximumVersion"]
+    assert text["file_name"] == package.name
+    assert text["file_name"].partition(".")[0] == "birdseye"  # QGIS's plugin id: the zip's one top folder
+    assert text["download_url"] == package.resolve().as_uri()  # no base URL given: the zip where it lies
+    assert text["experimental"] == ("True" if general["experimental"].lower() == "true" else "False")
+    assert text["deprecated"] == "False"
+    for tag, key in (("description", "description"), ("about", "about"), ("author_name", "author"),
+                     ("homepage", "homepage"), ("tracker", "tracker"), ("repository", "repository"),
+                     ("tags", "tags"), ("category", "category")):
+        assert text[tag] == general[key].strip(), tag
+    assert package_script.repository_file_problems(repository_file, package) == []
+
+
+def test_repository_file_for_a_web_folder(package, tmp_path):
+    """--base-url (make package PLUGIN_BASE_URL=…): the download URL is that folder + the zip's name."""
+    result = subprocess.run(["/usr/bin/python3", str(REPO_ROOT / "scripts" / "package.py"), "--out", str(tmp_path),
+                             "--base-url", "https://example.org/lab/qgis"], capture_output=True, text=True,
+                            timeout=120, check=False)
+    assert result.returncode == 0, result.stdout + result.stderr
+    xml = tmp_path / "plugins.xml"
+    assert ET.parse(xml).getroot().findtext("pyqgis_plugin/download_url") == \
+        f"https://example.org/lab/qgis/{package.name}"
+    assert package_script.repository_file_problems(xml, tmp_path / package.name) == []
+
+
+REPOSITORY_EDITS = {
+    "wrong_version": (lambda t: t.replace('version="', 'version="9', 1), "version"),
+    "id_from_a_dashed_name": (lambda t: re.sub(r"<file_name>birdseye\.", "<file_name>birdseye-", t),
+                              "plugin 'birdseye-"),
+    "relative_download_url": (lambda t: re.sub(r"<download_url>[^<]*/", "<download_url>", t), "download_url"),
+    "wrong_maximum": (lambda t: re.sub(r"<qgis_maximum_version>[^<]*<", "<qgis_maximum_version>3.99<", t),
+                      "qgis_maximum_version"),
+    "not_xml": (lambda t: t.replace("</plugins>", ""), "not well-formed"),
+}
+
+
+@pytest.mark.parametrize("case", sorted(REPOSITORY_EDITS))
+def test_repository_check_finds_a_mismatch(package, repository_file, tmp_path, case):
+    edit, expected = REPOSITORY_EDITS[case]
+    broken = tmp_path / "plugins.xml"
+    broken.write_text(edit(repository_file.read_text(encoding="utf-8")), encoding="utf-8")
+    problems = package_script.repository_file_problems(broken, package)
+    assert problems and any(expected in p for p in problems), problems
 
 
 # ------------------------------------------------------------------------------ translations
@@ -332,6 +407,142 @@ def test_install_from_zip_in_the_desktop(package, tmp_path):
     assert "mBirdsEyeMenu" in report["menu"]
     log = report["message_log"]
     assert "Python error" not in log, log.get("Python error")
+    assert "Traceback" not in output, output
+
+
+# ------------------------------------------------------------------------------ from the plugin repository, for real
+REPOSITORY_NAME = "BirdsEye"
+REPOSITORY_SCREENSHOT = REPO_ROOT / "build" / "screenshots" / "plugin-repository-details.png"
+
+REPOSITORY_PROBE = r"""
+import json, os, sys, traceback
+from qgis.core import QgsApplication, QgsSettings
+from qgis.PyQt.QtCore import QTimer
+from qgis.PyQt.QtWidgets import QApplication
+import qgis.utils
+from qgis.utils import active_plugins, iface, plugins as loaded
+
+result = {"errors": []}
+NAME = os.environ["BIRDSEYE_REPOSITORY_NAME"]
+URL = os.environ["BIRDSEYE_REPOSITORY_URL"]
+
+
+def add_repository():
+    # Plugins > Manage and Install Plugins > Settings > Add…: the button runs the installer's addRepository(),
+    # which asks for a name and URL, saves them and reloads every enabled repository.
+    try:
+        import pyplugin_installer
+        from pyplugin_installer import installer_data
+        official_name, official_url = installer_data.officialRepo
+        settings = QgsSettings()  # offline: the official repository is left disabled, so only ours is read
+        settings.setValue(f"{installer_data.reposGroup}/{official_name}/url", official_url)
+        settings.setValue(f"{installer_data.reposGroup}/{official_name}/enabled", False)
+        installer_data.repositories.load()
+        result["loaded_before"] = "birdseye" in loaded
+        QTimer.singleShot(300, fill_in)
+        pyplugin_installer.instance().addRepository()
+        repository = installer_data.repositories.all().get(NAME)
+        result["repository"] = None if repository is None else {
+            "url": repository["url"], "state": repository["state"], "error": repository["error"]}
+        result["listed"] = [{k: p[k] for k in ("id", "name", "version_available", "experimental", "filename",
+                                               "download_url")}
+                            for p in installer_data.plugins.repoCache.get(NAME, [])]
+        # "Show also experimental plugins" (Settings page): metadata.txt says experimental=True.
+        allow_experimental(settings, installer_data)
+        installer_data.plugins.rebuild()
+        entry = installer_data.plugins.all().get("birdseye", {})
+        result["entry"] = {k: entry.get(k) for k in ("status_exp", "version_available_experimental",
+                                                    "download_url_experimental", "zip_repository")}
+        # "Install Experimental Plugin" on the plugin's page runs installPlugin(key, stable=False).
+        pyplugin_installer.instance().installPlugin("birdseye", stable=False)
+        home_plugin_path = getattr(qgis.utils, "HOME_PLUGIN_PATH", None) or qgis.utils.home_plugin_path
+        result["installed_to"] = os.path.join(home_plugin_path, "birdseye")
+        result["loaded"] = "birdseye" in loaded
+        result["active"] = "birdseye" in active_plugins
+        result["enabled_in_profile"] = QgsSettings().value("PythonPlugins/birdseye", False, bool)
+        result["module_file"] = sys.modules["birdseye"].__file__
+        provider = QgsApplication.processingRegistry().providerById("birdseye")
+        result["algorithms"] = sorted(a.id() for a in provider.algorithms()) if provider else None
+        result["menu"] = [a.menu().objectName() for a in iface.mainWindow().menuBar().actions() if a.menu()]
+    except Exception:
+        result["errors"].append(traceback.format_exc())
+    with open(os.environ["BIRDSEYE_PROBE_RESULT"], "w", encoding="utf-8") as f:
+        json.dump(result, f, indent=1)
+    QgsApplication.instance().quit()
+
+
+def allow_experimental(settings, installer_data):
+    # Where the installer reads the setting: QgsSettings under its settings group (QGIS 3.22), or the
+    # settings tree's plugin-manager/allow-experimental (later releases); both are set.
+    settings.setValue(getattr(installer_data, "settingsGroup", "app/plugin_installer") + "/allowExperimental", True)
+    try:
+        from qgis.core import QgsSettingsTree
+    except ImportError:
+        return
+    find = getattr(QgsSettingsTree, "nodeCopy", None) or getattr(QgsSettingsTree, "node", None)
+    node = find("plugin-manager") if find is not None else None
+    setting = node.childSetting("allow-experimental") if node is not None else None
+    if setting is not None:
+        setting.setValue(True)
+
+
+def fill_in():
+    try:
+        dialog = QApplication.activeModalWidget()
+        result["dialog_title"] = dialog.windowTitle()
+        dialog.editName.setText(NAME)
+        dialog.editURL.setText(URL)
+        dialog.grab().save(os.environ["BIRDSEYE_SCREENSHOT"])
+        dialog.accept()
+    except Exception:
+        result["errors"].append(traceback.format_exc())
+        QApplication.activeModalWidget().reject()
+
+
+QTimer.singleShot(500, add_repository)
+"""
+
+
+@pytest.mark.skipif(not QGIS_BIN.exists() or shutil.which("Xvfb") is None,
+                    reason="needs Debian's qgis and xvfb (make setup installs them)")
+def test_install_from_the_plugin_repository_in_the_desktop(package, repository_file, tmp_path):
+    """The real desktop, a fresh profile without BirdsEye, QGIS's own plugin installer: the repository file is
+    added by its file:// URL in the Add-repository dialog, read (one plugin, BirdsEye, at the zip's version),
+    and the plugin installed from it — downloaded from its download_url — starts, registers every algorithm
+    and adds its menu."""
+    profiles = tmp_path / "profiles"
+    ini = profiles / "profiles" / "default" / "QGIS" / "QGIS3.ini"
+    ini.parent.mkdir(parents=True)
+    ini.write_text("[PythonPlugins]\nprocessing=true\n\n" + OFFLINE_SETTINGS)
+    probe = tmp_path / "repository_probe.py"
+    probe.write_text(REPOSITORY_PROBE, encoding="utf-8")
+    REPOSITORY_SCREENSHOT.parent.mkdir(parents=True, exist_ok=True)
+    env = {k: v for k, v in os.environ.items() if k not in {"QGIS_CUSTOM_CONFIG_PATH", "QGIS_PLUGINPATH",
+                                                            "PYTHONPATH"}}
+    report, output = run_desktop_probe(profiles, probe, {**env, "BIRDSEYE_REPOSITORY_NAME": REPOSITORY_NAME,
+                                                         "BIRDSEYE_REPOSITORY_URL": repository_file.resolve().as_uri(),
+                                                         "BIRDSEYE_SCREENSHOT": str(REPOSITORY_SCREENSHOT)},
+                                       tmp_path, 120, "plugin-repository-timeout.png")
+    assert report["errors"] == []
+    assert report["loaded_before"] is False
+    assert report["dialog_title"] == "Repository details"
+    repository = report["repository"]
+    assert repository is not None and repository["url"] == repository_file.resolve().as_uri()
+    assert (repository["state"], repository["error"]) == (2, ""), repository  # 2: Repositories.STATE_LOADED
+    version = _metadata()["version"]
+    assert report["listed"] == [{"id": "birdseye", "name": "BirdsEye", "version_available": version,
+                                 "experimental": True, "filename": package.name,
+                                 "download_url": package.resolve().as_uri()}]
+    assert report["entry"] == {"status_exp": "not installed", "version_available_experimental": version,
+                               "download_url_experimental": package.resolve().as_uri(),
+                               "zip_repository": REPOSITORY_NAME}
+    installed = Path(report["installed_to"])
+    assert installed.parent.parent.parent == profiles / "profiles" / "default"
+    assert (installed / "metadata.txt").is_file()
+    assert Path(report["module_file"]).resolve() == (installed / "__init__.py").resolve()
+    assert report["loaded"] and report["active"] and report["enabled_in_profile"]
+    assert report["algorithms"] == ALGORITHM_IDS
+    assert "mBirdsEyeMenu" in report["menu"]
     assert "Traceback" not in output, output
 
 

@@ -4,46 +4,26 @@ A user's first session, scripted: open the demo project (``BIRDSEYE_E2E_PROJECT`
 open every BirdsEye dock and use it on the demo's layers (review the held-out flight's clusters, the
 sensor bound of its camera), then run *Plan the survey flight* through its Processing dialog — set
 the parameters, click Run, wait for it, close it. Screenshots go to ``BIRDSEYE_E2E_SCREENSHOTS``; the
-JSON report (``BIRDSEYE_PROBE_RESULT``) records what the test checks. Every exception is recorded, never
-shown in a dialog, so the desktop never waits for a click; QGIS quits at the end.
+JSON report (``BIRDSEYE_PROBE_RESULT``) records what the test checks, QGIS's log and message bar last.
 
-The steps are a generator: each ``yield`` hands the driver a condition to wait for (polled on the Qt
-event loop, so QGIS keeps painting and running its tasks meanwhile).
+The steps are a generator played by ``probe_session.play``: each ``yield`` hands it a condition to wait for
+(polled on the Qt event loop, so QGIS keeps painting and running its tasks meanwhile). Every exception is
+recorded, never shown in a dialog, so the desktop never waits for a click; QGIS quits at the end.
 """
-import json
 import os
-import time
-import traceback
+import sys
 
-from qgis.core import QgsApplication, QgsProject
-from qgis.PyQt.QtCore import QTimer
-from qgis.PyQt.QtWidgets import QTabWidget, QWidget
+from qgis.core import QgsProject
 from qgis.utils import iface, plugins
+
+sys.path.insert(0, os.environ["BIRDSEYE_PROBE_DIR"])
+from probe_session import Wait, canvas_idle, file_stem, message_log, play  # noqa: E402
 
 PROJECT = os.environ["BIRDSEYE_E2E_PROJECT"]
 SCREENSHOTS = os.environ["BIRDSEYE_E2E_SCREENSHOTS"]
 RESULT_PATH = os.environ["BIRDSEYE_PROBE_RESULT"]
 STORE = os.environ["BIRDSEYE_E2E_VERDICTS"]
 result = {"errors": [], "screenshots": {}, "timeouts": []}
-
-
-class Wait:
-    """Wait until ``ready()`` is true (at most ``timeout_s``); ``what`` names it in the report."""
-
-    def __init__(self, ready, timeout_s: float, what: str, settle_ms: int = 0):
-        self.ready, self.timeout_s, self.what, self.settle_ms = ready, timeout_s, what, settle_ms
-
-
-def message_log() -> dict:
-    """Text of every tab of QGIS's Log Messages panel (it records from start-up on)."""
-    tabs = {}
-    for viewer in [w for w in iface.mainWindow().findChildren(QWidget)
-                   if w.metaObject().className() == "QgsMessageLogViewer"]:
-        for tab_widget in viewer.findChildren(QTabWidget):
-            for i in range(tab_widget.count()):
-                page = tab_widget.widget(i)
-                tabs[tab_widget.tabText(i)] = page.toPlainText() if hasattr(page, "toPlainText") else ""
-    return tabs
 
 
 def shoot(name: str, widget) -> None:
@@ -54,14 +34,9 @@ def shoot(name: str, widget) -> None:
 def layer_by_file(stem: str):
     """The project layer read from ``<stem>.gpkg``."""
     for layer in QgsProject.instance().mapLayers().values():
-        if os.path.splitext(os.path.basename(layer.source().split("|")[0]))[0] == stem:
+        if file_stem(layer) == stem:
             return layer
     raise LookupError(f"the demo project has no layer from {stem}.gpkg")
-
-
-def canvas_idle():
-    canvas = iface.mapCanvas()
-    return Wait(lambda: not canvas.isDrawing(), 30, "map canvas drawing", settle_ms=800)
 
 
 # ------------------------------------------------------------------------------------------ the session
@@ -149,41 +124,10 @@ def session():
     shoot("after_dialog", main_window)
 
 
-# ------------------------------------------------------------------------------------------ the driver
-def finish() -> None:
-    try:
-        result["message_log"] = message_log()
-        result["message_bar"] = [[item.title(), item.text(), int(item.level())] for item in iface.messageBar().items()]
-    except Exception:  # noqa: BLE001 — reported to the test
-        result["errors"].append(traceback.format_exc())
-    with open(RESULT_PATH, "w", encoding="utf-8") as f:
-        json.dump(result, f, indent=1)
-    # Close the project while the window still exists: QGIS 3.22 crashes (signal 11 in
-    # setMapStyleDockLayer) when it removes a project's layers during its own shutdown.
-    iface.newProject(False)
-    QTimer.singleShot(500, QgsApplication.instance().quit)
+def last_records() -> None:
+    """What QGIS's log and message bar say at the end of the session."""
+    result["message_log"] = message_log()
+    result["message_bar"] = [[item.title(), item.text(), int(item.level())] for item in iface.messageBar().items()]
 
 
-def drive(steps, waiting=None, started=None) -> None:
-    """Advance the session to its next wait, then poll that wait every 100 ms."""
-    try:
-        if waiting is not None:
-            if not waiting.ready():
-                if time.monotonic() - started < waiting.timeout_s:
-                    QTimer.singleShot(100, lambda: drive(steps, waiting, started))
-                    return
-                result["timeouts"].append(waiting.what)
-            if waiting.settle_ms and not getattr(waiting, "settled", False):
-                waiting.settled = True  # let the widgets paint before the next screenshot
-                QTimer.singleShot(waiting.settle_ms, lambda: drive(steps, waiting, started))
-                return
-        following = next(steps)
-        QTimer.singleShot(0, lambda: drive(steps, following, time.monotonic()))
-    except StopIteration:
-        QTimer.singleShot(200, finish)
-    except Exception:  # noqa: BLE001 — reported to the test
-        result["errors"].append(traceback.format_exc())
-        QTimer.singleShot(200, finish)
-
-
-QTimer.singleShot(1000, lambda: drive(session()))
+play(session(), result, RESULT_PATH, last_records)

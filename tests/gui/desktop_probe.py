@@ -3,34 +3,22 @@
 Once the main window is up it records what the test checks — BirdsEye loaded, its provider and
 algorithms registered, its menu and toolbar present, the toolbox action and every dock working, the
 message log free of Python errors — saves a screenshot, writes the JSON file named by
-``BIRDSEYE_PROBE_RESULT`` and quits QGIS. Any exception is recorded rather than shown in a dialog,
-so the desktop never waits for a click.
+``BIRDSEYE_PROBE_RESULT`` and quits QGIS (``probe_session.play``). Any exception is recorded rather than
+shown in a dialog, so the desktop never waits for a click.
 """
-import json
 import os
-import traceback
+import sys
 
 from qgis.core import QgsApplication
-from qgis.PyQt.QtCore import QTimer
-from qgis.PyQt.QtWidgets import QDockWidget, QTabWidget, QToolBar, QWidget
+from qgis.PyQt.QtWidgets import QDockWidget, QToolBar
 from qgis.utils import iface, plugins
+
+sys.path.insert(0, os.environ["BIRDSEYE_PROBE_DIR"])
+from probe_session import message_log, play, settle  # noqa: E402
 
 RESULT_PATH = os.environ["BIRDSEYE_PROBE_RESULT"]
 SCREENSHOT_PATH = os.environ["BIRDSEYE_PROBE_SCREENSHOT"]
 result = {"errors": []}
-
-
-def message_log() -> dict:
-    """Text of every tab of QGIS's Log Messages panel (it records from start-up on)."""
-    viewers = [w for w in iface.mainWindow().findChildren(QWidget)
-               if w.metaObject().className() == "QgsMessageLogViewer"]
-    tabs = {}
-    for viewer in viewers:
-        for tab_widget in viewer.findChildren(QTabWidget):
-            for i in range(tab_widget.count()):
-                page = tab_widget.widget(i)
-                tabs[tab_widget.tabText(i)] = page.toPlainText() if hasattr(page, "toPlainText") else ""
-    return tabs
 
 
 def toolbox_algorithm_ids(toolbox) -> list:
@@ -72,25 +60,18 @@ def inspect() -> None:
                                                   and dock.isVisible())
 
 
-def finish() -> None:
-    try:
-        result["message_log"] = message_log()
-        result["message_bar"] = [[item.title(), item.text()] for item in iface.messageBar().items()]
-        os.makedirs(os.path.dirname(SCREENSHOT_PATH), exist_ok=True)
-        result["screenshot_saved"] = iface.mainWindow().grab().save(SCREENSHOT_PATH)
-    except Exception:  # noqa: BLE001 — reported to the test
-        result["errors"].append(traceback.format_exc())
-    with open(RESULT_PATH, "w", encoding="utf-8") as f:
-        json.dump(result, f, indent=1)
-    QgsApplication.instance().quit()
+def session():
+    """Everything at once, then half a second for the toolbox and the docks to paint before the screenshot."""
+    inspect()
+    yield settle(500, "toolbox and docks painted")
 
 
-def run() -> None:
-    try:
-        inspect()
-    except Exception:  # noqa: BLE001 — reported to the test
-        result["errors"].append(traceback.format_exc())
-    QTimer.singleShot(500, finish)  # let the toolbox and docks paint before the screenshot
+def last_records() -> None:
+    """QGIS's log and message bar at the end, and the screenshot."""
+    result["message_log"] = message_log()
+    result["message_bar"] = [[item.title(), item.text()] for item in iface.messageBar().items()]
+    os.makedirs(os.path.dirname(SCREENSHOT_PATH), exist_ok=True)
+    result["screenshot_saved"] = iface.mainWindow().grab().save(SCREENSHOT_PATH)
 
 
-QTimer.singleShot(500, run)
+play(session(), result, RESULT_PATH, last_records, start_ms=500)

@@ -98,6 +98,54 @@ def test_lists_what_is_missing_and_why(dialog):
     assert dialog.install_button.isEnabled() and not dialog.log.isVisible() and not dialog.progress.isVisible()
 
 
+def test_a_greyed_out_button_says_why(dialog, qgis_app, qtbot, tmp_path, clean_path):
+    # Install follows the ticks: unticked, it is greyed out and says what to do.
+    app = dialog.table.topLevelItem(0)
+    assert dialog.install_button.isEnabled() and str(dialog.folder) in dialog.install_button.toolTip()
+    app.setCheckState(0, Qt.CheckState.Unchecked)
+    assert not dialog.install_button.isEnabled()
+    assert dialog.install_button.toolTip() == "Tick a package in the list to install it."
+    app.setCheckState(0, Qt.CheckState.Checked)
+    assert dialog.install_button.isEnabled()
+    # Everything there: both buttons greyed out, and the group's says so on its face.
+    group = deps.PackageGroup("fake", "Fake tools", "cpu", (package("pytest", ">=1"),))
+    widget = dialog_module.DependenciesDialog(folder=tmp_path / "packages", python=sys.executable,
+                                              packages=[package("pytest", ">=1", always=("planflight",))],
+                                              title=TITLES.get, group=group, group_folder=tmp_path / "group")
+    qtbot.addWidget(widget)
+    assert not widget.install_button.isEnabled()
+    assert widget.install_button.toolTip().startswith("Nothing to install: every package in the list is installed")
+    assert not widget.group_button.isEnabled() and widget.group_button.text() == "Fake tools is installed"
+    assert "pytest" in widget.group_button.toolTip()
+    # A group with something missing offers to install it, saying what and where.
+    missing = deps.PackageGroup("fake", "Fake tools", "cpu", (package("birdseyefake_sfm", ">=4.2"),))
+    widget = dialog_module.DependenciesDialog(folder=tmp_path / "packages", python=sys.executable, packages=[],
+                                              title=TITLES.get, group=missing, group_folder=tmp_path / "group")
+    qtbot.addWidget(widget)
+    assert widget.group_button.isEnabled() and widget.group_button.text() == "Install Fake tools"
+    assert "birdseyefake_sfm>=4.2" in widget.group_button.toolTip() and str(tmp_path / "group") in \
+        widget.group_button.toolTip()
+
+
+def test_a_long_list_of_algorithms_wraps_instead_of_being_cut_off(qgis_app, qtbot, tmp_path, clean_path):
+    from docks_layout import layout_problems
+
+    many = tuple(f"alg{k}" for k in range(14))
+    widget = dialog_module.DependenciesDialog(
+        folder=tmp_path / "packages", python=sys.executable, title=lambda a: f"{a[3:]} · An algorithm with a long name",
+        packages=[package("birdseyefake_app", ">=1.0", always=many[:10], sometimes=many[10:]),
+                  package("birdseyefake_tool", ">=1.0", always=("detect",))])
+    qtbot.addWidget(widget)
+    widget.show()
+    qtbot.waitExposed(widget)
+    qtbot.waitUntil(lambda: widget.table.visualItemRect(widget.table.topLevelItem(0)).height() >
+                    2 * widget.table.visualItemRect(widget.table.topLevelItem(1)).height())
+    assert layout_problems(widget) == []
+    widget.resize(700, 600)   # narrower: more lines
+    qtbot.wait(50)
+    assert layout_problems(widget) == []
+
+
 def test_install_on_consent_streams_pip_and_makes_the_package_importable(dialog, qtbot, wheelhouse):
     assert not (dialog.folder / "birdseyefake_app").exists(), "nothing is installed before Install"
     with qtbot.waitSignal(dialog.installed, timeout=120_000):

@@ -21,7 +21,8 @@ import pytest
 REPO_ROOT = Path(__file__).resolve().parents[2]
 PLUGIN_PATH = REPO_ROOT / "build" / "pluginpath"
 SCREENSHOTS = REPO_ROOT / "build" / "screenshots"
-PROBE = Path(__file__).with_name("desktop_probe.py")
+PROBE_DIR = Path(__file__).parent  # the probes and probe_session.py, their shared driver
+PROBE = PROBE_DIR / "desktop_probe.py"
 QGIS_BIN = Path("/usr/bin/qgis.bin")  # Debian's /usr/bin/qgis only adds $QGIS_OPTS from /etc/default
 ALGORITHM_DIR = REPO_ROOT / "processing" / "algorithms"
 ALGORITHM_IDS = sorted(f"birdseye:{p.stem}" for p in ALGORITHM_DIR.glob("*.py")
@@ -79,30 +80,42 @@ def fresh_profile(root: Path) -> Path:
 
 
 def desktop_env(display: str, runtime_dir: Path, **extra: str) -> dict[str, str]:
+    """QGIS's environment: the X display, the plugin, the test venv's packages, and ``BIRDSEYE_PROBE_DIR`` (a
+    ``--code`` script has no ``__file__``: the probes import probe_session.py from there)."""
     env = {k: v for k, v in os.environ.items() if k not in {"QGIS_CUSTOM_CONFIG_PATH", "PYTHONPATH"}}
     # The test venv's packages (the host's .venv, or the chroot's): QGIS embeds the bare system Python.
     site_packages = [sysconfig.get_path("purelib")]
     env.update(DISPLAY=display, QT_QPA_PLATFORM="xcb", QGIS_PLUGINPATH=str(PLUGIN_PATH),
                XDG_RUNTIME_DIR=str(runtime_dir), PYTHONPATH=os.pathsep.join(map(str, site_packages)),
-               **extra)
+               BIRDSEYE_PROBE_DIR=str(PROBE_DIR), **extra)
     return env
 
 
+def screenshot_folder(folder: Path, old: str = "*.png") -> Path:
+    """``folder``, made if need be, without the screenshots (``old``) of an earlier run."""
+    folder.mkdir(parents=True, exist_ok=True)
+    for path in folder.glob(old):
+        path.unlink()
+    return folder
+
+
 def run_probe(probe: Path, work: Path, timeout_s: float, stuck_screenshot: Path, output_copy: Path | None = None,
-              **env: str) -> dict:
-    """Start the real QGIS desktop under Xvfb with a fresh profile, let ``probe`` (a ``--code`` script)
-    play its session and write ``work/report.json``, and return the report plus QGIS's output.
+              report_copy: Path | None = None, screen: str = "1600x1000x24", **env: str) -> dict:
+    """Start the real QGIS desktop under Xvfb (a screen of ``screen``, "WxHxDepth") with a fresh profile, let
+    ``probe`` (a ``--code`` script) play its session and write ``work/report.json``, and return the report plus
+    QGIS's output and exit code. ``env`` goes to QGIS's environment (``desktop_env``).
 
     A QGIS that has not quit after ``timeout_s`` is almost always stuck in a modal dialog (a Python
     error while loading a plugin): the screen is saved to ``stuck_screenshot`` and the test fails.
-    ``output_copy`` keeps QGIS's output in a file, for a look after a failure.
+    ``output_copy`` keeps QGIS's output in a file, for a look after a failure; ``report_copy`` the report
+    (beside the screenshots, say).
     """
     runtime_dir = work / "runtime"
     runtime_dir.mkdir(mode=0o700)
     report_path = work / "report.json"
     command = [str(QGIS_BIN), "--nologo", "--noversioncheck", "--profiles-path",
                str(fresh_profile(work / "profiles")), "--code", str(probe)]
-    with xvfb_display() as display:
+    with xvfb_display(screen) as display:
         qgis = subprocess.Popen(command, env=desktop_env(display, runtime_dir, BIRDSEYE_PROBE_RESULT=str(report_path),
                                                          **env),
                                 stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
@@ -117,6 +130,8 @@ def run_probe(probe: Path, work: Path, timeout_s: float, stuck_screenshot: Path,
     if output_copy is not None:
         output_copy.write_text(output, encoding="utf-8")
     assert report_path.is_file(), f"the probe wrote no report (QGIS exit {qgis.returncode}):\n{output}"
+    if report_copy is not None:
+        shutil.copy(report_path, report_copy)
     return {"report": json.loads(report_path.read_text(encoding="utf-8")), "output": output,
             "returncode": qgis.returncode}
 
@@ -124,9 +139,7 @@ def run_probe(probe: Path, work: Path, timeout_s: float, stuck_screenshot: Path,
 @pytest.fixture(scope="module")
 def desktop(tmp_path_factory) -> dict:
     """Start QGIS once, let the probe inspect it, and return its report plus QGIS's output."""
-    SCREENSHOTS.mkdir(parents=True, exist_ok=True)
-    screenshot = SCREENSHOTS / "desktop.png"
-    screenshot.unlink(missing_ok=True)
+    screenshot = screenshot_folder(SCREENSHOTS, old="desktop.png") / "desktop.png"
     result = run_probe(PROBE, tmp_path_factory.mktemp("desktop"), DESKTOP_TIMEOUT_S,
                        SCREENSHOTS / "desktop-timeout.png", BIRDSEYE_PROBE_SCREENSHOT=str(screenshot))
     return {**result, "screenshot": screenshot}

@@ -1,23 +1,21 @@
 """End to end in the real QGIS desktop, under its own Xvfb: the demo project, every dock, a Processing dialog.
 
-A small demo is made first (``scripts/demo.py --size small``: the whole chain, bundled model included,
-in seconds), then QGIS starts with a fresh profile and ``--code desktop_e2e_probe.py``, which opens the
+On the session's small demo (conftest.py: ``scripts/demo.py --size small``, the whole chain, bundled model
+included), QGIS starts with a fresh profile and ``--code desktop_e2e_probe.py``, which opens the
 project, opens and uses each dock, runs *Plan the survey flight* through its dialog, saves screenshots
-to build/screenshots/e2e/ and writes a JSON report that the tests below read.
+to build/screenshots/e2e/ and writes a JSON report that the tests below read. The review's verdicts go to a
+GeoPackage of the test's own, so the session leaves the demo folder as it found it.
 
 Set ``BIRDSEYE_E2E_DEMO`` to a demo folder made by ``make demo`` to run the same session on the full demo
 (how the README's screenshots are made).
 """
 from __future__ import annotations
 
-import os
-import subprocess
-import sys
 from pathlib import Path
 
 import pytest
 import test_desktop
-from test_desktop import REPO_ROOT, run_probe
+from test_desktop import REPO_ROOT, run_probe, screenshot_folder
 
 PROBE = Path(__file__).with_name("desktop_e2e_probe.py")
 SCREENSHOTS = REPO_ROOT / "build" / "screenshots" / "e2e"
@@ -27,27 +25,10 @@ pytestmark = test_desktop.pytestmark  # slow, and skipped without Debian's qgis 
 
 
 @pytest.fixture(scope="module")
-def demo_project(tmp_path_factory) -> Path:
-    chosen = os.environ.get("BIRDSEYE_E2E_DEMO")
-    if chosen:
-        return Path(chosen).resolve() / "birdseye_demo.qgz"
-    out = tmp_path_factory.mktemp("e2e") / "birdseye-demo"
-    env = {k: v for k, v in os.environ.items() if k not in {"QGIS_CUSTOM_CONFIG_PATH", "PYTHONPATH"}}
-    env["QT_QPA_PLATFORM"] = "offscreen"
-    result = subprocess.run([sys.executable, str(REPO_ROOT / "scripts" / "demo.py"),
-                             "--size", "small", "--out", str(out)], cwd=REPO_ROOT, env=env, capture_output=True,
-                            text=True, timeout=240, check=False)
-    assert result.returncode == 0, f"the small demo failed:\n{result.stdout[-3000:]}\n{result.stderr[-3000:]}"
-    return out / "birdseye_demo.qgz"
-
-
-@pytest.fixture(scope="module")
 def session(demo_project, tmp_path_factory) -> dict:
     """Start QGIS once, let the probe play the session, and return its report plus QGIS's output."""
     work = tmp_path_factory.mktemp("desktop-e2e")
-    SCREENSHOTS.mkdir(parents=True, exist_ok=True)
-    for old in SCREENSHOTS.glob("*.png"):
-        old.unlink()
+    screenshot_folder(SCREENSHOTS)
     return run_probe(PROBE, work, DESKTOP_TIMEOUT_S, SCREENSHOTS / "timeout.png", SCREENSHOTS / "qgis-output.txt",
                      BIRDSEYE_E2E_PROJECT=str(demo_project), BIRDSEYE_E2E_SCREENSHOTS=str(SCREENSHOTS),
                      BIRDSEYE_E2E_VERDICTS=str(work / "verdicts.gpkg"))

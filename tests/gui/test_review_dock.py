@@ -367,6 +367,62 @@ def test_a_whole_review_by_keyboard(campaign, clean_project, make_dock, qtbot, q
     assert dock.grab().save(str(SCREENSHOT))
 
 
+def test_a_log_beside_the_detections_shows_on_the_map_and_the_detections_stay_readable(campaign, clean_project,
+                                                                                       make_dock, qtbot, tmp_path):
+    """The default log goes into the detections' GeoPackage, which QGIS holds open since before the verdict
+    table existed; the layers of that file are reopened (review_store.open_store). Without that, the real
+    desktop fails to open the verdict layer ("Cannot reopen …: Cannot find layer birdseye_verdicts"), which
+    tests/gui/test_docks_desktop.py checks in QGIS's log; here: the verdict layer works and the reopened
+    detection layers are intact."""
+    from qgis.core import QgsApplication
+
+    messages = []
+
+    def collect(message, tag, level):
+        messages.append(f"{tag}: {message}")
+
+    QgsApplication.messageLog().messageReceived.connect(collect)
+    try:
+        layers = copy_campaign(campaign, tmp_path)
+        counts = (layers.a.featureCount(), layers.b.featureCount())
+        dock = make_dock()
+        start(dock, layers)
+        assert Path(dock.session.store.path) == tmp_path / "detections.gpkg"
+        dock.run_command("confirmed_real")
+        layer = dock.verdict_layer
+        qtbot.waitUntil(lambda: layer.featureCount() == 1, timeout=5000)
+        assert layer.isValid() and [f["verdict"] for f in layer.getFeatures()] == ["confirmed_real"]
+        assert (layers.a.isValid(), layers.b.isValid()) == (True, True)
+        assert (layers.a.featureCount(), layers.b.featureCount()) == counts
+    finally:
+        QgsApplication.messageLog().messageReceived.disconnect(collect)
+    assert not [m for m in messages if VERDICT_TABLE in m], messages
+
+
+def test_nothing_is_cut_off_at_the_narrowest_width(campaign, clean_project, make_dock, qtbot, tmp_path):
+    """At its minimum width, in QGIS's 9 pt interface font, before and after Start, every label, field, header and
+    cell shows whole (tests/gui/docks_layout.py; the real desktop: tests/gui/test_docks_desktop.py)."""
+    from docks_layout import layout_problems
+    from qgis.PyQt.QtWidgets import QApplication
+
+    font = QApplication.font()
+    smaller = QApplication.font()
+    smaller.setPointSizeF(9.0)
+    QApplication.setFont(smaller)
+    try:
+        layers = copy_campaign(campaign, tmp_path)
+        dock = make_dock()
+        dock.resize(dock.minimumWidth(), 900)
+        qtbot.waitUntil(lambda: dock.width() == dock.minimumWidth())
+        assert layout_problems(dock) == []
+        start(dock, layers)
+        wait_scores(qtbot, dock)
+        wait_chips(qtbot, dock)
+        assert layout_problems(dock) == []
+    finally:
+        QApplication.setFont(font)
+
+
 def test_chips_show_the_frames_that_detected_the_unit(campaign, clean_project, make_dock, qtbot, tmp_path):
     layers = copy_campaign(campaign, tmp_path)
     dock = make_dock()
@@ -468,9 +524,19 @@ def test_changed_input_layers_are_detected_and_reported(campaign, clean_project,
 def test_a_layer_that_cannot_be_reviewed_is_reported_by_name(campaign, clean_project, make_dock, tmp_path):
     layers = copy_campaign(campaign, tmp_path)
     dock = make_dock()
+    # The geotag layer is not offered as the frames: the choice stays empty and the banner says what is missing.
     dock.set_inputs([layers.a], layers.geotags, layers.geotags)
+    assert dock.frames_combo.currentLayer() is None
     assert not dock.start_review()
-    assert "geotags" in dock.banner.text() and "not a BirdsEye frame layer" in dock.banner.text()
+    assert "choose the frame layer" in dock.banner.text()
+    # A frame layer whose cameras cannot be read is named.
+    camera = layers.frames.fields().indexOf("camera")
+    assert layers.frames.dataProvider().changeAttributeValues(
+        {feature.id(): {camera: "{not json"} for feature in layers.frames.getFeatures()})
+    dock.set_inputs([layers.a], layers.frames, layers.geotags)
+    assert dock.frames_combo.currentLayer() is layers.frames
+    assert not dock.start_review()
+    assert "frames, row 1, field 'camera': camera model is not valid JSON" in dock.banner.text(), dock.banner.text()
     assert dock.session is None and not dock.panel.isEnabled()
     assert not (tmp_path / "detections.gpkg-journal").exists()
 

@@ -13,7 +13,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from qgis.core import Qgis, QgsApplication, QgsExpressionContextUtils, QgsProject
+from qgis.core import QgsApplication, QgsExpressionContextUtils, QgsProject
 from qgis.PyQt.QtCore import Qt
 from qgis.PyQt.QtGui import QColor
 from qgis.PyQt.QtWidgets import QApplication
@@ -22,7 +22,6 @@ from birdseye.birdseye_qgis.core.design import sensor_bound as sb
 from birdseye.birdseye_qgis.core.design.bound_report import ACCEPT_COLOUR, REJECT_COLOUR, stride_for
 from birdseye.birdseye_qgis.core.geometry.camera import CameraModel, write_kalibr_yaml
 from birdseye.birdseye_qgis.gui import sensor_bound_dock as dock_module
-from birdseye.birdseye_qgis.qgis_io.project_settings import read_sigma_label_px
 
 REPO_ROOT = Path(__file__).resolve().parents[2]
 SCREENSHOT = REPO_ROOT / "build" / "screenshots" / "sensor_bound_dock.png"
@@ -77,7 +76,7 @@ def test_opens_on_the_deployed_platform_with_its_verdicts(dock):
     assert dock.result == expected
     rows = table_texts(dock)
     assert [r[0] for r in rows] == ["10 m", "20 m"]
-    assert rows[0][1] == f"{expected['altitudes'][0]['sup_trace_px2']:.4g}"
+    assert rows[0][1] == f"{expected['altitudes'][0]['sup_trace_px2']:.3g}"
     assert rows[0][3].endswith("✗") and rows[0][4].endswith("✓")  # trace rejects, exact accepts at 10 m
     assert rows[0][4].startswith(f"{expected['altitudes'][0]['kappa_exact']:.3g}")
     colours = [dock.results_table.item(0, c).background().color() for c in (3, 4)]
@@ -113,7 +112,7 @@ def test_altitudes_tolerance_and_invalid_input(dock, qtbot):
     wait_for_update(qtbot, dock, before)
     assert [r[0] for r in table_texts(dock)] == ["12 m", "25 m", "40 m"]
     assert dock.result == sb.evaluate_bounds(DEPLOYED, [12.0, 25.0, 40.0], DEPLOYED_SIGMAS, 21.0, PREVIEW_STRIDE)
-    assert dock.sigma_label.text() == "σ_label = 7.00 px"
+    assert dock.sigma_label.text() == "Label sigma σ_label = r/3 = 7.00 px"
 
     valid = dock.result
     qtbot.keyClicks(dock.altitudes_edit, ", x")
@@ -156,18 +155,18 @@ def enter_platform(qtbot, dock, camera, sigmas, tolerance_px, altitudes):
 
 
 # A camera and budget whose bound is worked out by hand (sensor_bound's module docstring: J(u), Σ_u = J S Jᵀ).
-# fx = fy = f = 1000 px, principal point (400, 300) in a 1000 × 800 frame; σx = σy = 0.03 m, σz = 0.1 m, no
+# fx = fy = f = 1000 px, principal point (400, 300) in a 1001 × 801 frame; σx = σy = 0.03 m, σz = 0.1 m, no
 # roll or pitch, σ_yaw = 0.5°. With x = (u − cx)/f, y = (v − cy)/f, a = (x, y), b = (−y, x) (a ⊥ b,
 # |a|² = |b|² = r²), the x, y columns give (f/Z)²σ²·I, the z column −(f/Z)·a and the yaw column f·b, so
 #   Σ_u = (f/Z)²·σxy²·I + (f/Z)²·σz²·a aᵀ + f²·σyaw²·b bᵀ,
 #   λ_max = (f/Z)²σxy² + r²·max((f/Z)²σz², f²σyaw²),   tr = 2(f/Z)²σxy² + r²((f/Z)²σz² + f²σyaw²),
-# both growing with r, so worst at the corner farthest from the principal point, (1000, 800):
+# both growing with r, so worst at the pixel farthest from the principal point, (1000, 800), the frame's last:
 # r² = 0.6² + 0.5² = 0.61. f²σyaw² = 10⁶·(0.5·π/180)² = 76.154 px² (altitude-free).
 #   10 m (f/Z = 100): 9 px² + 0.61·max(100, 76.154) = 9 + 61 = 70 px²;  tr = 18 + 61 + 46.454 = 125.454 px²
 #   20 m (f/Z = 50):  2.25 + 0.61·max(25, 76.154) = 2.25 + 46.454 = 48.704;  tr = 4.5 + 15.25 + 46.454 = 66.204
 # Tolerance 27 px → λ_target = (27/3)² = 81 px²: κ* = 81/sup. At 10 m exact 81/70 = 1.157 accept, trace
 # 81/125.454 = 0.646 reject; at 20 m exact 81/48.704 = 1.663, trace 81/66.204 = 1.224, both accept.
-HAND_CAMERA = sb.Intrinsics(fx=1000.0, fy=1000.0, cx=400.0, cy=300.0, width=1000, height=800)
+HAND_CAMERA = sb.Intrinsics(fx=1000.0, fy=1000.0, cx=400.0, cy=300.0, width=1001, height=801)
 HAND_SIGMAS = [0.03, 0.03, 0.1, 0.0, 0.0, 0.5]
 YAW_PX2 = 1e6 * math.radians(0.5) ** 2 * 0.61
 
@@ -185,7 +184,7 @@ def test_the_numbers_are_the_hand_worked_bound(dock, qtbot):
     # At 10 m the worst pixel's variance splits 9 : 9 : 61 : 0 : 0 : 46.454 over x, y, z, roll, pitch, yaw.
     assert ten["budget_share"] == pytest.approx(np.array([9, 9, 61, 0, 0, YAW_PX2]) / (79.0 + YAW_PX2))
     rows = table_texts(dock)
-    assert [r[0] for r in rows] == ["10 m", "20 m"] and rows[0][1] == f"{79.0 + YAW_PX2:.4g}"
+    assert [r[0] for r in rows] == ["10 m", "20 m"] and rows[0][1] == f"{79.0 + YAW_PX2:.3g}" == "125"
     assert rows[0][3].endswith("✗") and rows[0][4].endswith("✓") and rows[0][4].startswith("1.16")
 
 
@@ -215,10 +214,14 @@ def test_every_platform_preset_is_offered():
 
 
 def test_every_preset_in_the_combo_box(dock):
+    """Each platform under its name, or a shorter one where its name would not fit the dock; the item's tooltip
+    gives the full name."""
     from birdseye.birdseye_qgis.core.design.platforms import PLATFORMS
 
     shown = [dock.preset_combo.itemText(i) for i in range(dock.preset_combo.count())]
-    assert shown == [p.name for p in PLATFORMS] + [dock_module.PRESET_CUSTOM]
+    assert shown == ["Deployed platform (BirdsEye method)", "DJI RTK drone, poses from photos", "Custom"]
+    tips = [dock.preset_combo.itemData(i, Qt.ItemDataRole.ToolTipRole) for i in range(len(PLATFORMS))]
+    assert tips == [p.name for p in PLATFORMS]
 
 
 def test_the_mount_changes_the_numbers_and_travels_with_the_preset(dock, qtbot):
@@ -258,6 +261,17 @@ def test_calibration_file_sets_the_intrinsics(dock, qtbot, tmp_path):
     wait_for_update(qtbot, dock, before)
     assert dock.result["inputs"]["intrinsics"] == {"fx": 1500.0, "fy": 1480.0, "cx": 790.0, "cy": 660.0,
                                                    "width": 1600, "height": 1300}
+    # A file with more digits than the fields show stays named, and the bound uses its every digit.
+    precise = CameraModel(width=480, height=300, fx=1066.123456789, fy=1065.72321, cx=239.23984, cy=147.75081)
+    precise_path = tmp_path / "precise.yaml"
+    write_kalibr_yaml(precise, precise_path)
+    before = dock.result
+    dock.calibration_widget.setFilePath(str(precise_path))
+    wait_for_update(qtbot, dock, before)
+    assert dock.calibration_widget.filePath() == str(precise_path) and dock.fx_spin.text() == "1066.1235 px"
+    assert dock.result["inputs"]["intrinsics"]["fx"] == 1066.123456789
+    assert dock.processing_parameters()["CALIBRATION"] == str(precise_path)
+    assert dock.processing_parameters()["FX"] == 1066.123456789
     # once an intrinsic is edited the file no longer describes the camera: it is not passed on
     type_into(qtbot, dock.fx_spin, "1510")
     assert "CALIBRATION" not in dock.processing_parameters() and dock.calibration_widget.filePath() == ""
@@ -300,18 +314,20 @@ def test_run_in_processing_opens_the_algorithm_with_the_dock_values(dock, birdse
     assert ok, message
 
 
-def test_sigma_label_is_handed_to_the_project(dock, qtbot, qgis_iface):
-    project = QgsProject.instance()
+def test_sigma_label_is_handed_to_write_labels_as_a_parameter(dock, qtbot, monkeypatch):
+    """σ_label = r/3 reaches Write labels as the SIGMA_PX value of its dialog, which the user sees; nothing is
+    kept in the project that would change a result out of sight."""
+    import processing
+    from qgis.core import QgsApplication, QgsProcessingContext
+
+    opened = []
+    monkeypatch.setattr(processing, "execAlgorithmDialog", lambda alg_id, params: opened.append((alg_id, params)))
     type_into(qtbot, dock.tolerance_spin, "24")
-    qgis_iface.messageBar().clear_messages()
     qtbot.mouseClick(dock.sigma_button, Qt.LeftButton)
-    assert project.readDoubleEntry("birdseye", "sigma_label_px") == (8.0, True)
-    assert QgsExpressionContextUtils.projectScope(project).variable("birdseye_sigma_label_px") == 8.0
-    assert read_sigma_label_px(project) == 8.0
-    assert any("8.00 px" in m for m in qgis_iface.messageBar().get_messages(Qgis.Success))
-    # a saved project keeps variables as text; the reader still gets the number
-    QgsExpressionContextUtils.setProjectVariable(project, "birdseye_sigma_label_px", "9.5")
-    assert read_sigma_label_px(project) == 9.5
+    assert opened == [("birdseye:writelabels", {"SIGMA_PX": 8.0})]
+    assert QgsExpressionContextUtils.projectScope(QgsProject.instance()).variable("birdseye_sigma_label_px") is None
+    alg = QgsApplication.processingRegistry().algorithmById("birdseye:writelabels")
+    assert alg.parameterDefinition("SIGMA_PX").checkValueIsAcceptable(8.0, QgsProcessingContext())
 
 
 def test_plot_shows_the_chosen_altitude_field(dock, qtbot):
@@ -322,7 +338,7 @@ def test_plot_shows_the_chosen_altitude_field(dock, qtbot):
     expected = sb.lmax_field(DEPLOYED, 20.0, DEPLOYED_SIGMAS, plot_stride(DEPLOYED))
     np.testing.assert_allclose(np.asarray(image.get_array()), expected)
     assert "20 m" in dock.figure.axes[0].get_title()
-    assert dock.worst_label.text() == "worst at (1920, 1200)"
+    assert dock.worst_label.text() == "Worst pixel (1919, 1199): the bottom-right corner."
 
 
 def test_screenshot(qgis_iface, qtbot):
@@ -348,16 +364,59 @@ def test_screenshot(qgis_iface, qtbot):
     assert SCREENSHOT.stat().st_size > 20_000
 
 
+@pytest.mark.parametrize("preset", ["deployed", "dji_metadata"])
+def test_nothing_is_cut_off_at_the_narrowest_width(qgis_iface, qtbot, preset):
+    """At its minimum width, in QGIS's 9 pt interface font, every label, field, header and cell shows whole
+    (tests/gui/docks_layout.py), for an accepting and a rejecting platform; and the answer leads, in words."""
+    from docks_layout import layout_problems
+
+    from birdseye.birdseye_qgis.core.design.platforms import platform
+
+    font = QApplication.font()
+    smaller = QApplication.font()
+    smaller.setPointSizeF(9.0)
+    QApplication.setFont(smaller)
+    try:
+        widget = dock_module.SensorBoundDock(qgis_iface)
+        qtbot.addWidget(widget)
+        widget.apply_preset(platform(preset).name)
+        assert widget.recompute()
+        widget.setFloating(True)
+        widget.resize(dock_module.MINIMUM_WIDTH, 900)
+        widget.show()
+        qtbot.waitExposed(widget)
+        qtbot.wait(100)
+        assert widget.width() == dock_module.MINIMUM_WIDTH
+        assert layout_problems(widget) == []
+        ten = widget.result["altitudes"][0]
+        verdict = "labels stay within their tolerance" if ten["verdict_exact"] == "accept" \
+            else "labels leave their tolerance"
+        assert widget.summary_label.text().startswith("<b>10 m</b>") and verdict in widget.summary_label.text()
+    finally:
+        QApplication.setFont(font)
+
+
 def test_the_dji_metadata_preset_is_offered_and_rejected_at_10_m(dock, qtbot):
     from birdseye.birdseye_qgis.core.design.platforms import DJI_METADATA
 
-    index = dock.preset_combo.findText(DJI_METADATA.name)
-    assert index >= 0
+    index = dock_module.PRESETS.index(DJI_METADATA.name)
     before = dock.result
     dock.preset_combo.setCurrentIndex(index)
     dock.preset_combo.activated.emit(index)
     assert dock.camera() == DJI_METADATA.camera and dock.sigmas() == pytest.approx(list(DJI_METADATA.sigmas))
     assert dock.mount() is DJI_METADATA.mount
-    assert dock.preset_combo.currentText() == DJI_METADATA.name   # recognised after the spins rounded it
+    assert dock.preset() == DJI_METADATA.name   # recognised after the spins rounded it
     wait_for_update(qtbot, dock, before)
     assert dock.result["altitudes"][0]["verdict_exact"] == "reject"
+
+
+def test_numbers_are_written_to_fit_a_narrow_dock():
+    assert [dock_module.kappa_text(k) for k in (None, 0.004, 0.0129, 0.922, 1.3368, 21.36, 998.0, 1234.5)] == \
+        ["∞", "< 0.01", "0.0129", "0.922", "1.34", "21.4", "998", "> 999"]
+    assert [dock_module.spread_text(v) for v in (4.664, 74.803, 108.48, 8534.7, 1.25e6)] == \
+        ["4.66", "74.8", "108", "8\u2009535", "1\u2009250\u2009000"]
+    assert [dock_module.sigma_text(v, "m") for v in (0.0136, 0.144, 1.234)] == \
+        ["13.6\u2009mm", "144\u2009mm", "1.23\u2009m"]
+    assert dock_module.sigma_text(0.3016, "deg") == "0.302°"
+    assert [dock_module.where_in_frame(u, v, 1920, 1200) for u, v in ((1919, 1199), (0, 0), (0, 600), (960, 600))] \
+        == ["the bottom-right corner", "the top-left corner", "the left edge", "inside the frame"]

@@ -158,17 +158,24 @@ def test_cluster_and_detection_styles_load_on_the_outputs(birdseye_provider):
     renderer = clusters.renderer()
     assert renderer.type() == "categorizedSymbol" and renderer.classAttribute() == "hit"
     assert sorted(str(c.value()) for c in renderer.categories()) == ["0", "1"]
-    for layer in (points, detection_layer(DETECTIONS)):       # de-duplicated points and Detect's output
-        assert layer.loadNamedStyle(str(STYLE_DIR / "detections.qml"))[1]
-        noise_rule, scored_rule = layer.renderer().rootRule().children()
+    def legend_keys(layer, feature):
+        """The legend keys (rule labels) a feature falls in; an ELSE rule takes what no other rule does."""
         context = QgsExpressionContext(QgsExpressionContextUtils.globalProjectLayerScopes(layer))
-        has_cluster = "cluster_id" in layer.fields().names()
-        for feature in layer.getFeatures():
-            context.setFeature(feature)
-            noise = bool(QgsExpression(noise_rule.filterExpression()).evaluate(context))
-            assert noise == (has_cluster and feature["cluster_id"] == -1)
-            classes = [bool(QgsExpression(r.filterExpression()).evaluate(context)) for r in scored_rule.children()]
-            assert sum(classes) == 1, "every score falls in exactly one class"
+        context.setFeature(feature)
+        rules = layer.renderer().rootRule().children()
+        hits = [r.label() for r in rules if not r.isElse()
+                and bool(QgsExpression(r.filterExpression()).evaluate(context))]
+        return hits or [r.label() for r in rules if r.isElse()]
+
+    # De-duplicated points: in a cluster or noise, by their cluster id; Detect's output: one score class each.
+    assert points.loadNamedStyle(str(STYLE_DIR / "cluster_points.qml"))[1]
+    for feature in points.getFeatures():
+        expected = "Noise: in no cluster" if feature["cluster_id"] == -1 else "In a cluster"
+        assert legend_keys(points, feature) == [expected]
+    detections = detection_layer(DETECTIONS)
+    assert detections.loadNamedStyle(str(STYLE_DIR / "detections.qml"))[1]
+    for feature in detections.getFeatures():
+        assert len(legend_keys(detections, feature)) == 1, "every score falls in exactly one class"
 
 
 def test_clusterdetections_refuses_a_layer_that_is_not_detections(birdseye_provider):

@@ -232,4 +232,4 @@ def test_styles_load_on_the_output_layers(birdseye_provider):
         layer, _ = features(result[output], context)
         message, ok = layer.loadNamedStyle(str(STYLE_DIR / style))
         assert ok, message
-        assert layer.labelsEnabled() and layer.renderer().type() == "singleSymbol"
+        assert layer.labelsEnabled() and layer.renderer().type() == "RuleRenderer"

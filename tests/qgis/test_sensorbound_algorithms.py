@@ -85,8 +85,8 @@ def test_log_has_a_readable_summary_per_altitude_and_progress_reaches_100(deploy
     _, feedback = deployed_run
     summaries = [line for line in feedback.infos if "κ*" in line]
     assert len(summaries) == 2
-    assert summaries[0].startswith("10 m:") and "trace κ* = 0.921 REJECT" in summaries[0]
-    assert "exact κ* = 1.33 ACCEPT" in summaries[0]
+    assert summaries[0].startswith("10 m:") and "trace κ* = 0.922 REJECT" in summaries[0]
+    assert "exact κ* = 1.34 ACCEPT" in summaries[0]
     assert summaries[1].startswith("20 m:") and "REJECT" not in summaries[1]
     assert feedback.progress and feedback.progress[-1] == pytest.approx(100.0)
     assert feedback.progress == sorted(feedback.progress)
@@ -105,7 +105,7 @@ def test_raster_is_the_lmax_field_in_pixel_coordinates(deployed_run):
 
     written = read_json(deployed_run[0]["OUTPUT_JSON"])
     dataset = gdal.Open(deployed_run[0]["OUTPUT_RASTER"])
-    assert (dataset.RasterXSize, dataset.RasterYSize, dataset.RasterCount) == (1921, 1201, 2)
+    assert (dataset.RasterXSize, dataset.RasterYSize, dataset.RasterCount) == (1920, 1200, 2)
     assert dataset.GetProjection() == ""
     # stride 1: cell (j, i) covers x ∈ [j, j+1], y ∈ [−i−1, −i], i.e. the image pixel (u, v) = (j, i)
     assert dataset.GetGeoTransform() == (0.0, 1.0, 0.0, 0.0, 0.0, -1.0)
@@ -129,11 +129,12 @@ def test_raster_with_a_stride_that_does_not_divide_the_frame_warns_and_stops_sho
     result = run("sensorbound", {"ALTITUDES": "15", "STRIDE_PX": 7, "OUTPUT_JSON": str(tmp_path / "b.json"),
                                  "OUTPUT_RASTER": str(tmp_path / "f.tif")}, feedback)
     dataset = gdal.Open(result["OUTPUT_RASTER"])
-    assert (dataset.RasterXSize, dataset.RasterYSize, dataset.RasterCount) == (1920 // 7 + 1, 1200 // 7 + 1, 1)
+    columns, rows = (1920 - 1) // 7 + 1, (1200 - 1) // 7 + 1  # pixel centres 0, 7, … up to the last one, W − 1
+    assert (dataset.RasterXSize, dataset.RasterYSize, dataset.RasterCount) == (columns, rows, 1)
     x0, dx, _, y0, _, dy = dataset.GetGeoTransform()
     assert (dx, dy) == (7.0, -7.0) and x0 + dx / 2 == 0.5 and y0 + dy / 2 == -0.5  # cell (0, 0) centred on u=v=0
     assert any("OUTPUT_RASTER" in w and "stride 7" in w for w in feedback.warnings)
-    expected = sb.lmax_field(DEPLOYED, 15.0, DEPLOYED_SIGMAS, 7)[:1200 // 7 + 1, :1920 // 7 + 1]
+    expected = sb.lmax_field(DEPLOYED, 15.0, DEPLOYED_SIGMAS, 7)[:(1200 - 1) // 7 + 1, :(1920 - 1) // 7 + 1]
     np.testing.assert_allclose(dataset.GetRasterBand(1).ReadAsArray(), expected, rtol=1e-6)
     assert result["OUTPUT_REPORT"] is None
 
@@ -154,8 +155,10 @@ def test_the_chosen_mount_reaches_the_json_and_the_raster(birdseye_provider, tmp
     assert written["altitudes"][0]["sup_lmax_px2"] != pytest.approx(method["altitudes"][0]["sup_lmax_px2"], rel=0.01)
     dataset = gdal.Open(result["OUTPUT_RASTER"])
     assert dataset.GetMetadata()["MOUNT"] == "nadir_top_forward"
+    regular = ((1200 - 1) // 8 + 1, (1920 - 1) // 8 + 1)  # the raster: the stride's regular grid
     np.testing.assert_allclose(dataset.GetRasterBand(1).ReadAsArray(),
-                               sb.lmax_field(DEPLOYED, 10.0, sigmas, 8, mount=sb.NADIR_MOUNT), rtol=1e-6)
+                               sb.lmax_field(DEPLOYED, 10.0, sigmas, 8, mount=sb.NADIR_MOUNT)[:regular[0], :regular[1]],
+                               rtol=1e-6)
 
 
 def test_calibration_file_overrides_the_typed_intrinsics(birdseye_provider, tmp_path):

@@ -63,20 +63,24 @@ def test_writelabels_writes_the_training_set_and_counts(imported, tmp_path):
     assert len(coco["annotations"]) == len(rows)
 
 
-def test_sigma_comes_from_the_project_or_a_bound_json(imported, tmp_path):
+def test_sigma_comes_from_the_parameters_alone(imported, tmp_path):
+    """SIGMA_PX (10 px unless given) or r / 3 of a sensorbound JSON; the sensor-bound dock's project value
+    (@birdseye_sigma_label_px) changes nothing: a result depends only on the parameters given."""
     folder, geotags, frames = imported
     base = {"GEOTAGS": geotags, "FRAMES": frames, "WRITE_RASTERS": False, "OUTPUT_FRAMES": None,
             "OUTPUT_GEOTAGS": None}
     QgsExpressionContextUtils.setProjectVariable(QgsProject.instance(), "birdseye_sigma_label_px", 7.5)
     try:
-        assert run("writelabels", {**base, "OUTPUT_FOLDER": str(tmp_path / "a")})["SIGMA_USED_PX"] == 7.5
+        assert run("writelabels", {**base, "OUTPUT_FOLDER": str(tmp_path / "a")})["SIGMA_USED_PX"] == 10.0
+        assert run("writelabels", {**base, "SIGMA_PX": 6.0,
+                                   "OUTPUT_FOLDER": str(tmp_path / "b")})["SIGMA_USED_PX"] == 6.0
     finally:
         QgsExpressionContextUtils.removeProjectVariable(QgsProject.instance(), "birdseye_sigma_label_px")
-    assert run("writelabels", {**base, "OUTPUT_FOLDER": str(tmp_path / "b")})["SIGMA_USED_PX"] == 10.0
     bound = tmp_path / "bound.json"
     bound.write_text(json.dumps({"inputs": {"tolerance_px": 24.0},
                                  "altitudes": [{"altitude_m": 10.0, "verdict_exact": "accept"}]}))
-    result = run("writelabels", {**base, "SENSOR_BOUND_JSON": str(bound), "OUTPUT_FOLDER": str(tmp_path / "c")})
+    result = run("writelabels", {**base, "SIGMA_PX": 6.0, "SENSOR_BOUND_JSON": str(bound),
+                                 "OUTPUT_FOLDER": str(tmp_path / "c")})
     assert result["SIGMA_USED_PX"] == 8.0
     bound.write_text(json.dumps({"inputs": {"tolerance_px": 24.0},
                                  "altitudes": [{"altitude_m": 10.0, "verdict_exact": "reject"}]}))

@@ -39,7 +39,7 @@ def stride_for(intr, max_points: int = PLOT_MAX_POINTS) -> int:
         us, vs = frame_grid(intr, stride)
         return us.size * vs.size
 
-    stride = max(1, int(math.sqrt((intr.width + 1) * (intr.height + 1) / max_points)))
+    stride = max(1, int(math.sqrt(intr.width * intr.height / max_points)))
     while points(stride) > max_points:
         stride += 1
     return stride
@@ -225,7 +225,8 @@ def build_report_html(result: dict, title: str = "Sensor bound", source: str = "
         f"Label tolerance r = {inputs['tolerance_px']:g} px at 3σ → λ<sub>target</sub> = (r/3)² = {lam:.4g} px² "
         f"(σ<sub>label</sub> = {math.sqrt(lam):.4g} px). Pose sigmas (1σ): {deployed}; camera mount: "
         f"{esc(mount.name)}. "
-        f"Grid stride {inputs['stride_px']} px over u = 0…{intr.width}, v = 0…{intr.height}.</p>",
+        f"Grid stride {inputs['stride_px']} px over the pixel centres u = 0…{intr.width - 1}, "
+        f"v = 0…{intr.height - 1}.</p>",
         "<h2>Verdicts</h2>", _summary_table(entries),
         '<p class="note">The <b>trace bound</b> (sup tr Σ<sub>u</sub> ≤ λ<sub>target</sub>) is sufficient but '
         "pessimistic; the <b>exact bound</b> (sup λ<sub>max</sub>(Σ<sub>u</sub>) ≤ λ<sub>target</sub>) is "

@@ -45,10 +45,10 @@ SKLD_THRESHOLD = 1e-2
 def default_pixels(intr) -> np.ndarray:
     """Test pixels (10, 2): the four corners, the edge midpoints, the frame centre and the principal point.
 
-    Corners and edges use the sensor bound's grid extent ``0…W × 0…H``.
+    Corners and edges are the sensor bound's pixel centres, ``0…W − 1 × 0…H − 1`` (design.md §3.3).
     """
     _, _, cx, cy, width, height = _camera(intr)
-    us, vs = (0.0, width / 2.0, float(width)), (0.0, height / 2.0, float(height))
+    us, vs = (0.0, (width - 1) / 2.0, float(width - 1)), (0.0, (height - 1) / 2.0, float(height - 1))
     grid = [(u, v) for v in vs for u in us]
     return np.array(grid + [(cx, cy)])
 

@@ -33,8 +33,8 @@ scaled (sigmas by ``√κ*``) while the criterion still holds; the verdict is *a
 Balanced allocations maximise ``Σ_i log s_i`` (no axis is starved) under each criterion:
 
 * Trace: every gain ``g_i`` is non-decreasing in ``|x|`` and in ``|y|`` (see ``pixel_jacobian``), so for
-  *every* budget the trace binds at the frame corner farthest from the principal point in both
-  directions, ``u* = (argmax_{0,W} |u − cx|, argmax_{0,H} |v − cy|)``. With ``g* = g(u*)`` the
+  *every* budget the trace binds at the corner pixel farthest from the principal point in both
+  directions, ``u* = (argmax_{0,W−1} |u − cx|, argmax_{0,H−1} |v − cy|)``. With ``g* = g(u*)`` the
   Lagrange conditions give ``s_i = λ_target / (6 g*_i)``: each axis takes one sixth of the budget.
 * Exact: solved by cutting planes (Kelley). Each cut is the tangent plane of ``λ_max(Σ_u(s))`` at the
   current iterate's worst pixel, ``Σ_i (wᵀ j_i)² s_i ≤ λ_target`` with ``w`` the top eigenvector there;
@@ -70,10 +70,12 @@ Axis convention (interface order ``x, y, z, roll, pitch, yaw``; metres and degre
 
 Frame grid
 ----------
-``u ∈ {0, stride, …, W}``, ``v ∈ {0, stride, …, H}``; ``W`` and ``H`` are included even when the stride
-does not divide them, so stride 1 gives ``(W + 1)(H + 1)`` points. Pixel (0, 0) is the centre of the
-top-left pixel, so the grid spans the frame plus half a pixel on the right and bottom (a conservative
-cover).
+The pixel centres (docs/design.md#camera: pixel (0, 0) is the centre of the top-left pixel, the last one of a
+``W × H`` frame is ``(W − 1, H − 1)``): ``u ∈ {0, stride, …, W − 1}``, ``v ∈ {0, stride, …, H − 1}``, the
+last row and column included even when the stride does not divide ``W − 1`` or ``H − 1``; stride 1 gives
+``W·H`` points, every pixel, and the worst pixel reported is always one of the frame's. (The method evaluated
+``0…W × 0…H``, one pixel beyond the last centre on each side: its table is this grid on a frame one pixel
+wider and taller.)
 """
 from __future__ import annotations
 
@@ -224,15 +226,15 @@ def variances_to_sigmas(variances) -> np.ndarray:
 
 
 def frame_grid(intr, stride_px: int = 1) -> tuple[np.ndarray, np.ndarray]:
-    """Grid columns ``u`` and rows ``v`` (px) at which the bound is evaluated, edges included."""
+    """Grid columns ``u`` and rows ``v`` (px): pixel centres every ``stride_px``, the last pixel included."""
     _, _, _, _, width, height = _camera(intr)
     stride = _stride(stride_px)
     return _grid_axis(width, stride), _grid_axis(height, stride)
 
 
 def _grid_axis(n: int, stride: int) -> np.ndarray:
-    axis = np.arange(0, n + 1, stride, dtype=float)
-    return axis if axis[-1] == n else np.append(axis, float(n))
+    axis = np.arange(0, n, stride, dtype=float)
+    return axis if axis[-1] == n - 1 else np.append(axis, float(n - 1))
 
 
 def pixel_jacobian(intr, u, v, depth) -> np.ndarray:
@@ -405,9 +407,10 @@ def trace_field(intr, altitude_m, sigmas, stride_px: int = 1, *, mount: CameraMo
 
 
 def trace_binding_corner(intr) -> tuple[float, float]:
-    """The frame corner where the trace bound binds for every budget (farthest from (cx, cy) per axis)."""
+    """The corner pixel where the trace bound binds for every budget (farthest from (cx, cy) per axis)."""
     _, _, cx, cy, width, height = _camera(intr)
-    return (float(width) if width - cx >= cx else 0.0, float(height) if height - cy >= cy else 0.0)
+    last_u, last_v = width - 1.0, height - 1.0
+    return (last_u if last_u - cx >= cx else 0.0, last_v if last_v - cy >= cy else 0.0)
 
 
 def balanced_trace_variances(intr, altitude_m, tolerance_px, *, mount: CameraMount = METHOD_MOUNT) -> np.ndarray:
@@ -456,7 +459,7 @@ def balanced_exact_variances(intr, altitude_m, tolerance_px, stride_px: int = 1,
     """Balanced budget under the exact bound: ``max Σ log s_i`` s.t. ``λ_max(Σ_u(s)) ≤ λ_target`` ∀u.
 
     Returns ``(variances (6,) m², rad², iterations)``. Kelley's cutting planes over the frame grid,
-    started from tangent cuts at the four corners along u, v and the diagonals; stops when the
+    started from tangent cuts at the four corner pixels along u, v and the diagonals; stops when the
     relative violation is below ``tol`` and then scales the budget onto the boundary
     (``sup λ_max = λ_target``), so its ``Σ log s`` is within ``6·log(1 + tol)`` of the optimum.
     """
@@ -466,7 +469,8 @@ def balanced_exact_variances(intr, altitude_m, tolerance_px, stride_px: int = 1,
     us, vs = frame_grid(intr, stride_px)
     base = balanced_trace_variances(intr, depth, tolerance_px, mount=mount)
     cuts = []
-    for corner in ((0.0, 0.0), (cam[4], 0.0), (0.0, cam[5]), (cam[4], cam[5])):
+    last_u, last_v = us[-1], vs[-1]
+    for corner in ((0.0, 0.0), (last_u, 0.0), (0.0, last_v), (last_u, last_v)):
         j = pixel_jacobian(intr, corner[0], corner[1], depth)[0][:, mount.input_to_xi]
         for w in ((1.0, 0.0), (0.0, 1.0), (math.sqrt(0.5), math.sqrt(0.5)), (math.sqrt(0.5), -math.sqrt(0.5))):
             cuts.append((np.asarray(w) @ j) ** 2)

@@ -63,10 +63,11 @@ def slope_error_grid(intr, altitude_m, slopes_deg, distance_ratios) -> np.ndarra
 
 
 def frame_distance_ratios(intr) -> dict:
-    """ρ of the farthest frame edge along u, along v, and of the farthest corner (grid extent 0…W, 0…H)."""
+    """ρ of the farthest frame edge along u, along v, and of the farthest corner (the outermost pixel centres,
+    0…W − 1 and 0…H − 1)."""
     fx, fy, cx, cy, width, height = _camera(intr)
-    ru = max(cx, width - cx) / fx
-    rv = max(cy, height - cy) / fy
+    ru = max(cx, width - 1 - cx) / fx
+    rv = max(cy, height - 1 - cy) / fy
     return {"edge_u": ru, "edge_v": rv, "corner": math.hypot(ru, rv)}
 
 

@@ -49,7 +49,7 @@ import re
 
 import numpy as np
 
-from ..errors import InputError, check_cancel
+from ..errors import InputError, check_cancel, detached
 from ..geometry.camera import CameraModel
 from ..geometry.dem import DemRaster
 from ..geometry.geodesy import LocalFrame, ProjectedCRS
@@ -269,7 +269,7 @@ def import_drone_images(folder, calibration: CameraModel | None = None, crs: Pro
             pose, from_track = (dji_pose(meta), False) if meta.has_dji_tags else other_pose(meta)
             camera, cam_flags = drone_camera(meta, calibration)
         except InputError as exc:
-            unplaced.append(exc)
+            unplaced.append(detached(exc))
             continue
         camera = cameras.setdefault(camera.to_json(), camera)
         rows.append([i, str(path.resolve()), meta.time_s, pose, camera, pose.flags + cam_flags, from_track])

@@ -251,14 +251,14 @@ def rtk_flags(rtk_status: np.ndarray) -> list[list[str]]:
 def dem_ground_for(frames: Frames, dem, report=None):
     """The DEM ground-model factory for ``frames``' footprints (None without a DEM): the DEM converted into the
     frames' vertical reference and checked once against their ground over the whole flight
-    (:func:`..geometry.dem.check_vertical_datum`), the check's result noted in ``report``."""
+    (:func:`..geometry.dem.check_vertical_datum`), the check's result a finding of ``report``."""
     from ..geometry.dem import DemGroundFactory, check_vertical_datum
 
     if dem is None:
         return None
     check = check_vertical_datum(dem, frames.all_poses())
     if report is not None:
-        report.notes.append(f"DEM: {check.describe()}")
+        report.findings.append(f"DEM: {check.describe()}")
     return DemGroundFactory(dem, vertical_offset_m=check.offset_m)
 
 

@@ -58,7 +58,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..errors import InputError
+from ..errors import InputError, detached
 from ..geometry import heights
 
 #: NMEA GGA fix quality codes (field 6) and what users call them.
@@ -532,6 +532,10 @@ class _Collector:
     def add(self, lat, lon, h, msl, fix, label, row, h_acc=math.nan, v_acc=math.nan, time_utc=""):
         self.rows.append((lat, lon, h, msl, fix, label, row, h_acc, v_acc, time_utc))
 
+    def problem(self, error: InputError) -> None:
+        """A bad row, left out (:func:`..errors.detached`)."""
+        self.problems.append(detached(error))
+
     def note(self, text: str, rows: int = 1) -> None:
         """A decision taken for ``rows`` row(s); the notes count the rows it was taken for."""
         self.notes[text] = self.notes.get(text, 0) + rows
@@ -569,7 +573,7 @@ def _parse_rover(lines, source: str) -> Geotags:
                           allow_empty=True)
             fix = _fix_code(cells[4], source, row, "gpsStatus")
         except InputError as exc:
-            out.problems.append(exc)
+            out.problem(exc)
             continue
         label = ",".join(c.strip() for c in cells[5:])
         out.add(lat, lon, h, msl, fix, label, row)
@@ -752,7 +756,7 @@ def _parse_header(lines, source: str, mapping: ColumnMapping | None = None, unit
             h_acc, v_acc, acc_note = _row_accuracy(cells, col, unit, units, source, row)
             fix = _fix_code(cells[col["fix"].index], source, row, col["fix"].name) if "fix" in col else 0
         except InputError as exc:
-            out.problems.append(exc)
+            out.problem(exc)
             continue
         time_utc = ""
         if "time" in col and cells[col["time"].index].strip():
@@ -946,7 +950,7 @@ def _parse_nmea(lines, source: str) -> Geotags:
             sep = _number(cells[11], source, row, "geoid separation", "geoid separation in metres",
                           -200, 200, allow_empty=True)
         except InputError as exc:
-            out.problems.append(exc)
+            out.problem(exc)
             continue
         out.add(lat, lon, msl + sep, msl, fix, "", row)
     out.remark("read as an NMEA GGA log: height = MSL altitude + geoid separation (fields 9 and 11, m); the MSL "
@@ -996,7 +1000,7 @@ def geotags_from_columns(lat, lon, h_ellipsoid=None, h_msl=None, fix_quality=Non
             raw_fix = None if fix_quality is None else fix_quality[i]
             fix = 0 if raw_fix is None else _fix_code(str(raw_fix), source, row, names["fix"])
         except InputError as exc:
-            out.problems.append(exc)
+            out.problem(exc)
             continue
         text = "" if label is None or label[i] is None else str(label[i])
         out.add(float(lat[i]), float(lon[i]), h, msl, fix, text, row, horizontal, vertical)

@@ -15,13 +15,15 @@ class ImportReport:
     """Counts and sentences for the Processing log.
 
     ``errors``: input that was left out because it is bad (rows, images), with count and first
-    examples; ``notes``: everything else a user should know (unmatched frames, flags, filters).
+    examples; ``notes``: what a user should check (unmatched frames, flags, filters), shown as warnings;
+    ``findings``: results that need no action (what was read, a check's figures), shown as information.
     """
 
     source: str
     counts: dict = field(default_factory=dict)
     errors: list = field(default_factory=list)
     notes: list = field(default_factory=list)
+    findings: list = field(default_factory=list)
     unplaced: list = field(default_factory=list)
 
 

@@ -8,7 +8,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..errors import InputError, check_cancel
+from ..errors import InputError, check_cancel, detached
 
 POSE_LOG_COLUMNS = ("time_s", "lat_deg", "lon_deg", "height_m", "qw", "qx", "qy", "qz", "rtk_status",
                     "radalt_m", "radalt_snr", "strobe")
@@ -29,7 +29,7 @@ class RowProblems:
     def add(self, error: InputError) -> None:
         self.count += 1
         if len(self.examples) < MAX_EXAMPLES:
-            self.examples.append(error)
+            self.examples.append(detached(error))
 
     def summary(self, what: str) -> str | None:
         if not self.count:

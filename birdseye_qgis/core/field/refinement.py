@@ -255,6 +255,21 @@ class _CancelWatch:
             raise Cancelled()
 
 
+def _missing_images_text(frames: list[FrameInput], usable: list[int]) -> str:
+    """Why structure from motion cannot start: how many frames have their image, where the others were looked
+    for (the frame layer's ``image`` field), and how to give the frames their images."""
+    found = set(usable)
+    missing = [frame.image for k, frame in enumerate(frames) if k not in found]
+    named = [str(image) for image in missing if image]
+    looked = (f"the image field names files that do not exist, e.g. {named[0]}" if named else
+              "the frames' image field is empty")
+    if named and len(named) < len(missing):
+        looked += f"; {len(missing) - len(named)} frame(s) name no image"
+    return (f"only {len(usable)} of {len(frames)} frame(s) have their image file ({looked}); structure from motion "
+            "needs at least two overlapping images. Import the frames again with their image folder: the IMAGES "
+            "parameter of Import camera solution, Import drone images or Import flight log")
+
+
 def _stage_images(frames: list[FrameInput], folder: Path) -> list[str | None]:
     """Link (or copy) each frame's image into one folder under a unique name; None where it is missing."""
     folder.mkdir(parents=True, exist_ok=True)
@@ -279,15 +294,15 @@ def refine_poses(frames: list[FrameInput], workdir, options: RefineOptions | Non
     import pycolmap
 
     options = options or RefineOptions()
-    # COLMAP logs every image at INFO level to stderr; the report carries what a user needs.
-    pycolmap.logging.minloglevel = max(pycolmap.logging.minloglevel, 1)
+    # COLMAP logs every image, and its warnings, to stderr (qgis_process's output, QGIS's console); the report
+    # carries what a user needs, so only its errors are let through.
+    pycolmap.logging.minloglevel = max(pycolmap.logging.minloglevel, int(pycolmap.logging.ERROR))
     workdir = Path(workdir)
     names = _stage_images(frames, workdir / "images")
     result = [RefinedFrame(False, "image file not found") if n is None else RefinedFrame(False) for n in names]
     usable = [k for k, n in enumerate(names) if n is not None]
     if len(usable) < 2:
-        raise InputError(f"only {len(usable)} of {len(frames)} frame(s) have their image file; structure from "
-                         "motion needs at least two overlapping images")
+        raise InputError(_missing_images_text(frames, usable))
     database = workdir / "database.db"
     token = pycolmap.CancellationToken()
     seconds = {}

@@ -125,18 +125,19 @@ def check_marks(records: list, points, point_idx, frame_idx, uv_mark) -> MarkChe
                      np.hypot(*(on_ground[:, :2] - surveyed[point_idx, :2]).T))
 
 
-def describe(check: MarkCheck, frame_ids) -> list[str]:
-    """Sentences for an import report: the overall figures, the worst points and frames."""
+def describe(check: MarkCheck, frame_ids) -> tuple[list[str], list[str]]:
+    """Sentences for an import report: (findings: the overall figures, the worst points and frames; notes: the
+    marks that have no label, which need a look)."""
     s = check.summary()
     if not s["marks"]:
-        return []
-    lines = []
+        return [], []
+    lines, notes = [], []
     if "median_px" in s:
         lines.append(f"Label accuracy against {s['marks']} pinned image mark(s) of {len(check.labels)} control "
                      f"point(s): median {s['median_px']:.1f} px, 90 % within {s['p90_px']:.1f} px, max "
                      f"{s['max_px']:.1f} px")
     if s["missing"]:
-        lines.append(f"{s['missing']} mark(s) have no label: the point does not project into the image it was "
+        notes.append(f"{s['missing']} mark(s) have no label: the point does not project into the image it was "
                      "marked in (a wrong mark, or a frame whose pose is off)")
     worst_points = check.per_group([check.labels[p] for p in check.point_idx])[:3]
     lines.append("Per point (marks, median, max px): " + "; ".join(
@@ -144,4 +145,4 @@ def describe(check: MarkCheck, frame_ids) -> list[str]:
     worst_frames = check.per_group(np.asarray(frame_ids)[check.frame_idx])[:3]
     lines.append("Worst frames (frame id: marks, median px): " + "; ".join(
         f"{fid}: {n}, {med:.1f}" for fid, n, med, _ in worst_frames))
-    return lines
+    return lines, notes

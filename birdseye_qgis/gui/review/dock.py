@@ -23,8 +23,6 @@ from qgis.core import (
     QgsPointXY,
     QgsProject,
     QgsSettings,
-    QgsVectorLayer,
-    QgsWkbTypes,
 )
 from qgis.gui import QgsDockWidget
 from qgis.PyQt.QtCore import Qt, QThreadPool, QTimer
@@ -39,9 +37,9 @@ from ...core.review.navigation import Entries, display_verdict
 from ...core.review.units import ADDED_PREFIX, CONSENSUS_UNITS, ReviewParameters, ReviewUnits, build_units
 from ...core.scoring.evaluation import Flight
 from ...core.scoring.operating_point import OperatingPoint
-from ...qgis_enums import GEOMETRY_POINT
+from ...qgis_io.layer_kinds import DETECTIONS, FRAMES, GEOTAGS, layers_of_kind, most_recent, other_layers
 from ...qgis_io.review_project import save_propagate, save_review, saved_review
-from ...qgis_io.review_store import ReviewSession, RowMeta, VerdictStore, default_store_path, read_review_inputs
+from ...qgis_io.review_store import ReviewSession, RowMeta, default_store_path, open_store, read_review_inputs
 from ..add_target_tool import AddTargetTool
 from .jobs import ChipLoader, JobSignals, ScoreJob
 from .map_context import ReviewMap
@@ -99,13 +97,16 @@ class ReviewDock(QgsDockWidget):
         self._score_timer.setSingleShot(True)
         self._score_timer.timeout.connect(self._start_scores)
         self._tool: AddTargetTool | None = None
+        # The layer choices the user made; the others follow the project (see _refresh_layer_choices).
+        self._chosen: set[str] = set()
+        self._filling_choices = False
         self.map = ReviewMap(self.canvas, self)
         self._build_ui()
         project = QgsProject.instance()
-        project.layersAdded.connect(self._refill_detection_layers)
+        project.layersAdded.connect(self._refresh_layer_choices)
         project.layersRemoved.connect(self._on_layers_removed)
         project.readProject.connect(self._restore_from_project)
-        self._refill_detection_layers()
+        self._refresh_layer_choices()
         QTimer.singleShot(0, self._restore_from_project)
 
     # ------------------------------------------------------------------ UI
@@ -119,6 +120,10 @@ class ReviewDock(QgsDockWidget):
         outer.setContentsMargins(6, 6, 6, 6)
         outer.setSpacing(6)
         outer.addWidget(build_setup_box(self))
+        # A layer the user picks (or a detection layer ticked) stays chosen; the other choices follow it.
+        self.detections_combo.checkedItemsChanged.connect(lambda *_: self._on_layer_chosen(DETECTIONS))
+        self.frames_combo.activated.connect(lambda *_: self._on_layer_chosen(FRAMES))
+        self.geotags_combo.activated.connect(lambda *_: self._on_layer_chosen(GEOTAGS))
         self.banner = QLabel()
         self.banner.setWordWrap(True)
         self.banner.setTextFormat(Qt.TextFormat.RichText)
@@ -133,25 +138,53 @@ class ReviewDock(QgsDockWidget):
         self.setMinimumWidth(360)
 
     # ------------------------------------------------------------------ layer choices
-    def _refill_detection_layers(self, *_):
-        checked = set(self.detections_combo.checkedItemsData())
-        self.detections_combo.clear()
-        for layer in QgsProject.instance().mapLayers().values():
-            if isinstance(layer, QgsVectorLayer) and layer.isValid() and \
-                    QgsWkbTypes.geometryType(layer.wkbType()) == GEOMETRY_POINT and \
-                    {"frame_id", "score", "u", "v"} <= set(layer.fields().names()):
-                self.detections_combo.addItemWithCheckState(layer.name(), Qt.CheckState.Checked if layer.id() in checked
-                                                            else Qt.CheckState.Unchecked, layer.id())
+    def _refresh_layer_choices(self, *_):
+        """Offer only layers of each input's kind; a choice the user has not made follows the project: the
+        most recent detection layer, and the most recent frames and geotags over the same ground."""
+        project = QgsProject.instance()
+        self._filling_choices = True
+        try:
+            checked = set(self.detections_combo.checkedItemsData())
+            detection_layers = layers_of_kind(project, DETECTIONS)
+            if DETECTIONS not in self._chosen:
+                checked = {detection_layers[0].id()} if detection_layers else set()
+            self.detections_combo.clear()
+            for layer in sorted(detection_layers, key=lambda layer: layer.name().lower()):   # as the other combos
+                self.detections_combo.addItemWithCheckState(
+                    layer.name(), Qt.CheckState.Checked if layer.id() in checked else Qt.CheckState.Unchecked,
+                    layer.id())
+            self.frames_combo.setExceptedLayerList(other_layers(project, FRAMES))
+            self.geotags_combo.setExceptedLayerList(other_layers(project, GEOTAGS))
+            chosen = self._chosen_detection_layers()
+            if FRAMES not in self._chosen:
+                self.frames_combo.setLayer(most_recent(project, FRAMES, chosen[0] if chosen else None))
+            if GEOTAGS not in self._chosen:
+                self.geotags_combo.setLayer(most_recent(project, GEOTAGS, self.frames_combo.currentLayer()
+                                                        or (chosen[0] if chosen else None)))
+        finally:
+            self._filling_choices = False
+
+    def _on_layer_chosen(self, kind: str):
+        """The user picked a layer (or ticked a detection layer): that choice stays; the others follow it."""
+        if self._filling_choices:
+            return
+        self._chosen.add(kind)
+        self._refresh_layer_choices()
 
     def set_inputs(self, detection_layers, frame_layer, geotag_layer, store_path: str | None = None):
         """Choose the review's layers (what the user does in the setup box)."""
-        self._refill_detection_layers()
+        self._chosen |= {DETECTIONS, FRAMES, GEOTAGS}
+        self._refresh_layer_choices()
         ids = {layer.id() for layer in detection_layers}
-        for i in range(self.detections_combo.count()):
-            self.detections_combo.setItemCheckState(i, Qt.CheckState.Checked if self.detections_combo.itemData(i) in ids
-                                                    else Qt.CheckState.Unchecked)
-        self.frames_combo.setLayer(frame_layer)
-        self.geotags_combo.setLayer(geotag_layer)
+        self._filling_choices = True
+        try:
+            for i in range(self.detections_combo.count()):
+                self.detections_combo.setItemCheckState(
+                    i, Qt.CheckState.Checked if self.detections_combo.itemData(i) in ids else Qt.CheckState.Unchecked)
+            self.frames_combo.setLayer(frame_layer)
+            self.geotags_combo.setLayer(geotag_layer)
+        finally:
+            self._filling_choices = False
         if store_path is not None:
             self.store_widget.setFilePath(store_path)
 
@@ -185,7 +218,7 @@ class ReviewDock(QgsDockWidget):
             params = self._read_params()
             inputs = read_review_inputs(detection_layers, frame_layer, geotag_layer)
             units = build_units(inputs.layers, inputs.local, inputs.geotags, inputs.pose_groups, params, inputs.ground)
-            store = VerdictStore(store_path)
+            store = open_store(store_path, QgsProject.instance())
         except (InputError, OSError, ValueError) as exc:   # a message naming the layer, field or file
             show_banner(self.banner, [str(exc)], error=True)
             return False
@@ -231,6 +264,7 @@ class ReviewDock(QgsDockWidget):
         self.panel.setEnabled(True)
         self.setup_box.setCollapsed(True)
         self._input_layer_ids = {layer.id() for layer in detection_layers + [frame_layer, geotag_layer]}
+        self._chosen |= {DETECTIONS, FRAMES, GEOTAGS}   # the setup keeps showing the layers under review
         self._save_to_project(detection_layers, frame_layer, geotag_layer, store_path)
         self.map.show_survey(geotag_layer)
         self.map.show_verdicts(self.session.store, tr("Review verdicts"))
@@ -297,7 +331,7 @@ class ReviewDock(QgsDockWidget):
         self.start_review()
 
     def _on_layers_removed(self, layer_ids):
-        self._refill_detection_layers()
+        self._refresh_layer_choices()
         if self.inputs is None or self.session is None:
             return
         self.map.forget_layers(layer_ids)
@@ -606,7 +640,7 @@ class ReviewDock(QgsDockWidget):
         self.map.remove_marker()
         self._stop_session()
         project = QgsProject.instance()
-        for signal, slot in ((project.layersAdded, self._refill_detection_layers),
+        for signal, slot in ((project.layersAdded, self._refresh_layer_choices),
                              (project.layersRemoved, self._on_layers_removed),
                              (project.readProject, self._restore_from_project)):
             try:

@@ -1,7 +1,7 @@
 """What the review dock's tables show: the unit table model and the scores table."""
 from __future__ import annotations
 
-from qgis.PyQt.QtCore import QAbstractTableModel, QModelIndex, Qt
+from qgis.PyQt.QtCore import QT_TRANSLATE_NOOP, QAbstractTableModel, QModelIndex, Qt
 from qgis.PyQt.QtGui import QColor, QFont
 from qgis.PyQt.QtWidgets import QTableWidgetItem
 
@@ -97,10 +97,19 @@ class UnitTableModel(QAbstractTableModel):
         return f"{key}\n{tr('fired by')}: {', '.join(self.dock.units.layers_fired[self.dock.units.index[key]])}"
 
 
+SCORE_NAMES = (QT_TRANSLATE_NOOP("@default", "recall"), QT_TRANSLATE_NOOP("@default", "GMCF"))
+
+
+def size_score_names(t) -> None:
+    """Column 0 of the scores table as wide as its row names (the layer titles span the table)."""
+    t.setColumnWidth(0, max(t.fontMetrics().horizontalAdvance(tr(n)) for n in SCORE_NAMES) + 12)
+
+
 def fill_scores_table(t, result) -> None:
     """One block per flight: recall and GMCF before review and after it under each convention."""
     t.clearSpans()
     t.setRowCount(3 * len(result))
+    names = tuple(tr(n) for n in SCORE_NAMES)
     bold = QFont()
     bold.setBold(True)
     for k, (name, d) in enumerate(result.items()):
@@ -110,9 +119,9 @@ def fill_scores_table(t, result) -> None:
         title.setBackground(QColor("#eef1f5"))
         t.setItem(3 * k, 0, title)
         t.setSpan(3 * k, 0, 1, 5)
-        recall = [tr("recall"), f"{format_number(d['recall_pre'])}  ({d['n_recovered']}/{d['n_in_view']})"] + \
+        recall = [names[0], f"{format_number(d['recall_pre'])}  ({d['n_recovered']}/{d['n_in_view']})"] + \
             [post.get(c, {}).get("recall_post") or "–" for c in CONVENTIONS]
-        gmcf = [tr("GMCF"), f"{format_number(d['gmcf_pre'])}  ({d['n_hit_clusters']}/{d['n_clusters']})"] + \
+        gmcf = [names[1], f"{format_number(d['gmcf_pre'])}  ({d['n_hit_clusters']}/{d['n_clusters']})"] + \
             [format_number(post.get(c, {}).get("gmcf_post")) for c in CONVENTIONS]
         tips = [f"c = {post[c]['c']} (confirmed, not hit), a = {post[c]['a']} (added)" if c in post else ""
                 for c in CONVENTIONS]
@@ -124,7 +133,13 @@ def fill_scores_table(t, result) -> None:
                 if c >= 2:
                     item.setToolTip(tips[c - 2])
                 t.setItem(r, c, item)
+    size_score_names(t)
     t.resizeRowsToContents()
+    fit_scores_height(t)
+
+
+def fit_scores_height(t) -> None:
+    """The scores table exactly as tall as its rows (none before the first scores: its header alone)."""
     t.setFixedHeight(t.horizontalHeader().sizeHint().height() +
                      sum(t.rowHeight(i) for i in range(t.rowCount())) + 2 * t.frameWidth())
 

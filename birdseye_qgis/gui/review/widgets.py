@@ -40,7 +40,7 @@ from ...core.review.chips import DEFAULT_WINDOW_PX, GEOTAG_COLOUR, LAYER_COLOURS
 from ...core.review.units import CONSENSUS_UNITS, METHOD_UNITS, PROPAGATION_EPS_M, PROPAGATION_RULE
 from ...core.scoring.verdicts import CONVENTIONS
 from ...qgis_enums import FILTER_POINT_LAYER, FILTER_VECTOR_LAYER
-from .model import CONVENTION_TEXT, VERDICT_COLOURS, VERDICT_TEXT, UnitTableModel
+from .model import CONVENTION_TEXT, VERDICT_COLOURS, VERDICT_TEXT, UnitTableModel, fit_scores_height, size_score_names
 
 SETTINGS_REVIEWER = "birdseye/review/reviewer"
 CHIP_DISPLAY_PX = 150
@@ -208,12 +208,15 @@ def build_setup_box(dock):
     dock.frames_combo.setFilters(FILTER_VECTOR_LAYER)
     dock.frames_combo.setAllowEmptyLayer(True)
     dock.frames_combo.setToolTip(tr("The flight's frame layer (Import flight log, Import drone images or Import "
-                                    "camera solution): poses, camera and image of every frame."))
+                                    "camera solution): poses, camera and image of every frame. Only frame "
+                                    "layers are listed."))
     form.addRow(tr("Frames"), dock.frames_combo)
     dock.geotags_combo = QgsMapLayerComboBox()
     dock.geotags_combo.setFilters(FILTER_POINT_LAYER)
     dock.geotags_combo.setAllowEmptyLayer(True)
-    dock.geotags_combo.setToolTip(tr("The survey points (Import geotags)."))
+    dock.geotags_combo.setToolTip(tr("The survey points (Import geotags). Point layers that BirdsEye made for "
+                                     "something else (detections, clusters, waypoints, verdicts) are not "
+                                     "listed."))
     form.addRow(tr("Geotags"), dock.geotags_combo)
     dock.store_widget = QgsFileWidget()
     dock.store_widget.setStorageMode(QgsFileWidget.StorageMode.SaveFile)
@@ -222,6 +225,7 @@ def build_setup_box(dock):
     dock.store_widget.setToolTip(tr("GeoPackage holding the append-only verdict log (table birdseye_verdicts). "
                                     "Default: the first detection layer's GeoPackage, else one next to the "
                                     "project."))
+    dock.store_widget.lineEdit().setPlaceholderText(tr("the detections' GeoPackage"))
     form.addRow(tr("Verdict log"), dock.store_widget)
     dock.reviewer_edit = QLineEdit(QgsSettings().value(SETTINGS_REVIEWER, "") or default_reviewer())
     dock.reviewer_edit.setToolTip(tr("Recorded with every verdict."))
@@ -232,9 +236,14 @@ def build_setup_box(dock):
     params.setCollapsed(True)
     pform = QFormLayout(params)
     dock.units_combo = QComboBox()
-    dock.units_combo.addItem(tr("Consensus clusters (one per spot, all layers)"), CONSENSUS_UNITS)
-    dock.units_combo.addItem(tr("The method's (per frame, complete linkage at {px:.0f} px)").format(
-        px=dock.params.group_px), METHOD_UNITS)
+    dock.units_combo.addItem(tr("One per spot"), CONSENSUS_UNITS)
+    dock.units_combo.addItem(tr("One per spot and frame (the method's)"), METHOD_UNITS)
+    dock.units_combo.setItemData(0, tr("Consensus clusters: one unit per spot, pooling all layers"),
+                                 Qt.ItemDataRole.ToolTipRole)
+    dock.units_combo.setItemData(1, tr("The method's units: per frame, complete linkage at {px:.0f} px").format(
+        px=dock.params.group_px), Qt.ItemDataRole.ToolTipRole)
+    dock.units_combo.setSizeAdjustPolicy(QComboBox.SizeAdjustPolicy.AdjustToMinimumContentsLengthWithIcon)
+    dock.units_combo.setMinimumContentsLength(12)
     dock.units_combo.setToolTip(tr("How detections become review units. Consensus clusters (the default) pool "
                                    "the layers and judge each spot once. The method's: detections within "
                                    "EPS_PRED of an in-view geotag are set aside one by one; per frame, the rest "
@@ -289,6 +298,7 @@ def build_review_area(dock, panel):
     # progress
     row = QHBoxLayout()
     dock.progress_label = QLabel(tr("No review started"))
+    dock.progress_label.setWordWrap(True)
     dock.progress_bar = QProgressBar()
     dock.progress_bar.setTextVisible(False)
     dock.progress_bar.setMaximumHeight(8)
@@ -332,19 +342,12 @@ def build_review_area(dock, panel):
     dock.table.clicked.connect(lambda index: dock.go_to(dock.model.keys[index.row()]))
     v.addWidget(dock.table)
     # the current unit
-    dock.unit_label = QLabel()
+    dock.unit_label = QLabel(tr("Choose the layers above and press Start: each unit to judge shows here."))
     dock.unit_label.setWordWrap(True)
     dock.unit_label.setTextFormat(Qt.TextFormat.RichText)
     dock.unit_label.setStyleSheet("QLabel{background:#f5f7fa;border:1px solid #d8dde6;border-radius:4px;"
                                   "padding:6px;}")
     v.addWidget(dock.unit_label)
-    dock.chips = ChipStrip()
-    dock.chips.setSizePolicy(QSizePolicy.Policy.Expanding, QSizePolicy.Policy.Minimum)
-    v.addWidget(dock.chips)
-    dock.chip_legend = QLabel()
-    dock.chip_legend.setTextFormat(Qt.TextFormat.RichText)
-    dock.chip_legend.setStyleSheet("color:#555; font-size:11px;")
-    v.addWidget(dock.chip_legend)
     # verdicts and moves
     grid = QGridLayout()
     grid.setSpacing(4)
@@ -369,12 +372,22 @@ def build_review_area(dock, panel):
         dock.verdict_buttons[verdict] = b
     dock.undo_button = tool_button("↶  " + tr("Undo (Ctrl+Z)"), lambda: dock.run_command("undo"),
                                     "Undo the last action (appends rows restoring the previous verdicts)")
-    dock.add_button = tool_button("+  " + tr("Add missed target (A)"), lambda: dock.run_command("add"),
+    dock.add_button = tool_button("+  " + tr("Missed target (A)"), lambda: dock.run_command("add"),
                                    "Click the map where a target was missed (A; Esc cancels)")
     dock.add_button.setCheckable(True)
     grid.addWidget(dock.undo_button, 3, 0)
     grid.addWidget(dock.add_button, 3, 1)
     v.addLayout(grid)
+    # the frames that show the unit, under the buttons: on a laptop screen the buttons stay in view
+    dock.chips = ChipStrip()
+    dock.chips.show_message(tr("The frames that show the unit"))
+    dock.chips.setSizePolicy(QSizePolicy.Policy.Expanding, QSizePolicy.Policy.Minimum)
+    v.addWidget(dock.chips)
+    dock.chip_legend = QLabel()
+    dock.chip_legend.setWordWrap(True)   # one entry per detection layer: as long as their names
+    dock.chip_legend.setTextFormat(Qt.TextFormat.RichText)
+    dock.chip_legend.setStyleSheet("color:#555; font-size:11px;")
+    v.addWidget(dock.chip_legend)
     dock.propagate_check = QCheckBox(tr("Propagate to units within {:.2f} m").format(PROPAGATION_EPS_M))
     dock.propagate_check.setToolTip(tr("Off by default. When on, a verdict also votes (provenance "
                                        "propagated:{rule}) on the units chained to this one by gaps of at "
@@ -405,12 +418,15 @@ def build_review_area(dock, panel):
     dock.scores_table.setEditTriggers(QAbstractItemView.EditTrigger.NoEditTriggers)
     dock.scores_table.setSelectionMode(QAbstractItemView.SelectionMode.NoSelection)
     dock.scores_table.horizontalHeader().setSectionResizeMode(QHeaderView.ResizeMode.Stretch)
-    dock.scores_table.horizontalHeader().setSectionResizeMode(0, QHeaderView.ResizeMode.ResizeToContents)
+    # Column 0 is as wide as its row names, not as the layer titles spanning the table.
+    dock.scores_table.horizontalHeader().setSectionResizeMode(0, QHeaderView.ResizeMode.Fixed)
+    size_score_names(dock.scores_table)
     dock.scores_table.horizontalHeader().setSectionResizeMode(1, QHeaderView.ResizeMode.ResizeToContents)
     dock.scores_table.setWordWrap(False)
     dock.scores_table.horizontalHeader().setStyleSheet("QHeaderView::section{padding:1px 2px;font-size:11px;}")
     dock.scores_table.verticalHeader().setDefaultSectionSize(20)
     dock.scores_table.setVerticalScrollBarPolicy(Qt.ScrollBarPolicy.ScrollBarAlwaysOff)
+    fit_scores_height(dock.scores_table)
     v.addWidget(dock.scores_table)
     dock.scores_note = QLabel(tr("GMCF is a lower bound on precision, not precision; recall after review is an "
                                  "upper bound (≥). The spread between the conventions is part of the result."))

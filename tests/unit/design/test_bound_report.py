@@ -104,10 +104,11 @@ def test_plot_shows_the_core_field_with_the_tolerance(result):
     # the field stays below λ_target: no contour, scale topped by λ_target (marked on the colour bar)
     assert plot.contour is None and plot.image.get_clim() == pytest.approx((0.0, 1.02 * lam))
     assert list(plot.colorbar_mark.get_ydata()) == [lam, lam]
-    assert list(plot.worst.get_xdata()) == [1920.0] and list(plot.worst.get_ydata()) == [1200.0]
+    assert list(plot.worst.get_xdata()) == [1919.0] and list(plot.worst.get_ydata()) == [1199.0]
     # the frame keeps its aspect and is shown whole (edges ± half a grid step)
     x0, x1 = plot.ax.get_xlim()
-    assert x0 == pytest.approx(-4.0) and x1 == pytest.approx(1924.0) and plot.ax.get_aspect() == 1.0
+    step = 1919 / 240   # pixel centres 0, 8, …, 1912 and the last one, 1919
+    assert (x0, x1) == pytest.approx((-step / 2, 1919 + step / 2)) and plot.ax.get_aspect() == 1.0
 
     # a budget 1.5× too large in every variance: the contour appears at λ_target
     loud = list(np.array(DEPLOYED_SIGMAS) * math.sqrt(1.5 * entry["kappa_exact"]))  # variances × 1.5 κ*
@@ -140,8 +141,8 @@ def test_stride_for_is_the_smallest_stride_within_the_budget(width, height, max_
 def test_altitude_summary_reads_well(result):
     line = br.altitude_summary(result["altitudes"][0])
     assert line.startswith("10 m: sup tr Σ = ")
-    assert "REJECT" in line and "exact κ* = 1.33 ACCEPT" in line and "worst pixel (1920, 1200)" in line
-    assert "x 0.0136 m" in line and "yaw 0.301°" in line
+    assert "REJECT" in line and "exact κ* = 1.34 ACCEPT" in line and "worst pixel (1919, 1199)" in line
+    assert "x 0.0136 m" in line and "yaw 0.302°" in line
     zero = sb.evaluate_bounds(DEPLOYED, [10.0], [0.0] * 6, 30.0, stride_px=64)["altitudes"][0]
     assert "trace κ* = ∞ ACCEPT" in br.altitude_summary(zero)
 

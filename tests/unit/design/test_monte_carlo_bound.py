@@ -65,7 +65,8 @@ def test_linearisation_holds_for_the_deployed_platform(altitude):
 
 def test_default_pixels_cover_corners_edges_centre_and_principal_point():
     px = {tuple(p) for p in mc.default_pixels(DEPLOYED)}
-    assert {(0.0, 0.0), (1920.0, 0.0), (0.0, 1200.0), (1920.0, 1200.0), (960.0, 600.0)} <= px
+    # Pixel centres of the frame: the last column is u = W − 1, the last row v = H − 1.
+    assert {(0.0, 0.0), (1919.0, 0.0), (0.0, 1199.0), (1919.0, 1199.0), (959.5, 599.5)} <= px
     assert (DEPLOYED.cx, DEPLOYED.cy) in px and len(px) == 10
 
 

@@ -47,7 +47,7 @@ def test_the_dji_metadata_preset_fails_the_default_tolerance_at_10_m_because_of_
     assert bound.verdict_exact == "reject" and bound.kappa_exact < 0.05
     # Why: at the worst pixel (a frame corner) one σ of each axis alone moves the label by …
     u, v = bound.worst_pixel
-    assert u in (0.0, cam.width) and v in (0.0, cam.height)
+    assert u in (0.0, cam.width - 1.0) and v in (0.0, cam.height - 1.0)
     moves = [displacement_px(cam, 10.0, u, v, axis, s) for axis, s in enumerate(sigmas)]
     print("1σ label displacement at the worst pixel (x, y, z, roll, pitch, yaw):",
           ", ".join(f"{m:.1f} px" for m in moves))

@@ -99,16 +99,30 @@ def test_roll_pitch_yaw_map_to_camera_rotations_as_documented(mount, r_body_cam,
             np.testing.assert_allclose(fd, sign * jac[k, :, axis], rtol=1e-5, atol=1e-2)
 
 
-def test_grid_includes_both_edges():
+def test_grid_is_the_pixel_centres_with_both_edges():
     small = sb.Intrinsics(fx=50.0, fy=55.0, cx=9.7, cy=6.2, width=20, height=13)
     us, vs = sb.frame_grid(small, 1)
-    assert us.size * vs.size == 21 * 14
-    assert sb.lmax_field(small, 10.0, DEPLOYED_SIGMAS, 1).shape == (14, 21)
+    np.testing.assert_array_equal(us, np.arange(20))   # every pixel centre, the last one at W − 1
+    np.testing.assert_array_equal(vs, np.arange(13))
+    assert sb.lmax_field(small, 10.0, DEPLOYED_SIGMAS, 1).shape == (13, 20)
     us, vs = sb.frame_grid(small, 7)
-    np.testing.assert_array_equal(us, [0, 7, 14, 20])
-    np.testing.assert_array_equal(vs, [0, 7, 13])
+    np.testing.assert_array_equal(us, [0, 7, 14, 19])
+    np.testing.assert_array_equal(vs, [0, 7, 12])
     us, vs = sb.frame_grid(DEPLOYED, 1)
-    assert (us.size, vs.size) == (1921, 1201)
+    assert (us.size, vs.size) == (1920, 1200)
+
+
+@pytest.mark.parametrize("stride", [1, 7, 64])
+@pytest.mark.parametrize("intr", [DEPLOYED, SKEWED, sb.Intrinsics(fx=50.0, fy=55.0, cx=15.0, cy=2.0, width=20,
+                                                                  height=13)])
+def test_the_worst_pixels_are_pixels_of_the_frame(intr, stride):
+    """A W × H image spans u ∈ [−0.5, W − 0.5] (docs/design.md §3.3): every reported pixel is one of its centres."""
+    res = sb.evaluate_bound(intr, 10.0, [0.02, 0.01, 0.05, 0.05, 0.1, 0.2], 30.0, stride_px=stride)
+    for u, v in (res.worst_pixel, res.worst_pixel_trace, sb.trace_binding_corner(intr)):
+        assert 0 <= u <= intr.width - 1 and 0 <= v <= intr.height - 1
+        assert u == int(u) and v == int(v)
+    # The far corners are the image's last pixels: the bound grows towards the edges.
+    assert sb.trace_binding_corner(intr)[0] in (0.0, intr.width - 1.0)
 
 
 def test_separable_sweep_matches_per_pixel_eigenvalues():
@@ -177,7 +191,7 @@ def test_trace_allocation_binds_at_the_far_corner_with_equal_shares():
         assert res.worst_pixel_trace == corner
         contrib = sb.gains(intr, *corner, z)[0] * s
         np.testing.assert_allclose(contrib, 100.0 / 6, rtol=1e-12)
-    assert sb.trace_binding_corner(DEPLOYED) == (1920.0, 1200.0)
+    assert sb.trace_binding_corner(DEPLOYED) == (1919.0, 1199.0)
     assert sb.trace_binding_corner(SKEWED) == (0.0, 0.0)
 
 
@@ -230,7 +244,7 @@ def test_deployed_platform_verdicts_and_json_contract():
     assert at10["kappa_trace"] < 1 < at10["kappa_exact"]
     assert (at20["verdict_trace"], at20["verdict_exact"]) == ("accept", "accept")
     assert at20["kappa_exact"] > at10["kappa_exact"]
-    assert at10["worst_pixel"] == [1920.0, 1200.0]
+    assert at10["worst_pixel"] == [1919.0, 1199.0]   # the bottom-right pixel of the 1920 × 1200 frame
     assert sum(at10["budget_share"]) == pytest.approx(1.0)
     # z dominates the deployed budget at 10 m; at 20 m translation matters less, rotation more.
     assert np.argmax(at10["budget_share"]) == 2
@@ -287,22 +301,38 @@ def test_units_and_input_validation():
         sb.evaluate_bounds(DEPLOYED, [], DEPLOYED_SIGMAS)
 
 
+def _printed(camera, mount):
+    """The balanced exact budget and the deployed budget's shares at 10 m, printed as the method prints them."""
+    from birdseye.birdseye_qgis.core.design.platforms import DEPLOYED as PRESET
+
+    budget, _ = sb.balanced_exact_variances(camera, 10.0, PRESET.tolerance_px, mount=mount)
+    sigmas = sb.variances_to_sigmas(budget)
+    shares = sb.evaluate_bound(camera, 10.0, PRESET.sigmas, PRESET.tolerance_px, mount=mount).budget_share
+    return {"budget": [f"{1000 * s:.2f} mm" for s in sigmas[:3]] + [f"{s:.4f}°" for s in sigmas[3:]],
+            "share": [f"{100 * s:.1f} %" for s in shares]}
+
+
 def test_the_deployed_preset_gives_the_methods_table_to_the_printed_digit():
     """The method's table at 10 m (r = 30 px): the balanced exact budget and the shares of the deployed
-    budget, as the method prints them. Its mount applies roll to camera x and pitch to camera y; on
-    the nadir mount (image top = nose) the two trade places, roll and pitch swapped."""
+    budget, as the method prints them. The method evaluated u = 0…W, v = 0…H, one pixel beyond the last
+    pixel centre: the pixel centres of a frame one pixel wider and taller. Its mount applies roll to camera
+    x and pitch to camera y; on the nadir mount (image top = nose) the two trade places, roll and pitch
+    swapped."""
+    from dataclasses import replace
+
     from birdseye.birdseye_qgis.core.design.platforms import DEPLOYED as PRESET
 
     assert PRESET.mount is sb.METHOD_MOUNT
+    methods_grid = replace(PRESET.camera, width=PRESET.camera.width + 1, height=PRESET.camera.height + 1)
     table = {"budget": ["13.64 mm", "13.45 mm", "49.12 mm", "0.0753°", "0.0741°", "0.3013°"],
              "share": ["16.7 %", "16.7 %", "42.9 %", "8.5 %", "9.0 %", "6.1 %"]}
     swapped = {key: column[:3] + [column[4], column[3], column[5]] for key, column in table.items()}
     for mount, expected in ((PRESET.mount, table), (sb.NADIR_MOUNT, swapped)):
-        budget, _ = sb.balanced_exact_variances(PRESET.camera, 10.0, PRESET.tolerance_px, mount=mount)
-        sigmas = sb.variances_to_sigmas(budget)
-        shares = sb.evaluate_bound(PRESET.camera, 10.0, PRESET.sigmas, PRESET.tolerance_px, mount=mount).budget_share
-        assert ([f"{1000 * s:.2f} mm" for s in sigmas[:3]] + [f"{s:.4f}°" for s in sigmas[3:]]) == expected["budget"]
-        assert [f"{100 * s:.1f} %" for s in shares] == expected["share"]
+        assert _printed(methods_grid, mount) == expected
+    # On the frame's own pixels the corners are a pixel closer to the centre: z and yaw may grow a little.
+    assert _printed(PRESET.camera, PRESET.mount) == {
+        "budget": ["13.64 mm", "13.45 mm", "49.19 mm", "0.0753°", "0.0741°", "0.3016°"],
+        "share": ["16.8 %", "16.8 %", "42.8 %", "8.5 %", "9.0 %", "6.1 %"]}
 
 
 def test_mounts_are_signed_axis_permutations():

@@ -62,7 +62,8 @@ def test_max_slope_inverts_the_error():
 def test_ten_degree_claim_for_the_deployed_camera():
     """At 10° the level plane keeps labels within 30 px only out to ρ ≈ 0.196, not over the whole frame."""
     frame = ts.frame_distance_ratios(DEPLOYED)
-    assert frame["corner"] == pytest.approx(math.hypot(961.5406 / 4264.4945, 607.4967 / 4262.8927))
+    # The outermost pixel centres: 1919 − cx and 1199 − cy from the principal point.
+    assert frame["corner"] == pytest.approx(math.hypot(960.5406 / 4264.4945, 606.4967 / 4262.8927))
     assert ts.slope_error_px(DEPLOYED, 10.0, 10.0, frame["edge_v"]) < 30.0
     assert ts.slope_error_px(DEPLOYED, 10.0, 10.0, frame["edge_u"]) > 30.0
     assert ts.slope_error_px(DEPLOYED, 10.0, 10.0, frame["corner"]) > 50.0

@@ -99,7 +99,8 @@ def test_odm_topocentric_copy_is_preferred(tmp_path):
     write_opensfm(tmp_path / "reconstruction.topocentric.json", r, c, g)
     (tmp_path / "reconstruction.json").write_text(json.dumps([{"cameras": {}, "shots": {}}]))
     result = import_camera_solution(tmp_path / "reconstruction.json")
-    assert len(result.frames) == len(c) and "topocentric" in " ".join(result.report.notes)
+    assert len(result.frames) == len(c) and "topocentric" in " ".join(result.report.findings)
+    assert not result.report.notes, "reading the topocentric copy is a finding, nothing to check"
 
 
 def test_opensfm_without_reference_is_refused(tmp_path):

@@ -88,7 +88,8 @@ class CameraSolution:
     frame), the images' GPS reference (EGM96, as GNSS receivers report heights above sea level) for solutions
     aligned to the images' GPS tags, or what the solution's CRS says. ``marks``: control points with image
     marks, where the solution has them; ``photos``: camera name → image file the solution itself names (where
-    it exists).
+    it exists). ``notes``: what the reader found and chose (the chunk read, a copy preferred, an alignment's
+    figures), the import report's findings.
     """
 
     format: str
@@ -239,7 +240,7 @@ def import_camera_solution(path, images_folder=None, crs: ProjectedCRS | None = 
     solution = read_camera_solution(path, images_folder, colmap_reference, solution_crs)
     check_cancel(is_canceled)
     report = ImportReport(solution.source)
-    report.notes.extend(solution.notes)
+    report.findings.extend(solution.notes)
     if not solution.cameras:
         raise InputError(f"has no aligned camera ({len(solution.unaligned)} not aligned)", source=solution.source)
     images = {**solution.photos, **match_images([c.name for c in solution.cameras], images_folder)}
@@ -260,7 +261,7 @@ def import_camera_solution(path, images_folder=None, crs: ProjectedCRS | None = 
     n_ground = int(np.count_nonzero(np.isfinite(frames.ground_h)))
     report.counts["frames_with_ground"] = n_ground
     if surveyed is not None:
-        report.notes.append(f"Frames without tie points in view stand on the control points' median surveyed "
+        report.findings.append(f"Frames without tie points in view stand on the control points' median surveyed "
                             f"height, {surveyed:.2f} m (ellipsoidal), for their footprints; give a DEM or "
                             "GROUND_HEIGHT_M on uneven ground")
     if n_ground < len(frames) and dem is None:
@@ -306,5 +307,7 @@ def _check_marks(control: ControlMarks, solution: CameraSolution, frames: Frames
                         control.uv[on_aligned])
     summary = check.summary()
     report.counts.update({k if k == "marks" else f"marks_{k}": v for k, v in summary.items()})
-    report.notes.extend(describe(check, frames.frame_id))
+    findings, notes = describe(check, frames.frame_id)
+    report.findings.extend(findings)
+    report.notes.extend(notes)
     return check
