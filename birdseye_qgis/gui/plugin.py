@@ -7,7 +7,6 @@ has no interface (``iface is None``) and calls only :meth:`BirdsEyePlugin.initPr
 from __future__ import annotations
 
 import importlib
-import importlib.util
 from typing import NamedTuple
 
 from qgis.core import Qgis, QgsApplication, QgsMessageLog, QgsProject
@@ -79,14 +78,6 @@ def load_translator() -> QTranslator | None:
     return None
 
 
-def dock_module_available(entry: DockEntry) -> bool:
-    """True when the dock's module file exists (without importing it)."""
-    try:
-        return importlib.util.find_spec(f"{PLUGIN_PACKAGE}.{entry.module}") is not None
-    except ImportError:
-        return False
-
-
 class BirdsEyePlugin:
     """Registers the Processing provider and, in the desktop, the BirdsEye menu, toolbar and docks."""
 
@@ -138,10 +129,8 @@ class BirdsEyePlugin:
         self.menu.addAction(self.toolbox_action)
         self.toolbar.addAction(self.toolbox_action)
 
-        available = [entry for entry in DOCKS if dock_module_available(entry)]
-        if available:
-            self.menu.addSeparator()
-        for entry in available:
+        self.menu.addSeparator()
+        for entry in DOCKS:
             action = QAction(self._icon_for(entry), tr(entry.title), main_window)
             action.setObjectName(f"mActionBirdsEye{entry.class_name}")
             if entry.tooltip:

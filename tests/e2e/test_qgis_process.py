@@ -71,8 +71,6 @@ def test_wrapper_enables_plugin_without_losing_other_settings(tmp_path):
 
 def test_simulatecampaign_runs_end_to_end(fresh_config, tmp_path):
     """A tiny campaign (a 6 × 4 m field, small frames): files in the contract formats appear."""
-    if not (ALGORITHM_DIR / "simulatecampaign.py").is_file():
-        pytest.skip("processing/algorithms/simulatecampaign.py is not written yet")
     from qgis.PyQt.QtGui import QImage
 
     out = tmp_path / "campaign"

@@ -124,10 +124,7 @@ def menu_bar_menus(iface):
 def test_plugin_gui_is_added_and_removed(qgis_iface, plugin_module, fake_dock_module, monkeypatch):
     import birdseye
 
-    entries = [
-        plugin_module.DockEntry("birdseye_qgis.gui._dock_under_test", "DockUnderTest", "Test dock"),
-        plugin_module.DockEntry("birdseye_qgis.gui.no_such_dock", "NoSuchDock", "Not written yet"),
-    ]
+    entries = [plugin_module.DockEntry("birdseye_qgis.gui._dock_under_test", "DockUnderTest", "Test dock")]
     monkeypatch.setattr(plugin_module, "DOCKS", entries)
     registry = QgsApplication.processingRegistry()
     main_window = qgis_iface.mainWindow()
@@ -138,8 +135,7 @@ def test_plugin_gui_is_added_and_removed(qgis_iface, plugin_module, fake_dock_mo
         menus = [m for m in menu_bar_menus(qgis_iface) if m.objectName() == plugin_module.MENU_OBJECT_NAME]
         assert len(menus) == 1
         menu_texts = [a.text() for a in menus[0].actions() if not a.isSeparator()]
-        assert menu_texts == ["BirdsEye algorithms…", "Test dock", "Install dependencies…"], \
-            "a missing dock module must not show"
+        assert menu_texts == ["BirdsEye algorithms…", "Test dock", "Install dependencies…"]
         toolbars = main_window.findChildren(QToolBar, plugin_module.TOOLBAR_OBJECT_NAME)
         assert len(toolbars) == 1 and len(toolbars[0].actions()) == 2
         assert registry.providerById("birdseye_plugin_test") is not None
@@ -200,16 +196,19 @@ def test_algorithms_action_without_processing_plugin_explains(qgis_iface, plugin
         delete_later_now()
 
 
+def test_the_plugin_registers_the_review_dock_and_the_sensor_bound_calculator():
+    from birdseye.birdseye_qgis.gui import plugin as plugin_module
+
+    assert [e.class_name for e in plugin_module.DOCKS] == ["ReviewDock", "SensorBoundDock"]
+
+
 @pytest.mark.parametrize("entry_index", range(2))  # the review dock and the sensor-bound calculator
 def test_registered_docks_open_and_close(qgis_iface, birdseye_provider, entry_index):
-    """Every dock in the plugin's registry whose module exists opens with the iface and unloads."""
+    """Every dock in the plugin's registry opens with the iface and unloads."""
     from birdseye.birdseye_qgis.gui import plugin as plugin_module
     from birdseye.processing.provider import BirdsEyeProvider
 
-    available = [e for e in plugin_module.DOCKS if plugin_module.dock_module_available(e)]
-    if entry_index >= len(available):
-        pytest.skip(f"the plugin registers {len(available)} dock(s) with a module so far")
-    entry = available[entry_index]
+    entry = plugin_module.DOCKS[entry_index]
     qgis_iface.messageBar().clear_messages()
     plugin = plugin_module.BirdsEyePlugin(qgis_iface, BirdsEyeProvider)
     plugin.initGui()
