@@ -3,7 +3,7 @@
 1. **One million detections** de-duplicated (3 cm) and clustered (DBSCAN 0.10 m / 3), with the cluster
    summaries — goal: under 10 s. Baseline: scikit-learn's DBSCAN straight on the raw
    detections (no de-duplication), as one would write it first.
-2. **The method's 14,400-configuration sweep** (10 thresholds × 12 EPS × 12 MIN_SAMPLES × 10
+2. **A sweep of the method's 14,400 configurations** (here 10 thresholds × 12 EPS × 12 MIN_SAMPLES × 10
    EPS_PRED) on one simulated flight — goal: under 5 minutes. Baseline: recomputing everything per
    configuration (threshold filter, de-duplication, neighbour graph, DBSCAN, summaries, scoring), timed
    on a random subset of configurations and extrapolated; the subset is also checked to give exactly

@@ -64,7 +64,8 @@ VERDICT_COLUMNS = [
     ("lon", "REAL NOT NULL", "longitude, WGS84 (deg)"),
     ("layers_fired", "TEXT NOT NULL", "JSON list of the detection layers that fired at the unit"),
     ("matching_parameters", "TEXT NOT NULL", "JSON: eps_pred_m, edge_buffer_px, unit position, propagation"),
-    ("postprocessing", "TEXT NOT NULL", "JSON: dedup_cm, eps_m, min_samples, threshold"),
+    ("postprocessing", "TEXT NOT NULL", "JSON: dedup_cm, eps_m, min_samples, core_count (absent: cells), threshold, "
+                                        "units"),
     ("input_digests", "TEXT NOT NULL", "JSON: role:layer → SHA-256 of its content"),
 ]
 VERDICT_FIELD_NAMES = ["fid"] + [c[0] for c in VERDICT_COLUMNS]

@@ -90,7 +90,8 @@ class ClusterDetections(ClusteringParametersMixin, DemParametersMixin, BirdsEyeA
         clustering = self.run_core(cluster_detections, positions, det.frame_id, det.score,
                                    self.parameterAsDouble(parameters, self.DEDUP_CM, context),
                                    self.parameterAsDouble(parameters, self.EPS_M, context),
-                                   self.parameterAsInt(parameters, self.MIN_SAMPLES, context))
+                                   self.parameterAsInt(parameters, self.MIN_SAMPLES, context),
+                                   core_count=self.read_core_count(parameters, context))
         feedback.setProgress(55)
         n = clustering.n_clusters
         matched = [""] * n
@@ -132,10 +133,10 @@ class ClusterDetections(ClusteringParametersMixin, DemParametersMixin, BirdsEyeA
                                                     hit, local, crs)
         if parameters.get(self.OUTPUT_POINTS):
             outputs[self.OUTPUT_POINTS] = self._write_points(parameters, context, feedback, clustering, det, local, crs)
-        feedback.pushInfo(self.tr("{n_det} detections → {n_points} de-duplicated points → {n} "
-                                  "clusters ({NOISE_POINTS} points are noise).").format(
+        feedback.pushInfo(self.tr("{n_det} detections → {n_points} de-duplicated points → {n} clusters "
+                                  "({NOISE_POINTS} points are noise; minimum points counted {counted}).").format(
                               n_det=len(det), n_points=len(clustering.points), n=n,
-                              NOISE_POINTS=outputs['NOISE_POINTS']))
+                              NOISE_POINTS=outputs['NOISE_POINTS'], counted=clustering.core_count))
         return outputs
 
     @staticmethod

@@ -37,6 +37,9 @@ def operating_point_from_rule(path, flights, arm_name, feedback) -> tuple[Operat
                          "'{name}': its operating point replaces the dialog's values: {value2}").format(
                           value=doc['seal'][:12], sealed_at=doc['sealed_at'], name=arm['name'],
                           value2=op.to_dict()))
+    if "core_count" not in arm["operating_point"]:
+        feedback.pushInfo(tr("The rule was sealed before BirdsEye recorded what the minimum points count; its arms "
+                             "were chosen counting cells, so it is scored counting cells, as sealed."))
     return op, {"seal": doc["seal"], "sealed_at": doc["sealed_at"], "arm": arm["name"],
                 "model_digest": arm["model_digest"]}
 

@@ -98,7 +98,8 @@ class SealPreregistration(ClusteringParametersMixin, BirdsEyeAlgorithm):
         elif lines:
             arms = self.run_core(preregistration.parse_arm_lines, lines, digests,
                                  self.parameterAsDouble(parameters, self.DEDUP_CM, context),
-                                 self.parameterAsDouble(parameters, self.EDGE_BUFFER_PX, context))
+                                 self.parameterAsDouble(parameters, self.EDGE_BUFFER_PX, context),
+                                 self.read_core_count(parameters, context))
         else:
             op = self.read_operating_point(parameters, context,
                                            self.parameterAsDouble(parameters, self.THRESHOLD, context))

@@ -39,6 +39,7 @@ from ...birdseye_qgis.qgis_io import layer_kinds
 from ...birdseye_qgis.qgis_io.detections import read_detections, read_pose_groups
 from ...birdseye_qgis.qgis_io.layers import read_geotag_layer
 from ...birdseye_qgis.qgis_io.outputs import write_output, write_rows_csv
+from ..parameters.clustering import ClusteringParametersMixin
 from ..parameters.dem import DemParametersMixin
 from ..parameters.layer_parameters import source_parameter
 from .base import BirdsEyeAlgorithm
@@ -71,7 +72,7 @@ def parse_list(text: str, name: str) -> list[float]:
     return values
 
 
-class SweepOperatingPoints(DemParametersMixin, BirdsEyeAlgorithm):
+class SweepOperatingPoints(ClusteringParametersMixin, DemParametersMixin, BirdsEyeAlgorithm):
     ALG_ID = "sweepoperatingpoints"
     DISPLAY_NAME = QT_TRANSLATE_NOOP("SweepOperatingPoints", "Sweep operating points")
     GROUP = "detect"
@@ -106,6 +107,7 @@ class SweepOperatingPoints(DemParametersMixin, BirdsEyeAlgorithm):
         self.addParameter(QgsProcessingParameterNumber(
             self.DEDUP_CM, self.tr("De-duplication grid cell (cm)"), NUMBER_DOUBLE,
             DEFAULT_DEDUP_CM, minValue=0.1, maxValue=100.0))
+        self.add_core_count_parameter()
         self.addParameter(QgsProcessingParameterNumber(
             self.EDGE_BUFFER_PX, self.tr("Edge buffer at the image border (px)"),
             NUMBER_DOUBLE, DEFAULT_EDGE_BUFFER_PX, minValue=0.0, maxValue=1000.0))
@@ -173,6 +175,7 @@ class SweepOperatingPoints(DemParametersMixin, BirdsEyeAlgorithm):
                 name=flight_names[key], n_frames=view.n_frames, value=int(view.mask.sum())))
         feedback.setProgress(5)
         dedup = self.parameterAsDouble(parameters, self.DEDUP_CM, context)
+        core_count = self.read_core_count(parameters, context)
         if det_layers:
             runs = []
             for det_layer, frame_layer, det, dropped in read:
@@ -186,16 +189,17 @@ class SweepOperatingPoints(DemParametersMixin, BirdsEyeAlgorithm):
                                       "(THRESHOLDS is used with CHECKPOINTS only).").format(
                 values=", ".join(f"{t:g}" for t in thresholds)))
             grid = self.run_core(SweepGrid, thresholds, lists["EPS_M"], lists["MIN_SAMPLES"], lists["EPS_PRED_M"],
-                                 dedup)
+                                 dedup, core_count)
         else:
             grid = self.run_core(SweepGrid, lists["THRESHOLDS"], lists["EPS_M"], lists["MIN_SAMPLES"],
-                                 lists["EPS_PRED_M"], dedup)
+                                 lists["EPS_PRED_M"], dedup, core_count)
             sweep_flights = self._run_checkpoints(checkpoints, flights, flight_names, grid, edge, local, geotag_xy,
                                                   grounds, feedback)
         n_checkpoints = len({(f.checkpoint, f.model_digest) for f in sweep_flights})
         feedback.pushInfo(self.tr("Sweeping {n_checkpoints} checkpoint(s) × {size} configurations ({items}: "
-                                  "threshold × eps × min_samples × eps_pred)").format(
-                              n_checkpoints=n_checkpoints, size=grid.size, items=' × '.join(map(str, grid.shape))))
+                                  "threshold × eps × min_samples × eps_pred; minimum points count {counted})").format(
+                              n_checkpoints=n_checkpoints, size=grid.size, items=' × '.join(map(str, grid.shape)),
+                              counted=grid.core_count))
         progress, is_canceled = self.progress_callbacks(feedback, 60.0 if checkpoints else 10.0, 95.0)
         result = self.run_core(sweep, sweep_flights, grid,
                                self.parameterAsDouble(parameters, self.MAX_GEOTAGS_PER_HIT, context),
@@ -218,7 +222,7 @@ class SweepOperatingPoints(DemParametersMixin, BirdsEyeAlgorithm):
                         "flights": sorted(geotag_xy),
                         "grid": {"thresholds": grid.thresholds.tolist(), "eps_m": grid.eps_m.tolist(),
                                  "min_samples": grid.min_samples.tolist(), "eps_pred_m": grid.eps_pred_m.tolist(),
-                                 "dedup_cm": grid.dedup_cm, "edge_buffer_px": edge},
+                                 "dedup_cm": grid.dedup_cm, "core_count": grid.core_count, "edge_buffer_px": edge},
                         "credibility": {"max_geotags_per_hit": result.max_geotags_per_hit,
                                         "max_mean_extent_m": result.max_mean_extent_m},
                         "pareto": [r for r in rows if r["pareto"]], "configurations": rows}

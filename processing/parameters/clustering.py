@@ -1,14 +1,23 @@
-"""Clustering and matching parameters (DEDUP_CM, EPS_M, MIN_SAMPLES, EPS_PRED_M, EDGE_BUFFER_PX) and the
-flights (detection layer + frame layer pairs) the scoring algorithms read."""
+"""Clustering and matching parameters (DEDUP_CM, EPS_M, MIN_SAMPLES, CORE_COUNT, EPS_PRED_M, EDGE_BUFFER_PX)
+and the flights (detection layer + frame layer pairs) the scoring algorithms read."""
 from __future__ import annotations
 
-from qgis.core import QgsProcessingException, QgsProcessingParameterNumber
+from qgis.core import QgsProcessingException, QgsProcessingParameterEnum, QgsProcessingParameterNumber
 
-from ...birdseye_qgis.core.detect.clustering import DEFAULT_DEDUP_CM, DEFAULT_EPS_M, DEFAULT_MIN_SAMPLES
+from ...birdseye_qgis.core.detect.clustering import (
+    CORE_COUNTS,
+    DEFAULT_CORE_COUNT,
+    DEFAULT_DEDUP_CM,
+    DEFAULT_EPS_M,
+    DEFAULT_MIN_SAMPLES,
+)
 from ...birdseye_qgis.core.scoring.evaluation import Flight
 from ...birdseye_qgis.core.scoring.operating_point import DEFAULT_EDGE_BUFFER_PX, DEFAULT_EPS_PRED_M, OperatingPoint
 from ...birdseye_qgis.qgis_enums import NUMBER_DOUBLE, NUMBER_INTEGER, PARAMETER_ADVANCED
 from ...birdseye_qgis.qgis_io.detections import read_detections, read_pose_groups
+
+#: The CORE_COUNT choices, in the order of core.detect.clustering.CORE_COUNTS (the enum's index).
+CORE_COUNT_LABELS = ("Detections in the cells within EPS", "Cells within EPS, one point each (the method's)")
 
 
 class ClusteringParametersMixin:
@@ -17,11 +26,13 @@ class ClusteringParametersMixin:
     DEDUP_CM = "DEDUP_CM"
     EPS_M = "EPS_M"
     MIN_SAMPLES = "MIN_SAMPLES"
+    CORE_COUNT = "CORE_COUNT"
     EPS_PRED_M = "EPS_PRED_M"
     EDGE_BUFFER_PX = "EDGE_BUFFER_PX"
 
     def add_clustering_parameters(self, with_prediction: bool = True, advanced: bool = False) -> None:
-        """DEDUP_CM, EPS_M, MIN_SAMPLES (and EPS_PRED_M, EDGE_BUFFER_PX) with the method's defaults."""
+        """DEDUP_CM, EPS_M, MIN_SAMPLES, CORE_COUNT (and EPS_PRED_M, EDGE_BUFFER_PX) with the method's
+        defaults; CORE_COUNT's is BirdsEye's (core.detect.clustering)."""
         self._add_number(QgsProcessingParameterNumber(
             self.DEDUP_CM, self.tr("De-duplication grid cell (cm)"), NUMBER_DOUBLE,
             DEFAULT_DEDUP_CM, minValue=0.1, maxValue=100.0), advanced)
@@ -31,6 +42,7 @@ class ClusteringParametersMixin:
         self._add_number(QgsProcessingParameterNumber(
             self.MIN_SAMPLES, self.tr("DBSCAN minimum points (itself included)"),
             NUMBER_INTEGER, DEFAULT_MIN_SAMPLES, minValue=1, maxValue=1000), advanced)
+        self.add_core_count_parameter()
         if with_prediction:
             self.add_matching_parameters(advanced=advanced)
 
@@ -45,6 +57,19 @@ class ClusteringParametersMixin:
                 self.EDGE_BUFFER_PX, self.tr("Edge buffer of the in-view test (px)"), NUMBER_DOUBLE,
                 DEFAULT_EDGE_BUFFER_PX, minValue=0.0, maxValue=1000.0), advanced)
 
+    def add_core_count_parameter(self) -> None:
+        """CORE_COUNT: what DBSCAN's minimum points count. Advanced everywhere: the default suits every
+        survey; the method's reading is there to reproduce its tables (docs/user-guide.md)."""
+        choice = QgsProcessingParameterEnum(
+            self.CORE_COUNT, self.tr("Minimum points count"), options=[self.tr(label) for label in CORE_COUNT_LABELS],
+            defaultValue=CORE_COUNTS.index(DEFAULT_CORE_COUNT))
+        choice.setFlags(choice.flags() | PARAMETER_ADVANCED)
+        self.addParameter(choice)
+
+    def read_core_count(self, parameters, context) -> str:
+        """The CORE_COUNT chosen, as core.detect.clustering names it ("detections" or "cells")."""
+        return CORE_COUNTS[self.parameterAsEnum(parameters, self.CORE_COUNT, context)]
+
     def _add_number(self, param, advanced: bool) -> None:
         if advanced:
             param.setFlags(param.flags() | PARAMETER_ADVANCED)
@@ -56,7 +81,8 @@ class ClusteringParametersMixin:
                              self.parameterAsDouble(parameters, self.EPS_M, context),
                              self.parameterAsInt(parameters, self.MIN_SAMPLES, context),
                              self.parameterAsDouble(parameters, self.EPS_PRED_M, context),
-                             self.parameterAsDouble(parameters, self.EDGE_BUFFER_PX, context))
+                             self.parameterAsDouble(parameters, self.EDGE_BUFFER_PX, context),
+                             self.read_core_count(parameters, context))
 
     def read_flights(self, parameters, context, feedback, detections_name="DETECTIONS", frames_name="FRAMES",
                      ground_for=None):

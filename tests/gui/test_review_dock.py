@@ -565,6 +565,37 @@ def test_the_methods_units_can_be_chosen_and_come_back_with_the_project(campaign
     assert sum(1 for k in dock.units.keys if dock.status(k).direct == "confirmed_real") == 1
 
 
+def test_what_the_minimum_points_count_is_recorded_and_an_older_review_reopens_counting_cells(
+        campaign, clean_project, make_dock, qtbot, tmp_path):
+    """The choice reaches the units, the scores and every verdict row; a review saved before it was recorded
+    was built counting cells, and reopens that way."""
+    import json
+
+    from birdseye.birdseye_qgis.qgis_io.review_project import PROJECT_SCOPE
+
+    layers = copy_campaign(campaign, tmp_path)
+    dock = make_dock()
+    assert dock.core_count_combo.currentData() == "detections"
+    dock.core_count_combo.setCurrentIndex(dock.core_count_combo.findData("cells"))
+    start(dock, layers)
+    assert dock.params.core_count == "cells" and dock.operating_point().core_count == "cells"
+    assert dock.units.clustering.core_count == "cells"
+    qtbot.keyClick(dock.panel, Qt.Key_1)
+    assert {json.loads(r["postprocessing"])["core_count"] for r in dock.session.ledger.rows} == {"cells"}
+    project = QgsProject.instance()
+    saved = json.loads(project.readEntry(PROJECT_SCOPE, "review/parameters")[0])
+    assert saved["core_count"] == "cells"
+    del saved["core_count"]                                    # as a project saved before it was recorded
+    project.writeEntry(PROJECT_SCOPE, "review/parameters", json.dumps(saved))
+    project_file = tmp_path / "older.qgz"
+    assert project.write(str(project_file))
+    project.clear()
+    dock.core_count_combo.setCurrentIndex(dock.core_count_combo.findData("detections"))
+    assert project.read(str(project_file))
+    qtbot.waitUntil(lambda: dock.session is not None, timeout=10000)
+    assert dock.core_count_combo.currentData() == "cells" and dock.params.core_count == "cells"
+
+
 def test_the_worker_threads_never_call_pyproj(campaign, clean_project, make_dock, qtbot, tmp_path, monkeypatch):
     """pyproj 3.7 crashes QGIS when it runs on a thread Qt started (pyproj#1509), as the dock's chip and
     score jobs are: whatever the pyproj, nothing they run may call it there. Every pyproj entry point

@@ -146,6 +146,40 @@ def test_clusterdetections_writes_hulls_points_and_hit_flags(birdseye_provider):
     assert sum(p["core"] for p in points) == 18
 
 
+def test_clusterdetections_counts_detections_unless_told_to_count_cells(birdseye_provider):
+    """Six frames place a spot at the same position (refined poses): six detections in one 3 cm cell. One
+    cluster when the minimum points count detections (the default), none when each cell is one point
+    (CORE_COUNT 1, the method's)."""
+    det = detection_layer(np.repeat([[-2.9, 0.0]], 6, axis=0))
+    counted = run("clusterdetections", {"DETECTIONS": det, "GEOTAGS": geotag_layer(), "FRAMES": frame_layer(),
+                                        "OUTPUT": "TEMPORARY_OUTPUT", "OUTPUT_POINTS": "TEMPORARY_OUTPUT"})
+    assert (counted["CLUSTER_COUNT"], counted["HIT_COUNT"], counted["NOISE_POINTS"]) == (1, 1, 0)
+    (point,) = counted["OUTPUT_POINTS"].getFeatures()
+    assert point["n_detections"] == 6 and point["core"] == 1
+    cells = run("clusterdetections", {"DETECTIONS": det, "GEOTAGS": geotag_layer(), "FRAMES": frame_layer(),
+                                      "CORE_COUNT": 1, "OUTPUT": "TEMPORARY_OUTPUT"})
+    assert (cells["CLUSTER_COUNT"], cells["NOISE_POINTS"]) == (0, 1)
+
+
+def test_every_algorithm_that_clusters_offers_what_the_minimum_points_count(birdseye_provider):
+    """CORE_COUNT next to every MIN_SAMPLES: an advanced choice, detections (0) by default, cells (1)."""
+    from qgis.core import QgsApplication
+
+    from birdseye.birdseye_qgis.qgis_enums import PARAMETER_ADVANCED
+
+    clustering = []
+    for alg in QgsApplication.processingRegistry().providerById("birdseye").algorithms():
+        if alg.parameterDefinition("MIN_SAMPLES") is None:
+            continue
+        clustering.append(alg.name())
+        choice = alg.parameterDefinition("CORE_COUNT")
+        assert choice is not None, alg.name()
+        assert len(choice.options()) == 2 and choice.defaultValue() == 0, alg.name()
+        assert "the method's" in choice.options()[1] and choice.flags() & PARAMETER_ADVANCED, alg.name()
+    assert set(clustering) >= {"clusterdetections", "evaluatedetections", "comparedetectors", "sweepoperatingpoints",
+                               "screencheckpoints", "sealpreregistration", "writelabels", "planflight"}
+
+
 def test_cluster_and_detection_styles_load_on_the_outputs(birdseye_provider):
     from qgis.core import QgsExpression, QgsExpressionContext, QgsExpressionContextUtils
 
@@ -216,6 +250,9 @@ def test_evaluatedetections_pre_and_post_by_hand(birdseye_provider, tmp_path):
     assert post["majority_wins"]["recall_post_value"] == pytest.approx(1 / 3)
     html = out_html.read_text()
     assert "data:image/png;base64," in html and "lower bound on precision" in html and "≥" in html
+    # the frame sees geotags 1 and 2 (3 is 15 m east, outside its ±9.6 m footprint): 2 per frame
+    assert scores["survey_density"]["mean"] == 2.0 and scores["flights"][0]["survey_density"]["n_frames"] == 1
+    assert scores["parameters"]["core_count"] == "detections" and "Survey density" in html
 
 
 def test_evaluatedetections_pools_two_flights_by_micro_averaging(birdseye_provider, tmp_path):
@@ -231,6 +268,9 @@ def test_evaluatedetections_pools_two_flights_by_micro_averaging(birdseye_provid
     assert [f["recall_pre"] for f in scores["flights"]] == [0.5, 1.0]
     assert scores["recall_pre"] == pytest.approx(2 / 3)            # not (0.5 + 1) / 2
     assert scores["gmcf_pre"] == pytest.approx(2 / 3)
+    # survey density: flight 1's frame sees geotags 1 and 2, flight 2's geotag 4: 1.5 per frame over both
+    assert [f["survey_density"]["mean"] for f in scores["flights"]] == [2.0, 1.0]
+    assert scores["survey_density"]["mean"] == 1.5 and scores["survey_density"]["median"] == 1.5
 
 
 def _geotag_feature(layer, gid, en):
@@ -271,6 +311,20 @@ def test_sweep_agrees_with_evaluate_and_keeps_a_credible_front(birdseye_provider
     front = json.loads(doc.read_text())["pareto"]
     assert len(front) == result["N_PARETO"] and all(r["credible"] for r in front)
     assert plot.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    # what the minimum points counted is recorded with the grid and in every row, for the arms chosen from it
+    assert json.loads(doc.read_text())["grid"]["core_count"] == "detections"
+    assert {r["core_count"] for r in rows} == {"detections"}
+
+
+def test_the_sweeps_default_grid_is_the_methods(birdseye_provider):
+    """The dialog's default lists: 12 thresholds (0.035 among them) × 10 EPS × 12 MIN_SAMPLES × 10 EPS_PRED."""
+    from qgis.core import QgsApplication
+
+    alg = QgsApplication.processingRegistry().algorithmById("birdseye:sweepoperatingpoints")
+    lists = {name: [float(v) for v in alg.parameterDefinition(name).defaultValue().split(",")]
+             for name in ("THRESHOLDS", "EPS_M", "MIN_SAMPLES", "EPS_PRED_M")}
+    assert [len(v) for v in lists.values()] == [12, 10, 12, 10]
+    assert 0.035 in lists["THRESHOLDS"] and min(lists["THRESHOLDS"]) == 0.03 and max(lists["THRESHOLDS"]) == 0.12
 
 
 def test_sweep_refuses_layers_that_miss_a_threshold_or_both_kinds_of_input(birdseye_provider, tmp_path):

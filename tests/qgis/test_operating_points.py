@@ -108,6 +108,48 @@ def test_screencheckpoints_method_preset_and_blocks(birdseye_provider, tmp_path)
     assert row["worst_block"] in document["blocks"] and row["f1_pixel_radius_px"] == 10.0
 
 
+def test_screencheckpoints_reports_the_transfer_to_held_out_flights(birdseye_provider, tmp_path):
+    """The same scene flown again as the held-out flight, whose survey found a fourth burrow the images do not
+    show: held-out recall 3/4 against 3/3 on validation (ΔRecall −0.25), GMCF 1 on both; every frame sees 3
+    geotags on validation and 4 held out. One healthy checkpoint: no Spearman's ρ, and the report says why."""
+    frames, geo = three_frame_scene(tmp_path)
+    (tmp_path / "heldout").mkdir()
+    heldout_frames, _ = three_frame_scene(tmp_path / "heldout")
+    targets = [(0.1, 0.2), (-0.25, -0.1), (0.45, 0.05), (0.3, -0.5)]
+    heldout_geo = point_layer("heldout geotags", [QgsField("id", QVariant.Int)], [[1], [2], [3], [4]], targets)
+    good, flat = onnx_model(tmp_path / "good.onnx"), onnx_model(tmp_path / "flat.onnx", bias=0.8)
+    out, table, report = tmp_path / "screen.json", tmp_path / "screen.csv", tmp_path / "screen.html"
+    run("screencheckpoints", {"CHECKPOINTS": [str(good), str(flat)], "FRAMES": [frames], "GEOTAGS": geo,
+                              "HELDOUT_FRAMES": [heldout_frames], "HELDOUT_GEOTAGS": heldout_geo, "PRESET": 1,
+                              "MIN_SAMPLES": 1, "COLLAPSED_BELOW": 0.5, "OUTPUT_TABLE": str(table),
+                              "OUTPUT_JSON": str(out), "OUTPUT_PLOT": None, "OUTPUT_REPORT": str(report)})
+    document = json.loads(out.read_text(encoding="utf-8"))
+    assert document["survey_density"]["pooled"]["mean"] == 3.0
+    assert document["heldout"]["survey_density"]["pooled"] == {"n_frames": 3, "mean": 4.0, "median": 4.0, "p10": 4.0,
+                                                               "p90": 4.0, "min": 4, "max": 4,
+                                                               "frames_without_geotag": 0.0}
+    transfer = {t["checkpoint"]: t for t in document["transfer"]["checkpoints"]}
+    g = transfer["good.onnx"]
+    assert (g["recall_validation"], g["recall_heldout"], g["gmcf_validation"], g["gmcf_heldout"]) == (1.0, 0.75, 1.0,
+                                                                                                      1.0)
+    assert g["delta_recall"] == pytest.approx(-0.25) and g["delta_gmcf"] == 0.0
+    assert g["heldout"] == {"n_in_view": 4, "n_recovered": 3, "n_clusters": 3, "n_hit_clusters": 3}
+    f = transfer["flat.onnx"]
+    assert f["healthy_on_validation"] is False
+    heldout_rows = {r["checkpoint"]: r for r in document["heldout"]["checkpoints"]}
+    assert f["recall_heldout"] == heldout_rows["flat.onnx"]["recall_pre"]
+    spearman = document["transfer"]["spearman"]
+    assert spearman["recall"]["spearman_rho"] is None and spearman["recall"]["n_checkpoints"] == 1
+    assert spearman["gmcf"]["note"].startswith("not enough checkpoints: 1")
+    rows = {r["checkpoint"]: r for r in read_rows(table)}
+    assert float(rows["good.onnx"]["recall_pre_heldout"]) == 0.75 and float(rows["good.onnx"]["delta_recall"]) == -0.25
+    html = report.read_text(encoding="utf-8")
+    assert "Validation → held-out" in html and "not enough checkpoints" in html and "Survey density" in html
+    with pytest.raises(QgsProcessingException, match="HELDOUT_GEOTAGS: give the held-out flights"):
+        run("screencheckpoints", {"CHECKPOINTS": [str(good)], "FRAMES": [frames], "GEOTAGS": geo,
+                                  "HELDOUT_GEOTAGS": heldout_geo, "OUTPUT_TABLE": str(table)})
+
+
 # ------------------------------------------------------------------ arms and their seal
 GEOTAGS3 = {1: (-2.9, 0.0), 2: (5.1, -5.0), 3: (-5.1, 3.0)}
 A, C, E = grid9(-3.0, 0.0), grid9(5.0, -5.0), grid9(-5.0, 3.0)             # on geotags 1, 2, 3
@@ -145,7 +187,7 @@ def test_selectarms_applies_the_three_rules_to_the_credible_front(birdseye_provi
         arm = arms[name]
         assert arm["checkpoint"] == "demo.onnx" and arm["model_digest"] == DIGEST
         assert arm["operating_point"] == {"threshold": threshold, "dedup_cm": 3.0, "eps_m": 0.05, "min_samples": 2,
-                                          "eps_pred_m": 0.2, "edge_buffer_px": 0.0}
+                                          "eps_pred_m": 0.2, "edge_buffer_px": 0.0, "core_count": "detections"}
         assert arm["scores"]["recall_pre"] == pytest.approx(recall) and arm["scores"]["gmcf_pre"] == pytest.approx(gmcf)
     assert arms["lowest_review_burden"]["scores"]["detections_per_frame"] == 9.0
     with pytest.raises(QgsProcessingException, match="no 'configurations' list"):
@@ -169,13 +211,15 @@ def test_sealpreregistration_seals_each_arm_with_its_own_operating_point(birdsey
     other.write_bytes(b"another model")
     with pytest.raises(QgsProcessingException, match="none of the checkpoint files"):
         run("sealpreregistration", {"ARMS": str(arms), "CHECKPOINTS": [str(other)], "OUTPUT": str(rule)})
-    typed = run("sealpreregistration", {"CHECKPOINTS": [str(checkpoint)], "EDGE_BUFFER_PX": 4.0, "OUTPUT": str(rule),
+    typed = run("sealpreregistration", {"CHECKPOINTS": [str(checkpoint)], "EDGE_BUFFER_PX": 4.0, "CORE_COUNT": 1,
+                                        "OUTPUT": str(rule),
                                         "ARM_LINES": "max_f1: demo.onnx, 0.05, 0.20, 2, 0.20\n"
                                                      "max_recall: demo.onnx, 0.03, 0.15, 5, 0.35"})
     doc = json.loads(rule.read_text(encoding="utf-8"))
     assert typed["SEAL"] == doc["seal"]
     assert doc["rule"]["arms"][1]["operating_point"] == {"threshold": 0.03, "dedup_cm": 3.0, "eps_m": 0.15,
-                                                         "min_samples": 5, "eps_pred_m": 0.35, "edge_buffer_px": 4.0}
+                                                         "min_samples": 5, "eps_pred_m": 0.35, "edge_buffer_px": 4.0,
+                                                         "core_count": "cells"}
     with pytest.raises(QgsProcessingException, match="not both"):
         run("sealpreregistration", {"ARMS": str(arms), "ARM_LINES": "x: demo.onnx, 0.05, 0.2, 2, 0.2",
                                     "CHECKPOINTS": [str(checkpoint)], "OUTPUT": str(rule)})

@@ -10,15 +10,26 @@ alone, pooled with other flights, swept or screened.
 The chain (docs/design.md#workflow, step 6):
 
 1. **De-duplicate** on a fixed square grid of ``cell_m`` (default 3 cm): every occupied cell becomes
-   one point at the mean position of its detections. A burrow seen by 40 frames at the same spot gives a
-   few cells, not 40 points, which bounds the neighbourhood sizes DBSCAN meets.
+   one point at the mean position of its detections, carrying their number (``count``). A burrow seen by
+   40 frames at the same spot gives a few cells, not 40 points, which bounds the neighbourhood sizes
+   DBSCAN meets.
 2. **Cluster** the de-duplicated points with DBSCAN (``eps_m``, ``min_samples``; scikit-learn's
    DBSCAN rules, computed with scipy's connected components on a radius graph, so the plugin needs
-   no scikit-learn): a point is *core* when at least
-   ``min_samples`` de-duplicated points (itself included) lie within ``eps_m``; clusters are the
-   core points connected through ``eps_m`` plus the non-core points within ``eps_m`` of them;
-   the rest is noise (label −1). The radius graph is built once (:func:`neighbour_graph`) and can
-   serve every smaller ``eps`` and every ``min_samples`` of a sweep, with results identical to a
+   no scikit-learn). What the core test counts is ``core_count``:
+
+   - ``"detections"`` (the default): each cell weighs the number of its detections, as scikit-learn's
+     ``sample_weight``: a point is *core* when the detections of the cells within ``eps_m`` (its own
+     included) number at least ``min_samples``. De-duplication then only speeds DBSCAN up: a target
+     stands or falls by how many detections it got, wherever the grid lines cross it.
+   - ``"cells"`` (the method's literal reading): each cell is one point, so a point is core when at
+     least ``min_samples`` occupied cells lie within ``eps_m``. Forty detections in one cell are one
+     point, which never reaches ``min_samples`` 2 alone: a target seen tightly (refined poses put
+     every detection within millimetres) survives only when its detections straddle a grid line, so
+     better poses lower the recall. Kept to reproduce the method's figures.
+
+   Clusters are the core points connected through ``eps_m`` plus the non-core points within ``eps_m``
+   of them; the rest is noise (label −1). The radius graph is built once (:func:`neighbour_graph`) and
+   can serve every smaller ``eps`` and every ``min_samples`` of a sweep, with results identical to a
    fresh run, since distances are computed the same way and compared as ``d ≤ eps``.
 3. **Summarise** each cluster over its *detections* (a cluster's detections are those whose cell
    point is in the cluster): centroid (mean detection position), number of detections, number of
@@ -35,12 +46,18 @@ from ..errors import InputError
 from ..geometry.geodesy import LocalFrame
 
 #: Defaults for burrow-sized targets (a few cm) seen from 10–20 m with cm-level projection noise. ε and
-#: min_samples are the method's configuration (ε 0.20 m, min_samples 2, with eps_pred 0.20 m), so a
-#: default run is one the method reports; the help texts of clusterdetections/evaluatedetections say why
-#: they suit burrows.
+#: min_samples are the method's configuration (ε 0.20 m, min_samples 2, with eps_pred 0.20 m); with
+#: ``core_count="cells"`` a run is one the method reports. The help texts of
+#: clusterdetections/evaluatedetections say why they suit burrows.
 DEFAULT_DEDUP_CM = 3.0
 DEFAULT_EPS_M = 0.20
 DEFAULT_MIN_SAMPLES = 2
+#: What DBSCAN's core test counts in a de-duplicated cell (module docstring, step 2): its detections
+#: (the default), or the cell as one point (the method's literal reading).
+CORE_COUNT_DETECTIONS = "detections"
+CORE_COUNT_CELLS = "cells"
+CORE_COUNTS = (CORE_COUNT_DETECTIONS, CORE_COUNT_CELLS)
+DEFAULT_CORE_COUNT = CORE_COUNT_DETECTIONS
 #: Cluster polygons are the convex hull of the detections grown by this much (m), so a cluster of
 #: one or two cells still has an area on the map.
 HULL_BUFFER_M = 0.03
@@ -142,6 +159,19 @@ class Deduplicated:
     def __len__(self) -> int:
         return len(self.xy)
 
+    def weights(self, core_count: str) -> np.ndarray | None:
+        """What each cell weighs in DBSCAN's core test: its detections (``"detections"``), or None, one
+        point per cell (``"cells"``)."""
+        return self.count if check_core_count(core_count) == CORE_COUNT_DETECTIONS else None
+
+
+def check_core_count(core_count: str) -> str:
+    """``core_count`` if it is one of :data:`CORE_COUNTS`, else an InputError naming them."""
+    if core_count not in CORE_COUNTS:
+        raise InputError(f"'{core_count}' is not what core points count (expected one of {', '.join(CORE_COUNTS)})",
+                         field="CORE_COUNT")
+    return core_count
+
 
 def deduplicate(positions: GroundPositions, cell_m: float) -> Deduplicated:
     """Merge detections falling into the same ``cell_m`` square (m) of the fixed grid into one point."""
@@ -183,10 +213,15 @@ class NeighbourGraph:
             raise ValueError(f"graph built for {self.radius_m} m cannot answer eps {eps_m} m")
         return self.d <= eps_m
 
-    def degree(self, eps_m: float) -> np.ndarray:
-        """Number of points within ``eps_m`` of each point, the point itself included."""
+    def degree(self, eps_m: float, weight=None) -> np.ndarray:
+        """Number of points within ``eps_m`` of each point, the point itself included; with ``weight``
+        (n,), the summed weight of those points instead."""
         keep = self.within(eps_m)
-        return 1 + np.bincount(self.i[keep], minlength=self.n) + np.bincount(self.j[keep], minlength=self.n)
+        i, j = self.i[keep], self.j[keep]
+        if weight is None:
+            return 1 + np.bincount(i, minlength=self.n) + np.bincount(j, minlength=self.n)
+        weight = np.asarray(weight)
+        return weight + np.bincount(i, weight[j], self.n) + np.bincount(j, weight[i], self.n)
 
 
 def neighbour_graph(xy, radius_m: float) -> NeighbourGraph:
@@ -217,8 +252,13 @@ class Dbscan:
     n_clusters: int
 
 
-def dbscan(graph: NeighbourGraph, eps_m: float, min_samples: int) -> Dbscan:
+def dbscan(graph: NeighbourGraph, eps_m: float, min_samples: int, weight=None) -> Dbscan:
     """DBSCAN over a :class:`NeighbourGraph` (built for a radius ≥ eps_m), with scikit-learn's results.
+
+    A point is core when at least ``min_samples`` points lie within ``eps_m`` (itself included) or, with
+    ``weight`` (n,) — the detections of each cell, :meth:`Deduplicated.weights` — when their summed
+    weight reaches ``min_samples``: scikit-learn's ``sample_weight``, so a cell of ``min_samples``
+    detections is core on its own.
 
     Clusters are the connected components of the core points (core pairs within ``eps_m``), numbered in
     order of their first core point; a border point within ``eps_m`` of several clusters joins the
@@ -237,7 +277,7 @@ def dbscan(graph: NeighbourGraph, eps_m: float, min_samples: int) -> Dbscan:
         return Dbscan(np.empty(0, np.int64), np.empty(0, bool), 0)
     keep = graph.within(eps_m)
     i, j = graph.i[keep], graph.j[keep]
-    core = graph.degree(eps_m) >= min_samples
+    core = graph.degree(eps_m, weight) >= min_samples
     both = core[i] & core[j]
     n_parts, part = connected_components(coo_matrix((np.ones(int(both.sum()), np.int8), (i[both], j[both])),
                                                     shape=(n, n)), directed=False)
@@ -376,6 +416,7 @@ class Clustering:
     eps_m: float
     min_samples: int
     cell_m: float
+    core_count: str
 
     @property
     def n_clusters(self) -> int:
@@ -397,18 +438,21 @@ class Clustering:
 
 def cluster_detections(positions: GroundPositions, frame_id=None, score=None, dedup_cm: float = DEFAULT_DEDUP_CM,
                        eps_m: float = DEFAULT_EPS_M, min_samples: int = DEFAULT_MIN_SAMPLES,
-                       graph: NeighbourGraph | None = None, points: Deduplicated | None = None) -> Clustering:
-    """De-duplicate detections on the fixed ``dedup_cm`` grid, DBSCAN them, summarise the clusters.
+                       graph: NeighbourGraph | None = None, points: Deduplicated | None = None,
+                       core_count: str = DEFAULT_CORE_COUNT) -> Clustering:
+    """De-duplicate detections on the fixed ``dedup_cm`` grid, DBSCAN them (the core test counting
+    ``core_count``: detections or cells, module docstring), summarise the clusters.
 
     ``points`` and ``graph`` let a sweep pass the de-duplication and radius graph it already has.
     """
     xy = positions.xy
     cell_m = float(dedup_cm) / 100.0
     points = points if points is not None else deduplicate(positions, cell_m)
+    weight = points.weights(core_count)
     graph = graph if graph is not None else neighbour_graph(points.xy, eps_m)
-    result = dbscan(graph, eps_m, min_samples)
+    result = dbscan(graph, eps_m, min_samples, weight)
     summary = summarize_clusters(xy, result.labels[points.inverse], result.n_clusters, frame_id, score)
-    return Clustering(points, result, summary, float(eps_m), int(min_samples), cell_m)
+    return Clustering(points, result, summary, float(eps_m), int(min_samples), cell_m, core_count)
 
 
 def _as_xy(xy) -> np.ndarray:

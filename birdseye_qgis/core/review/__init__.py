@@ -11,7 +11,7 @@ physical spot is judged once whichever model fired there:
 
 * the detections of every layer are placed in the local metric frame of the flight
   (:func:`.scoring.local_frame_for`, the frame the scores use), pooled, de-duplicated on the
-  ``dedup_cm`` grid and DBSCAN-clustered (``eps_m``, ``min_samples``) with
+  ``dedup_cm`` grid and DBSCAN-clustered (``eps_m``, ``min_samples``, ``core_count``) with
   :func:`.clustering.cluster_detections` — the chain a single layer goes through. Each cluster of the
   union is one **review unit**; the record keeps which layers fired in it. Noise is no unit.
 * a unit's **position** is its core point (de-duplicated cell) nearest the mean of its detections:

@@ -9,6 +9,7 @@ from typing import Iterable, Mapping, Sequence
 
 import numpy as np
 
+from ..scoring.operating_point import RECORDED_WITHOUT_CORE_COUNT
 from ..scoring.verdicts import CONFIRMED, DIRECT, HARD_NEGATIVE, UNCERTAIN
 
 
@@ -100,7 +101,11 @@ def check_inputs(rows: Iterable[Mapping], current_digests: Mapping[str, str], cu
             elif digest != current_digests[iid]:
                 check.changed[iid] = check.changed.get(iid, 0) + 1
         for blob in ("postprocessing", "matching_parameters"):
-            for name, value in _json(row.get(blob)).items():
+            recorded = _json(row.get(blob))
+            if blob == "postprocessing" and recorded:
+                # Rows written before core_count was recorded were clustered counting cells.
+                recorded = {"core_count": RECORDED_WITHOUT_CORE_COUNT, **recorded}
+            for name, value in recorded.items():
                 recorded_params.setdefault(name, set()).add(json.dumps(value))
         if row["provenance"] == DIRECT and row["verdict"] in (CONFIRMED, HARD_NEGATIVE, UNCERTAIN):
             reviewed.add(row["unit_key"])

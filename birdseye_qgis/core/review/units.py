@@ -9,11 +9,13 @@ from typing import Sequence
 import numpy as np
 
 from ..detect.clustering import (
+    DEFAULT_CORE_COUNT,
     DEFAULT_DEDUP_CM,
     DEFAULT_EPS_M,
     DEFAULT_MIN_SAMPLES,
     Clustering,
     GroundPositions,
+    check_core_count,
     cluster_detections,
     dbscan,
     neighbour_graph,
@@ -24,7 +26,7 @@ from ..geometry.geodesy import LocalFrame
 from ..geometry.poses import FramePoses
 from ..scoring.evaluation import Detections
 from ..scoring.matching import in_view, match_to_clusters
-from ..scoring.operating_point import DEFAULT_EDGE_BUFFER_PX, DEFAULT_EPS_PRED_M
+from ..scoring.operating_point import DEFAULT_EDGE_BUFFER_PX, DEFAULT_EPS_PRED_M, OperatingPoint
 from ..scoring.pre_review import score_flight
 
 PROPAGATION_EPS_M = 0.20
@@ -38,7 +40,8 @@ METHOD_GROUP_PX = 30.0
 
 @dataclass(frozen=True)
 class ReviewParameters:
-    """Clustering of the union (post-processing) and matching parameters of a review."""
+    """Clustering of the union (post-processing; ``core_count``: what DBSCAN's core test counts,
+    :mod:`~..detect.clustering`) and matching parameters of a review."""
 
     dedup_cm: float = DEFAULT_DEDUP_CM
     eps_m: float = DEFAULT_EPS_M
@@ -47,8 +50,10 @@ class ReviewParameters:
     edge_buffer_px: float = DEFAULT_EDGE_BUFFER_PX
     units: str = CONSENSUS_UNITS
     group_px: float = METHOD_GROUP_PX
+    core_count: str = DEFAULT_CORE_COUNT
 
     def __post_init__(self):
+        check_core_count(self.core_count)
         if self.units not in UNIT_CONSTRUCTIONS:
             raise InputError(f"'{self.units}' is not a way to build review units (expected one of "
                              f"{', '.join(UNIT_CONSTRUCTIONS)})", field="units")
@@ -57,13 +62,21 @@ class ReviewParameters:
                              field="group_px")
 
     def postprocessing(self) -> dict:
-        """How detections became units (recorded with every verdict). Dedup, EPS and minimum points
-        also cluster each layer for its scores, so they are recorded with either construction."""
+        """How detections became units (recorded with every verdict). Dedup, EPS, minimum points and what
+        they count also cluster each layer for its scores, so they are recorded with either construction;
+        rows recorded without ``core_count`` counted cells
+        (:data:`~..scoring.operating_point.RECORDED_WITHOUT_CORE_COUNT`)."""
         out = {"dedup_cm": float(self.dedup_cm), "eps_m": float(self.eps_m),
-               "min_samples": int(self.min_samples), "threshold": None, "units": self.units}
+               "min_samples": int(self.min_samples), "core_count": self.core_count, "threshold": None,
+               "units": self.units}
         if self.units == METHOD_UNITS:
             out["group_px"] = float(self.group_px)
         return out
+
+    def operating_point(self) -> OperatingPoint:
+        """The operating point each reviewed layer is scored at (no threshold: the layers' own)."""
+        return OperatingPoint(None, self.dedup_cm, self.eps_m, self.min_samples, self.eps_pred_m, self.edge_buffer_px,
+                              self.core_count)
 
     def matching(self) -> dict:
         """How units meet geotags and each other (recorded with every verdict)."""
@@ -238,7 +251,7 @@ def build_consensus_units(layers: Sequence[ReviewLayer], local: LocalFrame, geot
     """Consensus units over the union of ``layers`` (see the package docstring)."""
     det = PooledDetections.of(layers, local)
     clustering = cluster_detections(det.positions, det.frame, det.score, params.dedup_cm, params.eps_m,
-                                    params.min_samples)
+                                    params.min_samples, core_count=params.core_count)
     n = clustering.n_clusters
     det_unit = clustering.detection_cluster
     # Position: the core cell nearest each cluster's mean detection position.

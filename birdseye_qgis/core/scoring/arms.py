@@ -17,11 +17,14 @@ The arms file (:func:`arms_document`)::
 
     {"schema": "birdseye-arms/1", "sweep": {source, flights, grid, credibility},
      "arms": [{"name", "rule", "checkpoint", "model_digest",
-               "operating_point": {threshold, dedup_cm, eps_m, min_samples, eps_pred_m, edge_buffer_px},
+               "operating_point": {threshold, dedup_cm, eps_m, min_samples, eps_pred_m, edge_buffer_px,
+                                   core_count},
                "scores": {recall_pre, gmcf_pre, f1_geo, detections_per_frame, n_clusters, ...},
                "sweep_row": int}, ...]}
 
-``sealpreregistration`` seals these arms as they are.
+``sealpreregistration`` seals these arms as they are. A sweep row without ``core_count`` (a sweep
+made before BirdsEye recorded it) counted cells, and its arm says so
+(:data:`.operating_point.RECORDED_WITHOUT_CORE_COUNT`).
 """
 from __future__ import annotations
 
@@ -43,6 +46,8 @@ RULES = {
 }
 
 _OPERATING_POINT_KEYS = ("threshold", "dedup_cm", "eps_m", "min_samples", "eps_pred_m", "edge_buffer_px")
+#: Read when present; older sweep tables lack it (OperatingPoint.from_dict reads that as cells).
+_RECORDED_SINCE = ("core_count",)
 _SCORE_KEYS = ("recall_pre", "gmcf_pre", "f1_geo", "detections_per_frame")
 _REPORTED = _SCORE_KEYS + ("n_in_view", "n_recovered", "n_clusters", "n_hit_clusters", "n_frames", "n_detections")
 
@@ -94,7 +99,8 @@ def _arm(rule: str, description: str, row: Mapping, index: int, source: str) -> 
     missing = [k for k in _OPERATING_POINT_KEYS if k not in row]
     if missing:
         raise InputError(f"lacks {', '.join(missing)} of its operating point", source=source, row=index + 1)
-    op = OperatingPoint.from_dict({k: row[k] for k in _OPERATING_POINT_KEYS}, source=f"{source}, row {index + 1}")
+    op = OperatingPoint.from_dict({k: row[k] for k in _OPERATING_POINT_KEYS + _RECORDED_SINCE if k in row},
+                                  source=f"{source}, row {index + 1}")
     return {"name": rule, "rule": description, "checkpoint": row["checkpoint"], "model_digest": row["model_digest"],
             "operating_point": op.to_dict(), "scores": {k: row.get(k) for k in _REPORTED}, "sweep_row": index + 1}
 

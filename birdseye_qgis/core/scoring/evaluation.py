@@ -16,6 +16,7 @@ from .matching import InView, in_view
 from .operating_point import OperatingPoint
 from .post_review import ReviewedFlight, countable_added_targets, post_scores
 from .pre_review import FlightScore, PreCounts, pool, score_flight
+from .transfer import SurveyDensity
 from .verdicts import VerdictLog, units_of_clusters
 
 
@@ -82,16 +83,22 @@ class Evaluation:
     post: dict | None = None
     review_notes: list = field(default_factory=list)
 
+    @property
+    def survey_density(self) -> SurveyDensity:
+        """In-view geotags per processed frame over every flight's frames (:mod:`.transfer`)."""
+        return SurveyDensity.of(f.in_view.per_frame for f in self.flights)
+
     def to_dict(self) -> dict:
         """The JSON of evaluatedetections: pooled keys at the top, per-flight rows, the POST block."""
         out = dict(self.pooled.to_dict())
         out["parameters"] = self.op.to_dict()
         out["pooling"] = "micro-average over flights (sums of counts, one division)"
+        out["survey_density"] = self.survey_density.to_dict()
         out["flights"] = []
         for i, f in enumerate(self.flights):
             row = {"name": f.name, "n_detections": int(f.n_detections), "n_frames": int(f.in_view.n_frames),
                    "n_frames_without_ground": int(f.in_view.n_frames_without_ground),
-                   "ground": asdict(f.ground)}
+                   "ground": asdict(f.ground), "survey_density": SurveyDensity.of([f.in_view.per_frame]).to_dict()}
             row.update(f.score.counts.to_dict())
             if self.post is not None:
                 row["post"] = {conv: p.flights[i].to_dict() for conv, p in self.post.items()}
@@ -148,7 +155,7 @@ def evaluate_flights(flights: Sequence[Flight], geotags: Geotags, op: OperatingP
         keep = np.ones(len(det), dtype=bool) if op.threshold is None else det.score >= op.threshold
         positions = det.ground_positions(local).subset(keep)
         clustering = cluster_detections(positions, det.frame_id[keep], det.score[keep], op.dedup_cm, op.eps_m,
-                                        op.min_samples)
+                                        op.min_samples, core_count=op.core_count)
         view = in_view(flight.pose_groups, local, geotag_local, op.edge_buffer_px, flight.ground)
         score = score_flight(clustering, geotag_local[:, :2], view.mask, op.eps_pred_m)
         ev = FlightEvaluation(flight.name or det.name, clustering, score, view, int(keep.sum()), ground=det.ground)

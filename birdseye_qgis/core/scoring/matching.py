@@ -16,11 +16,14 @@ from ..geometry.projection import project_in_view
 @dataclass
 class InView:
     """``mask`` (G,) True for points in view of at least one processed frame; frame counts
-    (``n_frames_without_ground``: frames left out for want of the ground height their ground model needs)."""
+    (``n_frames_without_ground``: frames left out for want of the ground height their ground model needs);
+    ``per_frame`` (n_frames,) how many of the points each processed frame sees (pose-group order): with
+    the geotags as points, the survey density (:mod:`.transfer`)."""
 
     mask: np.ndarray
     n_frames: int
     n_frames_without_ground: int
+    per_frame: np.ndarray
 
 
 def in_view(pose_groups: Sequence[FramePoses], local: LocalFrame, points, edge_buffer_px: float = 0.0,
@@ -37,6 +40,7 @@ def in_view(pose_groups: Sequence[FramePoses], local: LocalFrame, points, edge_b
     points = np.asarray(points, dtype=float).reshape(-1, 3)
     mask = np.zeros(len(points), dtype=bool)
     n_frames = n_skipped = 0
+    per_frame = []
     for g, poses in enumerate(pose_groups):
         check_cancel(is_canceled)
         placeable = placeable_frames(poses, ground)
@@ -44,15 +48,20 @@ def in_view(pose_groups: Sequence[FramePoses], local: LocalFrame, points, edge_b
         if not placeable.all():
             poses = poses.subset(np.flatnonzero(placeable))
         n_frames += len(poses)
+        seen = np.zeros(len(poses), dtype=np.int64)
         if len(poses) and len(points):
             geom = FrameGeometry(poses, local)
             model = (ground or LevelPlaneGround)(geom)
             proj = project_in_view(geom, points, model, edge_buffer_px)
             hidden = model.occluded(proj.frame_idx, model.place(proj.frame_idx, points[proj.point_idx]))
             mask[proj.point_idx[~hidden]] = True
+            pairs = np.unique(proj.frame_idx[~hidden] * len(points) + proj.point_idx[~hidden])
+            seen = np.bincount(pairs // len(points), minlength=len(poses))
+        per_frame.append(seen)
         if progress is not None:
             progress((g + 1) / len(pose_groups))
-    return InView(mask, n_frames, n_skipped)
+    return InView(mask, n_frames, n_skipped,
+                  np.concatenate(per_frame) if per_frame else np.empty(0, dtype=np.int64))
 
 @dataclass
 class Matches:

@@ -17,7 +17,7 @@ The sealed document (one JSON file)::
     {"schema": "birdseye-preregistration/1",
      "rule": {"arms": [{"name": str, "checkpoint": str, "model_digest": sha256 hex,
                         "operating_point": {threshold, dedup_cm, eps_m, min_samples, eps_pred_m,
-                                            edge_buffer_px}}, ...],
+                                            edge_buffer_px, core_count}}, ...],
               "descriptive": [...], "note": str},
      "model_digests": [sorted sha256 hex of every arm's checkpoint],
      "sealed_at": "YYYY-MM-DDTHH:MM:SSZ",
@@ -27,6 +27,11 @@ The sealed document (one JSON file)::
 :func:`canonical_json` is UTF-8 JSON with sorted keys, no insignificant whitespace, no NaN, and
 floats in Python's shortest round-trip form. Changing any byte of what the seal covers — or the seal
 itself — makes :func:`verify` refuse the document.
+
+A rule sealed before BirdsEye recorded ``core_count`` has none in its operating points. It verifies
+as it was sealed (nothing in it is rewritten) and is scored as it was computed, counting cells
+(:data:`.operating_point.RECORDED_WITHOUT_CORE_COUNT`): reading the absent key as today's default would
+score the arm at an operating point nobody sealed.
 
 The seal shows that the rule was not edited after it was sealed *provided its hex value was recorded
 somewhere the analyst cannot rewrite* (an e-mail, a lab notebook, a commit): a hash is not a
@@ -42,6 +47,7 @@ from datetime import datetime, timezone
 from pathlib import Path
 from typing import Mapping
 
+from ..detect.clustering import DEFAULT_CORE_COUNT
 from ..errors import InputError
 from .operating_point import OperatingPoint
 from .sweep import THRESHOLD_TOLERANCE
@@ -118,10 +124,10 @@ ARM_LINE_FIELDS = ("checkpoint", "threshold", "eps_m", "min_samples", "eps_pred_
 
 
 def parse_arm_lines(text: str, checkpoint_digests: Mapping[str, str], dedup_cm: float,
-                    edge_buffer_px: float) -> list[dict]:
+                    edge_buffer_px: float, core_count: str = DEFAULT_CORE_COUNT) -> list[dict]:
     """Arms typed one per line, ``name: checkpoint, threshold, eps_m, min_samples, eps_pred_m`` (the
-    checkpoint by file name among ``checkpoint_digests``; DEDUP_CM and EDGE_BUFFER_PX shared by every
-    arm). Blank lines and lines starting with # are skipped."""
+    checkpoint by file name among ``checkpoint_digests``; DEDUP_CM, EDGE_BUFFER_PX and CORE_COUNT shared
+    by every arm). Blank lines and lines starting with # are skipped."""
     arms = []
     for row, line in enumerate((text or "").splitlines(), start=1):
         line = line.strip()
@@ -143,7 +149,7 @@ def parse_arm_lines(text: str, checkpoint_digests: Mapping[str, str], dedup_cm: 
                              row=row, field="ARM_LINES") from exc
         if min_samples != int(min_samples):
             raise InputError(f"'{line}': min_samples must be a whole number", row=row, field="ARM_LINES")
-        op = OperatingPoint(threshold, dedup_cm, eps_m, int(min_samples), eps_pred_m, edge_buffer_px)
+        op = OperatingPoint(threshold, dedup_cm, eps_m, int(min_samples), eps_pred_m, edge_buffer_px, core_count)
         arms.append(make_arm(checkpoint, checkpoint_digests[checkpoint], op, name.strip()))
     if not arms:
         raise InputError("holds no arm line", field="ARM_LINES")

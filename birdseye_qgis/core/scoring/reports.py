@@ -7,9 +7,11 @@ from typing import Iterable, Sequence
 import numpy as np
 
 from .evaluation import Evaluation
+from .operating_point import OperatingPoint
 from .post_review import POINT_VALUE_ASSUMPTIONS
 from .screening import CheckpointScreen
 from .sweep import SweepResult
+from .transfer import SurveyDensity, TransferReport
 
 
 def figure_data_uri(fig) -> str:
@@ -59,6 +61,27 @@ def html_page(title: str, body: str) -> str:
             f"<style>{style}</style></head><body><h1>{html.escape(title)}</h1>{body}</body></html>")
 
 
+#: What the survey density is and why it stands beside GMCF (evaluation and screening reports).
+SURVEY_DENSITY_NOTE = ("Survey density: the geotags in view of each processed frame, summarised over the frames "
+                       "(p10–p90: the 10th and 90th percentiles). A cluster is a hit only where the survey put a "
+                       "geotag: where fewer of the real targets were surveyed, more clusters go unmatched and GMCF "
+                       "falls with the detector unchanged, so GMCF compares across sites only with their densities.")
+
+
+def survey_density_html(densities) -> str:
+    """A table of survey densities: ``densities`` maps a flight's name (or "pooled") to its
+    :class:`~.transfer.SurveyDensity`."""
+    def span(low, high):
+        return None if low is None else f"{low:.1f}–{high:.1f}"
+
+    rows = [[name, d.n_frames, d.mean, d.median, span(d.p10, d.p90), None if d.min is None else f"{d.min}–{d.max}",
+             None if d.frames_without_geotag is None else f"{d.frames_without_geotag:.0%}"]
+            for name, d in densities.items()]
+    return (html_table(["flight", "frames", "geotags per frame (mean)", "median", "p10–p90", "min–max",
+                        "frames without a geotag"], rows)
+            + f"<p class='note'>{SURVEY_DENSITY_NOTE}</p>")
+
+
 def evaluation_report_html(evaluation: Evaluation) -> str:
     """The map-free HTML report of evaluatedetections: definitions, tables and plots."""
     import html
@@ -75,8 +98,10 @@ def evaluation_report_html(evaluation: Evaluation) -> str:
             "<p class='note'>recall_pre = recovered / in view. gmcf_pre = hit clusters / clusters: the "
             "geotag-matched cluster fraction, a lower bound on precision, not precision (surveys are never "
             "exhaustive). Flights pool by micro-averaging: counts are summed, then divided once.</p>"]
-    op = evaluation.op.to_dict()
-    body.append("<p class='note'>" + ", ".join(f"{k} = {v}" for k, v in op.items() if v is not None) + "</p>")
+    body.append(operating_point_note(evaluation.op))
+    densities = {f.name: SurveyDensity.of([f.in_view.per_frame]) for f in evaluation.flights}
+    densities["pooled"] = evaluation.survey_density
+    body += ["<h2>Survey density</h2>", survey_density_html(densities)]
     if evaluation.post is not None:
         post_rows = [[conv, p["c"], p["a"], p["gmcf_post"], p["recall_post"]] for conv, p in d["post"].items()]
         body += ["<h2>After review</h2>",
@@ -116,6 +141,55 @@ def evaluation_report_html(evaluation: Evaluation) -> str:
     axes[1].set_title("Cluster sizes", fontsize=10)
     body.append(f"<img alt='scores and cluster sizes' src='{figure_data_uri(fig)}'>")
     return html_page("BirdsEye — detection scores", "".join(body))
+
+
+def operating_point_note(op: OperatingPoint) -> str:
+    """The operating point as a note under a report's tables."""
+    return "<p class='note'>" + ", ".join(f"{k} = {v}" for k, v in op.to_dict().items() if v is not None) + "</p>"
+
+
+def _screen_table(screens: Sequence[CheckpointScreen]) -> str:
+    rows = [[s.checkpoint, "yes" if s.healthy else "no", s.counts.recall_pre, s.counts.gmcf_pre, s.f1_geo,
+             s.detections_per_frame, s.review_load, s.f1_pixel] for s in screens]
+    return html_table(["checkpoint", "healthy", "recall_pre", "gmcf_pre", "f1_geo", "detections per frame",
+                       "review load", "pixel F1"], rows)
+
+
+def screening_report_html(op: OperatingPoint, screens: Sequence[CheckpointScreen], densities,
+                          heldout: Sequence[CheckpointScreen] | None = None, heldout_densities=None,
+                          transfer: TransferReport | None = None) -> str:
+    """The HTML report of screencheckpoints: the checkpoints on the validation flights and their survey
+    density; with held-out flights, the same there and the transfer (:mod:`.transfer`)."""
+    import html
+
+    body = ["<h2>Validation flights</h2>", _screen_table(screens),
+            "<p class='note'>Pooled over every block of every flight by micro-averaging. f1_geo = 2·recall·GMCF / "
+            "(recall + GMCF); review load = detections per frame / the lightest healthy checkpoint's; pixel F1 is "
+            "for choosing checkpoints only, never a field score. Healthy: neither collapsed nor too sparse.</p>",
+            "<h3>Survey density</h3>", survey_density_html(densities)]
+    if heldout is not None:
+        body += ["<h2>Held-out flights</h2>", _screen_table(heldout), "<h3>Survey density</h3>",
+                 survey_density_html(heldout_densities)]
+    if transfer is not None:
+        rows = [[t.checkpoint, "yes" if t.healthy_on_validation else "no", t.validation.recall_pre,
+                 t.heldout.recall_pre, t.delta_recall, t.validation.gmcf_pre, t.heldout.gmcf_pre, t.delta_gmcf]
+                for t in transfer.checkpoints]
+        ranks = []
+        for figure, rank in (("recall", transfer.recall), ("GMCF", transfer.gmcf)):
+            value = html.escape(rank.note) if rank.rho is None else f"ρ = {rank.rho:.3f} over {rank.n} checkpoints"
+            ranks.append(f"<li>Spearman's rank correlation of {figure}, validation vs held-out: {value}</li>")
+        body += ["<h2>Validation → held-out</h2>",
+                 html_table(["checkpoint", "healthy (validation)", "recall validation", "recall held-out", "ΔRecall",
+                             "GMCF validation", "GMCF held-out", "ΔGMCF"], rows),
+                 "<ul>" + "".join(ranks) + "</ul>",
+                 "<p class='note'>Δ = held-out − validation. Spearman's ρ is taken over the checkpoints healthy on the "
+                 "validation flights (tied figures share their average rank): near 1, the validation ranking of the "
+                 "checkpoints holds on the held-out flights; near 0 or below, it does not. GMCF depends on how "
+                 "densely each site was surveyed (the survey densities above), so a GMCF that changes, or a "
+                 "ranking that does not hold, says as much about the surveys as about the checkpoints.</p>"]
+    body.append(operating_point_note(op))
+    body.append(f"<img alt='checkpoints on the validation flights' src='{figure_data_uri(screen_figure(screens))}'>")
+    return html_page("BirdsEye — checkpoint screening", "".join(body))
 
 
 def frontier_figure(points, title: str):
@@ -190,6 +264,5 @@ def comparison_report_html(comparison) -> str:
             "<p class='note'>Targets: each in-view geotag by whether each detector recovered it. False clusters: "
             "clusters no in-view geotag matches; two clusters are the same spot when a core point of one lies "
             "within EPS_PRED of a core point of the other. The change layer shows each on the map.</p>",
-            "<p class='note'>" + ", ".join(f"{k} = {v}" for k, v in d["parameters"].items() if v is not None)
-            + "</p>"]
+            operating_point_note(comparison.before.op)]
     return html_page("BirdsEye — detectors compared", "".join(body))

@@ -190,7 +190,8 @@ def screen_checkpoints(runs: Sequence[ScreenRun], op: OperatingPoint = Operating
         counts, tp, n_det, n_lab, n_frames = PreCounts(), 0, 0, 0, 0
         per_frame = {}
         for r in mine:
-            clustering = cluster_detections(r.positions, r.frame_id, None, op.dedup_cm, op.eps_m, op.min_samples)
+            clustering = cluster_detections(r.positions, r.frame_id, None, op.dedup_cm, op.eps_m, op.min_samples,
+                                            core_count=op.core_count)
             g = np.asarray(r.geotag_xy, dtype=float).reshape(-1, 2)
             counts = counts + score_flight(clustering, g, np.ones(len(g), dtype=bool), op.eps_pred_m).counts
             tp += pixel_matches(r.frame_id, r.uv, r.label_frame_id, r.label_uv, radius_px)

@@ -7,10 +7,19 @@ of the smoothed heatmap above its threshold, so a blob whose humps meet between 
 detection at the lower and two at the higher, and each blob's centroid is weighted by (value − t).
 
 **The default grid** (:data:`METHOD_GRID`) holds every operating point the method reports — thresholds
-0.03 to 0.12, EPS 0.10, 0.15 and 0.20 m, MIN_SAMPLES 2, 5, 10 and 20, EPS_PRED 0.20 and 0.35 m — and has
-the method's size, 14,400 = 10 thresholds (0.03 … 0.12 in steps of 0.01) × 12 EPS (0.025 … 0.30 m in
-steps of 0.025 m) × 12 MIN_SAMPLES (1 … 10, 15, 20) × 10 EPS_PRED (0.05 … 0.50 m in steps of 0.05 m).
-The method names those values and the total; the axis values in between are ours, in equal steps.
+0.03 to 0.12 and 0.035 (the threshold of its "lowest review burden" arm), EPS 0.10, 0.15 and 0.20 m,
+MIN_SAMPLES 2, 5, 10 and 20, EPS_PRED 0.20 and 0.35 m — and has the method's size, 14,400 per checkpoint
+= 12 thresholds (0.03, 0.035, 0.04, 0.045, 0.05, then 0.06 … 0.12 in steps of 0.01) × 10 EPS (0.025 …
+0.25 m in steps of 0.025 m) × 12 MIN_SAMPLES (1 … 10, 15, 20) × 10 EPS_PRED (0.05 … 0.50 m in steps of
+0.05 m). The method names those values and the total; the values in between are ours. Half steps of the
+threshold below 0.05: that is where the method's arms lie and where detections per frame (the review
+burden) change fastest with the threshold. The two extra thresholds are paid for by the EPS axis, which
+stops one step (0.05 m) above the largest EPS the method reports (0.20 m): beyond it a cluster spans
+neighbouring burrows, which the credibility filter rejects anyway.
+
+**What DBSCAN counts** (``core_count``, :mod:`~..detect.clustering`) is one value per sweep, like the
+de-duplication cell, recorded in every row; each (flight, threshold) weighs its cells once and every
+(EPS, MIN_SAMPLES) of the grid reuses those weights with the one radius graph.
 """
 from __future__ import annotations
 
@@ -21,8 +30,10 @@ from typing import Mapping, Sequence
 import numpy as np
 
 from ..detect.clustering import (
+    DEFAULT_CORE_COUNT,
     DEFAULT_DEDUP_CM,
     GroundPositions,
+    check_core_count,
     cluster_centroids_and_extents,
     dbscan,
     deduplicate,
@@ -38,8 +49,8 @@ DEFAULT_MAX_MEAN_EXTENT_M = 1.0
 
 #: The default grid: axis name → values (see the module docstring).
 METHOD_GRID = {
-    "thresholds": tuple(round(0.03 + 0.01 * i, 2) for i in range(10)),
-    "eps_m": tuple(round(0.025 * i, 3) for i in range(1, 13)),
+    "thresholds": (0.03, 0.035, 0.04, 0.045) + tuple(round(0.05 + 0.01 * i, 2) for i in range(8)),
+    "eps_m": tuple(round(0.025 * i, 3) for i in range(1, 11)),
     "min_samples": (1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 15, 20),
     "eps_pred_m": tuple(round(0.05 * i, 2) for i in range(1, 11)),
 }
@@ -80,6 +91,7 @@ class SweepGrid:
     min_samples: np.ndarray
     eps_pred_m: np.ndarray
     dedup_cm: float = DEFAULT_DEDUP_CM
+    core_count: str = DEFAULT_CORE_COUNT
 
     def __post_init__(self):
         def clean(values, name, integer=False):
@@ -98,6 +110,7 @@ class SweepGrid:
         self.eps_m = clean(self.eps_m, "EPS_M")
         self.min_samples = clean(self.min_samples, "MIN_SAMPLES", integer=True)
         self.eps_pred_m = clean(self.eps_pred_m, "EPS_PRED_M")
+        check_core_count(self.core_count)
 
     @property
     def shape(self) -> tuple:
@@ -200,6 +213,7 @@ class SweepResult:
                     x = None
                 row[k] = x
             row["dedup_cm"] = float(self.grid.dedup_cm)
+            row["core_count"] = self.grid.core_count
             out.append(row)
         return out
 
@@ -303,8 +317,9 @@ def sweep(flights: Sequence[SweepFlight], grid: SweepGrid,
           max_mean_extent_m: float = DEFAULT_MAX_MEAN_EXTENT_M, progress=None, is_canceled=None) -> SweepResult:
     """Pooled PRE counts per checkpoint over threshold × eps × min_samples × eps_pred, reusing work.
 
-    Per flight and threshold the detections are de-duplicated once and one radius graph is built at
-    the largest eps; per (eps, min_samples) DBSCAN runs once on that graph; every eps_pred is then
+    Per flight and threshold the detections are de-duplicated once (the cells' weights of
+    ``grid.core_count`` with them) and one radius graph is built at the largest eps; per (eps,
+    min_samples) DBSCAN runs once on that graph; every eps_pred is then
     scored from one k-d tree query at the largest eps_pred. Identical to running
     :func:`~.clustering.cluster_detections` + :func:`score_flight` per configuration.
     """
@@ -325,11 +340,12 @@ def sweep(flights: Sequence[SweepFlight], grid: SweepGrid,
                 xy = positions.xy
                 counts["n_detections"][ci, ti] += len(xy)
                 points = deduplicate(positions, grid.dedup_cm / 100.0)
+                weight = points.weights(grid.core_count)
                 graph = neighbour_graph(points.xy, eps_max)
                 for ei, eps in enumerate(grid.eps_m):
                     for mi, m in enumerate(grid.min_samples):
                         check_cancel(is_canceled)
-                        result = dbscan(graph, eps, int(m))
+                        result = dbscan(graph, eps, int(m), weight)
                         nc = result.n_clusters
                         _, extent = cluster_centroids_and_extents(xy, result.labels[points.inverse], nc)
                         counts["n_clusters"][ci, ti, ei, mi, :] += nc

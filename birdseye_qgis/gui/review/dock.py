@@ -36,7 +36,7 @@ from ...core.review.digests import InputCheck, check_inputs
 from ...core.review.navigation import Entries, display_verdict
 from ...core.review.units import ADDED_PREFIX, CONSENSUS_UNITS, ReviewParameters, ReviewUnits, build_units
 from ...core.scoring.evaluation import Flight
-from ...core.scoring.operating_point import OperatingPoint
+from ...core.scoring.operating_point import RECORDED_WITHOUT_CORE_COUNT, OperatingPoint
 from ...qgis_io.layer_kinds import DETECTIONS, FRAMES, GEOTAGS, layers_of_kind, most_recent, other_layers
 from ...qgis_io.review_project import save_propagate, save_review, saved_review
 from ...qgis_io.review_store import ReviewSession, RowMeta, default_store_path, open_store, read_review_inputs
@@ -194,7 +194,8 @@ class ReviewDock(QgsDockWidget):
 
     def _read_params(self) -> ReviewParameters:
         return ReviewParameters(self.dedup_spin.value(), self.eps_spin.value(), self.min_samples_spin.value(),
-                                   self.eps_pred_spin.value(), self.edge_spin.value(), self.units_combo.currentData())
+                                self.eps_pred_spin.value(), self.edge_spin.value(), self.units_combo.currentData(),
+                                core_count=self.core_count_combo.currentData())
 
     # ------------------------------------------------------------------ start / resume
     def start_review(self) -> bool:
@@ -326,6 +327,8 @@ class ReviewDock(QgsDockWidget):
             if name in saved.parameters:
                 spin.setValue(saved.parameters[name])
         self._set_combo(self.units_combo, saved.parameters.get("units", CONSENSUS_UNITS))
+        # A review saved before core_count was recorded built its units counting cells: reopen it as it was.
+        self._set_combo(self.core_count_combo, saved.parameters.get("core_count", RECORDED_WITHOUT_CORE_COUNT))
         self.propagate_check.setChecked(saved.propagate)
         self.set_inputs(saved.detection_layers, saved.frame_layer, saved.geotag_layer, saved.store_path)
         self.start_review()
@@ -602,8 +605,7 @@ class ReviewDock(QgsDockWidget):
         self._score_timer.start(SCORE_DELAY_MS)
 
     def operating_point(self) -> OperatingPoint:
-        p = self.params
-        return OperatingPoint(None, p.dedup_cm, p.eps_m, p.min_samples, p.eps_pred_m, p.edge_buffer_px)
+        return self.params.operating_point()
 
     def _start_scores(self):
         if self.session is None:

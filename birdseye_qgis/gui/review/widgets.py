@@ -35,7 +35,7 @@ from qgis.PyQt.QtWidgets import (
 )
 
 from ...__about__ import tr
-from ...core.detect.clustering import DEFAULT_DEDUP_CM
+from ...core.detect.clustering import CORE_COUNT_CELLS, CORE_COUNT_DETECTIONS, DEFAULT_DEDUP_CM
 from ...core.review.chips import DEFAULT_WINDOW_PX, GEOTAG_COLOUR, LAYER_COLOURS
 from ...core.review.units import CONSENSUS_UNITS, METHOD_UNITS, PROPAGATION_EPS_M, PROPAGATION_RULE
 from ...core.scoring.verdicts import CONVENTIONS
@@ -258,6 +258,14 @@ def build_setup_box(dock):
     dock.min_samples_spin.setValue(dock.params.min_samples)
     dock.min_samples_spin.setClearValue(dock.params.min_samples)
     dock.min_samples_spin.setToolTip(tr("DBSCAN minimum points per neighbourhood (itself included)."))
+    dock.core_count_combo = QComboBox()
+    dock.core_count_combo.addItem(tr("Detections"), CORE_COUNT_DETECTIONS)
+    dock.core_count_combo.addItem(tr("Cells (the method's)"), CORE_COUNT_CELLS)
+    dock.core_count_combo.setCurrentIndex(dock.core_count_combo.findData(dock.params.core_count))
+    dock.core_count_combo.setToolTip(tr("What the minimum points count, as in Cluster detections: the detections "
+                                        "in the grid cells within EPS (the default), or the occupied cells, one "
+                                        "point each (the method's: a spot whose detections all fall in one cell "
+                                        "never forms a unit)."))
     dock.eps_pred_spin = spin_box(0.001, 50.0, dock.params.eps_pred_m, 3, " m",
                                       "Match radius geotag ↔ cluster core points (EPS_PRED).")
     dock.edge_spin = spin_box(0.0, 1000.0, dock.params.edge_buffer_px, 1, " px",
@@ -278,7 +286,8 @@ def build_setup_box(dock):
     dock.scale_spin.setToolTip(tr("Map scale the canvas zooms to around each unit."))
     for label, widget in ((tr("Review units"), dock.units_combo), (tr("Grid cell"), dock.dedup_spin),
                           (tr("EPS"), dock.eps_spin),
-                          (tr("Min. points"), dock.min_samples_spin), (tr("EPS_PRED"), dock.eps_pred_spin),
+                          (tr("Min. points"), dock.min_samples_spin), (tr("Points count"), dock.core_count_combo),
+                          (tr("EPS_PRED"), dock.eps_pred_spin),
                           (tr("Edge buffer"), dock.edge_spin), (tr("Chip window"), dock.window_spin),
                           (tr("Map scale"), dock.scale_spin)):
         pform.addRow(label, widget)

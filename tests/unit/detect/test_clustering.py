@@ -74,13 +74,88 @@ def test_isolated_and_sparse_points_are_noise():
     assert not c.dbscan.core.any()
 
 
-def test_min_samples_counts_distinct_cells_not_repeated_detections():
-    """Twenty detections in one 3 cm cell are one de-duplicated point: never a cluster at min_samples 3."""
+def test_the_methods_cells_reading_counts_each_occupied_cell_once():
+    """Twenty detections in one 3 cm cell are one de-duplicated point: under the method's reading
+    (core_count "cells") never a cluster at min_samples 3."""
     xy = np.full((20, 2), 0.005) + np.linspace(0, 0.02, 20)[:, None]
-    c = cluster_detections(on_ground(xy), np.arange(20), None, dedup_cm=3, eps_m=0.10, min_samples=3)
+    c = cluster_detections(on_ground(xy), np.arange(20), None, dedup_cm=3, eps_m=0.10, min_samples=3,
+                           core_count="cells")
     assert len(c.points) == 1 and c.n_clusters == 0
-    c1 = cluster_detections(on_ground(xy), np.arange(20), None, dedup_cm=3, eps_m=0.10, min_samples=1)
+    c1 = cluster_detections(on_ground(xy), np.arange(20), None, dedup_cm=3, eps_m=0.10, min_samples=1,
+                            core_count="cells")
     assert c1.n_clusters == 1 and c1.summary.n_detections[0] == 20 and c1.summary.n_frames[0] == 20
+
+
+def test_by_default_the_core_test_counts_the_detections_of_each_cell():
+    """The same twenty detections in one cell weigh 20: a cluster at min_samples 3 (and 20), noise at 21."""
+    xy = np.full((20, 2), 0.005) + np.linspace(0, 0.02, 20)[:, None]
+    for m, clusters in ((3, 1), (20, 1), (21, 0)):
+        c = cluster_detections(on_ground(xy), np.arange(20), None, dedup_cm=3, eps_m=0.10, min_samples=m)
+        assert len(c.points) == 1 and c.n_clusters == clusters and c.core_count == "detections"
+    # Two cells 5 cm apart with 1 and 2 detections: 3 detections within eps of each, no cell holds 3 alone.
+    xy = np.array([[0.005, 0.005], [0.055, 0.005], [0.056, 0.006]])
+    c = cluster_detections(on_ground(xy), None, None, dedup_cm=3, eps_m=0.06, min_samples=3)
+    np.testing.assert_array_equal(c.points.count, [1, 2])
+    assert c.n_clusters == 1 and c.dbscan.core.all()
+    assert cluster_detections(on_ground(xy), None, None, dedup_cm=3, eps_m=0.04, min_samples=3).n_clusters == 0
+
+
+def test_weighted_graph_degree_sums_the_weights_within_eps():
+    xy = np.array([[0, 0], [0.05, 0], [0.15, 0], [1, 1]], dtype=float)
+    g = neighbour_graph(xy, 0.2)
+    w = np.array([4, 1, 2, 7])
+    np.testing.assert_array_equal(g.degree(0.2, w), [7, 7, 7, 7])
+    np.testing.assert_array_equal(g.degree(0.1, w), [5, 7, 3, 7])
+
+
+def tight_targets(seed=30, n_targets=30, sigma_m=0.003, cell_m=0.03):
+    """Hand-made detections of refined poses: ``n_targets`` targets 1 m apart, each detected 2 to 40
+    times with a 3 mm scatter. A third sit on a crossing of two grid lines, a third on one grid line, a
+    third in the middle of a cell (their detections all fall in one cell). Returns detections (N, 2),
+    the target of each, the targets (T, 2), in the local frame CORNER at a corner of the fixed grid."""
+    rng = np.random.default_rng(seed)
+    row, col = np.divmod(np.arange(n_targets), 6)
+    base = np.column_stack([col, row]).astype(float) * 1.0 + 0.3
+    base = np.round(base / cell_m) * cell_m                     # on a crossing of grid lines
+    kind = np.arange(n_targets) % 3
+    offset = np.where(kind[:, None] == 0, 0.0, np.where(kind[:, None] == 1, [0.0, 0.5 * cell_m], 0.5 * cell_m))
+    targets = base + offset
+    n = rng.integers(2, 41, n_targets)
+    owner = np.repeat(np.arange(n_targets), n)
+    return targets[owner] + rng.normal(0, sigma_m, (len(owner), 2)), owner, targets
+
+
+def test_tightly_localised_detections_recover_every_target_by_default_and_straddling_decides_under_cells():
+    """The reviewer's reproduction: 3 mm scatter, min_samples 2, EPS 0.20 m, EPS_PRED 0.20 m. Counting
+    detections recovers every target (each has ≥ 2 detections); counting cells recovers exactly the targets
+    whose detections straddle a grid line (≥ 2 occupied cells), derived here from the grid cells alone."""
+    from birdseye.birdseye_qgis.core.scoring.pre_review import score_flight
+
+    xy, owner, targets = tight_targets()
+    positions = on_ground(xy)
+    everywhere = np.ones(len(targets), dtype=bool)
+    default = cluster_detections(positions, None, None)
+    score = score_flight(default, targets, everywhere, 0.20)
+    assert score.counts.recall_pre == 1.0 and default.n_clusters == len(targets)
+    assert score.counts.gmcf_pre == 1.0
+    np.testing.assert_array_equal(np.sort(default.summary.n_detections), np.sort(np.bincount(owner)))
+
+    cells = fixed_grid_cells(positions.lat, positions.lon, 0.03)
+    occupied = np.array([len(np.unique(cells[owner == t], axis=0)) for t in range(len(targets))])
+    method = cluster_detections(positions, None, None, core_count="cells")
+    recovered = score_flight(method, targets, everywhere, 0.20).recovered
+    np.testing.assert_array_equal(recovered, occupied >= 2)
+    assert 0 < recovered.sum() < len(targets)
+
+
+@pytest.mark.parametrize("core_count", ["detections", "cells"])
+def test_one_detection_per_cell_clusters_alike_under_both_readings(core_count):
+    """With every cell holding one detection the two readings coincide (the chain of nine below)."""
+    xy = np.column_stack([np.arange(9) * 0.08, np.zeros(9)])
+    c = cluster_detections(on_ground(xy), np.arange(9), None, dedup_cm=3, eps_m=0.10, min_samples=3,
+                           core_count=core_count)
+    assert c.n_clusters == 1
+    np.testing.assert_array_equal(c.dbscan.core, [False] + [True] * 7 + [False])
 
 
 def test_cluster_summary_by_hand():
@@ -117,6 +192,27 @@ def test_dbscan_matches_scikit_learn_on_raw_points_for_every_eps_and_min_samples
             np.testing.assert_array_equal(ours.labels, ref.labels_)
             np.testing.assert_array_equal(np.flatnonzero(ours.core), np.sort(ref.core_sample_indices_))
             assert ours.n_clusters == len(set(ref.labels_) - {-1})
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_counting_detections_is_scikit_learns_dbscan_with_the_cell_counts_as_sample_weight(seed):
+    """Core points by summed detections within eps (itself included) ≥ min_samples, on one radius graph for
+    every eps and min_samples, equal scikit-learn's DBSCAN fitted with sample_weight = detections per cell."""
+    from sklearn.cluster import DBSCAN
+
+    rng = np.random.default_rng(seed)
+    centres = rng.uniform(0, 3, (12, 2))
+    xy = np.concatenate([centres[rng.integers(0, 12, 600)] + rng.normal(0, 0.01, (600, 2)),
+                         rng.uniform(0, 3, (150, 2))])
+    points = deduplicate(on_ground(xy), 0.03)
+    assert points.count.max() > 5      # cells of many detections: the weights matter
+    graph = neighbour_graph(points.xy, 0.16)
+    for eps in (0.03, 0.05, 0.08, 0.16):
+        for m in (1, 2, 3, 5, 8, 20):
+            ours = dbscan(graph, eps, m, points.weights("detections"))
+            ref = DBSCAN(eps=eps, min_samples=m).fit(points.xy, sample_weight=points.count)
+            np.testing.assert_array_equal(ours.labels, ref.labels_)
+            np.testing.assert_array_equal(np.flatnonzero(ours.core), np.sort(ref.core_sample_indices_))
 
 
 def test_graph_degree_counts_self_and_neighbours_within_eps():
@@ -174,6 +270,8 @@ def test_bad_parameters_are_input_errors_naming_the_parameter():
         neighbour_graph(np.zeros((2, 2)), 0.0)
     with pytest.raises(InputError, match="MIN_SAMPLES"):
         dbscan(neighbour_graph(np.zeros((2, 2)), 0.1), 0.1, 0)
+    with pytest.raises(InputError, match="CORE_COUNT.*detections, cells"):
+        cluster_detections(on_ground(np.zeros((2, 2))), core_count="points")
     with pytest.raises(InputError, match="no position"):
         on_ground([[0.0, np.nan]])
 

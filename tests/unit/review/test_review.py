@@ -165,6 +165,18 @@ def test_a_chained_unit_is_placed_on_its_detections_not_between_them():
     assert np.hypot(*(units.xy[0] - mean)) < 0.08
 
 
+def test_a_spot_whose_detections_share_one_cell_is_a_unit_unless_cells_are_counted():
+    """Four frames see one spot at its exact position: four detections in one grid cell. Counting detections
+    (the default) makes it a unit at minimum points 2; the method's reading (one point per cell) does not."""
+    layer = detections_of([(0.5, 0.1)], "model A")
+    assert len(layer.detections) == 4
+    default = build([layer], geotags_at([(5.0, 5.0)]))
+    assert len(default) == 1 and default.n_detections[0] == 4 and len(default.clustering.points) == 1
+    assert len(build([layer], geotags_at([(5.0, 5.0)]), core_count="cells")) == 0
+    assert ReviewParameters().postprocessing()["core_count"] == "detections"
+    assert ReviewParameters(core_count="cells").operating_point().core_count == "cells"
+
+
 def test_propagation_groups_chain_units_within_20_cm():
     xy = np.array([[0.0, 0.0], [0.15, 0.0], [0.30, 0.0], [0.61, 0.0], [5.0, 5.0]])
     g = propagation_groups(xy)
@@ -370,6 +382,17 @@ def test_check_inputs_reports_changed_layers_parameters_and_orphans():
     assert same.ok and same.messages() == []
     extra = check_inputs(rows[:1], {**now, "detections:B": "b"}, {"eps_m": 0.1}, ["u1"])
     assert extra.ok and extra.new == ["detections:B"]
+
+
+def test_verdicts_recorded_before_core_count_was_recorded_were_clustered_counting_cells():
+    now = {"detections:A": "d1"}
+    old = [digest_row("u1", now, {"eps_m": 0.1})]
+    check = check_inputs(old, now, {"eps_m": 0.1, "core_count": "detections"}, ["u1"])
+    assert check.parameters == {"core_count": (["cells"], "detections")}
+    assert "Parameter core_count was cells" in " ".join(check.messages())
+    assert check_inputs(old, now, {"eps_m": 0.1, "core_count": "cells"}, ["u1"]).ok
+    recorded = [digest_row("u1", now, {"eps_m": 0.1, "core_count": "detections"})]
+    assert check_inputs(recorded, now, {"eps_m": 0.1, "core_count": "detections"}, ["u1"]).ok
 
 
 # ---------------------------------------------------------------------------------------------- chips

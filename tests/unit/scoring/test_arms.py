@@ -10,7 +10,7 @@ from birdseye.birdseye_qgis.core.scoring.sweep import f1_geo
 
 def row(recall, gmcf, dpf, credible=True, pareto=True, checkpoint="a.onnx", **op):
     point = {"threshold": 0.05, "dedup_cm": 3.0, "eps_m": 0.2, "min_samples": 2, "eps_pred_m": 0.2,
-             "edge_buffer_px": 0.0, **op}
+             "edge_buffer_px": 0.0, "core_count": "detections", **op}
     return {"checkpoint": checkpoint, "model_digest": "d" * 64, **point, "recall_pre": recall, "gmcf_pre": gmcf,
             "f1_geo": float(f1_geo(recall, gmcf)), "detections_per_frame": dpf, "n_clusters": 10,
             "credible": credible, "pareto": pareto}
@@ -32,8 +32,19 @@ def test_each_rule_picks_its_row_of_the_credible_front():
     burden = arms["lowest_review_burden"]
     assert burden["sweep_row"] == 3
     assert burden["operating_point"] == {"threshold": 0.12, "dedup_cm": 3.0, "eps_m": 0.1, "min_samples": 2,
-                                         "eps_pred_m": 0.2, "edge_buffer_px": 0.0}
+                                         "eps_pred_m": 0.2, "edge_buffer_px": 0.0, "core_count": "detections"}
     assert burden["scores"]["detections_per_frame"] == 2.0 and burden["scores"]["n_clusters"] == 10
+
+
+def test_a_sweep_made_before_core_count_was_recorded_gives_arms_that_count_cells():
+    """Such a sweep's DBSCAN counted cells: its arms must say so, not take today's default."""
+    old = row(0.8, 0.7, 3.0)
+    del old["core_count"]
+    cells = row(0.8, 0.7, 3.0, core_count="cells")
+    assert select_arms([old])[0]["operating_point"] == select_arms([cells])[0]["operating_point"]
+    assert select_arms([old])[0]["operating_point"]["core_count"] == "cells"
+    with pytest.raises(InputError, match="core_count is 'clusters'"):
+        select_arms([row(0.8, 0.7, 3.0, core_count="clusters")])
 
 
 def test_ties_go_to_the_higher_recall_then_gmcf_then_f1():

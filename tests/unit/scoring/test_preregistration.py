@@ -29,7 +29,7 @@ def test_seal_is_sha256_of_the_canonical_json_of_rule_digests_and_time():
     assert doc["rule"]["arms"][0]["checkpoint"] == "a.onnx"
     assert doc["rule"]["arms"][1]["operating_point"] == {"threshold": 0.6, "dedup_cm": 3.0, "eps_m": 0.12,
                                                          "min_samples": 4, "eps_pred_m": 0.2,
-                                                         "edge_buffer_px": 5.0}
+                                                         "edge_buffer_px": 5.0, "core_count": "detections"}
 
 
 def test_canonical_json_ignores_key_order_and_refuses_nan():
@@ -123,7 +123,7 @@ def test_rules_without_arms_or_threshold_cannot_be_sealed(tmp_path):
 
 # -------------------------------------------------------------------- a different operating point per arm
 def selected_arms():
-    point = {"dedup_cm": 3.0, "edge_buffer_px": 0.0}
+    point = {"dedup_cm": 3.0, "edge_buffer_px": 0.0, "core_count": "detections"}
     return [{"name": "max_f1", "checkpoint": "a.onnx", "model_digest": DIGEST_A,
              "operating_point": {"threshold": 0.05, "eps_m": 0.2, "min_samples": 2, "eps_pred_m": 0.2, **point}},
             {"name": "max_recall", "checkpoint": "a.onnx", "model_digest": DIGEST_A,
@@ -163,7 +163,9 @@ def test_typed_arm_lines():
     arms = prereg.parse_arm_lines(text, {"a.onnx": DIGEST_A}, dedup_cm=3.0, edge_buffer_px=4.0)
     assert [a["name"] for a in arms] == ["max_f1", "max_recall"]
     assert arms[1]["operating_point"] == {"threshold": 0.03, "dedup_cm": 3.0, "eps_m": 0.15, "min_samples": 5,
-                                          "eps_pred_m": 0.35, "edge_buffer_px": 4.0}
+                                          "eps_pred_m": 0.35, "edge_buffer_px": 4.0, "core_count": "detections"}
+    cells = prereg.parse_arm_lines(text, {"a.onnx": DIGEST_A}, 3.0, 4.0, core_count="cells")
+    assert {a["operating_point"]["core_count"] for a in cells} == {"cells"}
     for bad, message in (("max_f1 a.onnx, 0.05, 0.2, 2, 0.2", "row 1.*is not 'name: checkpoint"),
                          ("x: c.onnx, 0.05, 0.2, 2, 0.2", "row 1.*'c.onnx', which is not among CHECKPOINTS"),
                          ("\nx: a.onnx, 0.05, wide, 2, 0.2", "row 2.*must be numbers"),
@@ -172,3 +174,33 @@ def test_typed_arm_lines():
                          ("# nothing", "holds no arm line")):
         with pytest.raises(InputError, match=message):
             prereg.parse_arm_lines(bad, {"a.onnx": DIGEST_A}, 3.0, 0.0)
+
+
+# -------------------------------------------------------------------- rules sealed before core_count existed
+def test_a_rule_sealed_before_core_count_was_recorded_verifies_and_scores_counting_cells(tmp_path):
+    """Such a rule's operating points have no core_count; its arms were chosen on figures computed
+    counting cells. It must still verify byte for byte (nothing rewritten) and score at what was sealed."""
+    point = {"threshold": 0.035, "dedup_cm": 3.0, "eps_m": 0.2, "min_samples": 2, "eps_pred_m": 0.2,
+             "edge_buffer_px": 0.0}
+    sealed = {"schema": "birdseye-preregistration/1",
+              "rule": {"arms": [{"name": "lowest_review_burden", "checkpoint": "a.onnx", "model_digest": DIGEST_A,
+                                 "operating_point": point}], "descriptive": [], "note": ""},
+              "model_digests": [DIGEST_A], "sealed_at": SEALED_AT}
+    payload = json.dumps(sealed, sort_keys=True, separators=(",", ":"), ensure_ascii=False)
+    sealed["seal"] = hashlib.sha256(payload.encode("utf-8")).hexdigest()
+    path = tmp_path / "old_rule.json"
+    path.write_text(json.dumps(sealed, indent=2), encoding="utf-8")
+    doc = prereg.read(path)
+    assert doc == sealed and "core_count" not in doc["rule"]["arms"][0]["operating_point"]
+    arm, op = prereg.arm_for(doc, DIGEST_A)
+    assert op == OperatingPoint(0.035, 3.0, 0.2, 2, 0.2, 0.0, core_count="cells")
+    # Resealing its arms (e.g. from an old arms file) writes the cells out explicitly.
+    resealed = prereg.seal({"arms": prereg.arms_from_selection(doc["rule"]["arms"])}, sealed_at=SEALED_AT)
+    assert resealed["rule"]["arms"][0]["operating_point"]["core_count"] == "cells"
+
+
+def test_an_operating_point_with_an_unknown_core_count_is_refused():
+    with pytest.raises(InputError, match="arm x.*core_count is 'points'"):
+        OperatingPoint.from_dict({"threshold": 0.1, "core_count": "points"}, source="arm x")
+    with pytest.raises(InputError, match="CORE_COUNT"):
+        OperatingPoint(0.1, core_count="points")

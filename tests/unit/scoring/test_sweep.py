@@ -43,11 +43,12 @@ def random_flight(seed, thresholds, checkpoint="a.onnx", n_targets=25):
                        checkpoint, checkpoint.upper())
 
 
-def test_sweep_equals_one_fresh_run_per_configuration_pooled_over_flights_per_checkpoint():
+@pytest.mark.parametrize("core_count", ["detections", "cells"])
+def test_sweep_equals_one_fresh_run_per_configuration_pooled_over_flights_per_checkpoint(core_count):
     thresholds = [0.3, 0.6]
     fl = [random_flight(1, thresholds), random_flight(2, thresholds),
           random_flight(11, thresholds, "b.onnx"), random_flight(12, thresholds, "b.onnx")]
-    grid = SweepGrid(thresholds, [0.06, 0.12], [2, 4], [0.1, 0.25])
+    grid = SweepGrid(thresholds, [0.06, 0.12], [2, 4], [0.1, 0.25], core_count=core_count)
     result = sweep(fl, grid)
     assert result.checkpoints == [("a.onnx", "A.ONNX"), ("b.onnx", "B.ONNX")] and result.shape == (2, 2, 2, 2, 2)
     for ci, mine in enumerate((fl[:2], fl[2:])):
@@ -60,7 +61,8 @@ def test_sweep_equals_one_fresh_run_per_configuration_pooled_over_flights_per_ch
                     for pi, pred in enumerate(grid.eps_pred_m):
                         total = PreCounts()
                         for f in mine:
-                            c = cluster_detections(f.detections[t], None, None, grid.dedup_cm, eps, int(m))
+                            c = cluster_detections(f.detections[t], None, None, grid.dedup_cm, eps, int(m),
+                                                   core_count=core_count)
                             total = total + score_flight(c, f.geotag_xy, np.ones(len(f.geotag_xy), bool),
                                                          pred).counts
                         at = (ci, ti, ei, mi, pi)
@@ -72,6 +74,7 @@ def test_sweep_equals_one_fresh_run_per_configuration_pooled_over_flights_per_ch
     rows = result.rows()
     assert len(rows) == 2 * grid.size
     assert [r["checkpoint"] for r in rows[::grid.size]] == ["a.onnx", "b.onnx"]
+    assert {r["core_count"] for r in rows} == {core_count}
     assert {"model_digest", "threshold", "eps_m", "min_samples", "eps_pred_m", "n_frames", "n_detections",
             "detections_per_frame", "credible", "pareto", "recall_pre", "gmcf_pre", "f1_geo"} <= set(rows[0])
     # the front runs over every checkpoint's configurations together
@@ -124,9 +127,11 @@ def test_f1_geo_is_the_harmonic_mean_of_recall_and_gmcf():
 
 def test_the_default_grid_holds_every_reported_point_and_has_the_methods_size():
     grid = SweepGrid(*METHOD_GRID.values())
-    assert grid.shape == (10, 12, 12, 10) and grid.size == 14_400
-    assert grid.thresholds.tolist() == pytest.approx([0.03, 0.04, 0.05, 0.06, 0.07, 0.08, 0.09, 0.10, 0.11, 0.12])
-    for values, reported in ((grid.eps_m, (0.10, 0.15, 0.20)), (grid.min_samples, (2, 5, 10, 20)),
+    assert grid.shape == (12, 10, 12, 10) and grid.size == 14_400
+    assert len(grid.thresholds) == len(METHOD_GRID["thresholds"])     # no value given twice
+    # 0.03 … 0.12 in steps of 0.01, and 0.035: the threshold of the method's lowest-review-burden arm
+    for values, reported in ((grid.thresholds, (0.03, 0.035) + tuple(np.arange(4, 13) / 100)),
+                             (grid.eps_m, (0.10, 0.15, 0.20)), (grid.min_samples, (2, 5, 10, 20)),
                              (grid.eps_pred_m, (0.20, 0.35))):
         for value in reported:
             assert np.isclose(values, value, atol=1e-12).sum() == 1, value
