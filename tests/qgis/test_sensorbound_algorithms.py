@@ -243,14 +243,39 @@ def test_montecarlobound_matches_the_core_and_the_linearisation_holds(birdseye_p
         assert entry["max_skld"] < mc.SKLD_THRESHOLD and entry["linearisation_holds"] is True
         assert set(entry["scaling"]["per_axis"]) == set(sb.AXES)
     assert sum("the linearised bound holds" in line for line in feedback.infos) == 2
+    # The method's grid: 35 ground points every 0.67 m at 10 m, their ellipses summarised in the log.
+    assert written["inputs"]["ground_spacing_m"] == mc.GROUND_SPACING_M == 0.67
+    assert written["altitudes"][0]["check"]["summary"]["n_points"] == 35
+    assert any(line.startswith("10 m: 35 ground points every 0.67 m (5 × 7)") and "semi-major axis max" in line
+               for line in feedback.infos)
     # one panel per altitude, stacked: twice the height of the core's single plot
     single = image.imread(mc.plot_scaling_study(study, tmp_path / "single.png"))
     stacked = image.imread(result["OUTPUT_PNG"])
     assert stacked.shape[0] == 2 * single.shape[0] and stacked.shape[1] == single.shape[1]
 
 
+def test_montecarlobound_grid_spacing_and_cutoffs_reach_the_core(birdseye_provider, tmp_path):
+    feedback = RecordingFeedback()
+    result = run("montecarlobound", {"ALTITUDES": "10", "GROUND_SPACING_M": 1.5, "SKLD_CUTOFFS": "0.01, 0.1",
+                                     "SIGMAS": "0.01,0.01,0.06,0.04,0.04,0.13", "N_SAMPLES": 1000, "SEED": 2,
+                                     "SCALE_STEPS": 2, "OUTPUT_JSON": str(tmp_path / "mc.json"), "OUTPUT_PNG": None},
+                 feedback)
+    written = read_json(result["OUTPUT_JSON"])
+    check = mc.monte_carlo_check(DEPLOYED, 10.0, DEPLOYED_SIGMAS, 1000, 1.5, seed=2, skld_cutoffs=(0.01, 0.1))
+    entry = written["altitudes"][0]
+    assert entry["check"] == json.loads(json.dumps(check.to_json_dict()))
+    # 4.502 m × 2.815 m: ±2.251 / 1.5 → 1 node each side across, ±1.408 / 1.5 → none down.
+    assert entry["check"]["grid_shape"] == [1, 3] and len(entry["check"]["points"]) == 3
+    assert set(entry["check"]["summary"]["fraction_over_skld"]) == {"0.01", "0.1"}
+    assert written["inputs"]["skld_cutoffs"] == [0.01, 0.1] and written["inputs"]["ellipse_sigmas"] == 3.0
+    assert any("0.0% over 0.01, 0.0% over 0.1" in line for line in feedback.infos)
+
+
 @pytest.mark.parametrize("bad, name", [({"SCALE_MIN": 0}, "SCALE_MIN"), ({"SCALE_MAX": 0.05}, "SCALE_MAX"),
-                                       ({"SIGMAS": "1,2,3"}, "SIGMAS"), ({"ALTITUDES": "-1"}, "ALTITUDES")])
+                                       ({"SIGMAS": "1,2,3"}, "SIGMAS"), ({"ALTITUDES": "-1"}, "ALTITUDES"),
+                                       ({"GROUND_SPACING_M": 0}, "GROUND_SPACING_M"),
+                                       ({"SKLD_CUTOFFS": "0.01,0"}, "SKLD_CUTOFFS"),
+                                       ({"SKLD_CUTOFFS": "small"}, "SKLD_CUTOFFS")])
 def test_montecarlobound_bad_input_names_the_parameter(birdseye_provider, tmp_path, bad, name):
     with pytest.raises(QgsProcessingException, match=name):
         run("montecarlobound", dict(bad, N_SAMPLES=100, OUTPUT_JSON=str(tmp_path / "mc.json")))

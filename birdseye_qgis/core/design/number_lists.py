@@ -1,4 +1,4 @@
-"""The comma-separated number lists the platform-design tools take (altitudes, pose sigmas).
+"""The comma-separated number lists the platform-design tools take (altitudes, pose sigmas, sKLD cut-offs).
 
 Shared by the Processing parameters and the sensor-bound calculator dock, so both accept and refuse the
 same text with the same message.
@@ -59,3 +59,13 @@ def parse_sigmas(text, name: str = "SIGMAS") -> list[float]:
             raise InputError(f"{name}: the {axis} sigma is negative ({sigma:g} {unit}) — sigmas are "
                              "standard deviations and must be 0 or more")
     return sigmas
+
+
+def parse_skld_cutoffs(text, name: str = "SKLD_CUTOFFS") -> list[float]:
+    """Symmetric KL divergence cut-offs (nats), each > 0."""
+    cutoffs = parse_number_list(text, name, "sKLD cut-offs in nats, e.g. 0.01")
+    for cutoff in cutoffs:
+        if cutoff <= 0:
+            raise InputError(f"{name}: cut-off {cutoff:g} is not a divergence — every sKLD cut-off must be greater "
+                             "than 0 nats")
+    return cutoffs

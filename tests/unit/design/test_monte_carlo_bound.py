@@ -1,4 +1,5 @@
-"""Monte Carlo check of the linearised sensor bound against the exact SE(3) re-projection."""
+"""Monte Carlo check of the linearised sensor bound against the exact SE(3) re-projection, on the ground grid."""
+import dataclasses
 import json
 import math
 
@@ -39,7 +40,7 @@ def sampled_label_covariance(intr, altitude, sigmas, camera_in_body, pixels, n_s
 
 @pytest.mark.parametrize("mount", sb.MOUNTS, ids=lambda m: m.key)
 def test_simulated_attitude_noise_follows_the_linearised_bound_of_its_mount(mount):
-    pixels = mc.default_pixels(DEPLOYED)
+    pixels = mc.ground_grid(DEPLOYED, 10.0).pixels
     sampled = sampled_label_covariance(DEPLOYED, 10.0, UNEQUAL_SIGMAS, CAMERA_IN_BODY[mount.key], pixels)
     variances = sb.sigmas_to_variances(UNEQUAL_SIGMAS)
     for other in sb.MOUNTS:
@@ -63,11 +64,137 @@ def test_linearisation_holds_for_the_deployed_platform(altitude):
     json.dumps(res.to_json_dict(), allow_nan=False)
 
 
-def test_default_pixels_cover_corners_edges_centre_and_principal_point():
-    px = {tuple(p) for p in mc.default_pixels(DEPLOYED)}
-    # Pixel centres of the frame: the last column is u = W − 1, the last row v = H − 1.
-    assert {(0.0, 0.0), (1919.0, 0.0), (0.0, 1199.0), (1919.0, 1199.0), (959.5, 599.5)} <= px
-    assert (DEPLOYED.cx, DEPLOYED.cy) in px and len(px) == 10
+# A camera whose footprint is easy to count by hand: 2000 × 1000 px at f = 1000 px sees 20 m × 10 m from 10 m.
+ROUND = sb.Intrinsics(fx=1000.0, fy=1000.0, cx=999.5, cy=499.5, width=2000, height=1000)
+
+
+@pytest.mark.parametrize("intr, altitude, spacing, shape", [
+    # 20 m × 10 m: nodes every metre from edge to edge, both edges included.
+    (ROUND, 10.0, 1.0, (11, 21)),
+    # ±10 m / 3 m → 3 nodes each side of the centre across, ±5 m / 3 m → 1 down.
+    (ROUND, 10.0, 3.0, (3, 7)),
+    # Coarser than the footprint: its centre alone.
+    (ROUND, 10.0, 25.0, (1, 1)),
+    # The method's grid on its platform: 1920 px · 10 m / 4264.49 px = 4.502 m → ±2.251 m / 0.67 m → 3 each side;
+    # 1200 px · 10 m / 4262.89 px = 2.815 m → ±1.408 m / 0.67 m → 2 each side.
+    (DEPLOYED, 10.0, 0.67, (5, 7)),
+    # From 20 m: 9.005 m → ±4.502 / 0.67 → 6 each side; 5.630 m → ±2.815 / 0.67 → 4.
+    (DEPLOYED, 20.0, 0.67, (9, 13)),
+])
+def test_ground_grid_counts_the_nodes_inside_the_footprint(intr, altitude, spacing, shape):
+    grid = mc.ground_grid(intr, altitude, spacing)
+    assert grid.shape == shape and len(grid.points) == shape[0] * shape[1] == len(grid.pixels)
+    # The footprint is the frame's outer edges (−0.5 … W − 0.5 px) at the flight height.
+    (x0, x1), (y0, y1) = grid.footprint_m
+    assert (x1 - x0, y1 - y0) == pytest.approx((intr.width * altitude / intr.fx, intr.height * altitude / intr.fy))
+    assert np.all(grid.points[:, 2] == altitude)
+    # Nodes spaced as asked along image x (row-major) and y, centred on the frame centre, all in the frame.
+    rows = grid.pixels.reshape(shape + (2,))
+    np.testing.assert_allclose(np.diff(rows[..., 0], axis=1), spacing * intr.fx / altitude)
+    np.testing.assert_allclose(np.diff(rows[..., 1], axis=0), spacing * intr.fy / altitude)
+    np.testing.assert_allclose(grid.pixels.mean(axis=0), [(intr.width - 1) / 2, (intr.height - 1) / 2], atol=1e-9)
+    assert np.all((grid.pixels >= -0.5 - 1e-6) & (grid.pixels <= [intr.width - 0.5 + 1e-6, intr.height - 0.5 + 1e-6]))
+
+
+def test_edge_nodes_are_on_the_frame_edges():
+    pixels = mc.ground_grid(ROUND, 10.0, 1.0).pixels
+    assert pixels[:, 0].min() == pytest.approx(-0.5) and pixels[:, 0].max() == pytest.approx(1999.5)
+    assert pixels[:, 1].min() == pytest.approx(-0.5) and pixels[:, 1].max() == pytest.approx(999.5)
+
+
+def test_error_ellipse_semi_major_axis_at_three_sigma_and_anisotropy():
+    turn = np.array([[math.cos(0.4), -math.sin(0.4)], [math.sin(0.4), math.cos(0.4)]])
+    # Standard deviations 3 and 1 px along two perpendicular directions: 3σ semi-major 9 px, ratio 3.
+    major, ratio = mc.error_ellipse(np.stack([turn @ np.diag([9.0, 1.0]) @ turn.T, np.diag([4.0, 4.0]),
+                                              np.diag([4.0, 0.0]), np.zeros((2, 2))]))
+    np.testing.assert_allclose(major, [9.0, 6.0, 6.0, 0.0])
+    np.testing.assert_allclose(ratio[:2], [3.0, 1.0])
+    assert ratio[2] == np.inf and np.isnan(ratio[3])
+    assert mc.ELLIPSE_SIGMAS == 3.0
+
+
+def test_isotropic_horizontal_translation_gives_round_ellipses_of_f_sigma_over_depth():
+    """A camera shifted sideways by t moves every ground point's pixel by f·t/Z exactly (Z the depth), so with
+    σx = σy = σ every label's ellipse is a circle of 3σ semi-axis 3·f·σ/Z px (fx ≈ fy here)."""
+    sigma, altitude = 0.02, 10.0
+    res = mc.monte_carlo_check(DEPLOYED, altitude, [sigma, sigma, 0, 0, 0, 0], n_samples=20000, seed=2)
+    expected = 3.0 * max(DEPLOYED.fx, DEPLOYED.fy) * sigma / altitude       # 25.6 px
+    # Sampling error of a standard deviation from 20 000 draws: 0.5 % (1σ).
+    np.testing.assert_allclose(res.major_axis_px, expected, rtol=0.03)
+    assert np.all((res.anisotropy >= 1.0) & (res.anisotropy < 1.05))
+    summary = res.summary()
+    assert summary["major_axis_px_max"] == pytest.approx(expected, rel=0.03)
+    assert 1.0 <= summary["anisotropy_median"] <= summary["anisotropy_max"] < 1.05
+    # Exactly linear: the divergence is sampling noise (≈ 3/n), far below the threshold.
+    assert summary["max_skld"] < 1e-3 and summary["fraction_over_skld"] == {"0.01": 0.0}
+
+
+def test_depth_noise_gives_radial_ellipses_growing_with_the_distance_from_the_principal_point():
+    """Raising the camera by t moves the pixel of a ground point seen at u by −(u − c)·t/(Z + t): along the
+    ray from the principal point c, by (|u − c|/Z)·t to first order. A line, not an ellipse: semi-major
+    axis 3·σz·|u − c|/Z, minor 0."""
+    sigma_z, altitude = 0.2, 10.0
+    res = mc.monte_carlo_check(DEPLOYED, altitude, [0, 0, sigma_z, 0, 0, 0], n_samples=20000, seed=4)
+    offset = res.pixels - [DEPLOYED.cx, DEPLOYED.cy]
+    radius = np.hypot(offset[:, 0], offset[:, 1])
+    # Second-order bias 3σz²/Z² = 0.1 %, sampling error 0.5 %.
+    np.testing.assert_allclose(res.major_axis_px, 3.0 * sigma_z * radius / altitude, rtol=0.03)
+    # Every point shares the draws' factor t/(Z + t), so the axis is proportional to |u − c| to rounding.
+    np.testing.assert_allclose(res.major_axis_px / radius, res.major_axis_px[0] / radius[0], rtol=1e-9)
+    direction = np.linalg.eigh(res.sample_cov)[1][..., 1]
+    np.testing.assert_allclose(np.abs(np.einsum("ni,ni->n", direction, offset / radius[:, None])), 1.0, atol=1e-9)
+    far = radius > 10.0
+    assert np.all(res.anisotropy[far] > 1e3)
+    # Both covariances are singular along the tangent: the divergence is infinite (where rounding leaves a
+    # determinant above 0, merely large), every point is over the cut-off, and infinity is written as null.
+    assert np.all(res.skld > 1.0) and np.isinf(res.skld).any() and res.summary()["max_skld"] is None
+    written = json.loads(json.dumps(res.to_json_dict(), allow_nan=False))
+    assert written["points"][0]["skld"] is None and written["summary"]["fraction_over_skld"] == {"0.01": 1.0}
+
+
+def test_deployed_platform_at_10_m_ellipses_stay_inside_the_tolerance():
+    res = mc.monte_carlo_check(DEPLOYED, 10.0, DEPLOYED_SIGMAS, n_samples=20000, seed=3, skld_cutoffs=(0.01, 0.1))
+    bound = sb.evaluate_bound(DEPLOYED, 10.0, DEPLOYED_SIGMAS)
+    summary = res.summary()
+    # The grid lies inside the frame, whose worst pixel has λ_max = λ_target/κ*: 3σ axis 30 px / √κ*.
+    assert summary["major_axis_px_max"] < 30.0 / math.sqrt(bound.kappa_exact) * 1.03
+    # …and the linear model's own ellipses agree with the sampled ones.
+    np.testing.assert_allclose(res.major_axis_px, mc.error_ellipse(res.model_cov)[0], rtol=0.03)
+    np.testing.assert_allclose(res.anisotropy, mc.error_ellipse(res.model_cov)[1], rtol=0.05)
+    assert summary["n_points"] == 35 and summary["major_axis_px_median"] <= summary["major_axis_px_max"]
+    assert summary["fraction_over_skld"] == {"0.01": 0.0, "0.1": 0.0} and res.linearisation_holds
+
+
+def test_the_user_guides_figures_for_the_deployed_platform():
+    """docs/user-guide.md, Reproducing the method's tables: the algorithm's defaults (20 000 samples, seed 0)."""
+    printed = {10.0: (35, 24.7, 19.6, 1.45, 1.21, 4.3e-4), 20.0: (117, 14.9, 12.4, 1.15, 1.06, 3.5e-4)}
+    for altitude, (n, major_max, major_median, ratio_max, ratio_median, skld) in printed.items():
+        summary = mc.monte_carlo_check(DEPLOYED, altitude, DEPLOYED_SIGMAS, skld_cutoffs=(0.01, 0.1)).summary()
+        assert summary["n_points"] == n
+        assert (round(summary["major_axis_px_max"], 1), round(summary["major_axis_px_median"], 1)) == (
+            major_max, major_median)
+        assert (round(summary["anisotropy_max"], 2), round(summary["anisotropy_median"], 2)) == (
+            ratio_max, ratio_median)
+        assert float(f"{summary['max_skld']:.1e}") == skld
+        assert summary["fraction_over_skld"] == {"0.01": 0.0, "0.1": 0.0}
+
+
+def test_fraction_over_each_cutoff_counts_grid_points():
+    res = mc.monte_carlo_check(ROUND, 10.0, DEPLOYED_SIGMAS, n_samples=100, spacing_m=5.0, seed=0,
+                               skld_cutoffs=(0.01, 0.1))
+    assert len(res.skld) == 15                                                # 5 × 3 nodes
+    skld = np.r_[np.full(9, 0.001), np.full(3, 0.05), np.full(3, 0.5)]
+    forged = dataclasses.replace(res, skld=skld)
+    assert forged.summary()["fraction_over_skld"] == {"0.01": 0.4, "0.1": 0.2}
+    assert forged.max_skld == 0.5 and not forged.linearisation_holds
+
+
+@pytest.mark.parametrize("kwargs, says", [({"spacing_m": 0.0}, "spacing"), ({"spacing_m": float("nan")}, "spacing"),
+                                          ({"skld_cutoffs": (0.01, -1.0)}, "cut-offs"),
+                                          ({"skld_cutoffs": ()}, "cut-offs"), ({"n_samples": 5}, "samples")])
+def test_bad_grid_and_cutoffs_are_refused(kwargs, says):
+    with pytest.raises(InputError, match=says):
+        mc.monte_carlo_check(DEPLOYED, 10.0, DEPLOYED_SIGMAS, **kwargs)
 
 
 def test_divergence_grows_once_the_budget_leaves_the_linear_regime():
@@ -110,5 +237,7 @@ def test_scaling_plot_and_cancel(tmp_path):
     assert (tmp_path / "scaling.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and out == tmp_path / "scaling.png"
     with pytest.raises(Cancelled):
         mc.scaling_study(DEPLOYED, 20.0, DEPLOYED_SIGMAS, n_samples=100, is_canceled=lambda: True)
+    with pytest.raises(Cancelled):
+        mc.monte_carlo_check(DEPLOYED, 20.0, DEPLOYED_SIGMAS, n_samples=100, is_canceled=lambda: True)
     with pytest.raises(InputError):
         mc.scaling_study(DEPLOYED, 20.0, DEPLOYED_SIGMAS, scales=[0.0, 1.0], n_samples=100)
