@@ -4,37 +4,37 @@
 <context>
     <name>@default</name>
     <message>
-        <location filename="../birdseye_qgis/gui/plugin.py" line="118"/>
+        <location filename="../birdseye_qgis/gui/plugin.py" line="109"/>
         <source>The BirdsEye Processing provider could not be registered.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/plugin.py" line="129"/>
+        <location filename="../birdseye_qgis/gui/plugin.py" line="120"/>
         <source>&amp;BirdsEye</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/plugin.py" line="131"/>
+        <location filename="../birdseye_qgis/gui/plugin.py" line="122"/>
         <source>BirdsEye</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/plugin.py" line="134"/>
+        <location filename="../birdseye_qgis/gui/plugin.py" line="125"/>
         <source>BirdsEye algorithms…</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/plugin.py" line="136"/>
+        <location filename="../birdseye_qgis/gui/plugin.py" line="127"/>
         <source>Open the Processing toolbox showing the BirdsEye algorithms</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/plugin.py" line="207"/>
+        <location filename="../birdseye_qgis/gui/plugin.py" line="196"/>
         <source>The Processing plugin is not active: enable it under Plugins ▸ Manage and Install Plugins, then try again.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/plugin.py" line="258"/>
+        <location filename="../birdseye_qgis/gui/plugin.py" line="247"/>
         <source>The &apos;{title}&apos; panel could not be opened ({module}.{cls}: {error}).</source>
         <translation type="unfinished"></translation>
     </message>
@@ -59,7 +59,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="206"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="262"/>
         <source>Detections</source>
         <translation type="unfinished"></translation>
     </message>
@@ -104,148 +104,148 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="271"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="279"/>
         <source>Size of the image window cut around a detection.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="278"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="286"/>
         <source>Map scale the canvas zooms to around each unit.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="279"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="287"/>
         <source>Grid cell</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="279"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="287"/>
         <source>EPS</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="279"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="287"/>
         <source>Min. points</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="279"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="287"/>
         <source>EPS_PRED</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="279"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="287"/>
         <source>Edge buffer</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="279"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="287"/>
         <source>Chip window</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="279"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="287"/>
         <source>Map scale</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="286"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="295"/>
         <source>Start / resume review</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="300"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="309"/>
         <source>No review started</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="311"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="320"/>
         <source>All layers</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="321"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="330"/>
         <source>Fired by</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="323"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="332"/>
         <source>Show</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="354"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="363"/>
         <source>Previous (P)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="356"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="365"/>
         <source>Next (N)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="373"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="382"/>
         <source>Undo (Ctrl+Z)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="391"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="400"/>
         <source>Propagate to units within {:.2f} m</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="392"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="401"/>
         <source>Off by default. When on, a verdict also votes (provenance propagated:{rule}) on the units chained to this one by gaps of at most {eps:.2f} m; conflicting votes are resolved under the three conventions, all shown.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="397"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="406"/>
         <source>Next unit after a verdict</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="404"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="413"/>
         <source>&lt;b&gt;Scores per detection layer&lt;/b&gt; — after review under each tie-break convention</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="406"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="415"/>
         <source>Recall and the geotag-matched cluster fraction (GMCF), computed as Evaluate detections computes them from this verdict log.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="410"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="419"/>
         <source>before
 review</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="414"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="423"/>
         <source>After review, {}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="431"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="440"/>
         <source>GMCF is a lower bound on precision, not precision; recall after review is an upper bound (≥). The spread between the conventions is part of the result.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="205"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="206"/>
         <source>Choose at least one detection layer (an output of Detect targets).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="211"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="212"/>
         <source>Choose a GeoPackage for the verdict log (save the project first to get one next to it).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="272"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="273"/>
         <source>{n} units from {k} layer(s); verdict log {path}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="342"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="345"/>
         <source>A layer of the review was removed from the project; the review stopped. Every verdict is in the log; choose the layers again to resume.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -255,72 +255,72 @@ review</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="379"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="382"/>
         <source>&lt;b&gt;{pos}&lt;/b&gt; of {vis} shown · {done} of {n} units reviewed · {added} added</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="432"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="435"/>
         <source>An added target can only be withdrawn (0 or Backspace) or undone.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="443"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="446"/>
         <source>Saved: {key} → {verdict}{more} ({time} UTC)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="443"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="446"/>
         <source>, {} propagated vote(s)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="458"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="461"/>
         <source>Nothing to undo.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="462"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="465"/>
         <source>Undone: action {action} on {key} (rows appended; nothing deleted).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="480"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="483"/>
         <source>The verdict was NOT saved: {error}. Check that {path} is writable and not locked, then try again.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="495"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="498"/>
         <source>Click the map where the missed target is (Esc or right click cancels).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="516"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="519"/>
         <source>Added target {key} (Ctrl+Z undoes it).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="516"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="519"/>
         <source>A target is already recorded there.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="537"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="540"/>
         <source>No units: the detection layers have no clusters at these settings.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="538"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="541"/>
         <source>Nothing to show</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="550"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="553"/>
         <source>Loading frames…</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="557"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="560"/>
         <source>&lt;b&gt;Added target&lt;/b&gt; {key}&lt;br&gt;{lat:.7f}°, {lon:.7f}° · recorded as a target the detector missed (the &lt;i&gt;a&lt;/i&gt; term). 0 withdraws it.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -345,32 +345,32 @@ review</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="446"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="455"/>
         <source>The frames could not be read: {}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="448"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="457"/>
         <source>No frame of the frame layer shows this spot.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="454"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="463"/>
         <source>frame {f}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="460"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="469"/>
         <source>{shown} of {n} frames</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="614"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="616"/>
         <source>updating…</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="623"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="625"/>
         <source>Scores could not be computed: {}</source>
         <translation type="unfinished"></translation>
     </message>
@@ -385,17 +385,17 @@ review</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="270"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="271"/>
         <source>Review verdicts</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="470"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="479"/>
         <source>Cannot start the review</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="470"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="479"/>
         <source>Inputs changed since verdicts were recorded</source>
         <translation type="unfinished"></translation>
     </message>
@@ -682,27 +682,27 @@ pip&apos;s log is below; the packages already there are unchanged.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/plugin.py" line="54"/>
+        <location filename="../birdseye_qgis/gui/plugin.py" line="53"/>
         <source>Review clusters: walk through the detected clusters beside the survey, judge each, and see recall and GMCF before and after review</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/plugin.py" line="57"/>
+        <location filename="../birdseye_qgis/gui/plugin.py" line="56"/>
         <source>Sensor-bound calculator: which pose-noise budget keeps labels within their pixel tolerance for a camera and flying height</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/plugin.py" line="229"/>
+        <location filename="../birdseye_qgis/gui/plugin.py" line="218"/>
         <source>Install dependencies…</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/plugin.py" line="158"/>
+        <location filename="../birdseye_qgis/gui/plugin.py" line="147"/>
         <source>Install the Python packages BirdsEye&apos;s algorithms need</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/plugin.py" line="227"/>
+        <location filename="../birdseye_qgis/gui/plugin.py" line="216"/>
         <source>Some algorithms need Python packages that are not installed: {names}.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -712,7 +712,7 @@ pip&apos;s log is below; the packages already there are unchanged.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="279"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="287"/>
         <source>Review units</source>
         <translation type="unfinished"></translation>
     </message>
@@ -779,12 +779,12 @@ QGIS&apos;s own packages are not changed. pip downloads them from the Python Pac
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="245"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="246"/>
         <source>The detections were placed on {ground}, which cannot be used here ({reason}). Chips and geotags in view stand on the level plane instead: positions in the chips and the scores may differ from those of Evaluate detections given that DEM.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="250"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="251"/>
         <source>The review stands on the level plane, not on the detections&apos; DEM</source>
         <translation type="unfinished"></translation>
     </message>
@@ -869,7 +869,7 @@ QGIS&apos;s own packages are not changed. pip downloads them from the Python Pac
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="375"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="384"/>
         <source>Missed target (A)</source>
         <translation type="unfinished"></translation>
     </message>
@@ -909,12 +909,12 @@ QGIS&apos;s own packages are not changed. pip downloads them from the Python Pac
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="345"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="354"/>
         <source>Choose the layers above and press Start: each unit to judge shows here.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="383"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="392"/>
         <source>The frames that show the unit</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1299,6 +1299,26 @@ exact</source>
         <source>Worst pixel ({u:.0f}, {v:.0f}): {where}.</source>
         <translation type="unfinished"></translation>
     </message>
+    <message>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="263"/>
+        <source>Cells (the method&apos;s)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="265"/>
+        <source>What the minimum points count, as in Cluster detections: the detections in the grid cells within EPS (the default), or the occupied cells, one point each (the method&apos;s: a spot whose detections all fall in one cell never forms a unit).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="287"/>
+        <source>Points count</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/evaluatedetections.py" line="41"/>
+        <source>The rule was sealed before BirdsEye recorded what the minimum points count; its arms were chosen counting cells, so it is scored counting cells, as sealed.</source>
+        <translation type="unfinished"></translation>
+    </message>
 </context>
 <context>
     <name>BirdsEyeAlgorithm</name>
@@ -1411,12 +1431,12 @@ exact</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="152"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="153"/>
         <source>OUTPUT: the cluster layer cannot be created.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="175"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="176"/>
         <source>OUTPUT_POINTS: the point layer cannot be created.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1426,18 +1446,13 @@ exact</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="116"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="117"/>
         <source>No FRAMES given: every geotag is treated as in view.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="123"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="124"/>
         <source>{n_hit_clusters} of {n} clusters match an in-view geotag; {n_recovered} of {n_in_view} in-view geotags recovered.</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="135"/>
-        <source>{n_det} detections → {n_points} de-duplicated points → {n} clusters ({NOISE_POINTS} points are noise).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
@@ -1446,7 +1461,7 @@ exact</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="111"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="112"/>
         <source>{n} frame(s) without a ground height (flag no_ground_height; first: {items}) were not counted as processed: the geotags only they see are not in view.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1460,47 +1475,57 @@ exact</source>
         <source>Frames (only geotags in view match)</source>
         <translation type="unfinished"></translation>
     </message>
+    <message>
+        <location filename="../processing/algorithms/clusterdetections.py" line="136"/>
+        <source>{n_det} detections → {n_points} de-duplicated points → {n} clusters ({NOISE_POINTS} points are noise; minimum points counted {counted}).</source>
+        <translation type="unfinished"></translation>
+    </message>
 </context>
 <context>
     <name>ClusteringParametersMixin</name>
     <message>
-        <location filename="../processing/parameters/clustering.py" line="25"/>
+        <location filename="../processing/parameters/clustering.py" line="36"/>
         <source>De-duplication grid cell (cm)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/clustering.py" line="28"/>
+        <location filename="../processing/parameters/clustering.py" line="39"/>
         <source>DBSCAN radius EPS (m)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/clustering.py" line="44"/>
+        <location filename="../processing/parameters/clustering.py" line="56"/>
         <source>Edge buffer of the in-view test (px)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/clustering.py" line="69"/>
+        <location filename="../processing/parameters/clustering.py" line="95"/>
         <source>{name}: give at least one detection layer.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/clustering.py" line="72"/>
+        <location filename="../processing/parameters/clustering.py" line="98"/>
         <source>{name}: give one frame layer per detection layer, in the same order (got {detections} detection layer(s) and {frames} frame layer(s)).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/clustering.py" line="80"/>
+        <location filename="../processing/parameters/clustering.py" line="106"/>
         <source>{layer}: {n} detection(s) without a position or score left out</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/clustering.py" line="31"/>
+        <location filename="../processing/parameters/clustering.py" line="42"/>
         <source>DBSCAN minimum points (itself included)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/clustering.py" line="40"/>
+        <location filename="../processing/parameters/clustering.py" line="52"/>
         <source>Geotag match radius EPS_PRED (m)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/parameters/clustering.py" line="63"/>
+        <source>Minimum points count</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
@@ -1754,77 +1779,77 @@ exact</source>
 <context>
     <name>EvaluateDetections</name>
     <message>
-        <location filename="../processing/algorithms/evaluatedetections.py" line="58"/>
+        <location filename="../processing/algorithms/evaluatedetections.py" line="61"/>
         <source>Detection layers (one per flight)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/evaluatedetections.py" line="60"/>
+        <location filename="../processing/algorithms/evaluatedetections.py" line="63"/>
         <source>Geotags</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/evaluatedetections.py" line="62"/>
+        <location filename="../processing/algorithms/evaluatedetections.py" line="65"/>
         <source>Frame layers (one per flight, same order)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/evaluatedetections.py" line="74"/>
+        <location filename="../processing/algorithms/evaluatedetections.py" line="77"/>
         <source>Scores (JSON)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/evaluatedetections.py" line="76"/>
+        <location filename="../processing/algorithms/evaluatedetections.py" line="79"/>
         <source>Report (HTML)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/evaluatedetections.py" line="90"/>
+        <location filename="../processing/algorithms/evaluatedetections.py" line="93"/>
         <source>GEOTAGS: the geotag layer cannot be read.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/evaluatedetections.py" line="93"/>
+        <location filename="../processing/algorithms/evaluatedetections.py" line="96"/>
         <source>GEOTAGS: the layer holds no point with a position.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/evaluatedetections.py" line="116"/>
+        <location filename="../processing/algorithms/evaluatedetections.py" line="119"/>
         <source>{name}: {n_frames_without_ground} frame(s) without a ground height were not counted as processed</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/evaluatedetections.py" line="123"/>
+        <location filename="../processing/algorithms/evaluatedetections.py" line="126"/>
         <source>OUTPUT_JSON: cannot write {out_json} ({exc})</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/evaluatedetections.py" line="131"/>
+        <location filename="../processing/algorithms/evaluatedetections.py" line="134"/>
         <source>OUTPUT_REPORT: cannot write {out_report} ({exc})</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/evaluatedetections.py" line="46"/>
+        <location filename="../processing/algorithms/evaluatedetections.py" line="49"/>
         <source>Evaluate detections (recall, GMCF)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/evaluatedetections.py" line="100"/>
+        <location filename="../processing/algorithms/evaluatedetections.py" line="103"/>
         <source>ARM: names an arm of a sealed selection rule; give the rule (PREREGISTRATION) too, or leave ARM empty.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/evaluatedetections.py" line="66"/>
+        <location filename="../processing/algorithms/evaluatedetections.py" line="69"/>
         <source>Review verdicts (for scores after review)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/evaluatedetections.py" line="69"/>
+        <location filename="../processing/algorithms/evaluatedetections.py" line="72"/>
         <source>Sealed selection rule (JSON)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/evaluatedetections.py" line="72"/>
+        <location filename="../processing/algorithms/evaluatedetections.py" line="75"/>
         <source>Arm to score (its name in the rule)</source>
         <translation type="unfinished"></translation>
     </message>
@@ -2224,73 +2249,103 @@ exact</source>
 <context>
     <name>MonteCarloBoundAlgorithm</name>
     <message>
-        <location filename="../processing/algorithms/montecarlobound.py" line="49"/>
+        <location filename="../processing/algorithms/montecarlobound.py" line="61"/>
         <source>Monte Carlo samples</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/montecarlobound.py" line="51"/>
+        <location filename="../processing/algorithms/montecarlobound.py" line="63"/>
         <source>Random seed</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/montecarlobound.py" line="52"/>
+        <location filename="../processing/algorithms/montecarlobound.py" line="64"/>
         <source>Scaling study: smallest variance factor</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/montecarlobound.py" line="54"/>
+        <location filename="../processing/algorithms/montecarlobound.py" line="66"/>
         <source>Scaling study: largest variance factor</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/montecarlobound.py" line="56"/>
+        <location filename="../processing/algorithms/montecarlobound.py" line="68"/>
         <source>Scaling study: number of factors (log-spaced)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/montecarlobound.py" line="58"/>
+        <location filename="../processing/algorithms/montecarlobound.py" line="70"/>
         <source>Scaling study per axis as well (7× the work)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/montecarlobound.py" line="60"/>
+        <location filename="../processing/algorithms/montecarlobound.py" line="72"/>
         <source>Results (JSON)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/montecarlobound.py" line="97"/>
-        <source>{alt:g} m: max sKLD at the deployed budget {skld:.3g} nats over {n} test pixels (threshold {thr:g}) → the linearised bound {verdict}; exact κ* = {kappa:.3g}.</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../processing/algorithms/montecarlobound.py" line="97"/>
+        <location filename="../processing/algorithms/montecarlobound.py" line="141"/>
         <source>holds</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/montecarlobound.py" line="97"/>
+        <location filename="../processing/algorithms/montecarlobound.py" line="141"/>
         <source>does NOT hold</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/montecarlobound.py" line="120"/>
+        <location filename="../processing/algorithms/montecarlobound.py" line="162"/>
         <source>{name}: the smallest variance factor must be greater than 0, got {value:g}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/montecarlobound.py" line="123"/>
+        <location filename="../processing/algorithms/montecarlobound.py" line="165"/>
         <source>{name}: the largest variance factor must exceed {other} ({low:g}), got {value:g}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/montecarlobound.py" line="31"/>
+        <location filename="../processing/algorithms/montecarlobound.py" line="36"/>
         <source>Sensor bound: Monte Carlo check</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/montecarlobound.py" line="62"/>
+        <location filename="../processing/algorithms/montecarlobound.py" line="74"/>
         <source>Scaling-study plot (PNG)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/montecarlobound.py" line="56"/>
+        <source>Ground grid spacing (m)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/montecarlobound.py" line="58"/>
+        <source>sKLD cut-offs (nats, comma-separated): share of grid points over each</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/montecarlobound.py" line="131"/>
+        <source>{alt:g} m: {n} ground points every {spacing:g} m ({rows} × {cols}). Label error ellipse at {k:g}σ: semi-major axis max {major_max:.3g} px, median {major_median:.3g} px (tolerance r {r:g} px); anisotropy (major/minor) max {ratio_max}, median {ratio_median}.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/montecarlobound.py" line="139"/>
+        <source>{share:.1%} over {cutoff}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/montecarlobound.py" line="141"/>
+        <source>{alt:g} m: max sKLD at the deployed budget {skld:.3g} nats (threshold {thr:g}) → the linearised bound {verdict}; grid points over each sKLD cut-off: {over}; exact κ* = {kappa:.3g}.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/montecarlobound.py" line="148"/>
+        <source>unbounded (labels move along one line)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/montecarlobound.py" line="153"/>
+        <source>{name}: the ground grid spacing must be greater than 0 m, got {value:g}</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
@@ -2614,143 +2669,193 @@ exact</source>
 <context>
     <name>ScreenCheckpoints</name>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="81"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="107"/>
         <source>ONNX checkpoints</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="83"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="109"/>
         <source>Validation flights (frame layers with their images)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="85"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="111"/>
         <source>Geotags</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="98"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="130"/>
         <source>Pixel F1: match radius (px)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="101"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="133"/>
         <source>Collapsed if the distinct-position fraction is below</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="107"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="139"/>
         <source>Checkpoint table (CSV)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="109"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="141"/>
         <source>Checkpoint table (JSON)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="111"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="143"/>
         <source>Frontier plot (PNG)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="113"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="147"/>
         <source>Healthy checkpoints</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="119"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="154"/>
         <source>CHECKPOINTS: give at least one ONNX file.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="121"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="156"/>
         <source>FRAMES: give at least one validation flight.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="130"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="165"/>
         <source>GEOTAGS: the geotag layer cannot be read.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="162"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="200"/>
         <source>{name} on {flight_name}: {skipped} frame(s) skipped (unreadable image or no ground height)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="62"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="85"/>
         <source>Screen checkpoints</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="77"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="103"/>
         <source>Method: blocks of 500 frames, threshold 0.03</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="146"/>
-        <source>{n_blocks} block(s) of {size} frames over {n_flights} flight(s); threshold {threshold}</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="146"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="182"/>
         <source>all</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="146"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="182"/>
         <source>of each checkpoint</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="195"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="253"/>
         <source>healthy</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="195"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="253"/>
         <source>collapsed</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="195"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="253"/>
         <source>too sparse</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="197"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="255"/>
         <source>{checkpoint}: {state}; recall_pre {recall}, gmcf_pre {gmcf}, F1 {f1_geo}, {dpf} detections per frame, review load {load}, pixel F1 {f1_pixel} (within {radius:g} px){frontier}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="197"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="255"/>
         <source> (frontier)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="77"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="103"/>
         <source>BirdsEye: whole flights, each model&apos;s threshold</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="87"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="119"/>
         <source>Preset (blocks and threshold)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="90"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="122"/>
         <source>Threshold (empty: the preset&apos;s)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="93"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="125"/>
         <source>Frames per block (0: whole flights)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="104"/>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="136"/>
         <source>Too sparse below (detections/frame, worst block)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="113"/>
+        <source>Held-out flights (frame layers with their images)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="116"/>
+        <source>Geotags of the held-out flights (empty: Geotags)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="145"/>
+        <source>Report (HTML)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="169"/>
+        <source>HELDOUT_GEOTAGS: give the held-out flights (HELDOUT_FRAMES) too, or leave it empty.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="177"/>
+        <source>validation</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="179"/>
+        <source>held-out</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="182"/>
+        <source>{side}: {n_blocks} block(s) of {size} frames over {n_flights} flight(s); threshold {threshold}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="264"/>
+        <source>Survey density ({side}): {mean} geotags in view per frame (median {median}, {empty} of the frames see none)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="274"/>
+        <source>{checkpoint}: recall {recall_v} → {recall_h} (Δ {d_recall}), GMCF {gmcf_v} → {gmcf_h} (Δ {d_gmcf}), validation → held-out</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="281"/>
+        <source>Spearman's ρ of {figure}, validation vs held-out: {note}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="284"/>
+        <source>Spearman's ρ of {figure}, validation vs held-out: {rho:.3f} over {n} healthy checkpoints</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
@@ -2772,17 +2877,17 @@ exact</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sealpreregistration.py" line="119"/>
+        <location filename="../processing/algorithms/sealpreregistration.py" line="120"/>
         <source>OUTPUT: cannot write {out} ({exc})</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sealpreregistration.py" line="121"/>
+        <location filename="../processing/algorithms/sealpreregistration.py" line="122"/>
         <source>Sealed at {sealed_at}: {seal}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sealpreregistration.py" line="123"/>
+        <location filename="../processing/algorithms/sealpreregistration.py" line="124"/>
         <source>Record this seal somewhere you cannot edit later (an e-mail, a lab notebook, a commit): the seal proves the rule unchanged only against a copy kept elsewhere.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -2807,7 +2912,7 @@ exact</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sealpreregistration.py" line="107"/>
+        <location filename="../processing/algorithms/sealpreregistration.py" line="108"/>
         <source>Arm {name}: {checkpoint} (sha256 {model_digest}) at {operating_point}</source>
         <translation type="unfinished"></translation>
     </message>
@@ -3004,118 +3109,118 @@ exact</source>
 <context>
     <name>SweepOperatingPoints</name>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="100"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="101"/>
         <source>Geotags</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="106"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="107"/>
         <source>De-duplication grid cell (cm)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="113"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="115"/>
         <source>Credible: mean geotags per hit cluster at most</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="116"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="118"/>
         <source>Credible: mean median cluster extent at most (m)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="119"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="121"/>
         <source>Configurations (CSV)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="124"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="126"/>
         <source>Frontier plot (PNG)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="149"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="151"/>
         <source>GEOTAGS: the geotag layer cannot be read.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="241"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="245"/>
         <source>No configuration passed the credibility filter.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="76"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="77"/>
         <source>Sweep operating points</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="137"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="139"/>
         <source>CHECKPOINTS, DETECTIONS: give ONNX checkpoints (the sweep runs them over the frames) or detection layers made by Detect, not both and not neither.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="141"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="143"/>
         <source>FRAMES: give at least one frame layer.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="143"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="145"/>
         <source>FRAMES: give one frame layer per detection layer, in the same order (got {detections} detection layer(s) and {frames} frame layer(s)).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="172"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="174"/>
         <source>{name}: {n_frames} frames, {value} geotags in view</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="180"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="183"/>
         <source>{layer}: {n} detection(s) without a position or score left out</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="185"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="188"/>
         <source>Threshold axis: the thresholds the layers were detected at, {values} (THRESHOLDS is used with CHECKPOINTS only).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="196"/>
-        <source>Sweeping {n_checkpoints} checkpoint(s) × {size} configurations ({items}: threshold × eps × min_samples × eps_pred)</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="234"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="238"/>
         <source>Pareto: {checkpoint}, threshold {threshold}, eps {eps_m} m, min_samples {min_samples}, eps_pred {eps_pred_m} m → recall_pre {recall_pre:.3f}, gmcf_pre {gmcf_pre:.3f}, F1 {f1_geo:.3f}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="276"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="280"/>
         <source>{checkpoint} on {flight}: {n} frame(s) skipped, e.g. {frame_id}: {reason}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="94"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="95"/>
         <source>ONNX checkpoints (run over FRAMES)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="97"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="98"/>
         <source>Or detection layers (from Detect)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="102"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="103"/>
         <source>Frame layers (one per flight or detection layer)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="109"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="111"/>
         <source>Edge buffer at the image border (px)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="121"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="123"/>
         <source>Configurations and Pareto front (JSON)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="199"/>
+        <source>Sweeping {n_checkpoints} checkpoint(s) × {size} configurations ({items}: threshold × eps × min_samples × eps_pred; minimum points count {counted})</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
@@ -3427,8 +3532,8 @@ exact</source>
     </message>
     <message>
         <location filename="../resources/help/clusterdetections.md" line="5"/>
-        <source>- **De-duplication**: every occupied grid cell (DEDUP_CM) becomes one point at the mean position of its detections, so repeated detections of the same spot count once.
-- **DBSCAN** on those points: a point is a *core* point when at least MIN_SAMPLES points (itself included) lie within EPS_M of it; clusters are core points linked through EPS_M plus the points within EPS_M of them; everything else is noise. A border point reachable from two clusters joins the first one found.
+        <source>- **De-duplication**: every occupied grid cell (DEDUP_CM) becomes one point at the mean position of its detections, and remembers how many detections it holds. This keeps DBSCAN fast on hundreds of thousands of detections.
+- **DBSCAN** on those points: a point is a *core* point when the detections within EPS_M of it (its own included) number at least MIN_SAMPLES — or, with **Minimum points count** set to *cells* (the method&apos;s), when at least MIN_SAMPLES occupied cells lie within EPS_M. Clusters are core points linked through EPS_M plus the points within EPS_M of them; everything else is noise. A border point reachable from two clusters joins the first one found.
 - **Cluster figures** are computed over each cluster&apos;s detections: centroid = their mean position; median extent = twice the median distance of the detections from the centroid (a robust diameter, m).
 - With geotags, a cluster is a **hit** when an in-view geotag lies within EPS_PRED_M of one of its core points (horizontal distance). With frames, a geotag is *in view* when it projects inside at least one frame of the layer (by EDGE_BUFFER_PX), placed on the ground the detections were placed on (the detection layer&apos;s `ground` field: level plane, method&apos;s plane or DEM), as in Evaluate detections; without frames every geotag counts as in view.</source>
         <translation type="unfinished"></translation>
@@ -3441,9 +3546,10 @@ exact</source>
     <message>
         <location filename="../resources/help/clusterdetections.md" line="12"/>
         <source>- **Detections**: the output of Detect targets (fields frame_id, score; model, model_digest, threshold used when present; ground height in Z).
-- **De-duplication grid cell (cm)**, default 3: detections of one target from many frames differ by 1–3 cm of projection noise; one 3 cm cell keeps a single point for near-identical repeats, and MIN_SAMPLES then counts distinct positions, not repeats.
-- **DBSCAN radius EPS (m)**, default 0.20 — with MIN_SAMPLES 2 and EPS_PRED 0.20 m, the configuration the method reports, so a default run can be compared with its tables. About seven grid cells: the scattered detections of a burrow-sized target (a few cm, seen with cm-level pose noise and several cm near the frame edge) chain into one cluster, while targets more than 0.2 m apart stay apart. Where targets lie closer, lower it (the method also reports 0.10 and 0.15 m).
-- **DBSCAN minimum points**, default 2: a core point needs two distinct 3 cm positions within EPS (itself included) — the spot was detected at least twice (in two frames, or twice in one); a single detection stays noise. The method also reports 5, 10 and 20: fewer false alarms, lower recall.
+- **De-duplication grid cell (cm)**, default 3: detections of one target from many frames differ by 1–3 cm of projection noise; one 3 cm cell keeps a single point for near-identical repeats. By default the minimum points still count every detection in it, so the grid changes speed, not results, wherever its lines fall.
+- **DBSCAN radius EPS (m)**, default 0.20 — with MIN_SAMPLES 2 and EPS_PRED 0.20 m, the configuration the method reports (to reproduce its tables exactly, also set Minimum points count to *cells*). About seven grid cells: the scattered detections of a burrow-sized target (a few cm, seen with cm-level pose noise and several cm near the frame edge) chain into one cluster, while targets more than 0.2 m apart stay apart. Where targets lie closer, lower it (the method also reports 0.10 and 0.15 m).
+- **DBSCAN minimum points**, default 2: a core point needs two detections within EPS (its own included) — the spot was detected at least twice (in two frames, or twice in one); a single detection stays noise. The method also reports 5, 10 and 20: fewer false alarms, lower recall.
+- **Minimum points count** (CORE_COUNT, advanced), default *Detections in the cells within EPS* (0): what the minimum points count. *Cells within EPS, one point each (the method&apos;s)* (1) counts each occupied 3 cm cell once, however many detections it holds. With well-refined poses a target&apos;s detections often all land in one cell: counted as cells it is then a single point that never reaches MIN_SAMPLES 2, and whether a target survives depends on whether its detections happen to straddle a grid line — better poses give lower recall. Use *cells* only to reproduce the method&apos;s figures.
 - **Geotags** (optional): any point layer; ids from an `id` field (each geotag its own; empty or shared ids are refused), else the row number (1.., in feature order).
 - **Frames** (optional): the flight&apos;s frame layer; every frame in it counts as processed.
 - **Match radius EPS_PRED (m)**, default 0.20: RTK geotag error (1–2 cm), projection error near the frame edge (several cm at 10–20 m) and a rover pole set on the rim of a burrow (about 5 cm) all fit well inside 20 cm, which stays far below the spacing of distinct targets. The review dock propagates verdicts over the same 0.20 m.
@@ -3452,14 +3558,14 @@ exact</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../resources/help/clusterdetections.md" line="22"/>
+        <location filename="../resources/help/clusterdetections.md" line="23"/>
         <source>## Outputs</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../resources/help/clusterdetections.md" line="24"/>
+        <location filename="../resources/help/clusterdetections.md" line="25"/>
         <source>- **Clusters** (polygons): the convex hull of each cluster&apos;s detections grown by 3 cm (a 32-sided polygon circumscribing it), with cluster_id, centroid_x, centroid_y (layer CRS), n_detections, n_frames (distinct frames), median_extent_m (m), max_score, matched_geotag_ids (comma-separated), hit (1/0). Styled: hits green, unmatched clusters orange (review those first).
-- **De-duplicated points** (optional): point_id, cluster_id (−1 = noise), core (1/0), n_detections merged into the point, score (the highest of theirs). Drawn as points in a cluster and noise (grey crosses).
+- **De-duplicated points** (optional): point_id, cluster_id (−1 = noise), core (1/0), n_detections merged into the point (what the minimum points count by default), score (the highest of theirs). Drawn as points in a cluster and noise (grey crosses).
 - Counts: clusters, hit clusters, noise points.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -3494,7 +3600,7 @@ exact</source>
 - **Frames of the flight** (FRAMES): the frame layer both detectors ran on (processed frames, the in-view test, detections per frame).
 - **Terrain model (DEM)**, **DEM heights are measured from**, **geoid undulation N (m)** (optional): both layers must have been placed on one ground (a change of ground is not a change of detector; layers placed on different grounds are refused); for layers placed on a DEM give that DEM, as in Evaluate detections.
 - **Geotags** (GEOTAGS): any point layer; ids from an `id` field (each geotag its own; empty or shared ids are refused), else the row number (1.., in feature order).
-- **De-duplication grid cell (cm)** (default 3), **DBSCAN radius EPS (m)** (default 0.20), **DBSCAN minimum points** (default 2), **match radius EPS_PRED (m)** (default 0.20), **edge buffer (px)** (default 0): as in Evaluate detections; both detectors are scored with the same values.
+- **De-duplication grid cell (cm)** (default 3), **DBSCAN radius EPS (m)** (default 0.20), **DBSCAN minimum points** (default 2), **Minimum points count** (CORE_COUNT, advanced; default detections, or cells as the method counts), **match radius EPS_PRED (m)** (default 0.20), **edge buffer (px)** (default 0): as in Evaluate detections; both detectors are scored with the same values.
 - **Review verdicts** (REVIEW, optional): the review dock&apos;s verdict table, as in Evaluate detections; adds gmcf_post and recall_post under each convention for both detectors.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -3594,7 +3700,7 @@ exact</source>
     </message>
     <message>
         <location filename="../resources/help/evaluatedetections.md" line="5"/>
-        <source>- Detections of all processed frames are de-duplicated on a DEDUP_CM grid and clustered with DBSCAN (EPS_M, MIN_SAMPLES) in a local metric frame (see Cluster detections).
+        <source>- Detections of all processed frames are de-duplicated on a DEDUP_CM grid and clustered with DBSCAN (EPS_M, MIN_SAMPLES, counting detections or — CORE_COUNT *cells*, the method&apos;s — occupied cells) in a local metric frame (see Cluster detections).
 - Processed frames = every frame of the frame layer given (Detect ran on all of them); frames without a ground height are left out when the detections stand on a plane, as Detect skips them; on a DEM every frame counts (Detect placed them).
 - A geotag is **in view** if it projects inside at least one processed frame (at least EDGE_BUFFER_PX inside the image), placed on the ground the detections were placed on — the level plane, the method&apos;s plane or the DEM, as the detection layer records it (field `ground`); on a DEM a geotag the terrain hides from a frame is not in view of it.
 - An in-view geotag is **recovered** if it lies within EPS_PRED_M (horizontal distance) of a **core** point of some cluster — a border point is not enough.
@@ -3605,36 +3711,37 @@ exact</source>
 - **recall_post is printed &quot;≥ x&quot; only when a = 0**: then it is a lower bound on the recall over the known targets (geotags in view and confirmed clusters), since a real cluster left unconfirmed would add one to both numerator and denominator. **When a &gt; 0 it is printed as a point value**: the recall over every real target in view, under these assumptions — the reviewer&apos;s search for missed targets was exhaustive (every real target in view that nobody surveyed and the detector missed was added); every in-view geotag is one real target; every confirmed cluster is one real target, distinct from the geotags and from the other confirmed clusters; unmatched clusters not resolved confirmed_real (hard_negative, uncertain, unreviewed) are not real targets. Either way, real targets that nobody surveyed, the detector missed and the reviewer did not add are in no term: where the search for missed targets was not exhaustive, the figure overstates the detector&apos;s recall over all real targets.
 - **Votes.** A cluster is resolved once over all direct and propagated judgements of the reviewed spots attached to it. **uncertain and unreviewed are abstentions, not votes**: only confirmed_real and hard_negative count, so [confirmed_real, uncertain] resolves to confirmed_real and [confirmed_real ×2, hard_negative, uncertain ×2] to confirmed_real; judgements that all abstain leave the cluster uncertain. POST scores are given under three conventions for conflicting votes: **positive-wins** (any confirmed_real wins), **majority-wins** (the side with more votes; a tie between confirmed_real and hard_negative is uncertain), **hard-negative-wins** (any hard_negative wins). The spread between them is part of the result.
 - **F1**: none here. The F1 the method prints, **f1_geo** = 2 · recall · GMCF / (recall + GMCF) of pooled recall and pooled GMCF, is in Sweep operating points, Select arms and Screen checkpoints; from this tool&apos;s pooled recall_pre and gmcf_pre it is that same formula.
+- **Survey density** = the in-view geotags per processed frame: for every frame, how many geotags are in view of that frame, summarised per flight and over all flights (mean, median, 10th and 90th percentiles, minimum and maximum, and the share of frames that see no geotag). It is reported beside GMCF because a cluster is a hit only where the survey put a geotag: where fewer of the real targets were surveyed, more clusters go unmatched and GMCF falls with the detector unchanged. Compare two sites&apos; GMCF only together with their survey densities.
 - Several flights are pooled by **micro-averaging**: counts are summed over flights, then divided once — ratios are never averaged. A geotag in view in two flights counts once per flight.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../resources/help/evaluatedetections.md" line="18"/>
+        <location filename="../resources/help/evaluatedetections.md" line="19"/>
         <source>## Parameters</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../resources/help/evaluatedetections.md" line="20"/>
+        <location filename="../resources/help/evaluatedetections.md" line="21"/>
         <source>- **Detection layers**: one per flight (outputs of Detect targets).
 - **Geotags**: any point layer; ids from an `id` field (each geotag its own; empty or shared ids are refused), else the row number (1.., in feature order).
 - **Frame layers**: one per flight, in the same order as the detection layers.
-- **De-duplication grid cell (cm)** (default 3), **DBSCAN radius EPS (m)** (default 0.20), **DBSCAN minimum points** (default 2), **match radius EPS_PRED (m)** (default 0.20), **edge buffer (px)** (default 0): as in Cluster detections, whose help explains the defaults.
+- **De-duplication grid cell (cm)** (default 3), **DBSCAN radius EPS (m)** (default 0.20), **DBSCAN minimum points** (default 2), **Minimum points count** (CORE_COUNT, advanced; default detections, or cells as the method counts), **match radius EPS_PRED (m)** (default 0.20), **edge buffer (px)** (default 0): as in Cluster detections, whose help explains the defaults.
 - **Terrain model (DEM)**, **DEM heights are measured from**, **geoid undulation N (m)** (optional): needed, and only allowed, for detection layers Detect placed on a DEM (their `ground` field says `dem`, and `dem_source` names the file): give that DEM, with the vertical reference Detect was given. A layer placed on a DEM is refused without one, naming the DEM it needs; a DEM given for a layer placed on a plane is refused, since it would change which geotags count as in view. A DEM other than the recorded one (another file or vertical reference) is warned about.
 - **Review verdicts** (optional): the review dock&apos;s verdict table (fields unit_key, verdict, provenance, time, reviewer, lat, lon). The latest row per unit and provenance counts; each reviewed unit is attached to the clusters with a core point within EPS_PRED_M of its position; added targets (verdict &quot;added&quot;) count in a when they are in view and neither a cluster nor a geotag is within EPS_PRED_M.
-- **Sealed selection rule** (optional): a file from Seal a preregistered selection rule. Its seal is verified first; a tampered rule, or detections from a model the rule does not name, are refused. The operating point of the arm scored then replaces the values above.
+- **Sealed selection rule** (optional): a file from Seal a preregistered selection rule. Its seal is verified first; a tampered rule, or detections from a model the rule does not name, are refused. The operating point of the arm scored then replaces the values above. A rule sealed before BirdsEye recorded what the minimum points count (its operating points have no `core_count`) still verifies, and is scored counting cells, as its arms were chosen; the log says so.
 - **Arm to score** (ARM, optional): the arm&apos;s name in the sealed rule (`max_f1`, `max_recall`, `lowest_review_burden` for an arms file of Select arms). Needed when several arms share the detections&apos; checkpoint, as the method&apos;s arms often do; refused without a sealed rule.
 - **Detections at the sealed threshold.** Under a sealed rule every detection layer must have been **detected at the arm&apos;s threshold** (Detect writes the threshold it ran at into every detection; a layer without it is refused). A layer detected at any other threshold is refused, not filtered: Detect makes one detection per blob of the heatmap above its threshold, so a blob whose humps meet between a lower and a higher threshold is one detection at the lower and two at the higher, and every centroid moves with the threshold — keeping a lower run&apos;s detections scored ≥ the sealed threshold is not a run at it, and a higher run never made the detections in between. Run Detect on the held-out flight with THRESHOLD = the arm&apos;s threshold, once per arm threshold.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../resources/help/evaluatedetections.md" line="30"/>
+        <location filename="../resources/help/evaluatedetections.md" line="31"/>
         <source>## Outputs</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../resources/help/evaluatedetections.md" line="32"/>
-        <source>- **Scores (JSON)**: n_in_view, n_recovered, recall_pre, n_clusters, n_hit_clusters, gmcf_pre (pooled), the parameters, one row per flight, and when reviewed a `post` block per convention (c, a, gmcf_post, recall_post_value, recall_post_kind = `lower_bound` when a = 0 or `point_value` when a &gt; 0, and recall_post as text: &quot;≥ x&quot; or &quot;x&quot;) with `review_notes` (for instance reviewed units that carry no position); with a sealed rule, a `preregistration` block (seal, sealed_at, the arm scored and its model_digest).
-- **Report (HTML)**: the same as tables, with plots of the scores per flight and of cluster sizes (hit and unmatched).
+        <location filename="../resources/help/evaluatedetections.md" line="33"/>
+        <source>- **Scores (JSON)**: n_in_view, n_recovered, recall_pre, n_clusters, n_hit_clusters, gmcf_pre (pooled), the parameters (core_count among them), `survey_density` (pooled, and in each flight&apos;s row), one row per flight, and when reviewed a `post` block per convention (c, a, gmcf_post, recall_post_value, recall_post_kind = `lower_bound` when a = 0 or `point_value` when a &gt; 0, and recall_post as text: &quot;≥ x&quot; or &quot;x&quot;) with `review_notes` (for instance reviewed units that carry no position); with a sealed rule, a `preregistration` block (seal, sealed_at, the arm scored and its model_digest).
+- **Report (HTML)**: the same as tables — the survey density per flight among them — with plots of the scores per flight and of cluster sizes (hit and unmatched).
 - The pooled figures as numbers, for models.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -3992,34 +4099,48 @@ exact</source>
     <name>help:montecarlobound</name>
     <message>
         <location filename="../resources/help/montecarlobound.md" line="1"/>
-        <source>Checks that the first-order (linearised) label covariance used by **Sensor bound** is trustworthy for your budget. Pose errors are drawn from the budget, applied to the camera exactly (SE(3) exponential), the ground point seen at ten test pixels (corners, edge midpoints, centre, principal point) is re-projected, and the sampled covariance of the label displacement is compared with the linearised one by the symmetric Kullback–Leibler divergence (sKLD, in nats). Below 0.01 the linearisation holds. A scaling study repeats the check with every variance multiplied by factors from SCALE_MIN to SCALE_MAX, to show where the linearisation starts to break; the exact bound&apos;s κ* is marked on the plot.</source>
+        <source>Checks that the first-order (linearised) label covariance used by **Sensor bound** is trustworthy for your budget, the way the method runs the check: on a grid of ground points. The camera looks straight down on level ground at each altitude; the ground it sees (its footprint, out to the photo&apos;s edges) is covered by points every GROUND_SPACING_M metres (0.67 m by default), each seen at one pixel of the photo. Pose errors are drawn from the budget and applied to the camera exactly (as SE(3) motions), every ground point is projected into the moved camera, and how far its label lands from where it should gives, per point:</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
         <location filename="../resources/help/montecarlobound.md" line="3"/>
-        <source>**Camera**: as in Sensor bound — a **platform preset** (camera, pose sigmas and camera mount together, e.g. *DJI RTK drone, poses from its image metadata*; see Sensor bound), a **calibration** file (Kalibr or OpenCV YAML; it overrides the typed intrinsics) or **fx, fy, cx, cy** [px] and **image width, height** [px].</source>
+        <source>- **Error ellipse**: the spread of the label&apos;s landing spots. Its **major axis** [px] is the semi-major axis at 3σ — three times the square root of the largest eigenvalue of the sampled covariance — the same 3σ your label tolerance r is drawn at, so compare it with r directly. Its **anisotropy** is the major axis divided by the minor one: 1 for a round spread, 2 when labels scatter twice as far in one direction as across it; it is unbounded when labels move along one line only (a budget with a single nonzero sigma, such as z alone).
+- **sKLD** [nats]: the symmetric Kullback–Leibler divergence between the sampled covariance and the linearised one; 0 when the linear approximation is exact. The linearised bound holds when the largest sKLD over the grid is below 0.01.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../resources/help/montecarlobound.md" line="5"/>
+        <location filename="../resources/help/montecarlobound.md" line="6"/>
+        <source>A scaling study repeats the check with every variance multiplied by factors from SCALE_MIN to SCALE_MAX, to show where the linearisation starts to break; the exact bound&apos;s κ* is marked on the plot.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../resources/help/montecarlobound.md" line="8"/>
+        <source>**Camera**: as in Sensor bound — a **platform preset** (camera, pose sigmas and camera mount together, e.g. *DJI RTK drone, poses from its image metadata*; see Sensor bound), a **calibration** file (Kalibr or OpenCV YAML; it overrides the typed intrinsics) or **fx, fy, cx, cy** [px] and **image width, height** [px]. Lens distortion is not used.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../resources/help/montecarlobound.md" line="10"/>
         <source>- **Altitudes** [m]: heights above the ground, comma-separated; each &gt; 0.
 - **Pose sigmas** (1σ): `x, y, z` in metres, `roll, pitch, yaw` in degrees (same axes as Sensor bound).
 - **Camera mount**: how roll, pitch and yaw turn the camera, as in Sensor bound (default: as the method). The draws are turned into the camera by the mount&apos;s rotation, so the check also confirms which image direction each attitude error moves labels in.
-- **Label tolerance r** [px at 3σ]: used only to compute κ* of the exact bound for the plot.
-- **Monte Carlo samples**: pose draws per check (default 20 000; sampling noise of the sKLD is about 3 / samples).
+- **Label tolerance r** [px at 3σ]: used to compute κ* of the exact bound for the plot, and printed beside the major axes in the log.
+- **Ground grid spacing** [m]: distance between neighbouring ground points, along the photo&apos;s width and height (default 0.67 m, the method&apos;s). The grid is centred on the middle of the footprint and keeps the points inside it: at 10 m the deployed platform&apos;s 4.50 m × 2.82 m footprint holds 7 × 5 = 35 points. A finer grid costs time in proportion to its number of points.
+- **sKLD cut-offs** [nats]: comma-separated; for each, the share of grid points whose sKLD is above it is reported (default 0.01, the threshold the verdict uses; add any other cut-off you judge by, e.g. `0.01, 0.1`).
+- **Monte Carlo samples**: pose draws per check (default 20 000; sampling noise of the sKLD is about 3 / samples, and of a major axis about 0.5 % at 20 000).
 - **Random seed**: the same seed gives the same numbers; one set of draws is reused for every factor, so the curves are smooth.
 - **Scaling study**: smallest and largest variance factor (defaults 0.1 and 100) and the number of log-spaced factors (default 25). **Per axis** also scales one axis at a time with the others at the budget (seven times the work), showing which sensor breaks the linearisation first.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../resources/help/montecarlobound.md" line="13"/>
+        <location filename="../resources/help/montecarlobound.md" line="20"/>
         <source>## Outputs</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../resources/help/montecarlobound.md" line="15"/>
-        <source>- **Results (JSON)**: per altitude `max_skld` at the budget, `linearisation_holds` (max sKLD &lt; `skld_threshold`), `kappa_exact`, the per-pixel check (sampled and model covariances in px²) and the scaling study (`scales`, `skld_max`, `per_axis`).
-- **Plot (PNG)**: sKLD against the variance factor, log–log, one panel per altitude (top to bottom in the order given).</source>
+        <location filename="../resources/help/montecarlobound.md" line="22"/>
+        <source>- **Log**: per altitude, the number of ground points, the largest and median major axis [px] against r, the largest and median anisotropy, the largest sKLD with the verdict, and the share of points over each cut-off.
+- **Results (JSON)**: per altitude `max_skld` at the budget, `linearisation_holds` (max sKLD &lt; `skld_threshold`), `kappa_exact`, the check and the scaling study. The check holds the grid (`spacing_m`, `grid_shape` as rows × columns, `footprint_m` as x and y ranges in metres from the point under the camera), a `summary` (`major_axis_px_max`, `major_axis_px_median`, `anisotropy_max`, `anisotropy_median`, `max_skld`, `fraction_over_skld` per cut-off) and one row per ground point in `points`: its ground position `x_m`, `y_m` (along the photo&apos;s width and height), its pixel `u`, `v`, `major_axis_px`, `anisotropy`, `skld` and the sampled and model covariances in px². An unbounded anisotropy or infinite sKLD is written as null. The scaling study holds `scales`, `skld_max` (the largest over the grid) and `per_axis`.
+- **Plot (PNG)**: the largest sKLD over the grid against the variance factor, log–log, with a line at each cut-off, one panel per altitude (top to bottom in the order given).</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
@@ -4066,7 +4187,7 @@ exact</source>
         <location filename="../resources/help/planflight.md" line="26"/>
         <source>- **REVIEW** — the review dock&apos;s verdict table (`birdseye_verdicts` of the review GeoPackage), as in Evaluate detections. With it, every cluster the review left **unresolved** becomes a target of the plan, at its centroid (the mean of its detections), so the next flight or walk visits it: **uncertain** (only abstentions), **unreviewed** (nobody judged it) and **conflicting** (votes on both sides — the three conventions of Evaluate detections do not agree on it). Clusters a geotag matches are settled by the survey; confirmed and hard-negative clusters are settled by the review (Write labels uses them).
 - **REVIEW_DETECTIONS** — the detection layer(s) the review judged (outputs of Detect targets); **REVIEW_FRAMES** — their frame layers, one per detection layer, in the same order. The clusters are made and matched to the geotags (all of GEOTAGS, selected or not) exactly as Evaluate detections does.
-- **DEDUP_CM** (cm, default 3), **EPS_M** (m, default 0.20), **MIN_SAMPLES** (default 2), **EPS_PRED_M** (m, default 0.20), **EDGE_BUFFER_PX** (px, default 0) — advanced: the clustering and matching the review was scored with (the review dock&apos;s values); a verdict attaches to the clusters with a core point within EPS_PRED_M of its position.
+- **DEDUP_CM** (cm, default 3), **EPS_M** (m, default 0.20), **MIN_SAMPLES** (default 2), **CORE_COUNT** (default detections), **EPS_PRED_M** (m, default 0.20), **EDGE_BUFFER_PX** (px, default 0) — advanced: the clustering and matching the review was scored with (the review dock&apos;s values); a verdict attaches to the clusters with a core point within EPS_PRED_M of its position.
 - **UNRESOLVED_ONLY** — fly only to the unresolved clusters, not to the geotags (default: both). Refused without a review, or when the review left nothing unresolved.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -4219,7 +4340,7 @@ exact</source>
 - **Verdict log**: a GeoPackage; by default the first detection layer&apos;s GeoPackage, else `&lt;project&gt;_review.gpkg` next to the project. The log is the table `birdseye_verdicts` (a point layer, added to the map as &quot;Review verdicts&quot;, showing each unit&apos;s current verdict and the targets you added).
 - **Reviewer**: your name, recorded with every verdict (default: your login name).
 - **Review units**: *Consensus clusters* (the default, as described above: one unit per spot, best when several layers are reviewed) or *the method&apos;s* units, built as the method builds them: every detection within EPS_PRED of an in-view geotag is set aside on its own; per frame, the detections that stay are grouped by complete linkage on their pixel positions at 30 px (every two detections of a group at most 30 px apart). Each group is one unit seen in one frame, so a spot is judged once per frame that saw it (propagation, when on, carries a verdict to the same spot in the other frames); its key ends with `@&lt;frame id&gt;`. The scores are computed the same way with either: each cluster of a layer resolves once over all the judgements of the units near it.
-- **Clustering and matching** (defaults of the method): grid cell 3 cm, EPS 0.20 m, minimum points 2, EPS_PRED 0.20 m (a unit is *matched* when a geotag in view lies within EPS_PRED of its core points), edge buffer 0 px; chip window (px of the image around the detection); map scale.</source>
+- **Clustering and matching** (the method&apos;s values, but for the points count): grid cell 3 cm, EPS 0.20 m, minimum points 2, *points count* detections (the minimum points count the detections within EPS; *Cells (the method&apos;s)* counts each occupied grid cell once, as Cluster detections explains — a spot whose detections all fall in one cell then never becomes a unit), EPS_PRED 0.20 m (a unit is *matched* when a geotag in view lies within EPS_PRED of its core points), edge buffer 0 px; chip window (px of the image around the detection); map scale.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
@@ -4249,7 +4370,7 @@ exact</source>
     </message>
     <message>
         <location filename="../resources/help/review.md" line="23"/>
-        <source>**Nothing is lost**: every verdict is committed to the GeoPackage in its own transaction before the dock moves on; the log is append-only (undo appends rows restoring the previous verdicts; the table refuses edits and deletions). Each row records the unit, verdict, provenance, reviewer, UTC time, position, the layers that fired, the clustering and matching parameters and a SHA-256 digest of each input layer. Reopening the project, or the dock with the same layers, resumes at the unit and filters where you stopped. If an input layer changed since verdicts were recorded (its digest differs), or the parameters did, a warning says so.</source>
+        <source>**Nothing is lost**: every verdict is committed to the GeoPackage in its own transaction before the dock moves on; the log is append-only (undo appends rows restoring the previous verdicts; the table refuses edits and deletions). Each row records the unit, verdict, provenance, reviewer, UTC time, position, the layers that fired, the clustering and matching parameters and a SHA-256 digest of each input layer. Reopening the project, or the dock with the same layers, resumes at the unit and filters where you stopped. If an input layer changed since verdicts were recorded (its digest differs), or the parameters did, a warning says so. A review saved before the points count was recorded was built counting cells, and reopens that way.</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
@@ -4257,7 +4378,7 @@ exact</source>
     <name>help:screencheckpoints</name>
     <message>
         <location filename="../resources/help/screencheckpoints.md" line="1"/>
-        <source>Runs several ONNX checkpoints over several validation flights at one threshold and reports, per checkpoint, the figures the method tabulates — pooled recall, pooled GMCF, their F1, detections per frame and the relative review load — next to health guards that tell which checkpoints are healthy, and which of those lie on the frontier of recall against GMCF. A screen before a full sweep.</source>
+        <source>Runs several ONNX checkpoints over several validation flights at one threshold and reports, per checkpoint, the figures the method tabulates — pooled recall, pooled GMCF, their F1, detections per frame and the relative review load — next to health guards that tell which checkpoints are healthy, and which of those lie on the frontier of recall against GMCF. A screen before a full sweep. Give held-out flights too and it reports how each checkpoint&apos;s figures carry over to them (the transfer report, below).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
@@ -4305,29 +4426,63 @@ exact</source>
     </message>
     <message>
         <location filename="../resources/help/screencheckpoints.md" line="25"/>
-        <source>## Parameters</source>
+        <source>## Survey density</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
         <location filename="../resources/help/screencheckpoints.md" line="27"/>
+        <source>Per flight and pooled: the in-view geotags per processed frame — for every frame, how many geotags are in view of it — as mean, median, 10th and 90th percentiles, minimum–maximum and the share of frames that see none. A cluster is a hit only where the survey put a geotag, so a sparsely surveyed site has more unmatched clusters and a lower GMCF for the same detector: compare GMCF across sites only with their densities.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../resources/help/screencheckpoints.md" line="29"/>
+        <source>## Validation → held-out (the transfer report)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../resources/help/screencheckpoints.md" line="31"/>
+        <source>With **held-out flights** (HELDOUT_FRAMES), every checkpoint is also run on them, screened exactly as on the validation flights (same preset, threshold, blocks and clustering), and reported side by side:</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../resources/help/screencheckpoints.md" line="33"/>
+        <source>- per checkpoint: recall and GMCF on the validation flights and on the held-out flights, and their changes **ΔRecall** and **ΔGMCF** = held-out − validation (empty where either figure is undefined);
+- across checkpoints: **Spearman&apos;s rank correlation ρ** between the validation and the held-out figure, for recall and for GMCF, over the checkpoints healthy on the validation flights (the ones you would choose from); tied figures share their average rank. Near 1: the validation ranking holds on the held-out flights; near 0 or below: the checkpoint that looked best on validation need not be best there. Fewer than 3 such checkpoints give no ρ but a note saying &quot;not enough checkpoints&quot; (with 2, ρ is ±1 whatever the figures); so does a figure that is the same for every checkpoint (&quot;no ranking&quot;).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../resources/help/screencheckpoints.md" line="36"/>
+        <source>GMCF moves with how densely each site was surveyed (its survey density), so a GMCF that changes between sites, or a GMCF ranking that does not hold, says as much about the surveys as about the checkpoints; recall, taken over the surveyed targets only, is the figure to compare across sites.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../resources/help/screencheckpoints.md" line="38"/>
+        <source>## Parameters</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../resources/help/screencheckpoints.md" line="40"/>
         <source>- **ONNX checkpoints**: model files with BirdsEye metadata (see Detect targets).
 - **Validation flights**: frame layers whose `image` field points at the frames&apos; images; every frame is processed.
 - **Geotags**: any point layer.
+- **Held-out flights** (HELDOUT_FRAMES, optional): frame layers with their images, as the validation flights; each is scored on its own, never pooled with the validation flights.
+- **Geotags of the held-out flights** (HELDOUT_GEOTAGS, optional): the survey of the held-out site; empty: the Geotags above.
 - **Preset**, **Detection threshold**, **Frames per block**: as above.
-- **DEDUP_CM, EPS_M, MIN_SAMPLES, EPS_PRED_M, EDGE_BUFFER_PX**: as in Evaluate detections (defaults 3 cm, 0.20 m, 2, 0.20 m, 0 px); EDGE_BUFFER_PX also drops detections that close to the image border, as Detect does.
+- **DEDUP_CM, EPS_M, MIN_SAMPLES, CORE_COUNT, EPS_PRED_M, EDGE_BUFFER_PX**: as in Evaluate detections (defaults 3 cm, 0.20 m, 2, detections, 0.20 m, 0 px; CORE_COUNT *cells* counts as the method does); EDGE_BUFFER_PX also drops detections that close to the image border, as Detect does.
 - **Terrain model (DEM)**, **DEM heights are measured from**, **geoid undulation N (m)**, **Ground model without a DEM** (GROUND_MODEL, advanced): as in Detect targets; the checkpoints&apos; detections, the in-view test and the pixel labels all stand on this ground (with a DEM, frames without an altimeter ground are placed too).
 - **PIXEL_RADIUS_PX** (px), **COLLAPSED_BELOW**, **SPARSE_BELOW** (detections per frame): as above.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../resources/help/screencheckpoints.md" line="35"/>
+        <location filename="../resources/help/screencheckpoints.md" line="50"/>
         <source>## Outputs</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../resources/help/screencheckpoints.md" line="37"/>
-        <source>- **Checkpoint table (CSV)** and **JSON**: one row per checkpoint with the figures above; the JSON adds the operating point, the preset, the block size and the block labels.
-- **Frontier plot (PNG)**: gmcf_pre against recall_pre per checkpoint.</source>
+        <location filename="../resources/help/screencheckpoints.md" line="52"/>
+        <source>- **Checkpoint table (CSV)** and **JSON**: one row per checkpoint with the figures above (with held-out flights also recall_pre_heldout, gmcf_pre_heldout, delta_recall, delta_gmcf); the JSON adds the operating point, the preset, the block size, the block labels and `survey_density`, and with held-out flights a `heldout` block (its flights, blocks, survey density and checkpoint rows) and a `transfer` block (per checkpoint the figures on both sides and their changes; `spearman` with ρ, the number of checkpoints and a note for recall and GMCF).
+- **Frontier plot (PNG)**: gmcf_pre against recall_pre per checkpoint (validation flights).
+- **Report (HTML)**: the checkpoint tables, survey densities and, with held-out flights, the transfer table and the rank correlations.</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
@@ -4356,7 +4511,7 @@ exact</source>
     <message>
         <location filename="../resources/help/sealpreregistration.md" line="9"/>
         <source>- **Arms file**: the output of Select arms — the method&apos;s three arms (max_f1, max_recall, lowest_review_burden), each sealed with the operating point the sweep chose for it. With ONNX checkpoints given too, every arm&apos;s digest must be one of theirs (the seal then names files you have); without them, the digests the sweep recorded are sealed.
-- **Arms typed in** (ARM_LINES), one per line: `name: checkpoint file, threshold, eps_m, min_samples, eps_pred_m`, e.g. `max_f1: model_b.onnx, 0.05, 0.20, 2, 0.20` (threshold a probability, eps_m and eps_pred_m in metres, min_samples a whole number). The checkpoint is named by its file name among the ONNX checkpoints; DEDUP_CM and EDGE_BUFFER_PX below apply to every arm. Blank lines and lines starting with `#` are skipped.
+- **Arms typed in** (ARM_LINES), one per line: `name: checkpoint file, threshold, eps_m, min_samples, eps_pred_m`, e.g. `max_f1: model_b.onnx, 0.05, 0.20, 2, 0.20` (threshold a probability, eps_m and eps_pred_m in metres, min_samples a whole number). The checkpoint is named by its file name among the ONNX checkpoints; DEDUP_CM, CORE_COUNT and EDGE_BUFFER_PX below apply to every arm. Blank lines and lines starting with `#` are skipped.
 - Neither: one arm per ONNX checkpoint, all at the **Detection threshold** and the clustering parameters below.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -4374,7 +4529,7 @@ exact</source>
         <location filename="../resources/help/sealpreregistration.md" line="17"/>
         <source>- **ONNX checkpoints**: each file&apos;s SHA-256 digest is computed; required unless an arms file is given. Two checkpoints may not share a file name.
 - **Arms file**, **Arms typed in**: as above (not both).
-- **Detection threshold** (probability, default 0.5) and **DEDUP_CM, EPS_M, MIN_SAMPLES, EPS_PRED_M, EDGE_BUFFER_PX** (defaults 3 cm, 0.20 m, 2, 0.20 m, 0 px; see Cluster detections for their meaning): the operating point of every arm when neither an arms file nor typed arms are given; with typed arms, DEDUP_CM and EDGE_BUFFER_PX only.
+- **Detection threshold** (probability, default 0.5) and **DEDUP_CM, EPS_M, MIN_SAMPLES, CORE_COUNT, EPS_PRED_M, EDGE_BUFFER_PX** (defaults 3 cm, 0.20 m, 2, detections, 0.20 m, 0 px; see Cluster detections for their meaning): the operating point of every arm when neither an arms file nor typed arms are given; with typed arms, DEDUP_CM, CORE_COUNT and EDGE_BUFFER_PX only. Every sealed operating point records its core_count; arms from an arms file keep theirs (cells for arms chosen from a sweep made before it was recorded).
 - **Descriptive configurations** (optional): a JSON from Sweep operating points (its Pareto configurations are recorded) or Screen checkpoints (its checkpoint table), or any JSON list. Recorded, never used to decide.
 - **Note**: free text — what was chosen on which flights, and what will be scored.</source>
         <translation type="unfinished"></translation>
@@ -4432,7 +4587,7 @@ exact</source>
     </message>
     <message>
         <location filename="../resources/help/selectarms.md" line="17"/>
-        <source>- **Arms (JSON)**: `schema` (`birdseye-arms/1`), `sweep` (the file, flights, grid and credibility limits the arms were chosen from) and `arms`: per arm its `name`, the `rule`, `checkpoint`, `model_digest` (SHA-256 of the ONNX file), the full `operating_point` (threshold, dedup_cm, eps_m, min_samples, eps_pred_m, edge_buffer_px), its `scores` in the sweep (recall_pre, gmcf_pre, f1_geo, detections_per_frame and the counts) and `sweep_row` (its row in the sweep&apos;s table, from 1). The log prints the three arms.</source>
+        <source>- **Arms (JSON)**: `schema` (`birdseye-arms/1`), `sweep` (the file, flights, grid and credibility limits the arms were chosen from) and `arms`: per arm its `name`, the `rule`, `checkpoint`, `model_digest` (SHA-256 of the ONNX file), the full `operating_point` (threshold, dedup_cm, eps_m, min_samples, eps_pred_m, edge_buffer_px, core_count — cells when the sweep recorded none, as sweeps before it was recorded counted), its `scores` in the sweep (recall_pre, gmcf_pre, f1_geo, detections_per_frame and the counts) and `sweep_row` (its row in the sweep&apos;s table, from 1). The log prints the three arms.</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
@@ -4656,20 +4811,20 @@ exact</source>
     </message>
     <message>
         <location filename="../resources/help/sweepoperatingpoints.md" line="16"/>
-        <source>**The default grid is the method&apos;s**: 14,400 configurations per checkpoint, holding every operating point the method reports (thresholds 0.03 to 0.12; EPS 0.10, 0.15 and 0.20 m; MIN_SAMPLES 2, 5, 10 and 20; EPS_PRED 0.20 and 0.35 m). 14,400 = 10 thresholds × 12 EPS × 12 MIN_SAMPLES × 10 EPS_PRED:</source>
+        <source>**The default grid is the method&apos;s**: 14,400 configurations per checkpoint, holding every operating point the method reports (thresholds 0.03 to 0.12 and 0.035, the threshold of its lowest-review-burden arm; EPS 0.10, 0.15 and 0.20 m; MIN_SAMPLES 2, 5, 10 and 20; EPS_PRED 0.20 and 0.35 m). 14,400 = 12 thresholds × 10 EPS × 12 MIN_SAMPLES × 10 EPS_PRED:</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
         <location filename="../resources/help/sweepoperatingpoints.md" line="18"/>
-        <source>- THRESHOLDS `0.03,0.04,…,0.12` (10, steps of 0.01);
-- EPS_M `0.025,0.05,…,0.3` (12, steps of 0.025 m, so 0.10, 0.15 and 0.20 are grid points);
+        <source>- THRESHOLDS `0.03,0.035,0.04,0.045,0.05,0.06,…,0.12` (12: half steps up to 0.05, where the method&apos;s arms lie and where the detections per frame change fastest, then steps of 0.01);
+- EPS_M `0.025,0.05,…,0.25` (10, steps of 0.025 m, so 0.10, 0.15 and 0.20 are grid points, and one step beyond the largest);
 - MIN_SAMPLES `1,2,…,10,15,20` (12);
 - EPS_PRED_M `0.05,0.1,…,0.5` (10, steps of 0.05 m, so 0.20 and 0.35 are grid points).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
         <location filename="../resources/help/sweepoperatingpoints.md" line="23"/>
-        <source>The method states the named values and the total; the values in between are ours, in equal steps. With several checkpoints the table has 14,400 rows per checkpoint.</source>
+        <source>The method states the named values and the total; the values in between are ours. To reproduce the method&apos;s figures, also set Minimum points count to *cells*. With several checkpoints the table has 14,400 rows per checkpoint.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
@@ -4681,7 +4836,7 @@ exact</source>
         <location filename="../resources/help/sweepoperatingpoints.md" line="27"/>
         <source>- **ONNX checkpoints** or **Detection layers** (not both), **Frame layers**, **Geotags**: as above.
 - **Thresholds** (probabilities, with CHECKPOINTS), **EPS_M** (m), **MIN_SAMPLES**, **EPS_PRED_M** (m): comma-separated lists, e.g. `0.05,0.1,0.2`.
-- **De-duplication grid cell (cm)** (default 3) and **edge buffer (px)** (default 0: the in-view test, and with CHECKPOINTS the detections dropped that close to the image border, as Detect&apos;s EDGE_BUFFER_PX), fixed for the whole sweep.
+- **De-duplication grid cell (cm)** (default 3), **Minimum points count** (CORE_COUNT, advanced: detections by default, or cells as the method counts; see Cluster detections) and **edge buffer (px)** (default 0: the in-view test, and with CHECKPOINTS the detections dropped that close to the image border, as Detect&apos;s EDGE_BUFFER_PX), fixed for the whole sweep.
 - **Terrain model (DEM)**, **DEM heights are measured from**, **geoid undulation N (m)**, **Ground model without a DEM** (GROUND_MODEL, advanced): as in Detect targets. With CHECKPOINTS the detections are placed on this ground and the in-view test stands on it, so the sweep scores what Detect with the same parameters would write. With DETECTIONS each flight is scored on the ground its layers record (all of a flight&apos;s layers on one ground); the DEM is needed for layers placed on one and refused for layers placed on a plane, and GROUND_MODEL is not used.
 - **Credible: mean geotags per hit cluster at most** (default 1.5) and **mean median cluster extent at most (m)** (default 1.0).</source>
         <translation type="unfinished"></translation>
@@ -4698,8 +4853,8 @@ exact</source>
     </message>
     <message>
         <location filename="../resources/help/sweepoperatingpoints.md" line="37"/>
-        <source>- **Configurations (CSV)**: one row per configuration: checkpoint, model_digest, threshold, eps_m, min_samples, eps_pred_m, n_frames, n_detections, detections_per_frame, the pooled counts, recall_pre, gmcf_pre, f1_geo, mean_geotags_per_hit_cluster, mean_median_extent_m, credible, pareto, dedup_cm, edge_buffer_px.
-- **JSON** (read by Select arms): the checkpoints, flights, grid, credibility limits, the Pareto configurations and all rows.
+        <source>- **Configurations (CSV)**: one row per configuration: checkpoint, model_digest, threshold, eps_m, min_samples, eps_pred_m, n_frames, n_detections, detections_per_frame, the pooled counts, recall_pre, gmcf_pre, f1_geo, mean_geotags_per_hit_cluster, mean_median_extent_m, credible, pareto, dedup_cm, core_count, edge_buffer_px.
+- **JSON** (read by Select arms): the checkpoints, flights, grid (with dedup_cm, core_count and edge_buffer_px), credibility limits, the Pareto configurations and all rows. Arms chosen from a sweep made before core_count was recorded count cells, as that sweep did.
 - **Frontier plot (PNG)**: gmcf_pre against recall_pre; grey crosses are not credible, the red line is the Pareto front.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -4834,7 +4989,7 @@ exact</source>
   - **confirmed real** (every vote says so) **and matched by no geotag**: a target nobody surveyed. It is labelled like a geotag, at the cluster&apos;s centroid (the mean of its detections) placed on the ground each frame sees, in every frame that sees it; `provenance` review, id `&lt;detection layer&gt;#&lt;cluster id&gt;`, the survey&apos;s class when the survey has one class (else `target`).
   - **hard negative** (every vote says so): frames that see it get no label there; a negative tile holding it is a *hard-negative tile* (label all zero) and is drawn before the other negatives when negatives are sampled (NEGATIVE_RATIO per positive tile, at least one per frame).
   - **uncertain**, **unreviewed**, and **conflicting** (votes on both sides) clusters are left out — Plan the survey flight flies back to them. Clusters a geotag matches keep the geotag&apos;s label whatever the review says.
-- **DEDUP_CM** (cm, default 3), **EPS_M** (m, default 0.20), **MIN_SAMPLES** (default 2), **EPS_PRED_M** (m, default 0.20) — advanced: the clustering and matching the review was scored with (the review dock&apos;s values); the in-view test uses the edge buffer above.</source>
+- **DEDUP_CM** (cm, default 3), **EPS_M** (m, default 0.20), **MIN_SAMPLES** (default 2), **CORE_COUNT** (default detections), **EPS_PRED_M** (m, default 0.20) — advanced: the clustering and matching the review was scored with (the review dock&apos;s values); the in-view test uses the edge buffer above.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
