@@ -88,11 +88,12 @@ class PlacedArea:
             return np.zeros(len(polygons), dtype=bool)
         t, k = polygons.shape[:2]
         ok = self.contains(polygons.reshape(-1, 2)).reshape(t, k).all(axis=1)
-        a, b = _edges(self.rings)
-        for i in np.flatnonzero(ok):
-            poly = polygons[i]
-            if _any_segment_meets(poly, np.roll(poly, -1, axis=0), a, b) or points_in_rings([poly], a).any():
-                ok[i] = False
+        candidates = polygons[ok]
+        if len(candidates):
+            a, b = _edges(self.rings)
+            meets = _segments_meet(candidates, np.roll(candidates, -1, axis=1), a, b).any(axis=(1, 2))
+            holds_vertex = _crossings(candidates, np.roll(candidates, -1, axis=1), a).sum(axis=2) % 2 == 1
+            ok[ok] = ~(meets | holds_vertex.any(axis=1))
         return ok
 
     def boundary_distance(self, xy) -> np.ndarray:
@@ -161,16 +162,19 @@ def points_in_rings(rings, xy) -> np.ndarray:
     if not len(rings) or not len(xy):
         return inside
     a, b = _edges(rings)
-    straddles = a[:, 1] != b[:, 1]
-    a, b = a[straddles], b[straddles]
-    slope = (b[:, 0] - a[:, 0]) / (b[:, 1] - a[:, 1])
     for start in range(0, len(xy), _CHUNK):
-        p = xy[start:start + _CHUNK]
-        px, py = p[:, :1], p[:, 1:]
-        with np.errstate(invalid="ignore"):
-            crosses = ((a[:, 1] > py) != (b[:, 1] > py)) & (px < a[:, 0] + (py - a[:, 1]) * slope)
-        inside[start:start + _CHUNK] = crosses.sum(axis=1) % 2 == 1
+        inside[start:start + _CHUNK] = _crossings(a[None], b[None], xy[start:start + _CHUNK])[0].sum(axis=1) % 2 == 1
     return inside
+
+
+def _crossings(a, b, xy) -> np.ndarray:
+    """(T, N, K): whether the ray from point n (xy (N, 2)) towards +x crosses edge a→b (T, K, 2) k of set t (a
+    horizontal edge is never crossed). Summed over K, odd means inside the rings the edges close."""
+    a, b = a[:, None, :, :], b[:, None, :, :]
+    px, py = xy[None, :, None, 0], xy[None, :, None, 1]
+    with np.errstate(invalid="ignore", divide="ignore"):
+        x_cross = a[..., 0] + (py - a[..., 1]) * (b[..., 0] - a[..., 0]) / (b[..., 1] - a[..., 1])
+        return ((a[..., 1] > py) != (b[..., 1] > py)) & (px < x_cross)
 
 
 def _edges(rings):
@@ -179,17 +183,17 @@ def _edges(rings):
     return np.concatenate(rings), np.concatenate([np.roll(r, -1, axis=0) for r in rings])
 
 
-def _any_segment_meets(p, q, a, b) -> bool:
-    """Whether any segment p→q (M, 2) meets any segment a→b (E, 2); touching and collinear overlap count."""
+def _segments_meet(p, q, a, b) -> np.ndarray:
+    """(..., E): whether segment p→q (..., 2) meets segment a→b (E, 2); touching and collinear overlap count."""
     def orient(o, s, t):
         return np.sign((s[..., 0] - o[..., 0]) * (t[..., 1] - o[..., 1])
                        - (s[..., 1] - o[..., 1]) * (t[..., 0] - o[..., 0]))
 
-    p, q, a, b = p[:, None, :], q[:, None, :], a[None, :, :], b[None, :, :]
+    p, q = p[..., None, :], q[..., None, :]
     d1, d2, d3, d4 = orient(a, b, p), orient(a, b, q), orient(p, q, a), orient(p, q, b)
     proper = (d1 * d2 <= 0) & (d3 * d4 <= 0)
     # Collinear segments (all four orientations 0) meet only where their extents overlap.
     collinear = (d1 == 0) & (d2 == 0)
     lo, hi = np.minimum(p, q), np.maximum(p, q)
     overlap = np.all((np.minimum(a, b) <= hi) & (np.maximum(a, b) >= lo), axis=-1)
-    return bool(np.any(np.where(collinear, overlap, proper)))
+    return np.where(collinear, overlap, proper)

@@ -269,12 +269,13 @@ def tile_origins(length: int, tile: int) -> list[int]:
     return starts
 
 
-def tile_outline_px(y0: int, x0: int, tile: int, per_side: int = TILE_SIDE_POINTS) -> np.ndarray:
-    """The outline (4·per_side, 2) of the tile at (y0, x0), along its pixels' outer edges, clockwise (u, v)."""
-    lo_u, lo_v, hi_u, hi_v = x0 - 0.5, y0 - 0.5, x0 + tile - 0.5, y0 + tile - 0.5
-    corners = np.array([[lo_u, lo_v], [hi_u, lo_v], [hi_u, hi_v], [lo_u, hi_v]])
+def tile_outlines_px(origins, tile: int, per_side: int = TILE_SIDE_POINTS) -> np.ndarray:
+    """The outlines (T, 4·per_side, 2) of the tiles at ``origins`` ((y0, x0) each), along their pixels' outer
+    edges, clockwise, as (u, v)."""
+    corners = np.array([[0.0, 0.0], [tile, 0.0], [tile, tile], [0.0, tile]]) - 0.5
     t = np.arange(per_side)[:, None] / per_side
-    return np.concatenate([a + t * (b - a) for a, b in zip(corners, np.roll(corners, -1, axis=0))])
+    outline = np.concatenate([a + t * (b - a) for a, b in zip(corners, np.roll(corners, -1, axis=0))])
+    return outline[None, :, :] + np.asarray(origins, dtype=float).reshape(-1, 2)[:, None, ::-1]
 
 
 def write_label_set(poses: FramePoses, images, geotags: Geotags, frame_labels: list[FrameLabels],
@@ -438,8 +439,8 @@ class LabelWriter:
         def test(origins):
             if not origins:
                 return np.zeros(0, dtype=bool)
-            outlines = np.stack([tile_outline_px(y0, x0, t) for y0, x0 in origins])
-            return area.contains_polygons(ground.to_ground(outlines.reshape(-1, 2)).reshape(len(origins), -1, 2))
+            outlines = tile_outlines_px(origins, t)
+            return area.contains_polygons(ground.to_ground(outlines.reshape(-1, 2)).reshape(outlines.shape))
         return test
 
     def _finish(self) -> "LabelSetResult":

@@ -22,6 +22,7 @@ from birdseye.birdseye_qgis.core.labels.training_set import (
     LabelRequest,
     project_labels,
     tile_origins,
+    tile_outlines_px,
     write_label_set,
 )
 
@@ -134,6 +135,12 @@ def test_an_unresolved_cluster_and_a_frame_without_ground_give_no_negative_tiles
     tiles = result.summary["tiles"]
     assert tiles["skipped"] == {"unlabelled_target": 1, "outside_surveyed_area": 0, "frames_without_ground": 1}
     assert tiles["frames_without_ground"] == [102] and result.summary["n_unresolved_in_view"] == 1
+
+
+def test_a_tile_outline_runs_along_its_pixels_outer_edges():
+    """Tile (y0 10, x0 20) of 4 px covers pixel centres u 20…23, v 10…13: its edges lie half a pixel out."""
+    np.testing.assert_array_equal(tile_outlines_px([(10, 20)], 4, per_side=2)[0], [
+        [19.5, 9.5], [21.5, 9.5], [23.5, 9.5], [23.5, 11.5], [23.5, 13.5], [21.5, 13.5], [19.5, 13.5], [19.5, 11.5]])
 
 
 def test_no_negative_tile_outside_a_drawn_area_while_a_positive_there_is_kept(tmp_path):
