@@ -66,6 +66,7 @@ if Qgis.QGIS_VERSION_INT >= 33000:
     WKB_POLYGON_Z = Qgis.WkbType.PolygonZ
     GEOMETRY_POINT = Qgis.GeometryType.Point
     GEOMETRY_LINE = Qgis.GeometryType.Line
+    GEOMETRY_POLYGON = Qgis.GeometryType.Polygon
     DISTANCE_METERS = Qgis.DistanceUnit.Meters
     LAYER_VECTOR = Qgis.LayerType.Vector
 else:
@@ -79,5 +80,6 @@ else:
     WKB_POLYGON_Z = QgsWkbTypes.PolygonZ
     GEOMETRY_POINT = QgsWkbTypes.PointGeometry
     GEOMETRY_LINE = QgsWkbTypes.LineGeometry
+    GEOMETRY_POLYGON = QgsWkbTypes.PolygonGeometry
     DISTANCE_METERS = QgsUnitTypes.DistanceMeters
     LAYER_VECTOR = QgsMapLayerType.VectorLayer

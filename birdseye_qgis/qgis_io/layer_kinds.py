@@ -5,8 +5,9 @@ of its kind and starts on the most recent one.
 
 Kinds are recognised by the schema their module owns (docs/design.md §1, rule 5): a layer is of a kind when
 it has that schema's identifying fields (:data:`SIGNATURES`; names of at most 10 characters, so a Shapefile
-copy is still recognised). Geotags are the exception, since any point layer may be a survey: a vector layer
-with point geometry that is of no other kind.
+copy is still recognised). Geotags and areas are the exceptions, since any point layer may be a survey and any
+polygon layer a surveyed area someone drew: a vector layer with point (polygon) geometry that is of no other
+kind.
 
 "Most recent" means added last to the project. QGIS records no such order, and a project file lists its
 layers by id, so :func:`recency_key` orders them by, in turn:
@@ -35,7 +36,7 @@ from ..core.field.frame_records import FRAME_FIELDS
 from ..core.labels.mark_check import MARK_CHECK_FIELDS
 from ..core.plan.flight_plan import WAYPOINT_FIELDS
 from ..core.scoring.compare import CHANGE_FIELDS
-from ..qgis_enums import GEOMETRY_POINT
+from ..qgis_enums import GEOMETRY_POINT, GEOMETRY_POLYGON
 from .detections import CLUSTER_FIELDS, DETECTION_FIELDS, POINT_FIELDS
 from .review_store import VERDICT_COLUMNS
 
@@ -46,8 +47,10 @@ CLUSTERS = "clusters"
 DEDUP_POINTS = "dedup_points"
 VERDICTS = "verdicts"
 WAYPOINTS = "waypoints"
+LABEL_CHECKS = "label_checks"
+AREAS = "areas"
 OTHER = "other"
-KINDS = (FRAMES, GEOTAGS, DETECTIONS, CLUSTERS, DEDUP_POINTS, VERDICTS, WAYPOINTS, OTHER)
+KINDS = (FRAMES, GEOTAGS, DETECTIONS, CLUSTERS, DEDUP_POINTS, VERDICTS, WAYPOINTS, LABEL_CHECKS, AREAS, OTHER)
 
 
 def _identifying(schema, *names: str) -> frozenset:
@@ -60,7 +63,7 @@ def _identifying(schema, *names: str) -> frozenset:
 
 
 #: (kind, identifying fields), tried in this order; the first whose fields a layer has is its kind. BirdsEye
-#: point outputs that are no survey (detectors' changes, label checks) are OTHER, so they are not geotags.
+#: point outputs that are no survey (detectors' changes: OTHER; label checks) are not geotags.
 SIGNATURES = (
     (VERDICTS, _identifying(VERDICT_COLUMNS, "unit_key", "verdict", "provenance", "action_id")),
     (DETECTIONS, _identifying(DETECTION_FIELDS, "frame_id", "u", "v", "score")),
@@ -69,7 +72,7 @@ SIGNATURES = (
     (FRAMES, _identifying(FRAME_FIELDS, "frame_id", "lat", "lon", "height_m", "qw", "qx", "qy", "qz", "camera")),
     (WAYPOINTS, _identifying(WAYPOINT_FIELDS, "mission", "order", "geotag_ids")),
     (OTHER, _identifying(CHANGE_FIELDS, "change", "kind", "geotag_id")),
-    (OTHER, _identifying(MARK_CHECK_FIELDS, "u_mark", "v_mark", "error_px")),
+    (LABEL_CHECKS, _identifying(MARK_CHECK_FIELDS, "u_mark", "v_mark", "error_px")),
 )
 
 
@@ -81,8 +84,11 @@ def layer_kind(layer) -> str:
     for kind, fields in SIGNATURES:
         if fields <= names:
             return kind
-    if QgsWkbTypes.geometryType(layer.wkbType()) == GEOMETRY_POINT:
+    geometry = QgsWkbTypes.geometryType(layer.wkbType())
+    if geometry == GEOMETRY_POINT:
         return GEOTAGS
+    if geometry == GEOMETRY_POLYGON:
+        return AREAS
     return OTHER
 
 

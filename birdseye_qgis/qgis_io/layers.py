@@ -51,6 +51,7 @@ from ..core.field.geotags import UNLABELLED, Geotags, geotag_ids
 from ..core.geometry.camera import CalibrationError, CameraModel
 from ..core.geometry.geodesy import ProjectedCRS, utm_epsg
 from ..core.geometry.heights import metres_per_unit
+from ..core.labels.mark_check import MARK_CHECK_FIELDS, SIGMA_FIELDS
 from ..qgis_enums import (
     CRS_WKT2_2019,
     DISTANCE_METERS,
@@ -308,6 +309,53 @@ def read_geotag_layer(source, transform_context=None, id_field: str = "id", sele
                    source_row=rows, source=name, problems=problems)
 
 
+def read_polygon_rings(source, transform_context=None, source_name: str | None = None) -> list:
+    """The rings of a polygon layer/feature source — every exterior ring and hole of every feature — as
+    (lat, lon) arrays (WGS84, deg) for :func:`core.field.surveyed_area.surveyed_area`. Curved rings are
+    replaced by straight segments; features without a geometry are skipped; a layer with no polygon at all,
+    or without a valid CRS, is refused."""
+    name = source_name or (source.sourceName() if hasattr(source, "sourceName") else "polygon layer")
+    crs = source.sourceCrs() if hasattr(source, "sourceCrs") else source.crs()
+    if not crs.isValid():
+        raise InputError("has no valid CRS; set the layer's CRS (Layer Properties › Source) and run again",
+                         source=name)
+    transform = QgsCoordinateTransform(crs, QgsCoordinateReferenceSystem(WGS84),
+                                       transform_context or QgsProject.instance().transformContext())
+    rings = []
+    for number, feature in enumerate(source.getFeatures(), start=1):
+        geometry = QgsGeometry(feature.geometry())
+        if geometry.isNull() or geometry.isEmpty():
+            continue
+        geometry.convertToStraightSegment()
+        try:
+            geometry.transform(transform)
+        except QgsCsException as exc:
+            raise InputError(f"cannot be transformed to WGS84 ({exc}); is the layer's CRS right?",
+                             source=name, row=number, field="geometry") from exc
+        polygons = geometry.asMultiPolygon() if geometry.isMultipart() else [geometry.asPolygon()]
+        for polygon in polygons:
+            for ring in polygon:
+                rings.append((np.array([p.y() for p in ring]), np.array([p.x() for p in ring])))
+    if not rings:
+        raise InputError("has no polygon", source=name)
+    return rings
+
+
+def read_mark_check_layer(source, source_name: str | None = None) -> list[dict]:
+    """The records of a label check (Import camera solution's mark-check layer, saved as any format) with the
+    fields :data:`core.labels.mark_check.SIGMA_FIELDS`, each value of its schema type or None; a missing field
+    or a value not of its type is refused, naming it."""
+    name = source_name or (source.sourceName() if hasattr(source, "sourceName") else "label check")
+    names = source.fields().names()
+    kinds = {n: kind for n, kind, _ in MARK_CHECK_FIELDS if n in SIGMA_FIELDS}
+    absent = [n for n in kinds if n not in names]
+    if absent:
+        raise InputError(f"is not a label check of Import camera solution: it has no field "
+                         f"{', '.join(absent)} (fields: {', '.join(names)})", source=name, field=absent[0])
+    return [{n: _schema_value(feature[n], kind, name, row, n) for n, kind in kinds.items()}
+            for row, feature in enumerate(source.getFeatures(), start=1)]
+
+
 def _number_or_nan(value, source: str, row: int, field_name: str) -> float:
     if value is None:
         return float("nan")
@@ -345,9 +393,9 @@ def read_frame_layer(source, source_name: str | None = None) -> list[dict]:
     checked = set()
     records = []
     for row, feature in enumerate(source.getFeatures(), start=1):
-        rec = {n: _frame_value(feature[c], kinds[n], name, row, n) for n, c in columns.items()}
+        rec = {n: _schema_value(feature[c], kinds[n], name, row, n) for n, c in columns.items()}
         if parts:
-            texts = tuple(_frame_value(feature[p], "string", name, row, p) for p in parts)
+            texts = tuple(_schema_value(feature[p], "string", name, row, p) for p in parts)
             if texts not in checked:
                 _refuse_cut_camera(source, name, row, rec.get("frame_id"), texts, lengths)
                 checked.add(texts)
@@ -358,8 +406,9 @@ def read_frame_layer(source, source_name: str | None = None) -> list[dict]:
     return records
 
 
-def _frame_value(value, kind: str, source: str, row: int, field_name: str):
-    """A frame-layer attribute as its schema type ``kind`` ("int", "double", "string"); None for NULL or empty.
+def _schema_value(value, kind: str, source: str, row: int, field_name: str):
+    """An attribute (of a frame layer, a label check) as its schema type ``kind`` ("int", "double", "string"); None
+    for NULL or empty.
 
     Formats hand values back in their own types: a CSV read through OGR every value as text and NULL as
     empty text, the delimited-text provider a column of whole numbers as int, a Shapefile empty text as

@@ -23,6 +23,7 @@ from qgis.core import (
 )
 from qgis.PyQt.QtCore import QT_TRANSLATE_NOOP
 
+from ...birdseye_qgis.core.field.surveyed_area import DEFAULT_SURVEY_MARGIN_M, surveyed_area
 from ...birdseye_qgis.core.geometry.camera import load_calibration
 from ...birdseye_qgis.core.plan.flight_plan import (
     ROUTE_FIELDS,
@@ -51,11 +52,12 @@ from ...birdseye_qgis.qgis_enums import (
     PARAMETER_ADVANCED,
     SOURCE_VECTOR_LINE,
     SOURCE_VECTOR_POINT,
+    SOURCE_VECTOR_POLYGON,
     WKB_LINE_STRING,
     WKB_POINT_Z,
 )
 from ...birdseye_qgis.qgis_io import layer_kinds, layers
-from ..parameters.layer_parameters import vector_parameter
+from ..parameters.layer_parameters import source_parameter, vector_parameter
 from ..parameters.review import ReviewParametersMixin
 from .base import BirdsEyeAlgorithm
 
@@ -87,6 +89,8 @@ class PlanFlight(ReviewParametersMixin, BirdsEyeAlgorithm):
     DRONE = "DRONE"
     PAYLOAD = "PAYLOAD"
     UNRESOLVED_ONLY = "UNRESOLVED_ONLY"
+    SURVEYED_AREA = "SURVEYED_AREA"
+    SURVEY_MARGIN_M = "SURVEY_MARGIN_M"
 
     CAPTURE_OPTIONS = [(CAPTURE_PHOTO, "Photo at each waypoint"), (CAPTURE_TIMED, "Timed capture (interval)")]
     #: Mission file outputs: parameter, core format key, label, file filter.
@@ -114,6 +118,11 @@ class PlanFlight(ReviewParametersMixin, BirdsEyeAlgorithm):
             fileFilter="Calibration (*.yaml *.yml);;All files (*)"))
         self._number(self.FOOTPRINT_MARGIN_PX, "Edge margin kept around geotags in the image [px]", 50.0,
                      minimum=0.0, advanced=True)
+        self.addParameter(source_parameter(
+            self.SURVEYED_AREA, self.tr("Surveyed area (polygons; empty: the geotags' hull grown by the margin)"),
+            layer_kinds.AREAS, [SOURCE_VECTOR_POLYGON], optional=True))
+        self._number(self.SURVEY_MARGIN_M, "Margin around the geotags' hull without a surveyed area [m]",
+                     DEFAULT_SURVEY_MARGIN_M, minimum=0.0)
         self._number(self.HOVER_S, "Hover at each waypoint [s]", 2.0, minimum=0.0)
         self.addParameter(QgsProcessingParameterEnum(
             self.CAPTURE, self.tr("Capture"), options=[label for _, label in self.CAPTURE_OPTIONS], defaultValue=0))
@@ -185,6 +194,12 @@ class PlanFlight(ReviewParametersMixin, BirdsEyeAlgorithm):
         if len(geotags) == 0:
             raise QgsProcessingException(self.tr("GEOTAGS: layer '{}' has no features: there is nothing to fly"
                                                  " over.").format(layer.name()))
+        drawn = self.parameterAsSource(parameters, self.SURVEYED_AREA, context)
+        rings = None if drawn is None else self.run_core(layers.read_polygon_rings, drawn, context.transformContext())
+        # The survey's own geotags (the selected ones with SELECTED_ONLY) outline the area, never the clusters.
+        surveyed = self.run_core(surveyed_area, geotags.lat, geotags.lon,
+                                 self.parameterAsDouble(parameters, self.SURVEY_MARGIN_M, context), rings,
+                                 geotags.height)
         # Ground heights only feed the uneven-ground warning.
         ids, heights = [str(i) for i in geotags.ids], geotags.height
         lat, lon, origins = geotags.lat, geotags.lon, ["survey"] * len(ids)
@@ -234,7 +249,8 @@ class PlanFlight(ReviewParametersMixin, BirdsEyeAlgorithm):
 
         progress, is_canceled = self.progress_callbacks(feedback, 30.0 if reviewed is not None else 0.0, 80.0)
         plan = self.run_core(plan_flight, lat, lon, ids, home, settings, camera,
-                             layer.name(), progress, is_canceled, ground_heights=heights, origins=origins)
+                             layer.name(), progress, is_canceled, ground_heights=heights, origins=origins,
+                             surveyed=surveyed)
         for message in plan.warnings:
             feedback.pushWarning(message)
         if plan.suggested_interval_s is not None:
@@ -318,3 +334,20 @@ class PlanFlight(ReviewParametersMixin, BirdsEyeAlgorithm):
         for mission in plan.missions:
             feedback.pushInfo(self.tr("  mission {n}: {w} waypoint(s), {l:.0f} m, {t:.1f} min").format(
                 n=mission.number, w=len(mission.waypoints), l=mission.length_m, t=mission.time_s / 60.0))
+        self._log_surveyed(feedback, plan)
+
+    def _log_surveyed(self, feedback, plan):
+        """How much of the planned photos lies outside the surveyed area: Write labels takes no negative tiles
+        there."""
+        area = plan.surveyed.describe()
+        if plan.outside_share is None:
+            feedback.pushInfo(self.tr("Surveyed area: {area}. Give CAMERA to see how much of each planned photo "
+                                      "lies outside it (field outside_pct).").format(area=area))
+            return
+        share = plan.outside_share
+        partly = int(np.count_nonzero(share > 0))
+        line = self.tr("Surveyed area: {area}. {k} of {w} planned photo(s) see ground outside it (at the worst "
+                       "heading; largest share {pct:.0f} %, all photos {mean:.0f} % on average, field outside_pct): "
+                       "Write labels takes no negative tiles from that ground.").format(
+            area=area, k=partly, w=len(share), pct=100.0 * float(share.max()), mean=100.0 * float(share.mean()))
+        (feedback.pushWarning if np.any(share >= 0.5) else feedback.pushInfo)(line)

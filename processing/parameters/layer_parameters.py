@@ -1,5 +1,6 @@
 """Layer parameters that know which kind of layer they take — frame layers, geotags, detections, review verdict
-tables — so the Processing dialog offers only layers of that kind and starts on the most recent one.
+tables, surveyed areas, label checks — so the Processing dialog offers only layers of that kind and starts on the
+most recent one.
 
 Kinds and "most recent" are ``qgis_io.layer_kinds``'s, the one rule the docks follow too: a kind is recognised
 by its schema (geotags: any point layer of no other kind), the most recent layer is the one added last.
@@ -44,7 +45,8 @@ else:
     PARAMETER_OPTIONAL = QgsProcessingParameterDefinition.FlagOptional
 
 #: The kinds a BirdsEye layer parameter takes.
-KINDS = (layer_kinds.FRAMES, layer_kinds.GEOTAGS, layer_kinds.DETECTIONS, layer_kinds.VERDICTS)
+KINDS = (layer_kinds.FRAMES, layer_kinds.GEOTAGS, layer_kinds.DETECTIONS, layer_kinds.VERDICTS, layer_kinds.AREAS,
+         layer_kinds.LABEL_CHECKS)
 #: QGIS's Processing dialogs by class name, as its ``processing.gui.wrappers.dialogTypes`` names them.
 MODELER_DIALOG = "ModelerParametersDialog"
 BATCH_DIALOG = "BatchAlgorithmDialog"

@@ -88,10 +88,11 @@ def test_each_schema_is_its_kind_and_other_points_are_geotags(project, tmp_path)
         assert lk.layer_kind(layer) == kind, layer.name()
     # A point layer of any other fields is a survey; BirdsEye's other point outputs and non-point layers are not.
     assert lk.layer_kind(memory_layer("Point", ["name"], "rover points")) == lk.GEOTAGS
+    # A label check is its own kind (Write labels' MARK_CHECK); a polygon layer of no other kind is an area.
+    assert lk.layer_kind(memory_layer("Point", names(MARK_CHECK_FIELDS), "label check")) == lk.LABEL_CHECKS
+    assert lk.layer_kind(memory_layer("Polygon", ["id"], "fields")) == lk.AREAS
     for other in (memory_layer("Point", names(CHANGE_FIELDS), "what changed"),
-                  memory_layer("Point", names(MARK_CHECK_FIELDS), "label check"),
-                  memory_layer("LineString", ["segment"], "flight line"),
-                  memory_layer("Polygon", ["id"], "fields")):
+                  memory_layer("LineString", ["segment"], "flight line")):
         assert lk.layer_kind(other) == lk.OTHER, other.name()
     assert lk.layer_kind(QgsRasterLayer(str(tmp_path / "missing.tif"), "no raster")) == lk.OTHER
     # A frame layer copied to a Shapefile keeps its kind: every identifying name fits in 10 characters.

@@ -6,6 +6,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 from qgis.core import (
+    NULL,
     QgsCoordinateReferenceSystem,
     QgsCoordinateTransform,
     QgsFeature,
@@ -233,3 +234,44 @@ def test_styles_load_on_the_output_layers(birdseye_provider):
         message, ok = layer.loadNamedStyle(str(STYLE_DIR / style))
         assert ok, message
         assert layer.labelsEnabled() and layer.renderer().type() == "RuleRenderer"
+
+
+def polygon_layer(rings_xy, crs=UTM, name="surveyed"):
+    """A memory polygon layer of one feature whose rings (exterior, holes) are east/north metres from the site."""
+    frame = LocalFrame(LAT0, LON0, 0.0)
+    layer = QgsVectorLayer(f"Polygon?crs={crs}", name, "memory")
+    rings = []
+    for ring in rings_xy:
+        lat, lon, _ = frame.to_geodetic(np.column_stack([ring, np.zeros(len(ring))]))
+        x, y = ProjectedCRS(crs).from_geodetic(lat, lon)
+        rings.append([QgsPointXY(float(a), float(b)) for a, b in zip(x, y)])
+    f = QgsFeature()
+    f.setGeometry(QgsGeometry.fromPolygonXY(rings))
+    layer.dataProvider().addFeatures([f])
+    return layer
+
+
+def test_each_waypoint_says_how_much_of_its_photo_lies_outside_the_surveyed_area(birdseye_provider, tmp_path):
+    """A drawn area, the half-plane east ≥ 0 of the site (a 200 m square from there): the photo of the waypoint at
+    (−30, 0) lies wholly outside it, the one at (30, 0) wholly inside. Without SURVEYED_AREA the hull of the three
+    geotags grown by SURVEY_MARGIN_M is used; without CAMERA there is no photo to measure (NULL)."""
+    camera = tmp_path / "camchain.yaml"
+    write_kalibr_yaml(CameraModel(800, 500, 800.0, 800.0, 399.5, 249.5), camera)  # 10 × 6.25 m at 10 m
+    layer = geotag_layer(np.array([[-30.0, 0.0], [30.0, 0.0], [60.0, 0.0]]), ids=[1, 2, 3])
+    area = polygon_layer([np.array([[0.0, -100.0], [200.0, -100.0], [200.0, 100.0], [0.0, 100.0]])])
+    params = {"GEOTAGS": layer, "CAMERA": str(camera), "MERGE_RADIUS_M": 0.5, "OUTPUT_WAYPOINTS": "memory:",
+              "OUTPUT_ROUTE": "memory:"}
+    result, context, feedback = run({**params, "SURVEYED_AREA": area})
+    _, wps = features(result["OUTPUT_WAYPOINTS"], context)
+    assert {f["geotag_ids"]: f["outside_pct"] for f in wps} == {"1": 100.0, "2": 0.0, "3": 0.0}
+    log = " ".join(feedback.infos + feedback.warnings)
+    assert "Surveyed area: the drawn polygons (1 ring(s)). 1 of 3 planned photo(s) see ground outside it" in log
+    # The hull of the geotags (a line) grown by 1 m is a strip 2 m wide: every 6.25 m photo reaches past it.
+    result, context, feedback = run(params)
+    _, wps = features(result["OUTPUT_WAYPOINTS"], context)
+    assert all(50.0 < f["outside_pct"] < 100.0 for f in wps)
+    assert any("the hull of the 3 geotag(s) grown by 1 m" in w for w in feedback.warnings)
+    result, context, feedback = run({k: v for k, v in params.items() if k != "CAMERA"})
+    _, wps = features(result["OUTPUT_WAYPOINTS"], context)
+    assert all(f["outside_pct"] == NULL for f in wps)
+    assert any("Give CAMERA to see how much" in i for i in feedback.infos)

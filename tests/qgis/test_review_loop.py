@@ -54,6 +54,8 @@ def test_writelabels_labels_confirmed_clusters_and_draws_hard_negative_tiles_fir
     out = tmp_path / "labels"
     result = run("writelabels", {"GEOTAGS": geotag_layer(), "FRAMES": frame_layer(images=[frame_image]),
                                  "SIGMA_PX": 5.0, "WRITE_RASTERS": False, "WRITE_TILES": True, "TILE_SIZE": 224,
+                                 # The whole frame is surveyed ground here: the geotags' hull grown by 20 m.
+                                 "SURVEY_MARGIN_M": 20.0,
                                  "NEGATIVE_RATIO": 1.0, "REVIEW": verdicts, "REVIEW_DETECTIONS": [det],
                                  "OUTPUT_FOLDER": str(out), "OUTPUT_FRAMES": None,
                                  "OUTPUT_GEOTAGS": "TEMPORARY_OUTPUT"})
@@ -75,6 +77,10 @@ def test_writelabels_labels_confirmed_clusters_and_draws_hard_negative_tiles_fir
     assert summary["tiles"]["hard_negative"] == 1 and summary["tiles"]["negative"] == summary["tiles"]["positive"]
     hard_tile = cv2.imread(str(out / "tiles" / "labels" / "0_224_1344.png"), cv2.IMREAD_UNCHANGED)
     assert hard_tile is not None and hard_tile.max() == 0
+    # The unresolved clusters may be targets: no tile within 3σ = 15 px of one is written. D (359.5, 299.5) lies
+    # in tile (224, 224) alone; E (959.5, 999.5) in column 896 of both rows 896 and 976 (the last row is flush
+    # with the border); F (359.5, 899.5) in row 896 and 4 px from row 672, column 224: 1 + 2 + 2 tiles.
+    assert summary["n_unresolved_in_view"] == 3 and summary["tiles"]["skipped"]["unlabelled_target"] == 5
     # The geotag copy still counts the survey's geotags only.
     assert {f["id"]: f["frames_seen"] for f in result["OUTPUT_GEOTAGS"].getFeatures()} == {1: 1, 2: 1, 3: 0}
 

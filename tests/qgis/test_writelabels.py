@@ -145,3 +145,135 @@ def test_a_flat_dem_gives_the_level_plane_labels_and_a_wrong_datum_is_refused(bi
     assert max(np.hypot(plane[k][0] - with_dem[k][0], plane[k][1] - with_dem[k][1]) for k in common) < 0.01
     with pytest.raises(QgsProcessingException, match="MSL|undulation|vertical"):
         run("writelabels", {**base, "DEM": layer, "DEM_VERTICAL_DATUM": 1, "OUTPUT_FOLDER": str(tmp_path / "x")})
+
+
+def tiles_of(folder):
+    return sorted(p.name for p in (folder / "tiles" / "images").iterdir())
+
+
+def polygon_far_away(frames):
+    """A drawn surveyed area 1 km east of every frame: no frame sees any of it."""
+    from qgis.core import QgsFeature, QgsGeometry, QgsRectangle, QgsVectorLayer
+
+    extent = frames.extent()
+    far = QgsRectangle(extent.xMaximum() + 1000.0, extent.yMinimum(), extent.xMaximum() + 1100.0, extent.yMaximum())
+    layer = QgsVectorLayer(f"Polygon?crs={frames.crs().authid()}", "surveyed", "memory")
+    f = QgsFeature()
+    f.setGeometry(QgsGeometry.fromRect(far))
+    layer.dataProvider().addFeatures([f])
+    return layer
+
+
+def test_no_negative_tiles_outside_the_surveyed_area_and_targets_csv(imported, tmp_path):
+    """Drawn far from the flight, the surveyed area holds no tile: every positive tile is still written, no negative
+    is. targets.csv lists each geotag written to labels.csv once, with its position and ellipsoidal height."""
+    folder, geotags, frames = imported
+    base = {"GEOTAGS": geotags, "FRAMES": frames, "SIGMA_PX": 4.0, "WRITE_RASTERS": False, "WRITE_TILES": True,
+            "TILE_SIZE": 96, "NEGATIVE_RATIO": 3.0, "OUTPUT_FRAMES": None, "OUTPUT_GEOTAGS": None}
+    run("writelabels", {**base, "OUTPUT_FOLDER": str(tmp_path / "hull")})
+    run("writelabels", {**base, "SURVEYED_AREA": polygon_far_away(frames), "OUTPUT_FOLDER": str(tmp_path / "far")})
+    hull = json.loads((tmp_path / "hull" / "summary.json").read_text())
+    far = json.loads((tmp_path / "far" / "summary.json").read_text())
+    assert hull["surveyed_area"] == {"source": "geotag_hull", "margin_m": 1.0, "geotags": 6}
+    assert far["surveyed_area"] == {"source": "drawn", "rings": 1}
+    assert far["tiles"]["positive"] == hull["tiles"]["positive"] > 0
+    assert far["tiles"]["negative"] == 0 < hull["tiles"]["negative"]
+    assert far["tiles"]["skipped"]["outside_surveyed_area"] > hull["tiles"]["skipped"]["outside_surveyed_area"]
+    labels = list(csv.DictReader(open(tmp_path / "far" / "labels.csv")))
+    assert len(tiles_of(tmp_path / "far")) == far["tiles"]["positive"]
+    targets = list(csv.DictReader(open(tmp_path / "far" / "targets.csv")))
+    assert [t["geotag_id"] for t in targets] == sorted({r["geotag_id"] for r in labels}, key=int)
+    by_id = {f["id"]: f for f in geotags.getFeatures()}
+    for t in targets:
+        f = by_id[int(t["geotag_id"])]
+        assert float(t["lat"]) == pytest.approx(f["lat"], abs=1e-9)
+        assert float(t["lon"]) == pytest.approx(f["lon"], abs=1e-9)
+        assert float(t["height_m"]) == pytest.approx(f["h_ellipsoid"], abs=1e-3) and t["height_ref"] == "ellipsoidal"
+        assert (t["label"], t["provenance"]) == (f["label"], "survey")
+
+
+def mark_check_layer(residuals):
+    """A label check as Import camera solution writes it (fields of MARK_CHECK_FIELDS), one check-point mark per
+    residual (Δu, Δv) px, saved nowhere: a memory layer."""
+    from qgis.core import QgsFeature, QgsVectorLayer
+
+    from birdseye.birdseye_qgis.core.labels.mark_check import MARK_CHECK_FIELDS
+    from birdseye.birdseye_qgis.qgis_io import layers
+
+    layer = QgsVectorLayer("PointZ?crs=EPSG:4326", "label check", "memory")
+    layer.dataProvider().addAttributes(layers.qgs_fields(MARK_CHECK_FIELDS).toList())
+    layer.updateFields()
+    for k, (du, dv) in enumerate(residuals):
+        f = QgsFeature(layer.fields())
+        f["point_id"], f["kind"], f["frame_id"] = k + 1, "check_point", 1
+        f["u_mark"], f["v_mark"], f["u_label"], f["v_label"] = 100.0, 200.0, 100.0 + du, 200.0 + dv
+        layer.dataProvider().addFeatures([f])
+    return layer
+
+
+def test_sigma_measured_on_a_label_check(imported, tmp_path):
+    """σ = per-axis RMS of label − mark: residuals (6, 8), (0, 0), (−3, 4), (0, −5): Σ = 100 + 0 + 25 + 25 = 150
+    over 4 marks, σ = √(150/8) = 4.330 px, in labels.csv, summary.json and the log. Without a check it is refused."""
+    from registry import Recorder
+
+    folder, geotags, frames = imported
+    base = {"GEOTAGS": geotags, "FRAMES": frames, "WRITE_RASTERS": False, "OUTPUT_FRAMES": None,
+            "OUTPUT_GEOTAGS": None, "SIGMA_SOURCE": 1}
+    feedback = Recorder()
+    result = run("writelabels", {**base, "MARK_CHECK": mark_check_layer([(6, 8), (0, 0), (-3, 4), (0, -5)]),
+                                 "OUTPUT_FOLDER": str(tmp_path / "m")}, feedback)
+    sigma = np.sqrt(150 / 8)
+    assert result["SIGMA_USED_PX"] == pytest.approx(sigma)
+    summary = json.loads((tmp_path / "m" / "summary.json").read_text())
+    assert summary["sigma_px"] == pytest.approx(sigma) and summary["label_radius_px"] == pytest.approx(3 * sigma)
+    assert summary["sigma_source"]["source"] == "mark_check" and summary["sigma_source"]["n_marks"] == 4
+    assert {r["sigma_px"] for r in csv.DictReader(open(tmp_path / "m" / "labels.csv"))} == {f"{sigma:g}"}
+    assert any("σ = 4.33 px measured on" in i and "4 check_point mark(s)" in i for i in feedback.infos)
+    assert any("uncertain by about ±25 %" in w for w in feedback.warnings)
+    with pytest.raises(QgsProcessingException, match="give MARK_CHECK"):
+        run("writelabels", {**base, "OUTPUT_FOLDER": str(tmp_path / "x")})
+    given = run("writelabels", {**base, "SIGMA_SOURCE": 0, "SIGMA_PX": 6.0, "MARK_CHECK": mark_check_layer([(1, 1)]),
+                                "OUTPUT_FOLDER": str(tmp_path / "g")})
+    assert given["SIGMA_USED_PX"] == 6.0
+    assert json.loads((tmp_path / "g" / "summary.json").read_text())["sigma_source"] == {
+        "source": "given", "parameter": "SIGMA_PX"}
+
+
+def test_relief_check_reports_the_frames_whose_displacement_exceeds_the_label_radius(imported, tmp_path):
+    """Each frame listed has a label whose h·r/d, in px, exceeds 3σ; a larger relief lists at least those frames,
+    no relief none."""
+    folder, geotags, frames = imported
+    base = {"GEOTAGS": geotags, "FRAMES": frames, "SIGMA_PX": 3.0, "WRITE_RASTERS": False, "OUTPUT_FRAMES": None,
+            "OUTPUT_GEOTAGS": None}
+    over = {}
+    for h in (0.0, 0.5, 1.0):
+        result = run("writelabels", {**base, "RELIEF_M": h, "OUTPUT_FOLDER": str(tmp_path / f"h{h}")})
+        relief = json.loads((tmp_path / f"h{h}" / "summary.json").read_text())["relief"]
+        assert relief["source"] == f"RELIEF_M = {h:g} m" and result["RELIEF_FRAMES_OVER"] == relief["n_frames_over"]
+        for f in relief["frames_over"]:
+            assert f["displacement_px"] > 9.0
+            assert f["displacement_cm"] == pytest.approx(100 * h * f["nadir_distance_m"] / f["height_m"], abs=0.02)
+        over[h] = {f["frame_id"] for f in relief["frames_over"]}
+    assert over[0.0] == set() and over[0.5] <= over[1.0] and over[1.0]
+    result = run("writelabels", {**base, "OUTPUT_FOLDER": str(tmp_path / "none")})
+    assert json.loads((tmp_path / "none" / "summary.json").read_text())["relief"] is None
+    assert result["RELIEF_FRAMES_OVER"] == 0
+
+
+def test_a_geotag_without_a_position_stops_the_tiles(imported, tmp_path):
+    """It may lie in any tile: writing tiles is refused naming the row; without tiles it is left out, warned."""
+    from qgis.core import QgsFeature, QgsVectorLayer
+    from registry import Recorder
+
+    folder, geotags, frames = imported
+    copy = QgsVectorLayer(f"PointZ?crs={geotags.crs().authid()}", "geotags", "memory")
+    copy.dataProvider().addAttributes(geotags.fields().toList())
+    copy.updateFields()
+    copy.dataProvider().addFeatures(list(geotags.getFeatures()) + [QgsFeature(copy.fields())])
+    last = copy.featureCount()
+    base = {"GEOTAGS": copy, "FRAMES": frames, "WRITE_RASTERS": False, "OUTPUT_FRAMES": None, "OUTPUT_GEOTAGS": None}
+    with pytest.raises(QgsProcessingException, match=f"row {last}.*may lie in any negative tile"):
+        run("writelabels", {**base, "WRITE_TILES": True, "OUTPUT_FOLDER": str(tmp_path / "t")})
+    feedback = Recorder()
+    run("writelabels", {**base, "OUTPUT_FOLDER": str(tmp_path / "n")}, feedback)
+    assert any("1 geotag(s) without a position are left out" in w for w in feedback.warnings)

@@ -14,11 +14,30 @@ One output folder per run (docs/design.md#labels) holds
   that hold a hard negative — a cluster the review rejected — are drawn before the others) and
   ``coco_keypoints.json`` (COCO keypoints, one "centre" keypoint per label, pixel-centre coordinates);
 * ``summary.json`` — counts: frames with labels, labels per frame, frames per geotag, geotags never
-  in view, edge cases; targets and labels per provenance; hard negatives and their tiles.
+  in view, edge cases; targets and labels per provenance; hard negatives and their tiles; the tiles skipped
+  and why; the σ used and where it came from; the surveyed area; the relief check (:mod:`.relief`);
+* ``targets.csv`` — ``geotag_id, label, provenance, lat, lon, height_m, height_ref``: one row per target
+  written to labels.csv, WGS84 degrees, the target's height in the reference it carries (a geotag's is
+  ellipsoidal; a review target has none: both fields empty).
 
 A geotag whose projection lies inside the image but within ``edge_buffer_px`` of its border is
 reported as "edge" and not written as a positive. Writing streams frame by frame: memory does not
 grow with the number of frames (only the small per-label rows are kept for the summary).
+
+**No tile teaches a target as background.** A tile is written as negative only when nothing in it may be a
+target nobody labelled; it is skipped (not written at all, positive or not: an ignore mask would need the
+trainer to read one) when within the label radius (3σ) of it lies
+
+* a target in view but not labelled: inside the edge buffer, or just beyond the image border (its centre
+  outside, its label disc reaching in: ``project_labels``' ``reach_px``);
+* a cluster the review left unresolved (uncertain, unreviewed, conflicting): it may be a target.
+
+A frame whose targets could not be placed (no ground height) gets no tiles: its view is unknown. A tile that
+holds no positive and whose ground footprint is not wholly inside the surveyed area
+(:mod:`..field.surveyed_area`) is skipped too: an unsurveyed target may lie there. Positives are kept anywhere.
+summary.json counts the tiles skipped for each reason. Targets hidden behind terrain (a DEM) are not in the
+image, and their tiles show background truly. The frame rasters and COCO cover whole frames and carry no ignore
+marks: train from the tiles.
 """
 from __future__ import annotations
 
@@ -32,15 +51,19 @@ import numpy as np
 from ..errors import check_cancel
 from ..field.geotags import PROVENANCES, REVIEW, UNLABELLED, Geotags
 from ..geometry.geodesy import LocalFrame
-from ..geometry.ground import LevelPlaneGround
+from ..geometry.ground import GroundModel, LevelPlaneGround
 from ..geometry.heights import ELLIPSOIDAL_REFERENCE, convert_heights
 from ..geometry.poses import FrameGeometry, FramePoses
-from ..geometry.projection import Projection, project_in_view
+from ..geometry.projection import Projection, pixel_to_ground, project_in_view
+from .relief import ReliefCheck, TargetRelief
 from .sparse_png import encode_gray_png
 
 LABELS_CSV_FIELDS = ["frame_id", "image", "geotag_id", "label", "u", "v", "sigma_px", "margin_px", "provenance"]
+TARGETS_CSV_FIELDS = ["geotag_id", "label", "provenance", "lat", "lon", "height_m", "height_ref"]
 #: A label is drawn out to this many σ (rasters and COCO boxes), so a label of radius r px has σ_label = r / 3.
 LABEL_RADIUS_SIGMAS = 3.0
+#: Points per side of a tile's ground footprint, for the surveyed-area test (a lens bends the sides a little).
+TILE_SIDE_POINTS = 4
 
 
 def label_sigma_px(radius_px: float) -> float:
@@ -48,10 +71,11 @@ def label_sigma_px(radius_px: float) -> float:
     return radius_px / LABEL_RADIUS_SIGMAS
 
 
-def review_label_inputs(clusters, survey: Geotags) -> tuple[Geotags, Geotags]:
+def review_label_inputs(clusters, survey: Geotags) -> tuple[Geotags, Geotags, Geotags]:
     """What a review adds to a label set, from :class:`..scoring.reviewed_clusters.ReviewedCluster`
-    objects: the targets (clusters confirmed real that no geotag matches; provenance review) and the
-    hard negatives, each at its cluster's centroid and on the ground each frame sees (no height).
+    objects: the targets (clusters confirmed real that no geotag matches; provenance review), the
+    hard negatives, and the unresolved clusters (uncertain, unreviewed, conflicting: maybe targets, so no tile
+    near one is written), each at its cluster's centroid and on the ground each frame sees (no height).
 
     A review target takes the survey's class when the survey has one; with several classes the
     cluster's is unknown and it is labelled ``target``.
@@ -64,12 +88,35 @@ def review_label_inputs(clusters, survey: Geotags) -> tuple[Geotags, Geotags]:
                        np.full(len(chosen), np.nan), [name] * len(chosen), [provenance] * len(chosen))
 
     return (spots([c for c in clusters if c.is_target], label, REVIEW),
-            spots([c for c in clusters if c.is_hard_negative], "hard_negative", REVIEW))
+            spots([c for c in clusters if c.is_hard_negative], "hard_negative", REVIEW),
+            spots([c for c in clusters if c.is_unresolved], "unresolved", REVIEW))
+
+
+@dataclass(frozen=True)
+class FrameGround:
+    """Pixel → ground of one frame, on the ground model its labels were placed on."""
+
+    geometry: FrameGeometry
+    model: GroundModel
+    index: int
+
+    def to_ground(self, uv) -> np.ndarray:
+        """Local east, north (N, 2) of where the pixels' rays meet the ground; NaN where they miss it."""
+        uv = np.asarray(uv, dtype=float).reshape(-1, 2)
+        pts, valid = pixel_to_ground(self.geometry, self.model, np.full(len(uv), self.index), uv)
+        return np.where(valid[:, None], pts[:, :2], np.nan)
 
 
 @dataclass
 class FrameLabels:
-    """The labels of one frame: geotag indices, pixels and margins; ``edge`` ones are not positives."""
+    """The labels of one frame: geotag indices, pixels and margins; ``edge`` ones are not positives.
+
+    ``edge`` entries are in view but not labelled: inside the image within the edge buffer (``margin_px`` ≥ 0),
+    or beyond its border by at most the reach (``margin_px`` < 0). ``nadir_distance_m`` (r) and ``height_m`` (d):
+    each entry's horizontal distance from the camera's nadir and the camera's height above it, on the ground it
+    was placed on (:mod:`.relief`). ``ground``: the frame's pixel → ground; None when its targets could not be
+    placed (no ground height), so what it shows is unknown.
+    """
 
     frame_index: int
     geotag_index: np.ndarray
@@ -77,6 +124,9 @@ class FrameLabels:
     margin_px: np.ndarray
     edge: np.ndarray
     n_occluded: int = 0
+    nadir_distance_m: np.ndarray = field(default_factory=lambda: np.empty(0))
+    height_m: np.ndarray = field(default_factory=lambda: np.empty(0))
+    ground: FrameGround | None = None
 
 
 @dataclass
@@ -90,6 +140,8 @@ class LabelSetResult:
 
 @dataclass
 class LabelRequest:
+    """What to write. ``sigma_source`` says where σ came from, for summary.json (:func:`write_label_set`)."""
+
     sigma_px: float = 10.0
     edge_buffer_px: float = 0.0
     write_rasters: bool = True
@@ -98,18 +150,24 @@ class LabelRequest:
     seed: int = 0
     coco: bool = False
     classes: list = field(default_factory=list)
+    sigma_source: dict = field(default_factory=lambda: {"source": "given"})
+
+    @property
+    def label_radius_px(self) -> float:
+        """The label radius r = 3σ (px): how far a label is drawn, and a target's reach into a tile."""
+        return LABEL_RADIUS_SIGMAS * self.sigma_px
 
 
 def project_labels(poses: FramePoses, geotags: Geotags, edge_buffer_px: float = 0.0,
                    local: LocalFrame | None = None,
-                   ground=None, geotag_heights: bool = False) -> list[FrameLabels]:
+                   ground=None, geotag_heights: bool = False, reach_px: float = 0.0) -> list[FrameLabels]:
     """Labels of every frame (in frame order; frames with nothing in view get an empty entry).
 
     Geotags are placed on the ground each frame sees, so a rover antenna height never shifts a label.
     ``ground`` builds the ground model from a :class:`FrameGeometry` (default: the level plane at the
     altimeter depth; e.g. a DEM's ``DemGround.from_dem``). With the level plane, frames without a
-    ground height (no usable altimeter reading) get no labels: :func:`frames_without_ground` tells
-    which, so callers can report them. A ground model that can tell occlusion (a DEM) drops geotags
+    ground height (no usable altimeter reading) get no labels and no ``ground``: :func:`frames_without_ground`
+    tells which, so callers can report them. A ground model that can tell occlusion (a DEM) drops geotags
     hidden behind terrain and counts them in ``n_occluded``.
 
     ``geotag_heights`` (frames of a camera solution whose heights are ellipsoidal, flag
@@ -117,6 +175,9 @@ def project_labels(poses: FramePoses, geotags: Geotags, edge_buffer_px: float = 
     a geotag with a height is projected where it is; one without a height goes onto the ground model,
     whose level plane lies, for frames without a ground height, at the median surveyed geotag height
     (the flight's ground).
+
+    ``reach_px``: geotags projected outside the image by at most this much are kept as ``edge`` entries too
+    (a target whose centre lies beyond the border but whose label disc of that radius reaches in).
     """
     local = local or LocalFrame.around(np.append(poses.lat, geotags.lat), np.append(poses.lon, geotags.lon),
                                        poses.height)
@@ -132,34 +193,44 @@ def project_labels(poses: FramePoses, geotags: Geotags, edge_buffer_px: float = 
         poses = replace(poses, ground_height=np.where(np.isfinite(poses.ground_height), poses.ground_height,
                                                       flight_ground))
     usable = np.flatnonzero(~frames_without_ground(poses)) if ground is None else np.arange(len(poses))
-    if len(usable) == 0 or len(geotags) == 0:
+    if len(usable) == 0:
         return empty
     geom = FrameGeometry(poses.subset(usable), local)
     ground_model = (ground or LevelPlaneGround)(geom)
+    for k, f in enumerate(usable):
+        empty[f].ground = FrameGround(geom, ground_model, k)
+    if len(geotags) == 0:
+        return empty
     pts = local.from_geodetic(geotags.lat, geotags.lon, surveyed)
     parts = []
     for own in (True, False):
         which = np.flatnonzero(own_height == own)
         if len(which) == 0:
             continue
-        proj = project_in_view(geom, pts[which], None if own else ground_model, edge_buffer_px,
-                               prefilter_ground=ground_model, keep_edge=True)
+        # A negative buffer grows the image: "in view" here is in front and inside it by the reach.
+        proj = project_in_view(geom, pts[which], None if own else ground_model, -float(reach_px),
+                               prefilter_ground=ground_model)
         proj.point_idx = which[proj.point_idx]
         placed = pts[proj.point_idx] if own else ground_model.place(proj.frame_idx, pts[proj.point_idx])
         parts.append((proj, placed))
     proj = Projection(*(np.concatenate([getattr(p, name) for p, _ in parts]) for name in Projection.FIELDS))
+    placed = np.concatenate([placed for _, placed in parts])
     occluded = np.zeros(len(proj.frame_idx), dtype=bool)
     if hasattr(ground_model, "occluded") and len(proj.frame_idx):
-        occluded = ground_model.occluded(proj.frame_idx, np.concatenate([placed for _, placed in parts]))
+        occluded = ground_model.occluded(proj.frame_idx, placed)
     n_occluded = np.bincount(proj.frame_idx[occluded], minlength=len(usable))
-    proj = proj.select(~occluded)
+    proj, placed = proj.select(~occluded), placed[~occluded]
     order = np.lexsort((proj.point_idx, proj.frame_idx))
-    proj = proj.select(order)
+    proj, placed = proj.select(order), placed[order]
+    edge = ~geom.camera.in_frame(proj.uv, edge_buffer_px)
+    offset = geom.C[proj.frame_idx] - placed
+    height = np.einsum("ni,ni->n", offset, geom.up[proj.frame_idx])
+    nadir = np.linalg.norm(offset - height[:, None] * geom.up[proj.frame_idx], axis=1)
     bounds = np.searchsorted(proj.frame_idx, np.arange(len(usable) + 1))
     for k, (a, b) in enumerate(zip(bounds[:-1], bounds[1:])):
         f = int(usable[k])
-        empty[f] = FrameLabels(f, proj.point_idx[a:b], proj.uv[a:b], proj.margin_px[a:b], ~proj.in_frame[a:b],
-                               int(n_occluded[k]))
+        empty[f] = FrameLabels(f, proj.point_idx[a:b], proj.uv[a:b], proj.margin_px[a:b], edge[a:b],
+                               int(n_occluded[k]), nadir[a:b], height[a:b], empty[f].ground)
     return empty
 
 
@@ -198,13 +269,25 @@ def tile_origins(length: int, tile: int) -> list[int]:
     return starts
 
 
+def tile_outlines_px(origins, tile: int, per_side: int = TILE_SIDE_POINTS) -> np.ndarray:
+    """The outlines (T, 4·per_side, 2) of the tiles at ``origins`` ((y0, x0) each), along their pixels' outer
+    edges, clockwise, as (u, v)."""
+    corners = np.array([[0.0, 0.0], [tile, 0.0], [tile, tile], [0.0, tile]]) - 0.5
+    t = np.arange(per_side)[:, None] / per_side
+    outline = np.concatenate([a + t * (b - a) for a, b in zip(corners, np.roll(corners, -1, axis=0))])
+    return outline[None, :, :] + np.asarray(origins, dtype=float).reshape(-1, 2)[:, None, ::-1]
+
+
 def write_label_set(poses: FramePoses, images, geotags: Geotags, frame_labels: list[FrameLabels],
                     out_dir, request: LabelRequest, progress=None, is_canceled=None,
                     hard_negatives: Geotags | None = None,
-                    hard_negative_labels: list[FrameLabels] | None = None) -> "LabelSetResult":
-    """Write labels.csv, labels.txt, rasters, tiles and COCO for the projected labels of one camera."""
-    with LabelWriter(out_dir, geotags, request, hard_negatives) as writer:
-        writer.add_frames(poses, images, frame_labels, progress, is_canceled, hard_negative_labels)
+                    hard_negative_labels: list[FrameLabels] | None = None, surveyed=None,
+                    unresolved_labels: list[FrameLabels] | None = None,
+                    relief: TargetRelief | None = None) -> "LabelSetResult":
+    """Write labels.csv, labels.txt, targets.csv, rasters, tiles and COCO for the projected labels of one camera
+    (:class:`LabelWriter` says what the optional arguments do)."""
+    with LabelWriter(out_dir, geotags, request, hard_negatives, surveyed, relief) as writer:
+        writer.add_frames(poses, images, frame_labels, progress, is_canceled, hard_negative_labels, unresolved_labels)
     return writer.result
 
 
@@ -213,10 +296,13 @@ class LabelWriter:
 
     Use as a context manager; ``result`` holds the summary once it is closed. ``hard_negatives`` are
     spots the review rejected; their projections (``add_frames``' ``hard_negative_labels``) only decide
-    which negative tiles are drawn first.
+    which negative tiles are drawn first. ``surveyed``: the surveyed area (:class:`..field.surveyed_area.
+    SurveyedArea`) — negative tiles only where it holds their whole ground footprint; None: everywhere.
+    ``relief``: each target's relief, for the relief check (:mod:`.relief`); None: no check.
     """
 
-    def __init__(self, out_dir, geotags: Geotags, request: LabelRequest, hard_negatives: Geotags | None = None):
+    def __init__(self, out_dir, geotags: Geotags, request: LabelRequest, hard_negatives: Geotags | None = None,
+                 surveyed=None, relief: TargetRelief | None = None):
         self.out = Path(out_dir)
         self.out.mkdir(parents=True, exist_ok=True)
         self.geotags, self.request = geotags, request
@@ -237,11 +323,17 @@ class LabelWriter:
         self.hard_negatives = hard_negatives
         self.frames_per_hard_negative = np.zeros(0 if hard_negatives is None else len(hard_negatives), np.int64)
         self.n_tiles_hard = self.n_frames_hard = 0
+        self.surveyed = surveyed
+        self._placed_area = (None, None)  # (local frame, the surveyed area placed in it): one per run in practice
+        self.relief = None if relief is None else ReliefCheck(relief, request.label_radius_px)
         self.labels_by_provenance = dict.fromkeys(PROVENANCES, 0)
         self.seen_at_edge = np.zeros(len(geotags), dtype=bool)
         self.labels_per_frame: list[int] = []
         self.missing_images: list[str] = []
-        self.n_edge = self.n_occluded = self.n_tiles_pos = self.n_tiles_neg = 0
+        self.n_edge = self.n_beyond = self.n_unresolved = self.n_occluded = 0
+        self.n_tiles_pos = self.n_tiles_neg = 0
+        self.skipped = {"unlabelled_target": 0, "outside_surveyed_area": 0}
+        self.frames_unplaced: list = []
         self.result: LabelSetResult | None = None
         self._csv_file = open(self.out / "labels.csv", "w", newline="", encoding="utf-8")
         self._txt_file = open(self.out / "labels.txt", "w", encoding="utf-8")
@@ -258,25 +350,31 @@ class LabelWriter:
             self.result = self._finish()
 
     def add_frames(self, poses: FramePoses, images, frame_labels: list[FrameLabels], progress=None,
-                   is_canceled=None, hard_negative_labels: list[FrameLabels] | None = None) -> np.ndarray:
+                   is_canceled=None, hard_negative_labels: list[FrameLabels] | None = None,
+                   unresolved_labels: list[FrameLabels] | None = None) -> np.ndarray:
         """Write the frames of one camera; returns the number of labels written per frame.
 
-        ``hard_negative_labels``: the hard negatives projected like the targets (same frame order)."""
+        ``hard_negative_labels``, ``unresolved_labels``: the hard negatives and the unresolved clusters
+        projected like the targets (same frame order; the latter with the same reach, all entries kept)."""
         counts = np.zeros(len(frame_labels), dtype=np.int64)
         for k, fl in enumerate(frame_labels):
             check_cancel(is_canceled)
             hard = hard_negative_labels[k] if hard_negative_labels is not None else None
-            counts[k] = self._add_frame(poses, str(images[fl.frame_index]), fl, hard)
+            unresolved = unresolved_labels[k] if unresolved_labels is not None else None
+            counts[k] = self._add_frame(poses, str(images[fl.frame_index]), fl, hard, unresolved)
             if progress is not None:
                 progress((k + 1) / max(1, len(frame_labels)))
         return counts
 
-    def _add_frame(self, poses: FramePoses, image: str, fl: FrameLabels, hard: FrameLabels | None) -> int:
+    def _add_frame(self, poses: FramePoses, image: str, fl: FrameLabels, hard: FrameLabels | None,
+                   unresolved: FrameLabels | None) -> int:
         request, geotags, cam = self.request, self.geotags, poses.camera
         pos = ~fl.edge
-        self.n_edge += int(fl.edge.sum())
+        beyond = fl.edge & (fl.margin_px < 0)
+        self.n_edge += int((fl.edge & ~beyond).sum())
+        self.n_beyond += int(beyond.sum())
         self.n_occluded += fl.n_occluded
-        self.seen_at_edge[fl.geotag_index[fl.edge]] = True
+        self.seen_at_edge[fl.geotag_index[fl.edge & ~beyond]] = True
         gi, uv, margin = fl.geotag_index[pos], fl.uv[pos], fl.margin_px[pos]
         frame_id = poses.frame_id[fl.frame_index]
         idx = len(self.labels_per_frame)
@@ -291,6 +389,9 @@ class LabelWriter:
         if len(gi):
             self._txt_file.write(f"{idx} {image} " + " ".join(
                 f"{u:.2f},{v:.2f},{self.class_index[n]}" for (u, v), n in zip(uv, names)) + "\n")
+        if self.relief is not None and len(gi):
+            self.relief.add(frame_id, geotags.ids[gi], gi, fl.nadir_distance_m[pos], fl.height_m[pos],
+                            float(np.sqrt(cam.fx * cam.fy)))
         raster = None
         if request.write_rasters or request.tile_size:
             raster = soft_label_raster(cam.width, cam.height, uv, request.sigma_px)
@@ -301,17 +402,46 @@ class LabelWriter:
         if hard is not None and len(hard.geotag_index):
             self.frames_per_hard_negative[np.unique(hard.geotag_index)] += 1
             self.n_frames_hard += 1
+        unresolved_uv = np.empty((0, 2)) if unresolved is None else unresolved.uv
+        self.n_unresolved += len(unresolved_uv)
         if request.tile_size:
-            tiles = _write_tiles(self.out / "tiles", frame_id, image, raster, uv, request, self.rng, hard_uv)
-            if tiles is None:
-                self.missing_images.append(image)
+            if fl.ground is None:
+                self.frames_unplaced.append(_json_id(frame_id))
             else:
-                self.n_tiles_pos += tiles[0]
-                self.n_tiles_neg += tiles[1]
-                self.n_tiles_hard += tiles[2]
+                self._add_tiles(frame_id, image, raster, uv, hard_uv, np.vstack([fl.uv[fl.edge], unresolved_uv]),
+                                fl.ground)
         if self.coco is not None:
             _add_coco(self.coco, frame_id, image, cam, uv, names, self.class_index, request.sigma_px)
         return len(gi)
+
+    def _add_tiles(self, frame_id, image, raster, uv, hard_uv, ignore_uv, ground: FrameGround) -> None:
+        tiles = _write_tiles(self.out / "tiles", frame_id, image, raster, uv, self.request, self.rng, hard_uv,
+                             ignore_uv, self._surveyed_test(ground))
+        if tiles is None:
+            self.missing_images.append(image)
+            return
+        self.n_tiles_pos += tiles["positive"]
+        self.n_tiles_neg += tiles["negative"]
+        self.n_tiles_hard += tiles["hard_negative"]
+        for reason in self.skipped:
+            self.skipped[reason] += tiles[reason]
+
+    def _surveyed_test(self, ground: FrameGround):
+        """Which tiles (origins (y0, x0)) of the frame have their whole ground footprint in the surveyed area."""
+        t = self.request.tile_size
+        if self.surveyed is None:
+            return lambda origins: np.ones(len(origins), dtype=bool)
+        local = ground.geometry.local
+        if self._placed_area[0] is not local:
+            self._placed_area = (local, self.surveyed.placed(local))
+        area = self._placed_area[1]
+
+        def test(origins):
+            if not origins:
+                return np.zeros(0, dtype=bool)
+            outlines = tile_outlines_px(origins, t)
+            return area.contains_polygons(ground.to_ground(outlines.reshape(-1, 2)).reshape(outlines.shape))
+        return test
 
     def _finish(self) -> "LabelSetResult":
         request, geotags = self.request, self.geotags
@@ -319,11 +449,14 @@ class LabelWriter:
             (self.out / "coco_keypoints.json").write_text(json.dumps(self.coco), encoding="utf-8")
         lpf = np.asarray(self.labels_per_frame, dtype=np.int64)
         fpg = self.frames_per_geotag
+        _write_targets(self.out / "targets.csv", geotags, np.flatnonzero(fpg > 0))
         summary = {
             "n_frames": len(lpf),
             "n_frames_with_labels": int((lpf > 0).sum()),
             "n_labels": int(lpf.sum()),
             "n_edge": self.n_edge,
+            "n_beyond_border": self.n_beyond,
+            "n_unresolved_in_view": self.n_unresolved,
             "n_occluded": self.n_occluded,
             "labels_per_frame": _stats(lpf[lpf > 0]),
             "frames_per_geotag": _stats(fpg[fpg > 0]),
@@ -335,6 +468,8 @@ class LabelWriter:
                                      for i in np.flatnonzero((fpg == 0) & self.seen_at_edge)],
             "classes": self.classes,
             "sigma_px": request.sigma_px,
+            "sigma_source": request.sigma_source,
+            "label_radius_px": request.label_radius_px,
             "edge_buffer_px": request.edge_buffer_px,
             "provenance": {p: {"n_targets": int((geotags.provenance == p).sum()),
                                "n_in_view": int(((fpg > 0) & (geotags.provenance == p)).sum()),
@@ -342,13 +477,30 @@ class LabelWriter:
             "hard_negatives": {"n_clusters": len(self.frames_per_hard_negative),
                                "n_in_view": int((self.frames_per_hard_negative > 0).sum()),
                                "n_frames": int(self.n_frames_hard)},
+            "surveyed_area": None if self.surveyed is None else self.surveyed.to_dict(),
             "tiles": {"size": request.tile_size, "positive": self.n_tiles_pos, "negative": self.n_tiles_neg,
                       "hard_negative": self.n_tiles_hard,
+                      "skipped": {**self.skipped, "frames_without_ground": len(self.frames_unplaced)},
+                      "frames_without_ground": self.frames_unplaced,
                       "missing_images": self.missing_images} if request.tile_size else None,
+            "relief": None if self.relief is None else self.relief.summary(),
             "raster_encoding": "uint8 PNG, 255·exp(−r²/2σ²) to r = 3σ, max-combined",
         }
         (self.out / "summary.json").write_text(json.dumps(summary, indent=2), encoding="utf-8")
         return LabelSetResult(summary, fpg, lpf)
+
+
+def _write_targets(path: Path, geotags: Geotags, written) -> None:
+    """targets.csv: the targets written to labels.csv, in geotag order (module docstring)."""
+    with open(path, "w", newline="", encoding="utf-8") as f:
+        out = csv.writer(f)
+        out.writerow(TARGETS_CSV_FIELDS)
+        for g in written:
+            h = float(geotags.height[g])
+            known = np.isfinite(h)
+            out.writerow([geotags.ids[g], geotags.labels[g], geotags.provenance[g], f"{geotags.lat[g]:.9f}",
+                          f"{geotags.lon[g]:.9f}", f"{h:.3f}" if known else "",
+                          ELLIPSOIDAL_REFERENCE.text if known else ""])
 
 
 def _inside(uv, x0, y0, t) -> np.ndarray:
@@ -357,13 +509,25 @@ def _inside(uv, x0, y0, t) -> np.ndarray:
     return (uv[:, 0] >= x0 - 0.5) & (uv[:, 0] < x0 + t - 0.5) & (uv[:, 1] >= y0 - 0.5) & (uv[:, 1] < y0 + t - 0.5)
 
 
-def _write_tiles(tile_dir: Path, frame_id, image, raster, uv, request: LabelRequest, rng, hard_uv=()):
+def _near(uv, x0, y0, t, radius) -> bool:
+    """Whether a point of ``uv`` lies within ``radius`` px of the tile (its pixels' outer edges)."""
+    if not len(uv):
+        return False
+    du = np.maximum(np.maximum(x0 - 0.5 - uv[:, 0], uv[:, 0] - (x0 + t - 0.5)), 0.0)
+    dv = np.maximum(np.maximum(y0 - 0.5 - uv[:, 1], uv[:, 1] - (y0 + t - 0.5)), 0.0)
+    return bool(np.any(du ** 2 + dv ** 2 <= radius ** 2))
+
+
+def _write_tiles(tile_dir: Path, frame_id, image, raster, uv, request: LabelRequest, rng, hard_uv=(),
+                 ignore_uv=(), surveyed=None):
     """Cut image and raster into tiles: every positive tile, a seeded sample of negatives.
 
-    Negative tiles holding a hard negative (``hard_uv``) fill the sample first, since they teach what the
-    detector got wrong; the rest of the sample is drawn from the other negatives.
-    Returns (positives, negatives, hard negatives among them) written, or None when the image cannot be
-    read.
+    A tile within the label radius of an ``ignore_uv`` spot (a target in view but not labelled) is not written;
+    nor is a tile without a positive whose footprint ``surveyed`` (origins → mask; None: all) does not hold
+    inside the surveyed area. Negative tiles holding a hard negative (``hard_uv``) fill the sample first, since
+    they teach what the detector got wrong; the rest of the sample is drawn from the other negatives.
+    Returns the tiles written (positive, negative, hard_negative among the negatives) and skipped
+    (unlabelled_target, outside_surveyed_area), or None when the image cannot be read.
     """
     import cv2
 
@@ -373,13 +537,21 @@ def _write_tiles(tile_dir: Path, frame_id, image, raster, uv, request: LabelRequ
     t = request.tile_size
     h, w = raster.shape
     hard_uv = np.asarray(hard_uv, dtype=float).reshape(-1, 2)
-    positives, hard, negatives = [], [], []
+    ignore_uv = np.asarray(ignore_uv, dtype=float).reshape(-1, 2)
+    positives, candidates, n_ignored = [], [], 0
     for y0 in tile_origins(h, t):
         for x0 in tile_origins(w, t):
-            if _inside(uv, x0, y0, t).any():
+            if _near(ignore_uv, x0, y0, t, request.label_radius_px):
+                n_ignored += 1
+            elif _inside(uv, x0, y0, t).any():
                 positives.append((y0, x0))
             else:
-                (hard if _inside(hard_uv, x0, y0, t).any() else negatives).append((y0, x0))
+                candidates.append((y0, x0))
+    inside = np.ones(len(candidates), dtype=bool) if surveyed is None else surveyed(candidates)
+    hard, negatives = [], []
+    for (y0, x0), ok in zip(candidates, inside):
+        if ok:
+            (hard if _inside(hard_uv, x0, y0, t).any() else negatives).append((y0, x0))
     n_neg = min(len(hard) + len(negatives), int(round(request.negative_ratio * max(1, len(positives)))))
     n_hard = min(len(hard), n_neg)
     keep_hard = [hard[i] for i in sorted(rng.choice(len(hard), n_hard, replace=False))] if n_hard else []
@@ -389,7 +561,8 @@ def _write_tiles(tile_dir: Path, frame_id, image, raster, uv, request: LabelRequ
         name = f"{frame_id}_{y0}_{x0}.png"
         cv2.imwrite(str(tile_dir / "images" / name), img[y0:y0 + t, x0:x0 + t])
         cv2.imwrite(str(tile_dir / "labels" / name), raster[y0:y0 + t, x0:x0 + t])
-    return len(positives), len(keep_hard) + len(keep_neg), len(keep_hard)
+    return {"positive": len(positives), "negative": len(keep_hard) + len(keep_neg), "hard_negative": len(keep_hard),
+            "unlabelled_target": n_ignored, "outside_surveyed_area": int((~inside).sum())}
 
 
 def _add_coco(coco: dict, frame_id, image, cam, uv, names, class_index, sigma_px) -> None:

@@ -29,6 +29,9 @@ Pipeline (:func:`plan_flight`):
    (fewest missions, then shortest total route), then each mission re-ordered on its own.
 4. **Estimate** flight time: climb and descent, each leg flown stop-to-stop with a trapezoidal speed
    profile, hover and photo time at each waypoint.
+5. **Surveyed area** (with a camera and a :class:`~..field.surveyed_area.SurveyedArea`): the share of each
+   waypoint's photo whose ground lies outside the area (:func:`photo_outside_share`) — ground Write labels
+   takes no negative tiles from, since an unsurveyed target may lie there.
 """
 from __future__ import annotations
 
@@ -39,6 +42,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from ..errors import Cancelled, InputError
+from ..field.surveyed_area import PlacedArea, SurveyedArea
 from ..geometry.camera import NADIR_ROTATION, CameraModel
 from ..geometry.geodesy import LocalFrame
 from ..geometry.rigid import RigidTransform
@@ -58,6 +62,10 @@ PHOTO_ACTION_S = 1.0
 LEVEL_GROUND_FRACTION = 0.1
 #: Headings at which the footprint check projects each geotag.
 HEADING_STEP_DEG = 5.0
+#: Headings at which the share of a photo outside the surveyed area is measured (the worst is reported).
+OUTSIDE_HEADING_STEP_DEG = 15.0
+#: Pixels sampled along the image's longer side for that share (the shorter side in proportion).
+OUTSIDE_SAMPLES_LONG_SIDE = 40
 #: fast-tsp works on unsigned 16-bit distances.
 _TSP_INT_MAX = 65535
 SURVEY_ORIGIN = "survey"
@@ -152,6 +160,10 @@ class FlightPlan:
     #: Where each target came from: ``survey`` (a geotag) or ``review:<outcome>`` (a cluster the review
     #: left unresolved, ``core.scoring.reviewed_clusters``); None: every target is a geotag.
     geotag_origins: list | None = None
+    #: Per waypoint, the share (0–1) of its photo whose ground lies outside the surveyed area at the worst
+    #: heading; None without a camera or a surveyed area.
+    outside_share: np.ndarray | None = None
+    surveyed: SurveyedArea | None = None
 
     def waypoint_origins(self, w: int) -> tuple[str, str]:
         """(provenance, review outcomes) of a waypoint's targets, each ';'-joined and sorted."""
@@ -224,6 +236,8 @@ WAYPOINT_FIELDS = [
                              "';'-separated"),
     ("review_outcomes", "string", "what the review left open at its clusters: conflicting, uncertain, "
                                   "unreviewed (';'-separated; empty for geotags)"),
+    ("outside_pct", "double", "share of the photo (% of its pixels) whose ground lies outside the surveyed area, "
+                              "at the worst heading; empty without a camera"),
 ]
 ROUTE_FIELDS = [
     ("mission", "int", "mission number, 1.."),
@@ -246,7 +260,8 @@ def waypoint_records(plan: "FlightPlan") -> list[dict]:
                 "geotag_ids": ";".join(plan.geotag_ids[g] for g in plan.members[w]),
                 "max_offset_m": round(float(offsets[w]), 4),
                 "lat": float(plan.waypoint_lat[w]), "lon": float(plan.waypoint_lon[w]),
-                "provenance": provenance, "review_outcomes": outcomes})
+                "provenance": provenance, "review_outcomes": outcomes,
+                "outside_pct": None if plan.outside_share is None else round(100.0 * float(plan.outside_share[w]), 1)})
     return records
 
 
@@ -458,6 +473,42 @@ def along_track_footprint_m(camera: CameraModel, altitude_m: float) -> float:
     return float(np.linalg.norm(pts[1] - pts[0]))
 
 
+def photo_outside_share(local: LocalFrame, camera: CameraModel, altitude_m: float, waypoint_xy: np.ndarray,
+                        area: PlacedArea, step_deg: float = OUTSIDE_HEADING_STEP_DEG) -> np.ndarray:
+    """Share (W,) of each waypoint's nadir photo, ``altitude_m`` above the level ground, whose ground lies outside
+    ``area``, at the worst of the headings every ``step_deg``: the fraction of a regular grid of pixels
+    (:data:`OUTSIDE_SAMPLES_LONG_SIDE` along the longer side) whose rays meet the ground outside it.
+
+    A photo whose ground disc (around the waypoint, out to its farthest sample) lies wholly inside or wholly
+    outside the area is 0 or 1 without sampling.
+    """
+    from ..geometry.ground import LevelPlaneGround
+    from ..geometry.projection import pixel_to_ground
+
+    waypoint_xy = np.asarray(waypoint_xy, dtype=float).reshape(-1, 2)
+    long_side = max(camera.width, camera.height)
+    n_u = max(2, round(OUTSIDE_SAMPLES_LONG_SIDE * camera.width / long_side))
+    n_v = max(2, round(OUTSIDE_SAMPLES_LONG_SIDE * camera.height / long_side))
+    u = (np.arange(n_u) + 0.5) * camera.width / n_u - 0.5
+    v = (np.arange(n_v) + 0.5) * camera.height / n_v - 0.5
+    uv = np.stack(np.meshgrid(u, v), axis=-1).reshape(-1, 2)
+    headings = np.radians(np.arange(0.0, 360.0, step_deg))
+    k, s = len(headings), len(uv)
+    geometry = _nadir_geometry(local, camera, np.zeros((k, 2)), altitude_m, headings)
+    pts, valid = pixel_to_ground(geometry, LevelPlaneGround(geometry), np.repeat(np.arange(k), s), np.tile(uv, (k, 1)))
+    if not np.all(valid):
+        raise InputError("the camera's image does not reach the ground from a nadir view; check the calibration")
+    offsets = (pts[:, :2] - np.repeat(geometry.ground_point[:, :2], s, axis=0)).reshape(k, s, 2)
+    reach = float(np.max(np.linalg.norm(offsets, axis=2)))
+    inside = area.contains(waypoint_xy)
+    share = np.where(inside, 0.0, 1.0)
+    near = np.flatnonzero(area.boundary_distance(waypoint_xy) < reach)
+    for w in near:
+        outside = ~area.contains((waypoint_xy[w] + offsets).reshape(-1, 2)).reshape(k, s)
+        share[w] = float(outside.mean(axis=1).max())
+    return share
+
+
 def suggested_capture_interval_s(camera: CameraModel, altitude_m: float, speed_ms: float,
                                  forward_overlap: float) -> float:
     """Interval (s) between photos giving ``forward_overlap`` (fraction) at ``speed_ms``."""
@@ -625,14 +676,16 @@ def _split_or_explain(seq_xy, home_xy, settings: FlightSettings, describe):
 # ---------------------------------------------------------------------- the whole plan
 def plan_flight(lat, lon, ids=None, home=None, settings: FlightSettings | None = None,
                 camera: CameraModel | None = None, source: str = "geotags",
-                progress=None, is_canceled=None, ground_heights=None, origins=None) -> FlightPlan:
+                progress=None, is_canceled=None, ground_heights=None, origins=None,
+                surveyed: SurveyedArea | None = None) -> FlightPlan:
     """Plan the survey flight over geotags at WGS84 ``lat``/``lon`` (degrees).
 
     ``ids`` name the geotags in messages and outputs (default: 1, 2, …); ``home`` is an optional
     (lat, lon) take-off and landing point; ``camera`` enables the footprint check and the
     capture-interval suggestion; ``ground_heights`` (m, NaN where unknown) only feed a warning when
     the ground is far from level, since altitudes are relative to take-off over a level field.
-    ``origins`` says where each target came from (:attr:`FlightPlan.geotag_origins`).
+    ``origins`` says where each target came from (:attr:`FlightPlan.geotag_origins`). ``surveyed``: the
+    surveyed area; with a camera, :attr:`FlightPlan.outside_share` tells how much of each photo lies outside it.
     """
     settings = settings or FlightSettings()
     settings.validate()
@@ -720,13 +773,17 @@ def plan_flight(lat, lon, ids=None, home=None, settings: FlightSettings | None =
         warnings.append("no HOME given: each mission's route and time run from its first to its last"
                         " waypoint; the flights to and from the take-off point are not included")
     wlat, wlon, _ = local.to_geodetic(np.column_stack([centres, np.zeros(len(centres))]))
+    outside = None
+    if camera is not None and surveyed is not None:
+        outside = photo_outside_share(local, camera, settings.altitude_m, centres, surveyed.placed(local))
     return FlightPlan(local=local, settings=settings, geotag_xy=xy, geotag_ids=ids,
                       waypoint_xy=centres, waypoint_lat=np.atleast_1d(wlat),
                       waypoint_lon=np.atleast_1d(wlon), members=members, missions=missions,
                       home_xy=home_xy, home_latlon=None if home is None else (float(home[0]), float(home[1])),
                       capture_interval_s=interval, suggested_interval_s=suggested,
                       footprint_radius_m=fp_radius, warnings=warnings,
-                      geotag_origins=None if origins is None else [str(o) for o in origins])
+                      geotag_origins=None if origins is None else [str(o) for o in origins],
+                      outside_share=outside, surveyed=surveyed)
 
 
 def _enforce_footprint(local, camera, settings, centres, labels, xy, enu, warnings):

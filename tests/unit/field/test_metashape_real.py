@@ -18,6 +18,7 @@ import pytest
 from birdseye.birdseye_qgis.core.errors import InputError
 from birdseye.birdseye_qgis.core.field.solutions import import_camera_solution, read_camera_solution
 from birdseye.birdseye_qgis.core.geometry.geodesy import ProjectedCRS
+from birdseye.birdseye_qgis.core.labels.mark_check import measured_sigma
 
 REAL = Path(__file__).resolve().parents[4] / "shared" / "data" / "real_solutions"
 WHEAT = REAL / "metashape_wheat_tanashi" / "wheat_tanashi.psx"
@@ -71,6 +72,19 @@ def test_control_points_become_a_geotag_layer_and_marks_a_check(wheat):
                                                        first["v_label"] - first["v_mark"]))
     # A mark a few pixels off is a few millimetres per pixel on the ground (GSD ≈ 7 mm at 30 m).
     assert 0.003 < np.median(check.error_m / check.error_px) < 0.012
+
+
+def test_the_label_check_sets_the_labels_sigma(wheat):
+    """Write labels' measured σ on the real project: its 23 marks are all of control points (no check point), and
+    Δu² + Δv² of each is its error_px², so σ = √(mean(error_px²) / 2) — 4.26 px, a label radius of 12.8 px that
+    holds every mark (the largest is 10.8 px off)."""
+    rows = list(wheat.mark_check.records(wheat.frames.frame_id, wheat.frames.image))
+    got = measured_sigma(rows, "wheat_tanashi.psx")
+    error = np.array([r["error_px"] for r in rows])
+    assert (got.kind, got.n_marks, got.n_without_label) == ("control_point", 23, 0)
+    assert got.sigma_px == pytest.approx(np.sqrt(np.mean(error ** 2) / 2), rel=1e-9)
+    assert got.sigma_px == pytest.approx(4.26, abs=0.01)
+    assert 3 * got.sigma_px > error.max()
 
 
 def test_project_without_geographic_reference_is_refused_saying_what_to_do():

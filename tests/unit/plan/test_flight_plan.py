@@ -8,6 +8,7 @@ from hypothesis import settings as hsettings
 from hypothesis import strategies as st
 
 from birdseye.birdseye_qgis.core.errors import InputError
+from birdseye.birdseye_qgis.core.field.surveyed_area import PlacedArea, surveyed_area
 from birdseye.birdseye_qgis.core.geometry.camera import CameraModel
 from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame
 from birdseye.birdseye_qgis.core.geometry.poses import FrameGeometry, FramePoses
@@ -17,6 +18,7 @@ from birdseye.birdseye_qgis.core.plan.flight_plan import (
     ACCELERATION_MS2,
     CLIMB_RATE_MS,
     DESCENT_RATE_MS,
+    OUTSIDE_SAMPLES_LONG_SIDE,
     PHOTO_ACTION_S,
     WAYPOINT_FIELDS,
     FlightSettings,
@@ -29,6 +31,7 @@ from birdseye.birdseye_qgis.core.plan.flight_plan import (
     mission_metrics,
     nearest_neighbour_tour,
     order_route,
+    photo_outside_share,
     plan_flight,
     solve_tour,
     split_route,
@@ -347,6 +350,51 @@ def test_waypoints_say_where_their_targets_came_from():
                       "g2": ("survey", "")}
     plain = waypoint_records(plan_flight(lat[:1], lon[:1]))
     assert (plain[0]["provenance"], plain[0]["review_outcomes"]) == ("survey", "")
+
+
+def test_share_of_a_photo_outside_a_round_area_counts_the_pixels_seeing_beyond_it():
+    """Around the nadir a round area looks the same at every heading, so the share is the fraction of sampled
+    pixels whose ground lies farther than R: for an undistorted nadir camera at 10 m a pixel (u, v) sees the
+    ground at |(u − cx, v − cy)|·10/f. The area is a 720-gon inscribed in the circle of radius R; no sample lies
+    between it and the circle, so the polygon and the circle agree on every sample."""
+    cam = CameraModel(800, 500, 1000.0, 1000.0, 399.5, 249.5, T_cam_imu=NADIR_MOUNT)
+    n_u, n_v = OUTSIDE_SAMPLES_LONG_SIDE, round(OUTSIDE_SAMPLES_LONG_SIDE * 500 / 800)
+    u = (np.arange(n_u) + 0.5) * 800 / n_u - 0.5
+    v = (np.arange(n_v) + 0.5) * 500 / n_v - 0.5
+    radius = np.hypot(*np.meshgrid(u - cam.cx, v - cam.cy)).ravel() * 10.0 / 1000.0
+    big_r, angle = 3.0, np.linspace(0.0, 2 * np.pi, 720, endpoint=False)
+    centre = np.array([12.0, -7.0])
+    area = PlacedArea([centre + big_r * np.column_stack([np.cos(angle), np.sin(angle)])])
+    assert not np.any((radius > big_r * np.cos(np.pi / 720)) & (radius <= big_r))
+    expected = float(np.mean(radius > big_r))
+    assert 0.2 < expected < 0.8
+    local = LocalFrame(LAT0, LON0, 0.0)
+    share = photo_outside_share(local, cam, 10.0, np.array([centre, centre + [100.0, 0.0], centre + [0.5, 0.0]]),
+                                area)
+    assert share[0] == pytest.approx(expected, abs=1e-12)
+    assert share[1] == 1.0  # far outside: the whole photo
+    assert expected < share[2] < 1.0  # off-centre: more of the photo sees past the rim at the worst heading
+
+
+def test_waypoints_report_how_much_of_their_photo_lies_outside_the_surveyed_area():
+    """Geotags on a 40 m square and at its centre, the area their hull grown by 1 m. The photo covers 10 × 6.25 m
+    at 10 m (800 × 500 px, f = 800 px): the centre's lies inside. A corner's, at heading 0, keeps inside at most
+    the part east and north of the margin's edges 1 m out: (5 + 1)/10 × (3.125 + 1)/6.25 = 39.6 % (the rounded
+    corner takes more), so at least 60.4 % lies outside at the worst heading; by symmetry every corner alike.
+    Without a camera there is no photo to measure."""
+    xy = np.array([[0.0, 0.0], [40.0, 0.0], [40.0, 40.0], [0.0, 40.0], [20.0, 20.0]])
+    lat, lon = to_latlon(xy)
+    cam = CameraModel(800, 500, 800.0, 800.0, 399.5, 249.5, T_cam_imu=NADIR_MOUNT)
+    area = surveyed_area(lat, lon, 1.0)
+    plan = plan_flight(lat, lon, ids=list("abcde"), settings=FlightSettings(merge_radius_m=0.5), camera=cam,
+                       surveyed=area)
+    pct = {r["geotag_ids"]: r["outside_pct"] for r in waypoint_records(plan)}
+    assert pct["e"] == 0.0
+    corners = np.array([pct[k] for k in "abcd"])
+    assert np.all((corners > 60.4) & (corners < 100.0)) and np.ptp(corners) <= 0.5
+    assert plan.surveyed is area
+    blind = plan_flight(lat, lon, ids=list("abcde"), settings=FlightSettings(merge_radius_m=0.5), surveyed=area)
+    assert blind.outside_share is None and {r["outside_pct"] for r in waypoint_records(blind)} == {None}
 
 
 def test_uneven_ground_is_flagged():
