@@ -531,37 +531,37 @@ error</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="51"/>
+        <location filename="../processing/algorithms/writelabels.py" line="65"/>
         <source>{path}: not a sensorbound result (expected inputs.tolerance_px): {exc}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="56"/>
+        <location filename="../processing/algorithms/writelabels.py" line="70"/>
         <source>{path}: the pose-noise budget is rejected at {items}; labels of σ = {value:g} px would not contain the projection error there</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="227"/>
+        <location filename="../processing/algorithms/writelabels.py" line="334"/>
         <source>{n_labels} labels in {n_frames_with_labels} of {n_frames} frames (labels per labelled frame: mean {mean:g}, max {max}); {n_geotags_in_view} of {n_geotags} geotags in view (frames per geotag: mean {mean2:g}, max {max2})</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="246"/>
+        <location filename="../processing/algorithms/writelabels.py" line="353"/>
         <source>{n_occluded} projections were hidden behind terrain (not written)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="249"/>
+        <location filename="../processing/algorithms/writelabels.py" line="356"/>
         <source>{n_edge} projections fell within the edge buffer (not written)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="254"/>
+        <location filename="../processing/algorithms/writelabels.py" line="364"/>
         <source>{n_never} geotag(s) never in view of any frame: {shown}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="258"/>
+        <location filename="../processing/algorithms/writelabels.py" line="379"/>
         <source>{value} image(s) could not be read for tiles; first: {value2}</source>
         <translation type="unfinished"></translation>
     </message>
@@ -754,12 +754,12 @@ QGIS&apos;s own packages are not changed. pip downloads them from the Python Pac
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="237"/>
+        <location filename="../processing/algorithms/writelabels.py" line="344"/>
         <source>Of these, review targets: {n_in_view} of {n_targets} in view, {n_labels} labels.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="242"/>
+        <location filename="../processing/algorithms/writelabels.py" line="349"/>
         <source>Hard negatives: {n_in_view} of {n_clusters} in view, in {n_frames} frame(s); {n_tiles} hard-negative tile(s) written.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -789,17 +789,17 @@ QGIS&apos;s own packages are not changed. pip downloads them from the Python Pac
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/qgis_io/layers.py" line="419"/>
+        <location filename="../birdseye_qgis/qgis_io/layers.py" line="468"/>
         <source>the camera model of frame {frame} was cut at {length} characters: {format} keeps at most {length} characters in a text field and a camera model needs about 500: the layer was probably saved to it after the import (Save Features As…). Save the original frame layer as a GeoPackage (.gpkg) instead, or run the import again with its output written to a GeoPackage (or to this format: the import then splits the camera over fields camera, camera_2, …).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/qgis_io/layers.py" line="419"/>
+        <location filename="../birdseye_qgis/qgis_io/layers.py" line="468"/>
         <source>the layer&apos;s file format (e.g. ESRI Shapefile)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/qgis_io/layers.py" line="466"/>
+        <location filename="../birdseye_qgis/qgis_io/layers.py" line="515"/>
         <source>The output&apos;s format keeps at most {n} characters in a text field: each frame&apos;s camera model goes on in fields {fields}; keep them with the layer.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1317,6 +1317,51 @@ exact</source>
     <message>
         <location filename="../processing/algorithms/evaluatedetections.py" line="41"/>
         <source>The rule was sealed before BirdsEye recorded what the minimum points count; its arms were chosen counting cells, so it is scored counting cells, as sealed.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/writelabels.py" line="359"/>
+        <source>{n} projections lay just beyond the image border, their label disc reaching in (not written)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/writelabels.py" line="369"/>
+        <source>{n} near a target in view but not labelled (edge buffer, beyond the border, an unresolved cluster)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/writelabels.py" line="369"/>
+        <source>{n} without a positive not wholly inside the surveyed area</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/writelabels.py" line="369"/>
+        <source>every tile of {n} frame(s) without a ground height</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/writelabels.py" line="374"/>
+        <source>Tiles: {positive} positive, {negative} negative written; skipped: {reasons}.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/writelabels.py" line="374"/>
+        <source>none</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/writelabels.py" line="388"/>
+        <source>Relief check ({source}): {n} label(s), largest displacement h·r/d {cm:.1f} cm = {px:.1f} px against the label radius {radius:.1f} px; {over} frame(s) exceed it</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/writelabels.py" line="395"/>
+        <source>frame {frame_id}: geotag {geotag_id}, {displacement_cm:g} cm = {displacement_px:g} px &gt; {label_radius_cm:g} cm = {label_radius_px:g} px</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/writelabels.py" line="398"/>
+        <source> (summary.json lists them all): {shown}</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
@@ -2352,123 +2397,138 @@ exact</source>
 <context>
     <name>PlanFlight</name>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="101"/>
+        <location filename="../processing/algorithms/planflight.py" line="105"/>
         <source>Selected geotags only</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="118"/>
+        <location filename="../processing/algorithms/planflight.py" line="127"/>
         <source>Capture</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="127"/>
+        <location filename="../processing/algorithms/planflight.py" line="136"/>
         <source>Plan even if the points spread over more than 10 km</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="138"/>
+        <location filename="../processing/algorithms/planflight.py" line="147"/>
         <source>Waypoints</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="140"/>
+        <location filename="../processing/algorithms/planflight.py" line="149"/>
         <source>Route</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="150"/>
+        <location filename="../processing/algorithms/planflight.py" line="159"/>
         <source>Mission files written</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="172"/>
+        <location filename="../processing/algorithms/planflight.py" line="181"/>
         <source>GEOTAGS: the geotag layer could not be opened.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="175"/>
+        <location filename="../processing/algorithms/planflight.py" line="184"/>
         <source>SELECTED_ONLY is set but no geotag of layer &apos;{}&apos; is selected: select the geotags of the partition to fly, or clear SELECTED_ONLY.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="186"/>
+        <location filename="../processing/algorithms/planflight.py" line="195"/>
         <source>GEOTAGS: layer &apos;{}&apos; has no features: there is nothing to fly over.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="241"/>
+        <location filename="../processing/algorithms/planflight.py" line="257"/>
         <source>With this camera at {alt:g} m and {v:g} m/s, one photo every {s:.2f} s gives {o:g} % forward overlap.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="303"/>
+        <location filename="../processing/algorithms/planflight.py" line="319"/>
         <source>{fmt}: {files}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="313"/>
+        <location filename="../processing/algorithms/planflight.py" line="329"/>
         <source>{g} geotag(s) → {w} waypoint(s) in {m} mission(s); route {km:.2f} km; estimated flight time {t:.1f} min at {v:g} m/s and {alt:g} m.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="319"/>
+        <location filename="../processing/algorithms/planflight.py" line="335"/>
         <source>  mission {n}: {w} waypoint(s), {l:.0f} m, {t:.1f} min</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="65"/>
+        <location filename="../processing/algorithms/planflight.py" line="67"/>
         <source>Plan the survey flight</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="196"/>
+        <location filename="../processing/algorithms/planflight.py" line="211"/>
         <source>UNRESOLVED_ONLY needs a review: give REVIEW and the detection layers it judged (REVIEW_DETECTIONS).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="199"/>
+        <location filename="../processing/algorithms/planflight.py" line="214"/>
         <source>The review left no cluster unresolved (uncertain, unreviewed or with conflicting verdicts): there is nothing to fly back to.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="311"/>
+        <location filename="../processing/algorithms/planflight.py" line="327"/>
         <source>{u} unresolved cluster(s) of the review are targets too (waypoint field provenance: review).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="182"/>
+        <location filename="../processing/algorithms/planflight.py" line="191"/>
         <source>{problem}: remove the feature or give it a position, so no target is left out of the flight.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="99"/>
+        <location filename="../processing/algorithms/planflight.py" line="103"/>
         <source>Geotags</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="106"/>
+        <location filename="../processing/algorithms/planflight.py" line="110"/>
         <source>Home: take-off and landing point</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="132"/>
+        <location filename="../processing/algorithms/planflight.py" line="141"/>
         <source>With REVIEW: fly only to the unresolved clusters</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="103"/>
+        <location filename="../processing/algorithms/planflight.py" line="107"/>
         <source>Geotag id field (empty: &apos;id&apos;)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="112"/>
+        <location filename="../processing/algorithms/planflight.py" line="116"/>
         <source>Camera calibration (YAML)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="134"/>
+        <location filename="../processing/algorithms/planflight.py" line="143"/>
         <source>Output CRS (empty: the site&apos;s UTM zone)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/planflight.py" line="121"/>
+        <source>Surveyed area (polygons; empty: the geotags&apos; hull grown by the margin)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/planflight.py" line="344"/>
+        <source>Surveyed area: {area}. Give CAMERA to see how much of each planned photo lies outside it (field outside_pct).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/planflight.py" line="349"/>
+        <source>Surveyed area: {area}. {k} of {w} planned photo(s) see ground outside it (at the worst heading; largest share {pct:.0f} %, all photos {mean:.0f} % on average, field outside_pct): Write labels takes no negative tiles from that ground.</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
@@ -3408,113 +3468,193 @@ exact</source>
 <context>
     <name>WriteLabels</name>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="83"/>
+        <location filename="../processing/algorithms/writelabels.py" line="102"/>
         <source>Geotags (surveyed targets)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="97"/>
+        <location filename="../processing/algorithms/writelabels.py" line="131"/>
         <source>Write one soft-label raster per frame</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="99"/>
+        <location filename="../processing/algorithms/writelabels.py" line="133"/>
         <source>Write a tiled training set (image and label tiles)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="101"/>
+        <location filename="../processing/algorithms/writelabels.py" line="135"/>
         <source>Tile size (px)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="104"/>
+        <location filename="../processing/algorithms/writelabels.py" line="138"/>
         <source>Negative tiles kept per positive tile</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="107"/>
+        <location filename="../processing/algorithms/writelabels.py" line="141"/>
         <source>Random seed for the negative-tile sample</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="110"/>
+        <location filename="../processing/algorithms/writelabels.py" line="144"/>
         <source>Write COCO-keypoints JSON</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="113"/>
+        <location filename="../processing/algorithms/writelabels.py" line="147"/>
         <source>Label folder</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="114"/>
+        <location filename="../processing/algorithms/writelabels.py" line="148"/>
         <source>Frames with label counts</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="117"/>
+        <location filename="../processing/algorithms/writelabels.py" line="151"/>
         <source>Geotags with frames seen</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="141"/>
+        <location filename="../processing/algorithms/writelabels.py" line="228"/>
         <source>GEOTAGS and FRAMES are both required.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="167"/>
+        <location filename="../processing/algorithms/writelabels.py" line="267"/>
         <source>{n_records} frames ({n_groups} camera(s)), {n_geotags} geotags, σ = {sigma:g} px, edge buffer {edge_buffer_px:g} px</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="184"/>
+        <location filename="../processing/algorithms/writelabels.py" line="284"/>
         <source>{n_steep} frame(s) lie on terrain steeper than the level plane's 10° envelope (flag steep_terrain; first: {items}): their labels drift off target — give the DEM (parameter DEM)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="190"/>
+        <location filename="../processing/algorithms/writelabels.py" line="290"/>
         <source>{n_no_ground} frame(s) have no ground height (no usable altimeter reading, flag no_ground_height) and get no labels; first: {items}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="65"/>
+        <location filename="../processing/algorithms/writelabels.py" line="79"/>
         <source>Write training labels</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="178"/>
+        <location filename="../processing/algorithms/writelabels.py" line="278"/>
         <source>{n} frame(s) could not be refined and keep their metadata pose (flag not_refined; first: {items}): their labels are only as good as the drone&apos;s metadata. Leave them out with a filter such as &quot;flags&quot; NOT LIKE &apos;%not_refined%&apos;</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="154"/>
-        <source>From the review: {targets} target(s) nobody surveyed are labelled (provenance review); {hard} hard negative(s) put their tiles first in the negative sample.</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../processing/algorithms/writelabels.py" line="86"/>
+        <location filename="../processing/algorithms/writelabels.py" line="105"/>
         <source>Frames</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="87"/>
+        <location filename="../processing/algorithms/writelabels.py" line="106"/>
         <source>Soft-label σ (px)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="93"/>
+        <location filename="../processing/algorithms/writelabels.py" line="118"/>
         <source>Edge buffer at the image border (px)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="131"/>
+        <location filename="../processing/algorithms/writelabels.py" line="195"/>
         <source>σ = r / 3 = {value:g} px from {path} (SENSOR_BOUND_JSON; SIGMA_PX is not used)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="90"/>
+        <location filename="../processing/algorithms/writelabels.py" line="109"/>
         <source>…or σ = r/3 from a sensorbound JSON</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/writelabels.py" line="112"/>
+        <source>Where σ comes from</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/writelabels.py" line="115"/>
+        <source>Label check (pinned image marks) for the measured σ</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/writelabels.py" line="121"/>
+        <source>Surveyed area (polygons; empty: the geotags&apos; hull grown by the margin)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/writelabels.py" line="124"/>
+        <source>Margin around the geotags&apos; hull without a surveyed area (m)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/writelabels.py" line="127"/>
+        <source>Target relief h for the relief check (m; empty: from the DEM when one is given)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/writelabels.py" line="168"/>
+        <source>SIGMA_SOURCE asks for σ measured on a label check: give MARK_CHECK (the label check Import camera solution writes from the pinned image marks).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/writelabels.py" line="173"/>
+        <source>σ = {value:.2f} px measured on {path}: the per-axis RMS of label − mark over {n} {kind} mark(s) (RMS u {u:.2f} px, v {v:.2f} px, largest error {max:.1f} px); SIGMA_PX and SENSOR_BOUND_JSON are not used</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/writelabels.py" line="179"/>
+        <source>{n} {kind} mark(s) have no label (the point falls outside its image) and are left out of σ: check them in the label check.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/writelabels.py" line="183"/>
+        <source>The label check has no check point with a label: σ comes from control points, which took part in the adjustment and flatter the labels.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/writelabels.py" line="186"/>
+        <source>σ from {n} mark(s) (fewer than {few}) is uncertain by about ±{pct:.0f} %.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/writelabels.py" line="191"/>
+        <source>MARK_CHECK is not used: SIGMA_SOURCE is the given σ.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/writelabels.py" line="199"/>
+        <source>σ = {value:g} px as given (SIGMA_PX)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/writelabels.py" line="208"/>
+        <source>Surveyed area: {area}. Negative tiles only where it holds the tile&apos;s whole ground; positives anywhere.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/writelabels.py" line="220"/>
+        <source>Relief check skipped: give the targets&apos; relief (RELIEF_M) or a DEM.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/writelabels.py" line="237"/>
+        <source>{problem}: a target without a position may lie in any negative tile. Give it its position or remove it, then write the tiles.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/writelabels.py" line="240"/>
+        <source>{n} geotag(s) without a position are left out; first: {problem}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/writelabels.py" line="251"/>
+        <source>From the review: {targets} target(s) nobody surveyed are labelled (provenance review); {hard} hard negative(s) put their tiles first in the negative sample; no tile near one of the {unresolved} unresolved cluster(s) is written.</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
@@ -4167,6 +4307,7 @@ exact</source>
 - **MERGE_RADIUS_M** — geotags within this ground distance (metres) share one waypoint; every geotag ends up within this distance of its waypoint (default 2 m; 0 = one waypoint per geotag).
 - **CAMERA** — camera calibration (Kalibr camchain or OpenCV YAML), optional. With it every geotag is also guaranteed to lie inside its waypoint&apos;s photo, at least FOOTPRINT_MARGIN_PX from the image edge, whatever the aircraft&apos;s heading: the camera is taken straight down (gimbal −90°) over level ground. When the footprint is smaller than the merge radius, the merge radius is reduced (the log says to what). The camera also gives the suggested capture interval.
 - **FOOTPRINT_MARGIN_PX** — edge margin in pixels kept around each geotag in the photo (default 50).
+- **SURVEYED_AREA** — polygons you draw around the ground the survey searched (optional; any polygon layer, any CRS, holes allowed). Without it the surveyed area is the convex hull of the geotags (with SELECTED_ONLY, the selected ones) grown by **SURVEY_MARGIN_M** (m, default 1 m) — the same area Write labels uses. With CAMERA, each waypoint reports how much of its photo sees ground outside the surveyed area (`outside_pct`): a target nobody surveyed may lie there, so Write labels takes no negative tiles from that ground, and a photo mostly outside it adds little to the training set.
 - **HOVER_S** — hover time at each waypoint in seconds (default 2), to let the drone settle before the photo.
 - **CAPTURE** — *Photo at each waypoint*, or *Timed capture*: photos at a fixed interval from the first to the last waypoint.
 - **CAPTURE_INTERVAL_S** — interval of timed capture in seconds (default 2); 0 = the interval giving FORWARD_OVERLAP_PCT with the camera. With a camera the log always reports that suggested interval.
@@ -4179,12 +4320,12 @@ exact</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../resources/help/planflight.md" line="24"/>
+        <location filename="../resources/help/planflight.md" line="25"/>
         <source>## Flying back to what the review left open (optional)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../resources/help/planflight.md" line="26"/>
+        <location filename="../resources/help/planflight.md" line="27"/>
         <source>- **REVIEW** — the review dock&apos;s verdict table (`birdseye_verdicts` of the review GeoPackage), as in Evaluate detections. With it, every cluster the review left **unresolved** becomes a target of the plan, at its centroid (the mean of its detections), so the next flight or walk visits it: **uncertain** (only abstentions), **unreviewed** (nobody judged it) and **conflicting** (votes on both sides — the three conventions of Evaluate detections do not agree on it). Clusters a geotag matches are settled by the survey; confirmed and hard-negative clusters are settled by the review (Write labels uses them).
 - **REVIEW_DETECTIONS** — the detection layer(s) the review judged (outputs of Detect targets); **REVIEW_FRAMES** — their frame layers, one per detection layer, in the same order. The clusters are made and matched to the geotags (all of GEOTAGS, selected or not) exactly as Evaluate detections does.
 - **DEDUP_CM** (cm, default 3), **EPS_M** (m, default 0.20), **MIN_SAMPLES** (default 2), **CORE_COUNT** (default detections), **EPS_PRED_M** (m, default 0.20), **EDGE_BUFFER_PX** (px, default 0) — advanced: the clustering and matching the review was scored with (the review dock&apos;s values); a verdict attaches to the clusters with a core point within EPS_PRED_M of its position.
@@ -4192,29 +4333,29 @@ exact</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../resources/help/planflight.md" line="31"/>
+        <location filename="../resources/help/planflight.md" line="32"/>
         <source>## Outputs</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../resources/help/planflight.md" line="33"/>
-        <source>- **OUTPUT_WAYPOINTS** — PointZ layer (Z = altitude) with `mission`, `order` (1.. within the mission), `altitude` (m, relative to take-off), `geotag_count`, `geotag_ids` (`;`-separated; an unresolved cluster is named `&lt;detection layer&gt;#&lt;cluster id&gt;`), `max_offset_m` (ground distance to its farthest geotag), `lat`, `lon` (WGS84 degrees, as in the mission files), `provenance` (where its targets came from: `survey`, `review`, or `review;survey` when both share the waypoint) and `review_outcomes` (`conflicting`, `uncertain`, `unreviewed`, `;`-separated; empty for geotags).
+        <location filename="../resources/help/planflight.md" line="34"/>
+        <source>- **OUTPUT_WAYPOINTS** — PointZ layer (Z = altitude) with `mission`, `order` (1.. within the mission), `altitude` (m, relative to take-off), `geotag_count`, `geotag_ids` (`;`-separated; an unresolved cluster is named `&lt;detection layer&gt;#&lt;cluster id&gt;`), `max_offset_m` (ground distance to its farthest geotag), `lat`, `lon` (WGS84 degrees, as in the mission files), `provenance` (where its targets came from: `survey`, `review`, or `review;survey` when both share the waypoint) and `review_outcomes` (`conflicting`, `uncertain`, `unreviewed`, `;`-separated; empty for geotags) and `outside_pct` (with CAMERA: the share of the photo, in % of its pixels, whose ground lies outside the surveyed area, at the worst heading, the camera straight down over level ground; empty without CAMERA).
 - **OUTPUT_ROUTE** — one line per mission, closed at home when HOME is given, with `mission`, `waypoints`, `length_m` and `est_time_min`.
 - **OUTPUT_KMZ** — DJI Pilot 2 route (WPML: `wpmz/template.kml` and `wpmz/waylines.wpml`): heights relative to take-off, the aircraft faces along the route and stops at each waypoint, gimbal at −90°, hover and a photo at each waypoint or a timed capture over the whole route, return home at the end (RTH height = flight altitude: check obstacles).
 - **OUTPUT_PLAN** — QGroundControl plan: take-off, speed, gimbal −90°, waypoints (relative altitude, hover as hold time), a photo after each waypoint or an interval capture started before the first and stopped after the last, return to launch.
 - **OUTPUT_LITCHI** — Litchi CSV (altitudes relative to take-off, gimbal −90°, &quot;stay for&quot; and &quot;take photo&quot; actions or a photo interval). Litchi keeps mission settings (finish action, heading mode) in the app: set them after importing.
 - **OUTPUT_KML** — all missions in one KML for Google Earth: a folder per mission with its route and waypoints.
 - With several missions, each mission file gets a suffix: `survey_m1.kmz`, `survey_m2.kmz`, … (the KML holds them all). **MISSION_FILES** lists every file written.
-- **ROUTE_LENGTH_M**, **FLIGHT_TIME_MIN**, **WAYPOINT_COUNT**, **MISSION_COUNT**, **GEOTAG_COUNT**, **UNRESOLVED_COUNT** (the review&apos;s unresolved clusters flown to) — the summary, also written to the log with one line per mission.</source>
+- **ROUTE_LENGTH_M**, **FLIGHT_TIME_MIN**, **WAYPOINT_COUNT**, **MISSION_COUNT**, **GEOTAG_COUNT**, **UNRESOLVED_COUNT** (the review&apos;s unresolved clusters flown to) — the summary, also written to the log with one line per mission, and a line on the surveyed area: how many photos see ground outside it, the largest share and the mean (a warning when a photo is half outside or more).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../resources/help/planflight.md" line="42"/>
+        <location filename="../resources/help/planflight.md" line="43"/>
         <source>**Flight-time estimate**: climb at 3 m/s and descent at 2 m/s, each leg flown from standstill to standstill with 2 m/s² acceleration, the hover time, and 1 s per photo at each waypoint. Wind is not included.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../resources/help/planflight.md" line="44"/>
+        <location filename="../resources/help/planflight.md" line="45"/>
         <source>**A single geotag** (or geotags that all merge into one waypoint) is a valid one-waypoint mission: the layers, the QGroundControl plan and the KML are written. DJI Pilot 2 and Litchi need at least two waypoints, so asking for those files is refused with a message; missions are otherwise split so that each holds at least two waypoints whenever the limits allow.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -4972,47 +5113,84 @@ exact</source>
 - **Frames**: a frame layer from Import flight log or Import drone images (it carries poses and the camera model).
 - **Soft-label σ (px)**: the Gaussian&apos;s standard deviation; default 10 px (the method&apos;s: a 30 px radius at 3σ). **SENSOR_BOUND_JSON**, when given, sets σ = r/3 from a saved sensor-bound run instead; the sensor-bound calculator&apos;s *Write labels with this σ…* opens this dialog with its σ filled in.
 - **σ from a sensorbound result**: a JSON written by the Sensor bound algorithm: σ = r / 3 with r its label tolerance; refused if the budget is rejected at any altitude.
+- **Where σ comes from** (SIGMA_SOURCE): *Given* (default) — SIGMA_PX, or r / 3 of SENSOR_BOUND_JSON when you give one; or *Measured* — the error of your labels measured on a **label check** (MARK_CHECK): the layer *Label check (pinned image marks)* that Import camera solution writes when the solution has control points with marks a person pinned in the images (saved to any file QGIS opens). σ is then the per-axis RMS of the distance label − mark, √(mean(Δu² + Δv²) / 2) in px: the sensor bound sizes a label of radius 3σ for an error of standard deviation σ in each image direction, and a radius of 3σ holds 98.9 % of such an error. Check points (not used by the adjustment) are used when the check has any, else the control points (the log warns: they flatter the labels); marks without a label are left out and counted. With fewer than 10 marks the log says how uncertain σ is (about ±1/√(4n)).
 - **Edge buffer (px)**: a geotag that projects inside the image but closer than this to its border is reported as &quot;edge&quot; and not written as a label (default 0).
 - **Write one soft-label raster per frame**: `rasters/&lt;frame_id&gt;.png`, the image&apos;s size, 8 bit: 255·exp(−r²/2σ²) out to r = 3σ, overlapping humps combined by max.
-- **Tiled training set**: image and label tiles side by side in `tiles/images` and `tiles/labels` (tile size in px, default 224; the last row and column of tiles sit flush with the border). Every tile holding a label is kept; negative tiles are sampled with the seed, this many per positive tile (at least one per frame).
+- **Tiled training set**: image and label tiles side by side in `tiles/images` and `tiles/labels` (tile size in px, default 224; the last row and column of tiles sit flush with the border). Every tile holding a label is kept; negative tiles are sampled with the seed, this many per positive tile (at least one per frame). No tile that might show a target without its label is written (see &quot;No tile teaches a target as background&quot; below).
+- **Surveyed area** (SURVEYED_AREA, optional): polygons you draw around the ground the survey searched (any polygon layer, any CRS; holes allowed). Without it, the surveyed area is the convex hull of the geotags grown by **SURVEY_MARGIN_M** (m, default 1 m: about what a surveyor walking to the outermost targets also looked at; more would let unsurveyed ground in — draw the area to say more).
+- **Target relief h (m)** (RELIEF_M, optional) for the relief check (below): how far the targets stand above the ground their labels are placed on (a mound, a plant). Without it, and with a DEM, each target&apos;s h is the DEM&apos;s height range (highest − lowest) within 1 m of it — simple on purpose, an upper bound, and where the labels stand on that DEM they already follow the relief it shows. Without either the check is skipped.
 - **COCO-keypoints JSON**: `coco_keypoints.json`, one &quot;centre&quot; keypoint per label, pixel-centre coordinates.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../resources/help/writelabels.md" line="16"/>
-        <source>## Verdicts become labels (optional)</source>
+        <location filename="../resources/help/writelabels.md" line="19"/>
+        <source>## No tile teaches a target as background</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../resources/help/writelabels.md" line="18"/>
-        <source>- **Review verdicts** (REVIEW): the review dock&apos;s verdict table (`birdseye_verdicts` of the review GeoPackage), as in Evaluate detections. **Detection layers the review judged** (REVIEW_DETECTIONS): the outputs of Detect targets on these frames. Their clusters are made and matched to the geotags exactly as Evaluate detections does, and each gets the outcome of all its judgements (direct and propagated):
-  - **confirmed real** (every vote says so) **and matched by no geotag**: a target nobody surveyed. It is labelled like a geotag, at the cluster&apos;s centroid (the mean of its detections) placed on the ground each frame sees, in every frame that sees it; `provenance` review, id `&lt;detection layer&gt;#&lt;cluster id&gt;`, the survey&apos;s class when the survey has one class (else `target`).
-  - **hard negative** (every vote says so): frames that see it get no label there; a negative tile holding it is a *hard-negative tile* (label all zero) and is drawn before the other negatives when negatives are sampled (NEGATIVE_RATIO per positive tile, at least one per frame).
-  - **uncertain**, **unreviewed**, and **conflicting** (votes on both sides) clusters are left out — Plan the survey flight flies back to them. Clusters a geotag matches keep the geotag&apos;s label whatever the review says.
-- **DEDUP_CM** (cm, default 3), **EPS_M** (m, default 0.20), **MIN_SAMPLES** (default 2), **CORE_COUNT** (default detections), **EPS_PRED_M** (m, default 0.20) — advanced: the clustering and matching the review was scored with (the review dock&apos;s values); the in-view test uses the edge buffer above.</source>
+        <location filename="../resources/help/writelabels.md" line="21"/>
+        <source>A negative tile (label all zero) tells the network &quot;nothing here&quot;. A target in such a tile without its label teaches it that a target is background. So, with tiles:</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../resources/help/writelabels.md" line="24"/>
-        <source>## Outputs</source>
+        <location filename="../resources/help/writelabels.md" line="23"/>
+        <source>- A tile is **not written** (positive or not) when, within the label radius (3σ) of it, lies a target in view but not labelled: one inside the edge buffer, one whose centre lies just beyond the image border but whose label disc reaches in, or a cluster the review left unresolved (it may be a target).
+- A frame without a ground height (no altimeter reading: it gets no labels) gets **no tiles**: what it shows is unknown.
+- A tile **without a positive** is written only when its whole footprint on the ground lies inside the surveyed area: outside it, a target nobody surveyed may lie there. Tiles with a positive are kept anywhere.
+- A geotag without a position (an empty geometry) could lie in any tile: writing tiles is refused, naming its row; give it a position or remove it. Without tiles it is left out with a warning.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../resources/help/writelabels.md" line="26"/>
-        <source>- `labels.csv`: frame_id, image, geotag_id, label, u, v, sigma_px, margin_px (distance to the nearest image edge, px), provenance (`survey`: a geotag; `review`: a confirmed cluster no geotag matches) — one row per target per frame in view.
-- `labels.txt`: the reference payload&apos;s format, one line per labelled frame: `idx path u,v,cls u,v,cls …` (cls = index in `summary.json`&apos;s classes).
-- `summary.json`: frames with labels, labels per frame, frames per geotag, geotags never in view, edge cases; `provenance` (targets, targets in view and labels of the survey and of the review), `hard_negatives` (clusters, in view, frames that see one) and, with tiles, the hard-negative tiles written.
-- **REVIEW_TARGETS**, **HARD_NEGATIVES**: how many confirmed clusters became targets and how many hard negatives were found.
-- **Frames with label counts** and **Geotags with frames seen**: copies of the input layers with an `n_labels` / `frames_seen` field. Your input layers are not modified.</source>
+        <location filename="../resources/help/writelabels.md" line="28"/>
+        <source>`summary.json` counts the tiles skipped for each reason (`tiles.skipped`). Targets hidden behind terrain (with a DEM) are not in the image, so their tiles show background truly. The per-frame rasters and the COCO file cover whole frames and carry no such marks: train from the tiles.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../resources/help/writelabels.md" line="30"/>
+        <source>## Relief check</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
         <location filename="../resources/help/writelabels.md" line="32"/>
-        <source>## Terrain</source>
+        <source>A target standing h above the ground its label was placed on, at horizontal distance r from the camera&apos;s nadir and d below the camera, appears moved outwards by h·r/d on the ground (to first order; e.g. 0.52 m of relief at r = 2.5 m and d = 10 m moves it 13 cm), that is h·r/d · f/d px with f the focal length in px. For a nadir camera r is the label&apos;s distance from the image centre, taken to the ground. A frame is reported when one of its labels moves by more than the label radius 3σ: the log names the first frames (px and cm), `summary.json` (`relief`) lists them all with h, r, d and the displacement, and **RELIEF_FRAMES_OVER** counts them. The exact move is larger by d/(d − h) (5.5 % at 0.52 m from 10 m): the check is a screen, not a correction.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
         <location filename="../resources/help/writelabels.md" line="34"/>
+        <source>## Verdicts become labels (optional)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../resources/help/writelabels.md" line="36"/>
+        <source>- **Review verdicts** (REVIEW): the review dock&apos;s verdict table (`birdseye_verdicts` of the review GeoPackage), as in Evaluate detections. **Detection layers the review judged** (REVIEW_DETECTIONS): the outputs of Detect targets on these frames. Their clusters are made and matched to the geotags exactly as Evaluate detections does, and each gets the outcome of all its judgements (direct and propagated):
+  - **confirmed real** (every vote says so) **and matched by no geotag**: a target nobody surveyed. It is labelled like a geotag, at the cluster&apos;s centroid (the mean of its detections) placed on the ground each frame sees, in every frame that sees it; `provenance` review, id `&lt;detection layer&gt;#&lt;cluster id&gt;`, the survey&apos;s class when the survey has one class (else `target`).
+  - **hard negative** (every vote says so): frames that see it get no label there; a negative tile holding it is a *hard-negative tile* (label all zero) and is drawn before the other negatives when negatives are sampled (NEGATIVE_RATIO per positive tile, at least one per frame).
+  - **uncertain**, **unreviewed**, and **conflicting** (votes on both sides) clusters are not labelled, and no tile near one is written — Plan the survey flight flies back to them. Clusters a geotag matches keep the geotag&apos;s label whatever the review says.
+- **DEDUP_CM** (cm, default 3), **EPS_M** (m, default 0.20), **MIN_SAMPLES** (default 2), **CORE_COUNT** (default detections), **EPS_PRED_M** (m, default 0.20) — advanced: the clustering and matching the review was scored with (the review dock&apos;s values); the in-view test uses the edge buffer above.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../resources/help/writelabels.md" line="42"/>
+        <source>## Outputs</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../resources/help/writelabels.md" line="44"/>
+        <source>- `labels.csv`: frame_id, image, geotag_id, label, u, v, sigma_px, margin_px (distance to the nearest image edge, px), provenance (`survey`: a geotag; `review`: a confirmed cluster no geotag matches) — one row per target per frame in view.
+- `labels.txt`: the reference payload&apos;s format, one line per labelled frame: `idx path u,v,cls u,v,cls …` (cls = index in `summary.json`&apos;s classes).
+- `targets.csv`: one row per target written to `labels.csv`: `geotag_id, label, provenance, lat, lon` (WGS84 degrees), `height_m, height_ref` (the target&apos;s height in the reference it carries: `ellipsoidal` for a geotag; empty for a review target, which has none).
+- `summary.json`: frames with labels, labels per frame, frames per geotag, geotags never in view, edge cases (`n_edge`, `n_beyond_border`, `n_unresolved_in_view`); `sigma_px`, `label_radius_px` and `sigma_source` (which σ and where it came from: `given`, `sensor_bound` with its file, or `mark_check` with its file, the marks used and their RMS per axis); `surveyed_area` (drawn, or the geotags&apos; hull and its margin); `provenance` (targets, targets in view and labels of the survey and of the review), `hard_negatives` (clusters, in view, frames that see one); with tiles, the tiles written (positive, negative, hard negative) and skipped (`tiles.skipped`: near a target not labelled, outside the surveyed area, frames without a ground height); `relief` (the relief check).
+- **REVIEW_TARGETS**, **HARD_NEGATIVES**: how many confirmed clusters became targets and how many hard negatives were found. **SIGMA_USED_PX**: the σ used (px). **RELIEF_FRAMES_OVER**: frames failing the relief check.
+- **Frames with label counts** and **Geotags with frames seen**: copies of the input layers with an `n_labels` / `frames_seen` field. Your input layers are not modified.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../resources/help/writelabels.md" line="51"/>
+        <source>## Terrain</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../resources/help/writelabels.md" line="53"/>
         <source>- **Terrain model (DEM)**: optional raster in a projected CRS. With it, geotags sit on the terrain and each frame&apos;s view is intersected with it (labels behind a ridge are dropped); without it, each frame sees a level plane at the altimeter depth, which the method measured to hold up to about 10° of slope near the image centre (the Terrain slope algorithm tells where it breaks for your camera).
 - **DEM heights are measured from**: ellipsoidal, mean sea level, or unknown. The frame layer says what its own heights are measured from (field `height_ref`: ellipsoidal for a pose log, EGM96 — above mean sea level — for DJI and other drone images) and where each frame&apos;s ground came from (`ground_src`); the DEM is converted into the frames&apos; heights before anything is compared. Between ellipsoidal and mean-sea-level heights that needs the geoid undulation N (ellipsoidal = MSL + N): **Geoid undulation N (m)** when you give it, else PROJ&apos;s EGM96 grid where the frames name EGM96 (installed with QGIS on most systems; if it is not, the run stops, naming the grid and how to install it). A mean-sea-level DEM with DJI frames needs no N.
 - **The DEM check.** The converted DEM must agree with the frames&apos; own ground: where it was measured under each frame (altimeter, tie points of Refine frame poses) the median difference must lie within a few per cent of the flight height (3 %, at least 0.2 m: ±0.3 m at 10 m, ±1.2 m at 40 m); where it is a take-off point (DJI&apos;s relative altitude, a flight height), that height must be one the DEM&apos;s terrain has within 500 m of the frames, within the same tolerance. The offset found is written to the log either way; a DEM beyond it is refused, naming the offset. A DEM of unknown reference is taken as the frames&apos; and accepted only when that check passes.
