@@ -2364,11 +2364,6 @@ exact</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/montecarlobound.py" line="58"/>
-        <source>sKLD cut-offs (nats, comma-separated): share of grid points over each</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
         <location filename="../processing/algorithms/montecarlobound.py" line="131"/>
         <source>{alt:g} m: {n} ground points every {spacing:g} m ({rows} × {cols}). Label error ellipse at {k:g}σ: semi-major axis max {major_max:.3g} px, median {major_median:.3g} px (tolerance r {r:g} px); anisotropy (major/minor) max {ratio_max}, median {ratio_median}.</source>
         <translation type="unfinished"></translation>
@@ -2391,6 +2386,11 @@ exact</source>
     <message>
         <location filename="../processing/algorithms/montecarlobound.py" line="153"/>
         <source>{name}: the ground grid spacing must be greater than 0 m, got {value:g}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/montecarlobound.py" line="58"/>
+        <source>sKLD cut-offs (nats, comma-separated)</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
@@ -2517,11 +2517,6 @@ exact</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/planflight.py" line="121"/>
-        <source>Surveyed area (polygons; empty: the geotags&apos; hull grown by the margin)</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
         <location filename="../processing/algorithms/planflight.py" line="344"/>
         <source>Surveyed area: {area}. Give CAMERA to see how much of each planned photo lies outside it (field outside_pct).</source>
         <translation type="unfinished"></translation>
@@ -2529,6 +2524,11 @@ exact</source>
     <message>
         <location filename="../processing/algorithms/planflight.py" line="349"/>
         <source>Surveyed area: {area}. {k} of {w} planned photo(s) see ground outside it (at the worst heading; largest share {pct:.0f} %, all photos {mean:.0f} % on average, field outside_pct): Write labels takes no negative tiles from that ground.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/planflight.py" line="121"/>
+        <source>Surveyed area (polygons)</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
@@ -2864,16 +2864,6 @@ exact</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="113"/>
-        <source>Held-out flights (frame layers with their images)</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../processing/algorithms/screencheckpoints.py" line="116"/>
-        <source>Geotags of the held-out flights (empty: Geotags)</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
         <location filename="../processing/algorithms/screencheckpoints.py" line="145"/>
         <source>Report (HTML)</source>
         <translation type="unfinished"></translation>
@@ -2916,6 +2906,16 @@ exact</source>
     <message>
         <location filename="../processing/algorithms/screencheckpoints.py" line="284"/>
         <source>Spearman's ρ of {figure}, validation vs held-out: {rho:.3f} over {n} healthy checkpoints</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="113"/>
+        <source>Held-out flights (frame layers)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/screencheckpoints.py" line="116"/>
+        <source>Held-out geotags (empty: Geotags)</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
@@ -3578,26 +3578,6 @@ exact</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="115"/>
-        <source>Label check (pinned image marks) for the measured σ</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../processing/algorithms/writelabels.py" line="121"/>
-        <source>Surveyed area (polygons; empty: the geotags&apos; hull grown by the margin)</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../processing/algorithms/writelabels.py" line="124"/>
-        <source>Margin around the geotags&apos; hull without a surveyed area (m)</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../processing/algorithms/writelabels.py" line="127"/>
-        <source>Target relief h for the relief check (m; empty: from the DEM when one is given)</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
         <location filename="../processing/algorithms/writelabels.py" line="168"/>
         <source>SIGMA_SOURCE asks for σ measured on a label check: give MARK_CHECK (the label check Import camera solution writes from the pinned image marks).</source>
         <translation type="unfinished"></translation>
@@ -3655,6 +3635,26 @@ exact</source>
     <message>
         <location filename="../processing/algorithms/writelabels.py" line="251"/>
         <source>From the review: {targets} target(s) nobody surveyed are labelled (provenance review); {hard} hard negative(s) put their tiles first in the negative sample; no tile near one of the {unresolved} unresolved cluster(s) is written.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/writelabels.py" line="124"/>
+        <source>Margin around the geotags&apos; hull (m)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/writelabels.py" line="127"/>
+        <source>Target relief h (m; empty: from the DEM)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/writelabels.py" line="121"/>
+        <source>Surveyed area (polygons)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/writelabels.py" line="115"/>
+        <source>Label check (pinned marks) for a measured σ</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
@@ -4607,7 +4607,7 @@ exact</source>
 - **Validation flights**: frame layers whose `image` field points at the frames&apos; images; every frame is processed.
 - **Geotags**: any point layer.
 - **Held-out flights** (HELDOUT_FRAMES, optional): frame layers with their images, as the validation flights; each is scored on its own, never pooled with the validation flights.
-- **Geotags of the held-out flights** (HELDOUT_GEOTAGS, optional): the survey of the held-out site; empty: the Geotags above.
+- **Held-out geotags** (HELDOUT_GEOTAGS, optional): the survey of the held-out site; empty: the Geotags above.
 - **Preset**, **Detection threshold**, **Frames per block**: as above.
 - **DEDUP_CM, EPS_M, MIN_SAMPLES, CORE_COUNT, EPS_PRED_M, EDGE_BUFFER_PX**: as in Evaluate detections (defaults 3 cm, 0.20 m, 2, detections, 0.20 m, 0 px; CORE_COUNT *cells* counts as the method does); EDGE_BUFFER_PX also drops detections that close to the image border, as Detect does.
 - **Terrain model (DEM)**, **DEM heights are measured from**, **geoid undulation N (m)**, **Ground model without a DEM** (GROUND_MODEL, advanced): as in Detect targets; the checkpoints&apos; detections, the in-view test and the pixel labels all stand on this ground (with a DEM, frames without an altimeter ground are placed too).

@@ -56,7 +56,7 @@ class MonteCarloBoundAlgorithm(DesignParametersMixin, BirdsEyeAlgorithm):
         self.addParameter(number(self.GROUND_SPACING_M, self.tr("Ground grid spacing (m)"), number.Double,
                                  defaultValue=GROUND_SPACING_M))
         self.addParameter(QgsProcessingParameterString(
-            self.SKLD_CUTOFFS, self.tr("sKLD cut-offs (nats, comma-separated): share of grid points over each"),
+            self.SKLD_CUTOFFS, self.tr("sKLD cut-offs (nats, comma-separated)"),
             defaultValue=format_number_list(SKLD_CUTOFFS)))
         self.addParameter(number(self.N_SAMPLES, self.tr("Monte Carlo samples"), number.Integer,
                                  defaultValue=20000, minValue=10))

@@ -119,9 +119,9 @@ class PlanFlight(ReviewParametersMixin, BirdsEyeAlgorithm):
         self._number(self.FOOTPRINT_MARGIN_PX, "Edge margin kept around geotags in the image [px]", 50.0,
                      minimum=0.0, advanced=True)
         self.addParameter(source_parameter(
-            self.SURVEYED_AREA, self.tr("Surveyed area (polygons; empty: the geotags' hull grown by the margin)"),
+            self.SURVEYED_AREA, self.tr("Surveyed area (polygons)"),
             layer_kinds.AREAS, [SOURCE_VECTOR_POLYGON], optional=True))
-        self._number(self.SURVEY_MARGIN_M, "Margin around the geotags' hull without a surveyed area [m]",
+        self._number(self.SURVEY_MARGIN_M, "Margin around the geotags' hull [m]",
                      DEFAULT_SURVEY_MARGIN_M, minimum=0.0)
         self._number(self.HOVER_S, "Hover at each waypoint [s]", 2.0, minimum=0.0)
         self.addParameter(QgsProcessingParameterEnum(

@@ -111,10 +111,10 @@ class ScreenCheckpoints(ClusteringParametersMixin, DemParametersMixin, BirdsEyeA
         self.addParameter(source_parameter(
             self.GEOTAGS, self.tr("Geotags"), layer_kinds.GEOTAGS, [SOURCE_VECTOR_POINT]))
         self.addParameter(QgsProcessingParameterMultipleLayers(
-            self.HELDOUT_FRAMES, self.tr("Held-out flights (frame layers with their images)"), SOURCE_VECTOR,
+            self.HELDOUT_FRAMES, self.tr("Held-out flights (frame layers)"), SOURCE_VECTOR,
             optional=True))
         self.addParameter(source_parameter(
-            self.HELDOUT_GEOTAGS, self.tr("Geotags of the held-out flights (empty: Geotags)"), layer_kinds.GEOTAGS,
+            self.HELDOUT_GEOTAGS, self.tr("Held-out geotags (empty: Geotags)"), layer_kinds.GEOTAGS,
             [SOURCE_VECTOR_POINT], optional=True))
         self.addParameter(QgsProcessingParameterEnum(
             self.PRESET, self.tr("Preset (blocks and threshold)"),

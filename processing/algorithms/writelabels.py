@@ -51,8 +51,8 @@ from .base import BirdsEyeAlgorithm
 #: SIGMA_PX's default: the label σ of core's LabelRequest.
 DEFAULT_SIGMA_PX = LabelRequest.sigma_px
 #: SIGMA_SOURCE's options: σ given (SIGMA_PX, or r/3 of SENSOR_BOUND_JSON), or measured on a label check.
-SIGMA_SOURCES = ("Given: SIGMA_PX, or r/3 of SENSOR_BOUND_JSON when one is given",
-                 "Measured: the per-axis RMS error of a label check (MARK_CHECK)")
+SIGMA_SOURCES = ("Given (σ, or r/3 of the sensor bound)",
+                 "Measured (RMS error of a label check)")
 SIGMA_MEASURED = 1
 
 
@@ -113,19 +113,19 @@ class WriteLabels(ReviewParametersMixin, DemParametersMixin, BirdsEyeAlgorithm):
             self.SIGMA_SOURCE, self.tr("Where σ comes from"), options=[self.tr(o) for o in SIGMA_SOURCES],
             defaultValue=0))
         self.addParameter(vector_parameter(
-            self.MARK_CHECK, self.tr("Label check (pinned image marks) for the measured σ"), layer_kinds.LABEL_CHECKS,
+            self.MARK_CHECK, self.tr("Label check (pinned marks) for a measured σ"), layer_kinds.LABEL_CHECKS,
             [SOURCE_VECTOR], optional=True))
         self.addParameter(QgsProcessingParameterNumber(
             self.EDGE_BUFFER_PX, self.tr("Edge buffer at the image border (px)"),
             NUMBER_DOUBLE, 0.0, minValue=0.0, maxValue=1000.0))
         self.addParameter(source_parameter(
-            self.SURVEYED_AREA, self.tr("Surveyed area (polygons; empty: the geotags' hull grown by the margin)"),
+            self.SURVEYED_AREA, self.tr("Surveyed area (polygons)"),
             layer_kinds.AREAS, [SOURCE_VECTOR_POLYGON], optional=True))
         self.addParameter(QgsProcessingParameterNumber(
-            self.SURVEY_MARGIN_M, self.tr("Margin around the geotags' hull without a surveyed area (m)"),
+            self.SURVEY_MARGIN_M, self.tr("Margin around the geotags' hull (m)"),
             NUMBER_DOUBLE, DEFAULT_SURVEY_MARGIN_M, minValue=0.0, maxValue=1000.0))
         self.addParameter(QgsProcessingParameterNumber(
-            self.RELIEF_M, self.tr("Target relief h for the relief check (m; empty: from the DEM when one is given)"),
+            self.RELIEF_M, self.tr("Target relief h (m; empty: from the DEM)"),
             NUMBER_DOUBLE, None, optional=True, minValue=0.0, maxValue=100.0))
         self.add_dem_parameters(ground_model=True)
         self.addParameter(QgsProcessingParameterBoolean(
