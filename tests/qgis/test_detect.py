@@ -169,8 +169,6 @@ def test_a_model_with_bad_metadata_is_refused_with_every_problem(birdseye_provid
 def test_the_bundled_model_is_the_default(birdseye_provider, scene):
     from birdseye.processing.algorithms.detect import DEFAULT_MODEL
 
-    if not DEFAULT_MODEL.is_file():
-        pytest.skip("the bundled model has not been trained yet (training/train_heatmap.py demo)")
     result = run({"FRAMES": scene["layer"], "OUTPUT": "TEMPORARY_OUTPUT"})
     assert result["MODEL_DIGEST"] == hashlib.sha256(DEFAULT_MODEL.read_bytes()).hexdigest()
     assert result["FRAMES_PROCESSED"] == 3
@@ -192,8 +190,6 @@ def test_the_bundled_model_finds_simulated_burrows_end_to_end(birdseye_provider,
     from birdseye.birdseye_qgis.qgis_io.layers import pyproj_crs, read_frame_layer
     from birdseye.processing.algorithms.detect import DEFAULT_MODEL
 
-    if not DEFAULT_MODEL.is_file():
-        pytest.skip("the bundled model has not been trained yet (training/train_heatmap.py demo)")
     folder = tmp_path / "campaign"
     simulate_campaign(CampaignConfig(seed=404, n_targets=6, field_width_m=4.0, field_length_m=3.0, altitude_m=2.5,
                                      image_width=480, image_height=300, n_missed=0, n_spurious=0), folder)

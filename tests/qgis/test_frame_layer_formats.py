@@ -261,8 +261,6 @@ def burrows(birdseye_provider, tmp_path_factory):
     geotags, and its frame layer as the import's GeoPackage and saved as GeoJSON, FlatGeobuf and CSV."""
     from birdseye.processing.algorithms.detect import DEFAULT_MODEL
 
-    if not DEFAULT_MODEL.is_file():
-        pytest.skip("the bundled model has not been trained yet (training/train_heatmap.py demo)")
     folder = tmp_path_factory.mktemp("burrows")
     simulate_campaign(CampaignConfig(seed=404, n_targets=3, field_width_m=3.0, field_length_m=2.0, altitude_m=2.5,
                                      image_width=480, image_height=300, n_missed=0, n_spurious=0), folder)

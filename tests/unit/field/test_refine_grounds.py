@@ -103,8 +103,7 @@ def test_an_unnamed_mean_sea_level_without_n_is_refused_naming_the_parameter():
 
 
 def test_egm96_frames_convert_through_projs_grid_when_no_n_is_given():
-    if not heights.geoid_grid_installed("EGM96"):
-        pytest.skip("PROJ's EGM96 grid is not installed")
+    assert heights.geoid_grid_installed("EGM96"), "PROJ's EGM96 grid is missing (make setup installs proj-data)"
     n = float(heights.geoid_undulation(LAT, LON))
     _, (choice,) = choose_grounds(frames([158.5] * 3, [1] * 3), [183.0 + n])
     assert choice.surveyed_m == pytest.approx(183.0, abs=0.01) and "EGM96 grid" in choice.conversion

@@ -157,8 +157,7 @@ def test_a_metric_utm_export_is_read_in_metres(tmp_path):
 def test_orthometric_only_file_is_converted_with_egm96_as_nga_publishes_it(tmp_path):
     """NGA's EGM96 test value: N = −31.628 m at 38.6281550 N, 269.7791550 E. A file with only heights above
     the geoid gets h = H + N there, from PROJ's EGM96 grid, and says so."""
-    if not heights.geoid_grid_installed("EGM96"):
-        pytest.skip("PROJ's EGM96 grid is not installed")
+    assert heights.geoid_grid_installed("EGM96"), "PROJ's EGM96 grid is missing (make setup installs proj-data)"
     path = tmp_path / "ortho.csv"
     path.write_text("Name,Latitude,Longitude,Elevation,CS name\n"
                     "A,38.6281550,-90.2208450,100.000,WGS 84 + EGM96 height\n", encoding="utf-8")

@@ -158,8 +158,6 @@ def test_threshold_figures_are_runs_at_each_threshold_not_a_score_filter(recipe,
     from birdseye.birdseye_qgis.core.detect.detector import DetectRequest, HeatmapModel, detect_frames
     from birdseye.birdseye_qgis.core.sim.campaign import CampaignConfig, simulate_campaign
 
-    if not BUNDLED_MODEL.is_file():
-        pytest.skip("the bundled model is not in this checkout")
     simulate_campaign(CampaignConfig(seed=3, n_targets=6, field_width_m=4.0, field_length_m=3.0, image_width=480,
                                      image_height=300), tmp_path / "c")
     campaign = recipe.load_campaign(tmp_path / "c")
