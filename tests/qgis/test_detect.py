@@ -188,7 +188,6 @@ def test_the_bundled_model_finds_simulated_burrows_end_to_end(birdseye_provider,
     from birdseye.birdseye_qgis.core.labels.training_set import project_labels
     from birdseye.birdseye_qgis.core.sim.campaign import CampaignConfig, simulate_campaign
     from birdseye.birdseye_qgis.qgis_io.layers import pyproj_crs, read_frame_layer
-    from birdseye.processing.algorithms.detect import DEFAULT_MODEL
 
     folder = tmp_path / "campaign"
     simulate_campaign(CampaignConfig(seed=404, n_targets=6, field_width_m=4.0, field_length_m=3.0, altitude_m=2.5,

@@ -259,7 +259,6 @@ def test_values_of_the_wrong_type_are_refused_with_row_and_field(campaign, tmp_p
 def burrows(birdseye_provider, tmp_path_factory):
     """A low flight over three burrows the bundled model finds (as in test_detect's end-to-end campaign): its
     geotags, and its frame layer as the import's GeoPackage and saved as GeoJSON, FlatGeobuf and CSV."""
-    from birdseye.processing.algorithms.detect import DEFAULT_MODEL
 
     folder = tmp_path_factory.mktemp("burrows")
     simulate_campaign(CampaignConfig(seed=404, n_targets=3, field_width_m=3.0, field_length_m=2.0, altitude_m=2.5,
