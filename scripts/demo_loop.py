@@ -21,6 +21,13 @@ Runs in a standalone QGIS application, every step through the Processing registr
    model's card.
 
     .venv/bin/python scripts/demo_loop.py [--out birdseye-demo-loop] [--size full|small] [--minutes M]
+        [--seeds R1,R2,T1,T2] [--model round1/model/retrained.onnx [--init round1/model/retrained.pt]]
+
+``--seeds`` simulates other campaigns (two review, two test seeds) than the demo's 401, 402, 501, 502: a round on
+campaigns the project has not used. ``--model`` starts the round from another model than the bundled one (it
+detects on the review campaigns, is the "before" on the test campaigns and is retrained); ``--init`` gives the
+weights retraining starts from (default: the ``.pt`` beside ``--model`` when there is one, else ``--model``),
+so a second round goes on from the first round's ``.pt``.
 """
 from __future__ import annotations
 
@@ -31,7 +38,7 @@ import math
 import os
 import sys
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
@@ -63,6 +70,31 @@ CAMPAIGNS = [Campaign("review1", "review campaign 1", "review 1", 401, True, 0),
 
 
 @dataclass(frozen=True)
+class LoopRound:
+    """One round of the loop: its campaigns, the model it starts from (ONNX: detects before retraining) and the
+    weights retraining starts from (a .pt or that ONNX model)."""
+
+    campaigns: tuple
+    model: Path
+    init: Path
+
+    @classmethod
+    def of(cls, seeds=None, model: Path | None = None, init: Path | None = None) -> "LoopRound":
+        campaigns = CAMPAIGNS if seeds is None else [replace(c, seed=s) for c, s in zip(CAMPAIGNS, seeds)]
+        model = Path(model or demo.BUNDLED_MODEL)
+        beside = model.with_suffix(".pt")
+        return cls(tuple(campaigns), model, Path(init) if init else beside if beside.is_file() else model)
+
+    @property
+    def reviewed(self) -> list:
+        return [c for c in self.campaigns if c.review]
+
+    @property
+    def tested(self) -> list:
+        return [c for c in self.campaigns if not c.review]
+
+
+@dataclass(frozen=True)
 class LoopSize:
     demo_size: str         # the simulated campaign size of scripts/demo.py
     minutes: float         # training budget (wall-clock minutes on TRAINING_THREADS threads)
@@ -73,9 +105,9 @@ TRAINING_THREADS = 2
 SIZES = {"full": LoopSize("full", 7.25), "small": LoopSize("small", 0.5)}
 
 
-def campaign_steps(size: demo.DemoSize) -> list[demo.Step]:
+def campaign_steps(size: demo.DemoSize, loop: LoopRound) -> list[demo.Step]:
     steps = []
-    for c in CAMPAIGNS:
+    for c in loop.campaigns:
         steps.append(demo.Step(f"campaign_{c.key}", "simulatecampaign", f"Simulate the {c.title}", {
             "SEED": c.seed, "N_TARGETS": size.n_targets, "FIELD_WIDTH_M": size.field_width_m,
             "FIELD_LENGTH_M": size.field_length_m, "ALTITUDE_M": demo.ALTITUDE_M, "SPEED_MS": 2.5,
@@ -94,18 +126,16 @@ def campaign_steps(size: demo.DemoSize) -> list[demo.Step]:
             "FPS": size.training_fps if c.review else size.held_out_fps,
             "OUTPUT": f"{{out}}/flight/frames_{c.key}.gpkg", "OUTPUT_TRACK": f"{{out}}/flight/track_{c.key}.gpkg"},
             group="flight", tag=c.tag, hidden=("OUTPUT",), expected=demo.FLIGHT_LOG_EXPECTED))
-        steps.append(demo.Step(f"detect_{c.key}", "detect", f"Detect on the {c.title} with the bundled model", {
-            "FRAMES": f"{{flight_{c.key}[OUTPUT]}}", "MODEL": str(demo.BUNDLED_MODEL),
-            "OUTPUT": f"{{out}}/detections/bundled_{c.key}.gpkg"},
-            group="detections", tag=c.tag, kinds={"OUTPUT": "Bundled model"}, hidden=("OUTPUT",)))
+        steps.append(demo.Step(f"detect_{c.key}", "detect", f"Detect on the {c.title} with the round's model", {
+            "FRAMES": f"{{flight_{c.key}[OUTPUT]}}", "MODEL": str(loop.model),
+            "OUTPUT": f"{{out}}/detections/before_{c.key}.gpkg"},
+            group="detections", tag=c.tag, kinds={"OUTPUT": "Starting model"}, hidden=("OUTPUT",)))
     return steps
 
 
-def review_steps(size: demo.DemoSize) -> list[demo.Step]:
+def review_steps(loop: LoopRound) -> list[demo.Step]:
     steps = []
-    for c in CAMPAIGNS:
-        if not c.review:
-            continue
+    for c in loop.reviewed:
         steps.append(demo.Step(f"clusters_{c.key}", "clusterdetections", f"Cluster the {c.title}'s detections", {
             "DETECTIONS": f"{{detect_{c.key}[OUTPUT]}}", "GEOTAGS": f"{{geotags_{c.key}[OUTPUT]}}",
             "FRAMES": f"{{flight_{c.key}[OUTPUT]}}", "OUTPUT": f"{{out}}/review/clusters_{c.key}.gpkg",
@@ -113,28 +143,24 @@ def review_steps(size: demo.DemoSize) -> list[demo.Step]:
     return steps
 
 
-def relabel_and_train_steps(size: demo.DemoSize, minutes: float) -> list[demo.Step]:
+def relabel_and_train_steps(size: demo.DemoSize, minutes: float, loop: LoopRound) -> list[demo.Step]:
     steps = []
-    for c in CAMPAIGNS:
-        if c.review:
-            steps.append(demo.Step(f"labels_{c.key}", "writelabels", f"Write labels from the survey and the review "
-                                   f"of the {c.title}", {
-                "GEOTAGS": f"{{geotags_{c.key}[OUTPUT]}}", "FRAMES": f"{{flight_{c.key}[OUTPUT]}}",
-                "REVIEW": f"{{review_{c.key}[VERDICTS]}}", "REVIEW_DETECTIONS": [f"{{detect_{c.key}[OUTPUT]}}"],
-                "SIGMA_PX": 10.0, "EDGE_BUFFER_PX": 20.0, "WRITE_RASTERS": False, "WRITE_TILES": True,
-                "TILE_SIZE": size.tile_size, "NEGATIVE_RATIO": 1.5, "OUTPUT_FOLDER": f"{{out}}/labels/{c.key}",
-                "OUTPUT_FRAMES": None, "OUTPUT_GEOTAGS": None}))
-    reviewed = [c for c in CAMPAIGNS if c.review]
-    steps.append(demo.Step("train", "traindetector", "Retrain the bundled model on the review's labels", {
-        "LABELS": [f"{{labels_{c.key}[OUTPUT_FOLDER]}}" for c in reviewed],
-        "FRAMES": [f"{{flight_{c.key}[OUTPUT]}}" for c in reviewed],
-        "INIT": str(demo.BUNDLED_MODEL), "MINUTES": minutes, "THREADS": TRAINING_THREADS, "SEED": 1,
+    for c in loop.reviewed:
+        steps.append(demo.Step(f"labels_{c.key}", "writelabels", f"Write labels from the survey and the review "
+                               f"of the {c.title}", {
+            "GEOTAGS": f"{{geotags_{c.key}[OUTPUT]}}", "FRAMES": f"{{flight_{c.key}[OUTPUT]}}",
+            "REVIEW": f"{{review_{c.key}[VERDICTS]}}", "REVIEW_DETECTIONS": [f"{{detect_{c.key}[OUTPUT]}}"],
+            "SIGMA_PX": 10.0, "EDGE_BUFFER_PX": 20.0, "WRITE_RASTERS": False, "WRITE_TILES": True,
+            "TILE_SIZE": size.tile_size, "NEGATIVE_RATIO": 1.5, "OUTPUT_FOLDER": f"{{out}}/labels/{c.key}",
+            "OUTPUT_FRAMES": None, "OUTPUT_GEOTAGS": None}))
+    steps.append(demo.Step("train", "traindetector", "Retrain the round's model on the review's labels", {
+        "LABELS": [f"{{labels_{c.key}[OUTPUT_FOLDER]}}" for c in loop.reviewed],
+        "FRAMES": [f"{{flight_{c.key}[OUTPUT]}}" for c in loop.reviewed],
+        "INIT": str(loop.init), "MINUTES": minutes, "THREADS": TRAINING_THREADS, "SEED": 1,
         # The demo runs in the repository's venv, which has the training extra (requirements-train.txt).
         "PYTHON": sys.executable,
         "OUTPUT_MODEL": "{out}/model/retrained.onnx"}))
-    for c in CAMPAIGNS:
-        if c.review:
-            continue
+    for c in loop.tested:
         steps.append(demo.Step(f"retrained_{c.key}", "detect", f"Detect on the {c.title} with the retrained model", {
             "FRAMES": f"{{flight_{c.key}[OUTPUT]}}", "MODEL": "{train[OUTPUT_MODEL]}",
             "OUTPUT": f"{{out}}/detections/retrained_{c.key}.gpkg"},
@@ -172,7 +198,7 @@ def simulated_review(campaign: Campaign, values: dict, out: Path) -> dict:
             raise demo.DemoError(f"the simulated review cannot open {path}")
         return loaded
 
-    detections = layer(values[f"detect_{campaign.key}"]["OUTPUT"], f"bundled model, {campaign.title}")
+    detections = layer(values[f"detect_{campaign.key}"]["OUTPUT"], f"the round's model, {campaign.title}")
     frames = layer(values[f"flight_{campaign.key}"]["OUTPUT"], f"frames, {campaign.title}")
     geotags = layer(values[f"geotags_{campaign.key}"]["OUTPUT"], f"geotags, {campaign.title}")
     inputs = read_review_inputs([detections], frames, geotags)
@@ -204,13 +230,11 @@ def simulated_review(campaign: Campaign, values: dict, out: Path) -> dict:
 POOLED = ("n_in_view", "n_recovered", "n_clusters", "n_hit_clusters")
 
 
-def pooled_comparison(values: dict) -> dict:
+def pooled_comparison(values: dict, loop: LoopRound) -> dict:
     """Before and after, pooled over the test campaigns (sums of counts, one division), and the changes."""
     sums = {side: dict.fromkeys(POOLED, 0) for side in ("before", "after")}
     changes = {}
-    for c in CAMPAIGNS:
-        if c.review:
-            continue
+    for c in loop.tested:
         doc = json.loads(Path(values[f"compare_{c.key}"]["OUTPUT_JSON"]).read_text(encoding="utf-8"))
         for side in sums:
             for key in POOLED:
@@ -240,7 +264,8 @@ def append_to_model_card(card: Path, numbers: dict) -> None:
             ("clusters on a geotag / clusters", f"{b['n_hit_clusters']} / {b['n_clusters']}",
              f"{a['n_hit_clusters']} / {a['n_clusters']}")]
     text = ["", "## Review loop: the test campaigns neither training saw", "",
-            f"Bundled model before, this model after, pooled over {numbers['test_campaigns']} simulated campaigns "
+            f"{numbers['round']['model_name']} before, this model after, pooled over {numbers['test_campaigns']} "
+            "simulated campaigns "
             f"with {numbers['look_alike_density']:g}× the look-alikes (sums of counts, one division; scored as "
             "Evaluate detections scores, each model at its own default threshold). Training: "
             f"{t['seconds'] / 60:.1f} min on {TRAINING_THREADS} CPU threads ({t['cpu_minutes']:.1f} CPU-minutes).",
@@ -274,16 +299,17 @@ def summary_lines(numbers: dict, shown_out: str) -> str:
 
 
 # ------------------------------------------------------------------------------------------ the run
-def run(out: Path, size_name: str, minutes: float | None) -> int:
+def run(out: Path, size_name: str, minutes: float | None, loop: LoopRound | None = None) -> int:
     started = time.monotonic()
     size = SIZES[size_name]
     demo_size = demo.SIZES[size.demo_size]
     minutes = size.minutes if minutes is None else minutes
+    loop = loop or LoopRound.of()
     _app, _provider = demo.start_qgis()
     from qgis.core import QgsProject
 
-    first, review, second = campaign_steps(demo_size), review_steps(demo_size), relabel_and_train_steps(demo_size,
-                                                                                                         minutes)
+    first, review = campaign_steps(demo_size, loop), review_steps(loop)
+    second = relabel_and_train_steps(demo_size, minutes, loop)
     try:
         demo.preflight(first + review + second, None)
         demo.prepare_folder(out, PROJECT_NAME, SUMMARY_NAME, "review-loop demo")
@@ -295,10 +321,9 @@ def run(out: Path, size_name: str, minutes: float | None) -> int:
         numbered = [*first, *review, None, *second]
         for number, step in enumerate(numbered, 1):
             if step is None:
-                for c in CAMPAIGNS:
-                    if c.review:
-                        print(f"[{number}/{len(numbered)}] Review the {c.title} (simulated reviewer)", flush=True)
-                        values[f"review_{c.key}"] = simulated_review(c, values, out)
+                for c in loop.reviewed:
+                    print(f"[{number}/{len(numbered)}] Review the {c.title} (simulated reviewer)", flush=True)
+                    values[f"review_{c.key}"] = simulated_review(c, values, out)
                 continue
             print(f"[{number}/{len(numbered)}] {step.title} (birdseye:{step.alg_id})", flush=True)
             step_start = time.monotonic()
@@ -311,7 +336,7 @@ def run(out: Path, size_name: str, minutes: float | None) -> int:
                 project.setCrs((layers or maps)[0][0].crs())
             farm_layers += [layer for layer, *_ in maps]
             print(f"    done in {time.monotonic() - step_start:.1f} s", flush=True)
-        add_verdict_layers(project, values)
+        add_verdict_layers(project, values, loop)
         demo.add_to_group(project, "farm map", [demo.osm_basemap()], GROUPS)
         demo.finish_project(project, farm_layers, GROUPS, on_top=("survey",))
         project_path = out / PROJECT_NAME
@@ -320,7 +345,7 @@ def run(out: Path, size_name: str, minutes: float | None) -> int:
         invalid = demo.check_saved_project(project_path)
         if invalid:
             raise demo.DemoError(f"{project_path} opens with invalid layers: {', '.join(invalid)}")
-        reviewed = [c for c in CAMPAIGNS if c.review]
+        reviewed = loop.reviewed
         train = values["train"]
         numbers = {
             "look_alike_density": LOOK_ALIKES,
@@ -333,8 +358,11 @@ def run(out: Path, size_name: str, minutes: float | None) -> int:
                          "cpu_minutes": round(float(train["TRAIN_SECONDS"]) * TRAINING_THREADS / 60.0, 2),
                          "threshold": train["THRESHOLD_USED"],
                          "tiles_per_second": train["TILES_PER_SECOND"], "model_card": Path(train["MODEL_CARD"]).name},
-            "test": pooled_comparison(values),
-            "test_campaigns": sum(not c.review for c in CAMPAIGNS),
+            "round": {"seeds": {c.key: c.seed for c in loop.campaigns}, "model": str(loop.model),
+                      "model_name": "The bundled model" if loop.model == demo.BUNDLED_MODEL else loop.model.name,
+                      "init": str(loop.init)},
+            "test": pooled_comparison(values, loop),
+            "test_campaigns": len(loop.tested),
             "seconds": round(time.monotonic() - started, 1),
         }
         (out / SUMMARY_NAME).write_text(json.dumps(numbers, indent=2) + "\n", encoding="utf-8")
@@ -347,16 +375,15 @@ def run(out: Path, size_name: str, minutes: float | None) -> int:
         return 1
 
 
-def add_verdict_layers(project, values: dict) -> None:
+def add_verdict_layers(project, values: dict, loop: LoopRound) -> None:
     from qgis.core import QgsVectorLayer
 
     layers = []
-    for c in CAMPAIGNS:
-        if c.review:
-            layer = QgsVectorLayer(values[f"review_{c.key}"]["VERDICTS"], f"Verdicts · {c.tag}", "ogr")
-            if not layer.isValid():
-                raise demo.DemoError(f"the verdict log of the {c.title} cannot be opened as a layer")
-            layers.append((layer, False, False))
+    for c in loop.reviewed:
+        layer = QgsVectorLayer(values[f"review_{c.key}"]["VERDICTS"], f"Verdicts · {c.tag}", "ogr")
+        if not layer.isValid():
+            raise demo.DemoError(f"the verdict log of the {c.title} cannot be opened as a layer")
+        layers.append((layer, False, False))
     demo.add_to_group(project, "review", layers, GROUPS)
 
 
@@ -366,10 +393,29 @@ def main(argv=None) -> int:
     parser.add_argument("--size", choices=sorted(SIZES), default="full")
     parser.add_argument("--minutes", type=float, default=None,
                         help="training budget in minutes on 2 threads (default: 7.25 at full size, 0.5 small)")
+    parser.add_argument("--seeds", default=None,
+                        help="seeds of the two review and two test campaigns, comma-separated (default: "
+                             + ",".join(str(c.seed) for c in CAMPAIGNS) + ")")
+    parser.add_argument("--model", type=Path, default=None,
+                        help="the ONNX model the round starts from (default: the bundled model)")
+    parser.add_argument("--init", type=Path, default=None,
+                        help="the weights retraining starts from (default: the .pt beside --model, else --model)")
     args = parser.parse_args(argv)
     if args.minutes is not None and not (0 < args.minutes and math.isfinite(args.minutes)):
         parser.error("--minutes must be a positive number")
-    return run(args.out.resolve(), args.size, args.minutes)
+    seeds = None
+    if args.seeds is not None:
+        try:
+            seeds = [int(s) for s in args.seeds.split(",")]
+        except ValueError:
+            parser.error(f"--seeds: {args.seeds!r} is not {len(CAMPAIGNS)} whole numbers separated by commas")
+        if len(seeds) != len(CAMPAIGNS) or len(set(seeds)) != len(seeds):
+            parser.error(f"--seeds takes {len(CAMPAIGNS)} different seeds (review 1, review 2, test 1, test 2)")
+    for given in (args.model, args.init):
+        if given is not None and not given.is_file():
+            parser.error(f"{given}: no such file")
+    loop = LoopRound.of(seeds, args.model and args.model.resolve(), args.init and args.init.resolve())
+    return run(args.out.resolve(), args.size, args.minutes, loop)
 
 
 if __name__ == "__main__":

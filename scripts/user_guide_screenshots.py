@@ -179,54 +179,59 @@ def repository():
     pyplugin_installer.instance().addRepository()
 
 
+def on_plugin_manager(what):
+    """A step inside the Plugin Manager, run from a timer: an exception is recorded under ``what`` and the modal
+    window closed, so the desktop never waits for a click."""
+    def wrap(fn):
+        def run(*args):
+            try:
+                fn(*args)
+            except Exception:
+                report["errors"].append(f"{what}: " + traceback.format_exc())
+                close_modal()
+        return run
+    return wrap
+
+
 @step(500, "manager")
 def plugin_manager():
+    @on_plugin_manager("plugin manager")
     def pages():
-        try:
-            manager = next(w for w in QApplication.topLevelWidgets()
-                           if w.metaObject().className() == "QgsPluginManager" and w.isVisible())
-            manager.resize(1000, 640)
-            items = manager.findChild(QListWidget, "mOptionsListWidget")
-            by_text = {items.item(i).text(): i for i in range(items.count())}
-            report["plugin_manager_pages"] = list(by_text)
-            items.setCurrentRow(by_text["Install from ZIP"])
-            from qgis.gui import QgsFileWidget
-            for widget in manager.findChildren(QgsFileWidget):
-                if widget.isVisible():
-                    widget.setFilePath(ZIP)
-            QTimer.singleShot(500, lambda: settings_page(manager, items, by_text))
-        except Exception:
-            report["errors"].append("plugin manager: " + traceback.format_exc())
-            close_modal()
+        manager = next(w for w in QApplication.topLevelWidgets()
+                       if w.metaObject().className() == "QgsPluginManager" and w.isVisible())
+        manager.resize(1000, 640)
+        items = manager.findChild(QListWidget, "mOptionsListWidget")
+        by_text = {items.item(i).text(): i for i in range(items.count())}
+        report["plugin_manager_pages"] = list(by_text)
+        items.setCurrentRow(by_text["Install from ZIP"])
+        from qgis.gui import QgsFileWidget
+        for widget in manager.findChildren(QgsFileWidget):
+            if widget.isVisible():
+                widget.setFilePath(ZIP)
+        QTimer.singleShot(500, lambda: settings_page(manager, items, by_text))
 
+    @on_plugin_manager("plugin manager settings")
     def settings_page(manager, items, by_text):
-        try:
-            save(manager, "plugin-manager-install-from-zip.png")
-            items.setCurrentRow(by_text["Settings"])
-            from qgis.PyQt.QtWidgets import QCheckBox, QGroupBox
-            for box in manager.findChildren(QCheckBox):  # README step: show experimental plugins (3.22)
-                if "experimental" in box.text().lower():
-                    box.setChecked(True)
-            for box in manager.findChildren(QGroupBox):  # a checkable group box in 3.40
-                if box.isCheckable() and "experimental" in box.title().lower():
-                    box.setChecked(True)
-            QTimer.singleShot(800, lambda: all_page(manager, items, by_text))
-        except Exception:
-            report["errors"].append("plugin manager settings: " + traceback.format_exc())
-            close_modal()
+        save(manager, "plugin-manager-install-from-zip.png")
+        items.setCurrentRow(by_text["Settings"])
+        from qgis.PyQt.QtWidgets import QCheckBox, QGroupBox
+        for box in manager.findChildren(QCheckBox):  # README step: show experimental plugins (3.22)
+            if "experimental" in box.text().lower():
+                box.setChecked(True)
+        for box in manager.findChildren(QGroupBox):  # a checkable group box in 3.40
+            if box.isCheckable() and "experimental" in box.title().lower():
+                box.setChecked(True)
+        QTimer.singleShot(800, lambda: all_page(manager, items, by_text))
 
+    @on_plugin_manager("plugin manager all")
     def all_page(manager, items, by_text):
-        try:
-            save(manager, "plugin-manager-settings.png")
-            items.setCurrentRow(by_text["All"])
-            from qgis.PyQt.QtWidgets import QLineEdit, QListView
-            manager.findChild(QLineEdit, "leFilter").setText("BirdsEye")
-            view = manager.findChild(QListView, "vwPlugins")
-            view.setCurrentIndex(view.model().index(0, 0))
-            QTimer.singleShot(1500, lambda: (save(manager, "plugin-manager-all.png"), manager.close()))
-        except Exception:
-            report["errors"].append("plugin manager all: " + traceback.format_exc())
-            close_modal()
+        save(manager, "plugin-manager-settings.png")
+        items.setCurrentRow(by_text["All"])
+        from qgis.PyQt.QtWidgets import QLineEdit, QListView
+        manager.findChild(QLineEdit, "leFilter").setText("BirdsEye")
+        view = manager.findChild(QListView, "vwPlugins")
+        view.setCurrentIndex(view.model().index(0, 0))
+        QTimer.singleShot(1500, lambda: (save(manager, "plugin-manager-all.png"), manager.close()))
 
     QTimer.singleShot(2500, pages)
     iface.actionManagePlugins().trigger()

@@ -26,7 +26,7 @@ import pytest
 
 REPO_ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(REPO_ROOT / "tests" / "gui"))
-from test_desktop import OFFLINE_SETTINGS, QGIS_BIN, grab_screen, xvfb_display  # noqa: E402  (the desktop test's X helpers)
+from test_desktop import OFFLINE_SETTINGS, PROBE_DIR, QGIS_BIN, grab_screen, xvfb_display  # noqa: E402  (the desktop test's X helpers)
 
 _spec = importlib.util.spec_from_file_location("birdseye_package_script", REPO_ROOT / "scripts" / "package.py")
 package_script = importlib.util.module_from_spec(_spec)
@@ -324,26 +324,35 @@ def test_english_ts_lists_every_tr_string(tmp_path):
 
 
 # ------------------------------------------------------------------------------ Install from ZIP, for real
-INSTALL_PROBE = r"""
+#: What both install probes record once QGIS's installer is done: where BirdsEye went, whether it loaded and is
+#: active and enabled in the profile, which module runs, its algorithms and menu.
+INSTALLED_PLUGIN_FACTS = r"""
 import json, os, sys, traceback
 from qgis.core import QgsApplication, QgsSettings
 from qgis.PyQt.QtCore import QTimer
-from qgis.PyQt.QtWidgets import QTabWidget, QWidget
 import qgis.utils
 from qgis.utils import active_plugins, iface, plugins
 
 result = {"errors": []}
 
 
-def message_log():
-    tabs = {}
-    for viewer in [w for w in iface.mainWindow().findChildren(QWidget)
-                   if w.metaObject().className() == "QgsMessageLogViewer"]:
-        for tab_widget in viewer.findChildren(QTabWidget):
-            for i in range(tab_widget.count()):
-                page = tab_widget.widget(i)
-                tabs[tab_widget.tabText(i)] = page.toPlainText() if hasattr(page, "toPlainText") else ""
-    return tabs
+def record_installed():
+    # QGIS 3.22 sets qgis.utils.home_plugin_path; later releases renamed it HOME_PLUGIN_PATH.
+    home_plugin_path = getattr(qgis.utils, "HOME_PLUGIN_PATH", None) or qgis.utils.home_plugin_path
+    result["installed_to"] = os.path.join(home_plugin_path, "birdseye")
+    result["metadata_installed"] = os.path.isfile(os.path.join(home_plugin_path, "birdseye", "metadata.txt"))
+    result["loaded"] = "birdseye" in plugins
+    result["active"] = "birdseye" in active_plugins
+    result["enabled_in_profile"] = QgsSettings().value("PythonPlugins/birdseye", False, bool)
+    result["module_file"] = sys.modules["birdseye"].__file__
+    provider = QgsApplication.processingRegistry().providerById("birdseye")
+    result["algorithms"] = sorted(a.id() for a in provider.algorithms()) if provider else None
+    result["menu"] = [a.menu().objectName() for a in iface.mainWindow().menuBar().actions() if a.menu()]
+"""
+
+INSTALL_PROBE = INSTALLED_PLUGIN_FACTS + r"""
+sys.path.insert(0, os.environ["BIRDSEYE_PROBE_DIR"])
+from probe_session import message_log  # noqa: E402
 
 
 def install():
@@ -352,17 +361,7 @@ def install():
         result["loaded_before"] = "birdseye" in plugins
         # What Plugins > Manage and Install Plugins > Install from ZIP runs on "Install Plugin".
         pyplugin_installer.instance().installFromZipFile(os.environ["BIRDSEYE_ZIP"])
-        # QGIS 3.22 sets qgis.utils.home_plugin_path; later releases renamed it HOME_PLUGIN_PATH.
-        home_plugin_path = getattr(qgis.utils, "HOME_PLUGIN_PATH", None) or qgis.utils.home_plugin_path
-        result["installed_to"] = os.path.join(home_plugin_path, "birdseye")
-        result["metadata_installed"] = os.path.isfile(os.path.join(home_plugin_path, "birdseye", "metadata.txt"))
-        result["loaded"] = "birdseye" in plugins
-        result["active"] = "birdseye" in active_plugins
-        result["enabled_in_profile"] = QgsSettings().value("PythonPlugins/birdseye", False, bool)
-        result["module_file"] = sys.modules["birdseye"].__file__
-        provider = QgsApplication.processingRegistry().providerById("birdseye")
-        result["algorithms"] = sorted(a.id() for a in provider.algorithms()) if provider else None
-        result["menu"] = [a.menu().objectName() for a in iface.mainWindow().menuBar().actions() if a.menu()]
+        record_installed()
     except Exception:
         result["errors"].append(traceback.format_exc())
     QTimer.singleShot(300, finish)
@@ -414,15 +413,8 @@ def test_install_from_zip_in_the_desktop(package, tmp_path):
 REPOSITORY_NAME = "BirdsEye"
 REPOSITORY_SCREENSHOT = REPO_ROOT / "build" / "screenshots" / "plugin-repository-details.png"
 
-REPOSITORY_PROBE = r"""
-import json, os, sys, traceback
-from qgis.core import QgsApplication, QgsSettings
-from qgis.PyQt.QtCore import QTimer
+REPOSITORY_PROBE = INSTALLED_PLUGIN_FACTS + r"""
 from qgis.PyQt.QtWidgets import QApplication
-import qgis.utils
-from qgis.utils import active_plugins, iface, plugins as loaded
-
-result = {"errors": []}
 NAME = os.environ["BIRDSEYE_REPOSITORY_NAME"]
 URL = os.environ["BIRDSEYE_REPOSITORY_URL"]
 
@@ -438,7 +430,7 @@ def add_repository():
         settings.setValue(f"{installer_data.reposGroup}/{official_name}/url", official_url)
         settings.setValue(f"{installer_data.reposGroup}/{official_name}/enabled", False)
         installer_data.repositories.load()
-        result["loaded_before"] = "birdseye" in loaded
+        result["loaded_before"] = "birdseye" in plugins
         QTimer.singleShot(300, fill_in)
         pyplugin_installer.instance().addRepository()
         repository = installer_data.repositories.all().get(NAME)
@@ -455,15 +447,7 @@ def add_repository():
                                                     "download_url_experimental", "zip_repository")}
         # "Install Experimental Plugin" on the plugin's page runs installPlugin(key, stable=False).
         pyplugin_installer.instance().installPlugin("birdseye", stable=False)
-        home_plugin_path = getattr(qgis.utils, "HOME_PLUGIN_PATH", None) or qgis.utils.home_plugin_path
-        result["installed_to"] = os.path.join(home_plugin_path, "birdseye")
-        result["loaded"] = "birdseye" in loaded
-        result["active"] = "birdseye" in active_plugins
-        result["enabled_in_profile"] = QgsSettings().value("PythonPlugins/birdseye", False, bool)
-        result["module_file"] = sys.modules["birdseye"].__file__
-        provider = QgsApplication.processingRegistry().providerById("birdseye")
-        result["algorithms"] = sorted(a.id() for a in provider.algorithms()) if provider else None
-        result["menu"] = [a.menu().objectName() for a in iface.mainWindow().menuBar().actions() if a.menu()]
+        record_installed()
     except Exception:
         result["errors"].append(traceback.format_exc())
     with open(os.environ["BIRDSEYE_PROBE_RESULT"], "w", encoding="utf-8") as f:
@@ -741,7 +725,7 @@ def run_desktop_probe(profiles, probe, env, tmp_path, timeout_s, stuck_png):
     runtime_dir.mkdir(mode=0o700)
     with xvfb_display() as display:
         desktop_env = {**env, "DISPLAY": display, "QT_QPA_PLATFORM": "xcb", "XDG_RUNTIME_DIR": str(runtime_dir),
-                       "BIRDSEYE_PROBE_RESULT": str(report_path)}
+                       "BIRDSEYE_PROBE_RESULT": str(report_path), "BIRDSEYE_PROBE_DIR": str(PROBE_DIR)}
         qgis = subprocess.Popen([str(QGIS_BIN), "--nologo", "--noversioncheck", "--profiles-path", str(profiles),
                                  "--code", str(probe)], env=desktop_env, stdout=subprocess.PIPE,
                                 stderr=subprocess.STDOUT, text=True)

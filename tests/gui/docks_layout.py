@@ -15,6 +15,8 @@ Used inside the QGIS desktop by ``docks_probe.py`` and by the qtbot tests; Qt on
 """
 from __future__ import annotations
 
+from contextlib import contextmanager
+
 from qgis.PyQt.QtCore import QRect, Qt
 from qgis.PyQt.QtGui import QFontMetrics
 from qgis.PyQt.QtWidgets import (
@@ -22,6 +24,7 @@ from qgis.PyQt.QtWidgets import (
     QAbstractItemView,
     QAbstractScrollArea,
     QAbstractSpinBox,
+    QApplication,
     QComboBox,
     QHeaderView,
     QLabel,
@@ -33,6 +36,19 @@ from qgis.PyQt.QtWidgets import (
     QTreeView,
     QWidget,
 )
+
+
+@contextmanager
+def qgis_interface_font(points: float = 9.0):
+    """The application font at QGIS's usual interface size while the block runs, then the font it had."""
+    font = QApplication.font()
+    smaller = QApplication.font()
+    smaller.setPointSizeF(points)
+    QApplication.setFont(smaller)
+    try:
+        yield
+    finally:
+        QApplication.setFont(font)
 
 # Slack for rounding in layouts and style metrics (px).
 SLACK = 1

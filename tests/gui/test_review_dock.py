@@ -402,14 +402,9 @@ def test_a_log_beside_the_detections_shows_on_the_map_and_the_detections_stay_re
 def test_nothing_is_cut_off_at_the_narrowest_width(campaign, clean_project, make_dock, qtbot, tmp_path):
     """At its minimum width, in QGIS's 9 pt interface font, before and after Start, every label, field, header and
     cell shows whole (tests/gui/docks_layout.py; the real desktop: tests/gui/test_docks_desktop.py)."""
-    from docks_layout import layout_problems
-    from qgis.PyQt.QtWidgets import QApplication
+    from docks_layout import layout_problems, qgis_interface_font
 
-    font = QApplication.font()
-    smaller = QApplication.font()
-    smaller.setPointSizeF(9.0)
-    QApplication.setFont(smaller)
-    try:
+    with qgis_interface_font():
         layers = copy_campaign(campaign, tmp_path)
         dock = make_dock()
         dock.resize(dock.minimumWidth(), 900)
@@ -419,8 +414,6 @@ def test_nothing_is_cut_off_at_the_narrowest_width(campaign, clean_project, make
         wait_scores(qtbot, dock)
         wait_chips(qtbot, dock)
         assert layout_problems(dock) == []
-    finally:
-        QApplication.setFont(font)
 
 
 def test_chips_show_the_frames_that_detected_the_unit(campaign, clean_project, make_dock, qtbot, tmp_path):

@@ -16,7 +16,6 @@ import pytest
 from qgis.core import QgsApplication, QgsExpressionContextUtils, QgsProject
 from qgis.PyQt.QtCore import Qt
 from qgis.PyQt.QtGui import QColor
-from qgis.PyQt.QtWidgets import QApplication
 
 from birdseye.birdseye_qgis.core.design import sensor_bound as sb
 from birdseye.birdseye_qgis.core.design.bound_report import ACCEPT_COLOUR, REJECT_COLOUR, stride_for
@@ -343,11 +342,9 @@ def test_plot_shows_the_chosen_altitude_field(dock, qtbot):
 
 def test_screenshot(qgis_iface, qtbot):
     """A picture of the dock for the README, in QGIS's usual 9 pt interface font."""
-    font = QApplication.font()
-    smaller = QApplication.font()
-    smaller.setPointSizeF(9.0)
-    QApplication.setFont(smaller)
-    try:
+    from docks_layout import qgis_interface_font
+
+    with qgis_interface_font():
         widget = dock_module.SensorBoundDock(qgis_iface)
         qtbot.addWidget(widget)
         widget.setFloating(True)
@@ -359,8 +356,6 @@ def test_screenshot(qgis_iface, qtbot):
         assert body.width() <= widget.widget().viewport().width(), "the dock needs a horizontal scroll bar"
         SCREENSHOT.parent.mkdir(parents=True, exist_ok=True)
         assert widget.grab().save(str(SCREENSHOT))
-    finally:
-        QApplication.setFont(font)
     assert SCREENSHOT.stat().st_size > 20_000
 
 
@@ -368,15 +363,11 @@ def test_screenshot(qgis_iface, qtbot):
 def test_nothing_is_cut_off_at_the_narrowest_width(qgis_iface, qtbot, preset):
     """At its minimum width, in QGIS's 9 pt interface font, every label, field, header and cell shows whole
     (tests/gui/docks_layout.py), for an accepting and a rejecting platform; and the answer leads, in words."""
-    from docks_layout import layout_problems
+    from docks_layout import layout_problems, qgis_interface_font
 
     from birdseye.birdseye_qgis.core.design.platforms import platform
 
-    font = QApplication.font()
-    smaller = QApplication.font()
-    smaller.setPointSizeF(9.0)
-    QApplication.setFont(smaller)
-    try:
+    with qgis_interface_font():
         widget = dock_module.SensorBoundDock(qgis_iface)
         qtbot.addWidget(widget)
         widget.apply_preset(platform(preset).name)
@@ -392,8 +383,6 @@ def test_nothing_is_cut_off_at_the_narrowest_width(qgis_iface, qtbot, preset):
         verdict = "labels stay within their tolerance" if ten["verdict_exact"] == "accept" \
             else "labels leave their tolerance"
         assert widget.summary_label.text().startswith("<b>10 m</b>") and verdict in widget.summary_label.text()
-    finally:
-        QApplication.setFont(font)
 
 
 def test_the_dji_metadata_preset_is_offered_and_rejected_at_10_m(dock, qtbot):

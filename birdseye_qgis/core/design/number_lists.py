@@ -39,14 +39,20 @@ def parse_number_list(text, name: str, hint: str) -> list[float]:
     return values
 
 
+def _parse_positive_list(text, name: str, expected: str, refusal: str) -> list[float]:
+    """:func:`parse_number_list`, each value > 0; ``refusal`` says why a value is not, with ``{value}`` in it."""
+    values = parse_number_list(text, name, expected)
+    for value in values:
+        if value <= 0:
+            raise InputError(f"{name}: " + refusal.format(value=f"{value:g}"))
+    return values
+
+
 def parse_altitudes(text, name: str = "ALTITUDES") -> list[float]:
     """Altitudes above the ground (m), each > 0."""
-    altitudes = parse_number_list(text, name, "altitudes above the ground in metres, e.g. 10,20")
-    for altitude in altitudes:
-        if altitude <= 0:
-            raise InputError(f"{name}: altitude {altitude:g} m is not above the ground — every altitude "
-                             "must be greater than 0 m")
-    return altitudes
+    return _parse_positive_list(text, name, "altitudes above the ground in metres, e.g. 10,20",
+                                "altitude {value} m is not above the ground — every altitude must be greater "
+                                "than 0 m")
 
 
 def parse_sigmas(text, name: str = "SIGMAS") -> list[float]:
@@ -63,9 +69,6 @@ def parse_sigmas(text, name: str = "SIGMAS") -> list[float]:
 
 def parse_skld_cutoffs(text, name: str = "SKLD_CUTOFFS") -> list[float]:
     """Symmetric KL divergence cut-offs (nats), each > 0."""
-    cutoffs = parse_number_list(text, name, "sKLD cut-offs in nats, e.g. 0.01")
-    for cutoff in cutoffs:
-        if cutoff <= 0:
-            raise InputError(f"{name}: cut-off {cutoff:g} is not a divergence — every sKLD cut-off must be greater "
-                             "than 0 nats")
-    return cutoffs
+    return _parse_positive_list(text, name, "sKLD cut-offs in nats, e.g. 0.01",
+                                "cut-off {value} is not a divergence — every sKLD cut-off must be greater than "
+                                "0 nats")
