@@ -25,6 +25,7 @@ from qgis.PyQt.QtCore import QT_TRANSLATE_NOOP
 
 from ...birdseye_qgis import dependencies
 from ...birdseye_qgis.core.errors import Cancelled, InputError
+from ...birdseye_qgis.core.train.backbones import BACKBONES
 from ...birdseye_qgis.core.train.job import Source, TrainJob
 from ...birdseye_qgis.core.train.protocol import TrainingFailed, run_child
 from ...birdseye_qgis.qgis_enums import (
@@ -36,10 +37,6 @@ from ...birdseye_qgis.qgis_enums import (
     SOURCE_VECTOR,
 )
 from .base import BirdsEyeAlgorithm
-
-#: The backbones offered (core.train.recipe.BACKBONES; repeated so QGIS lists them without importing numpy code).
-BACKBONES = ("small", "efficientnet_b0", "efficientnet_b1", "efficientnet_b2", "efficientnet_b3",
-             "efficientnet_v2_s", "resnet18", "resnet34", "resnet50")
 
 
 class TrainDetector(BirdsEyeAlgorithm):

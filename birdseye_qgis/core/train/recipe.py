@@ -37,6 +37,7 @@ import numpy as np
 from ..detect.detector import find_peaks, model_size, normalise, resample
 from ..detect.model_metadata import ModelMetadata, embed_metadata
 from ..errors import InputError
+from .backbones import BACKBONES
 from .onnx_init import is_onnx, load_onnx_init
 
 #: Defaults of the demo model (and of ``train``): see models/README.md for why.
@@ -48,9 +49,6 @@ WIDTH = 16
 #: Target pixels are ~0.1 % of a tile: weighting each pixel's cross-entropy by 1 + POSITIVE_WEIGHT·label
 #: keeps them from drowning in background (it does not move the optimum: still p = label per pixel).
 POSITIVE_WEIGHT = 10.0
-#: The networks; ``small`` is the default and needs no pretrained weights.
-BACKBONES = ("small", "efficientnet_b0", "efficientnet_b1", "efficientnet_b2", "efficientnet_b3",
-             "efficientnet_v2_s", "resnet18", "resnet34", "resnet50")
 #: ImageNet statistics (RGB) the pretrained encoders were trained with.
 IMAGENET_MEAN = (0.485, 0.456, 0.406)
 IMAGENET_STD = (0.229, 0.224, 0.225)
