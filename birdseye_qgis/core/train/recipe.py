@@ -775,7 +775,7 @@ def save_checkpoint(net, path, backbone: str, width: int, extra: dict | None = N
 
     Besides the weights: the batch norms whose statistics are frozen (``frozen_stats_batch_norms``, from an ONNX
     INIT, :mod:`.onnx_init`) and, with ``meta``, the input the model was trained on (``resolution_cm``,
-    ``standardization_mean``/``_std``, ``input_channel_order``) and its ``class_names``: what INIT takes over."""
+    ``standardization_mean``/``_std``, ``input_channel_order``: what INIT takes over) and its ``class_names``."""
     import torch
 
     path = Path(path)
