@@ -370,7 +370,8 @@ def main(argv=None) -> None:
     t.add_argument("--labels", action="append", required=True, help="a writelabels output folder (with tiles)")
     t.add_argument("--frames", action="append", help="GeoPackage frame layer(s) with frame_id and gsd_cm")
     t.add_argument("--gsd-cm", type=float, help="one GSD (cm/px) for every frame, instead of --frames")
-    t.add_argument("--resolution-cm", type=float, default=RESOLUTION_CM)
+    t.add_argument("--resolution-cm", type=float,
+                   help=f"the model's resolution (default: the --init model's, else {RESOLUTION_CM:g})")
     t.add_argument("--threshold", type=float,
                    help="default threshold written into the model (default: the highest threshold within one "
                         "held-out target of the best F1)")
@@ -383,7 +384,8 @@ def main(argv=None) -> None:
     t.add_argument("--width", type=int, default=WIDTH)
     t.add_argument("--minutes", type=float, default=20.0)
     t.add_argument("--threads", type=int, default=2)
-    t.add_argument("--init", help="a .pt checkpoint of this recipe (same backbone) to start from")
+    t.add_argument("--init", help="a .pt checkpoint of this recipe (same backbone) or a BirdsEye ONNX model of the "
+                                  "small network to start from; its resolution and normalisation are kept")
     t.add_argument("--out", required=True)
     t.set_defaults(func=cmd_train)
     d = sub.add_parser("demo", help="simulate campaigns, train, tune and validate the bundled demo model")

@@ -25,6 +25,7 @@ from qgis.PyQt.QtCore import QT_TRANSLATE_NOOP
 
 from ...birdseye_qgis import dependencies
 from ...birdseye_qgis.core.errors import Cancelled, InputError
+from ...birdseye_qgis.core.train.backbones import BACKBONES
 from ...birdseye_qgis.core.train.job import Source, TrainJob
 from ...birdseye_qgis.core.train.protocol import TrainingFailed, run_child
 from ...birdseye_qgis.qgis_enums import (
@@ -36,10 +37,6 @@ from ...birdseye_qgis.qgis_enums import (
     SOURCE_VECTOR,
 )
 from .base import BirdsEyeAlgorithm
-
-#: The backbones offered (core.train.recipe.BACKBONES; repeated so QGIS lists them without importing numpy code).
-BACKBONES = ("small", "efficientnet_b0", "efficientnet_b1", "efficientnet_b2", "efficientnet_b3",
-             "efficientnet_v2_s", "resnet18", "resnet34", "resnet50")
 
 
 class TrainDetector(BirdsEyeAlgorithm):
@@ -85,8 +82,8 @@ class TrainDetector(BirdsEyeAlgorithm):
         self.addParameter(QgsProcessingParameterNumber(
             self.MINUTES, self.tr("Training time budget (minutes)"), NUMBER_DOUBLE, 20.0, minValue=0.05))
         self.addParameter(QgsProcessingParameterNumber(
-            self.RESOLUTION_CM, self.tr("Model resolution (cm/px)"), NUMBER_DOUBLE, 1.0,
-            minValue=0.01))
+            self.RESOLUTION_CM, self.tr("Model resolution (cm/px; empty: the earlier model's, else 1)"),
+            NUMBER_DOUBLE, optional=True, minValue=0.01))
         self.addParameter(QgsProcessingParameterNumber(
             self.VALIDATION_FRACTION, self.tr("Share of the frames held out for validation (0–0.5)"), NUMBER_DOUBLE,
             0.15, minValue=0.0, maxValue=0.5))
@@ -117,9 +114,10 @@ class TrainDetector(BirdsEyeAlgorithm):
 
     # ------------------------------------------------------------------ inputs
     def _label_folders(self, parameters, context) -> list[Path]:
-        values = parameters.get(self.LABELS) or []
-        if isinstance(values, str):
-            values = [v for v in values.replace("\n", ";").split(";") if v.strip()]
+        # parameterAsFileList resolves what the Graphical Modeler and expressions pass (a list, an expression's
+        # array or text); text may still join several paths with ";" or new lines.
+        values = [part.strip() for value in self.parameterAsFileList(parameters, self.LABELS, context) or []
+                  for part in str(value).replace("\n", ";").split(";") if part.strip()]
         folders = []
         for value in values:
             path = Path(str(value).strip())
@@ -146,6 +144,13 @@ class TrainDetector(BirdsEyeAlgorithm):
                                              "per folder, in the same order, or one for all", field=self.FRAMES))
         maps = [self._gsd_of(layer) for layer in layers]
         return [Source(str(f), gsd_cm=maps[0] if len(maps) == 1 else maps[i]) for i, f in enumerate(folders)]
+
+    def _optional_double(self, parameters, name, context) -> float | None:
+        """An optional number, None when empty: parameterAsDouble alone reads an empty value as 0. Its text
+        (parameterAsString) is empty for a value not given, None, or an expression (QgsProperty) that gives NULL."""
+        if not self.parameterAsString(parameters, name, context).strip():
+            return None
+        return self.parameterAsDouble(parameters, name, context)
 
     def _gsd_of(self, layer) -> dict:
         names = layer.fields().names()
@@ -192,17 +197,16 @@ class TrainDetector(BirdsEyeAlgorithm):
         out = self.parameterAsFileOutput(parameters, self.OUTPUT_MODEL, context)
         if not out.lower().endswith(".onnx"):
             out += ".onnx"
-        threshold = parameters.get(self.THRESHOLD)
         job = TrainJob(
             sources=sources, out=out, backbone=BACKBONES[self.parameterAsEnum(parameters, self.BACKBONE, context)],
             weights=self.parameterAsFile(parameters, self.WEIGHTS, context) or None,
             init=self.parameterAsFile(parameters, self.INIT, context) or None,
             minutes=self.parameterAsDouble(parameters, self.MINUTES, context),
-            resolution_cm=self.parameterAsDouble(parameters, self.RESOLUTION_CM, context),
+            resolution_cm=self._optional_double(parameters, self.RESOLUTION_CM, context),
             val_fraction=self.parameterAsDouble(parameters, self.VALIDATION_FRACTION, context),
             seed=self.parameterAsInt(parameters, self.SEED, context),
             threads=self.parameterAsInt(parameters, self.THREADS, context),
-            threshold=None if threshold in (None, "") else self.parameterAsDouble(parameters, self.THRESHOLD, context),
+            threshold=self._optional_double(parameters, self.THRESHOLD, context),
             producer="BirdsEye birdseye:traindetector")
         python = self._python(parameters, context, feedback)
         Path(out).parent.mkdir(parents=True, exist_ok=True)

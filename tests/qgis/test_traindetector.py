@@ -19,6 +19,7 @@ from birdseye.birdseye_qgis.core.train.protocol import process_alive
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "unit" / "train"))
 from fake_labels import make_label_folder  # noqa: E402
+from registry import Recorder as Log
 from registry import run
 from training_python import TRAINING_PYTHON, needs_training_python
 
@@ -137,3 +138,80 @@ def test_missing_weights_and_missing_torch_say_what_to_do(tmp_path):
         run("traindetector", {"LABELS": [str(labels)], "GSD_CM": 1.0, "MINUTES": 0.1, "PYTHON": "/usr/bin/python3",
                               "OUTPUT_MODEL": str(tmp_path / "m.onnx")})
     assert not (tmp_path / "m.onnx").exists()
+
+
+def in_a_model(labels_expression: str, others: dict):
+    """A Graphical Modeler model running traindetector alone, LABELS given by an expression, the rest as values."""
+    from qgis.core import (
+        QgsProcessingModelAlgorithm,
+        QgsProcessingModelChildAlgorithm,
+        QgsProcessingModelChildParameterSource,
+    )
+
+    model = QgsProcessingModelAlgorithm("train", "tests")
+    child = QgsProcessingModelChildAlgorithm("birdseye:traindetector")
+    child.setChildId("train")
+    child.addParameterSources("LABELS", [QgsProcessingModelChildParameterSource.fromExpression(labels_expression)])
+    for name, value in others.items():
+        child.addParameterSources(name, [QgsProcessingModelChildParameterSource.fromStaticValue(value)])
+    model.addChildAlgorithm(child)
+    return model
+
+
+def test_labels_and_numbers_from_the_modeler_and_expressions(birdseye_provider, tmp_path):
+    """LABELS as the Graphical Modeler passes it (an expression's array of folders, or text joining them), read
+    through the Processing API; an empty THRESHOLD or RESOLUTION_CM is "not given", not 0. Training stops at the
+    missing PyTorch (after the inputs were read), or at the folder that is not a labels folder."""
+    import processing
+    from qgis.core import QgsApplication, QgsProcessingContext, QgsProperty
+
+    labels = make_label_folder(tmp_path / "labels", n_frames=2)
+    no_torch = {"GSD_CM": 1.0, "MINUTES": 0.1, "PYTHON": "/usr/bin/python3", "OUTPUT_MODEL": str(tmp_path / "m.onnx")}
+    for value in (f"{labels};{labels / 'summary.json'}", [str(labels), str(labels / "summary.json")]):
+        with pytest.raises(QgsProcessingException, match="PyTorch"):
+            run("traindetector", {"LABELS": value, **no_torch})
+    elsewhere = tmp_path / "elsewhere"
+    elsewhere.mkdir()
+    for expression, expected in ((f"array('{labels}', '{labels / 'summary.json'}')", "PyTorch"),
+                                 (f"array('{labels}', '{elsewhere}')",
+                                  re.escape(str(elsewhere)) + ".*not a Write training labels")):
+        log = Log()  # a model reports its child's error in the log
+        with pytest.raises(QgsProcessingException):
+            processing.run(in_a_model(expression, no_torch), {}, feedback=log)
+        assert any(re.search(expected, error) for error in log.errors), (expected, log.errors)
+
+    # An expression (QgsProperty) reaches the algorithm's reader resolved: Processing's own check refuses one for
+    # LABELS in a run (QGIS 3.22), and a model hands over its evaluated array, as above; QGIS 3.22 reads an
+    # expression's value as text, which may join paths with ";".
+    alg = QgsApplication.processingRegistry().createAlgorithmById("birdseye:traindetector")
+    context = QgsProcessingContext()
+    property_ = QgsProperty.fromExpression(f"'{labels / 'summary.json'}' || ';' || '{labels}'")
+    assert alg._label_folders({"LABELS": property_}, context) == [labels, labels]
+    for value, expected in ((None, None), ("", None), (0.35, 0.35), (0.0, 0.0),
+                            (QgsProperty.fromExpression("0.1 + 0.2"), 0.3), (QgsProperty.fromExpression("NULL"), None)):
+        got = alg._optional_double({"THRESHOLD": value}, "THRESHOLD", context)
+        assert (got == pytest.approx(expected)) if expected is not None else got is None, value
+    assert alg._optional_double({}, "RESOLUTION_CM", context) is None
+
+
+def test_init_takes_the_earlier_models_resolution_and_refuses_another(birdseye_provider, tmp_path):
+    """A model trained at 1.25 cm/px; fine-tuned from it with RESOLUTION_CM empty: 1.25 cm/px and its
+    normalisation; with RESOLUTION_CM 1: refused, naming both."""
+    from qgis.core import QgsProperty
+
+    from birdseye.birdseye_qgis.core.detect.model_metadata import read_onnx_metadata
+
+    labels = make_label_folder(tmp_path / "labels", n_frames=3)
+    common = {"LABELS": [str(labels)], "GSD_CM": 1.0, "MINUTES": 0.05, "VALIDATION_FRACTION": 0.0, "THREADS": 2,
+              "PYTHON": TRAINING_PYTHON}
+    first = run("traindetector", {**common, "RESOLUTION_CM": 1.25, "OUTPUT_MODEL": str(tmp_path / "first.onnx")})
+    again = run("traindetector", {**common, "INIT": first["CHECKPOINT"], "OUTPUT_MODEL": str(tmp_path / "again.onnx"),
+                                  "THRESHOLD": QgsProperty.fromExpression("NULL")})
+    assert again["THRESHOLD_USED"] == 0.5, "an expression giving NULL leaves THRESHOLD empty (no held-out targets)"
+    before, after = read_onnx_metadata(first["OUTPUT_MODEL"]), read_onnx_metadata(again["OUTPUT_MODEL"])
+    assert after.resolution_cm == 1.25 and after.standardization_mean == before.standardization_mean
+    assert after.class_names == ("burrow",)
+    with pytest.raises(QgsProcessingException, match=r"first\.onnx.*trained at 1\.25 cm/px.*asked for is 1 cm/px"):
+        run("traindetector", {**common, "INIT": first["OUTPUT_MODEL"], "RESOLUTION_CM": 1.0,
+                              "OUTPUT_MODEL": str(tmp_path / "refused.onnx")})
+    assert not (tmp_path / "refused.onnx").exists() and "torch" not in sys.modules

@@ -13,6 +13,7 @@ figures). Every file is written under a temporary name and renamed.
 from __future__ import annotations
 
 import csv
+import dataclasses
 import json
 import os
 import platform
@@ -55,7 +56,7 @@ class TrainJob:
     init: str | None = None
     minutes: float = 20.0
     steps: int | None = None
-    resolution_cm: float = recipe.RESOLUTION_CM
+    resolution_cm: float | None = None  # None: the INIT model's, else recipe.RESOLUTION_CM
     val_fraction: float = 0.15
     seed: int = 0
     threads: int = 0
@@ -165,6 +166,11 @@ def run_job(job: TrainJob, emit: Callable[[dict], None] = lambda event: None,
           "device_name": torch.cuda.get_device_name(0) if dev.type == "cuda" else platform.processor() or "CPU",
           "threads": threads, "backbone": job.backbone, "pid": os.getpid()})
     emit({"type": "progress", "stage": "loading tiles", "fraction": 0.0})
+    init_input = recipe.init_model_input(job.init) if job.init else None  # INIT's resolution and normalisation
+    job = dataclasses.replace(job, resolution_cm=recipe.model_resolution(job.resolution_cm, init_input, job.init))
+    if job.init and init_input is None:
+        message(f"{job.init} records no resolution or normalisation (written before they were recorded): training "
+                f"at {job.resolution_cm:g} cm/px, normalised with the tiles' statistics")
     sources = [(s.folder, s.gsd_of()) for s in job.sources]
     tiles = recipe.load_tiles(sources, job.resolution_cm, log=message, is_canceled=should_stop)
     if tiles is None:
@@ -177,22 +183,26 @@ def run_job(job: TrainJob, emit: Callable[[dict], None] = lambda event: None,
     sigma = recipe.label_sigma([s.folder for s in job.sources], tiles, job.resolution_cm)
     description = job.description or (f"BirdsEye heatmap model ({job.backbone}) trained on "
                                       + ", ".join(Path(s.folder).name for s in job.sources))
-    mean_std = recipe.standardization(job.backbone, train)
+    mean_std = recipe.standardization(job.backbone, train, init_input)
+    layout = {"class_names": recipe.label_class_names([s.folder for s in job.sources], log=message),
+              "channel_order": init_input.channel_order if init_input else "RGB"}
     meta = recipe.make_metadata(train, job.resolution_cm, 0.5 if job.threshold is None else job.threshold,
-                                sigma, description, mean_std)
+                                sigma, description, mean_std, **layout)
     if job.init and job.backbone != (recipe.checkpoint_backbone(job.init) or job.backbone):
         raise InputError(f"was trained with the backbone '{recipe.checkpoint_backbone(job.init)}', not "
                          f"'{job.backbone}'", source=job.init, field="INIT")
     net = recipe.build_network(job.backbone, job.width, job.weights, pretrained=not job.init, log=message)
     if job.init:
-        recipe.load_init(net, job.init)
-        message(f"fine-tuning from {job.init}")
+        frozen = recipe.load_init(net, job.init)
+        message(f"fine-tuning from {job.init} at {job.resolution_cm:g} cm/px"
+                + (f"; {len(frozen)} batch norms keep their statistics frozen" if frozen else ""))
     net = net.to(dev)
     n_params = int(sum(p.numel() for p in net.parameters()))
     checkpoints = {"n": 0}
 
     def checkpoint(stage: str, step: int) -> None:
-        recipe.save_checkpoint(net, job.checkpoint_path, job.backbone, job.width, {"stage": stage, "step": step})
+        recipe.save_checkpoint(net, job.checkpoint_path, job.backbone, job.width, {"stage": stage, "step": step},
+                               meta=meta)
         checkpoints["n"] += 1
         emit({"type": "checkpoint", "path": str(job.checkpoint_path), "stage": stage, "step": step})
 
@@ -215,11 +225,11 @@ def run_job(job: TrainJob, emit: Callable[[dict], None] = lambda event: None,
     threshold_rule = "given" if job.threshold is not None else (
         "highest threshold within one target of the best F1 on the held-out tiles"
         if figures and figures.get("targets") else "no held-out targets to choose by")
-    meta = recipe.make_metadata(train, job.resolution_cm, threshold, sigma, description, mean_std)
+    meta = recipe.make_metadata(train, job.resolution_cm, threshold, sigma, description, mean_std, **layout)
     emit({"type": "progress", "stage": "exporting", "fraction": 0.96})
     model = recipe.export_onnx(net, meta, job.model_path, job.producer)
     recipe.save_checkpoint(net, job.weights_path, job.backbone, job.width,
-                           {"stage": "final", "step": history["frozen_steps"] + history["finetune_steps"]})
+                           {"stage": "final", "step": history["frozen_steps"] + history["finetune_steps"]}, meta=meta)
     if job.checkpoint_path.exists():
         job.checkpoint_path.unlink()
     result = {

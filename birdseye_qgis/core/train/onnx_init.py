@@ -8,10 +8,13 @@ variance 1 − ε). The network then computes exactly what the ONNX model comput
 onnxruntime on a random image), but only while those batch norms use their running statistics:
 γ and σ cannot be told apart any more, so batch statistics would change the function. Their statistics
 therefore stay frozen through training (:class:`FrozenStatsBatchNorm2d`; their γ and β still learn),
-the usual practice when fine-tuning a detector from a few images.
+the usual practice when fine-tuning a detector from a few images. A checkpoint of such a network names
+those batch norms (:func:`frozen_batch_norms`), and a run that starts from it freezes them again
+(:func:`freeze_batch_norm_stats`).
 """
 from __future__ import annotations
 
+import functools
 from pathlib import Path
 
 import numpy as np
@@ -27,8 +30,10 @@ def is_onnx(path) -> bool:
     return Path(path).suffix.lower() == ".onnx"
 
 
+@functools.lru_cache(maxsize=None)
 def frozen_stats_batch_norm():
-    """The class, built on first use so that this module imports without torch."""
+    """The class, built on first use so that this module imports without torch (one class per process, so
+    ``isinstance`` tells its modules)."""
     from torch import nn
 
     class FrozenStatsBatchNorm2d(nn.BatchNorm2d):
@@ -67,7 +72,6 @@ def load_onnx_init(net, path) -> list[str]:
                          "it was not exported from this network (train with the backbone it was trained with)",
                          source=str(path), field="INIT")
     modules = dict(net.named_modules())
-    frozen_class = frozen_stats_batch_norm()
     frozen = []
     for (w_name, b_name), conv_name in zip(folded_onnx, folded_torch):
         conv = modules[conv_name]
@@ -89,14 +93,35 @@ def load_onnx_init(net, path) -> list[str]:
         raise InputError(f"holds no weights for {', '.join(missing[:3])}{'…' if len(missing) > 3 else ''}: it was "
                          "not exported from this network", source=str(path), field="INIT")
     net.load_state_dict({**state, **loaded})
-    for bn_name in frozen:
-        parent_name, _, child = bn_name.rpartition(".")
-        parent, bn = modules[parent_name], modules[bn_name]
-        replacement = frozen_class(bn.num_features, eps=bn.eps, momentum=bn.momentum)
-        replacement.load_state_dict(bn.state_dict())
-        setattr(parent, child, replacement)
+    freeze_batch_norm_stats(net, frozen)
     _check_against_onnx(net, model, path)
     return frozen
+
+
+def freeze_batch_norm_stats(net, names, source=None) -> None:
+    """Replace the batch norms of ``net`` named in ``names`` by :class:`FrozenStatsBatchNorm2d` holding the same
+    state (weights, bias, running statistics); refuses a name that is not a batch norm of ``net``."""
+    from torch import nn
+
+    frozen_class = frozen_stats_batch_norm()
+    modules = dict(net.named_modules())
+    for bn_name in names:
+        bn = modules.get(bn_name)
+        if not isinstance(bn, nn.BatchNorm2d):
+            raise InputError(f"names {bn_name} as a batch norm with frozen statistics, which the network does not "
+                             "have: it was not trained with this network", source=source, field="INIT")
+        if isinstance(bn, frozen_class):
+            continue
+        parent_name, _, child = bn_name.rpartition(".")
+        replacement = frozen_class(bn.num_features, eps=bn.eps, momentum=bn.momentum)
+        replacement.load_state_dict(bn.state_dict())
+        setattr(modules[parent_name] if parent_name else net, child, replacement)
+
+
+def frozen_batch_norms(net) -> list[str]:
+    """Names of the batch norms of ``net`` whose statistics are frozen (:class:`FrozenStatsBatchNorm2d`)."""
+    frozen_class = frozen_stats_batch_norm()
+    return [name for name, module in net.named_modules() if isinstance(module, frozen_class)]
 
 
 def _convolutions_in_call_order(net, missing) -> list[str]:

@@ -37,7 +37,8 @@ import numpy as np
 from ..detect.detector import find_peaks, model_size, normalise, resample
 from ..detect.model_metadata import ModelMetadata, embed_metadata
 from ..errors import InputError
-from .onnx_init import is_onnx, load_onnx_init
+from .backbones import BACKBONES
+from .onnx_init import freeze_batch_norm_stats, frozen_batch_norms, is_onnx, load_onnx_init
 
 #: Defaults of the demo model (and of ``train``): see models/README.md for why.
 RESOLUTION_CM = 1.0
@@ -48,15 +49,14 @@ WIDTH = 16
 #: Target pixels are ~0.1 % of a tile: weighting each pixel's cross-entropy by 1 + POSITIVE_WEIGHT·label
 #: keeps them from drowning in background (it does not move the optimum: still p = label per pixel).
 POSITIVE_WEIGHT = 10.0
-#: The networks; ``small`` is the default and needs no pretrained weights.
-BACKBONES = ("small", "efficientnet_b0", "efficientnet_b1", "efficientnet_b2", "efficientnet_b3",
-             "efficientnet_v2_s", "resnet18", "resnet34", "resnet50")
 #: ImageNet statistics (RGB) the pretrained encoders were trained with.
 IMAGENET_MEAN = (0.485, 0.456, 0.406)
 IMAGENET_STD = (0.229, 0.224, 0.225)
 #: Thresholds at which validation figures are given.
 THRESHOLDS = tuple(np.round(np.arange(0.1, 0.91, 0.1), 2).tolist())
 CHECKPOINT_FORMAT = "birdseye-heatmap-checkpoint"
+#: The class a model is named for when its labels name none (folders without labels.csv).
+DEFAULT_CLASS_NAMES = ("burrow",)
 #: A label maximum at least this high is a target's centre in the validation figures. Labels peak at 1 in
 #: the frame, but resampled from the frames' ground sample distance to the model's (¼ and less) the
 #: Gaussian's peak is averaged with its neighbours (0.23 cm/px → 1 cm/px: 0.95 for σ = 10 px, 0.60 for 3 px).
@@ -273,9 +273,79 @@ def _pretrained_network(backbone: str, weights, pretrained: bool, log):
     return net
 
 
-def standardization(backbone: str, tiles: "TileSet"):
-    """(mean, std) the model normalises with: ImageNet's for a pretrained encoder, else the tiles'."""
+def standardization(backbone: str, tiles: "TileSet", init: "ModelInput | None" = None):
+    """(mean, std) the model normalises with: the INIT model's (``init``) when it records them, else ImageNet's
+    for a pretrained encoder, else the tiles'."""
+    if init is not None:
+        return init.mean, init.std
     return (IMAGENET_MEAN, IMAGENET_STD) if backbone != "small" else channel_stats(tiles)
+
+
+@dataclass(frozen=True)
+class ModelInput:
+    """What a model's input is: its resolution (cm/px) and standardisation (per channel of pixel values / 255,
+    in ``channel_order``), as an INIT model records them."""
+
+    resolution_cm: float
+    mean: tuple
+    std: tuple
+    channel_order: str = "RGB"
+
+    @classmethod
+    def of(cls, meta: ModelMetadata) -> "ModelInput":
+        return cls(float(meta.resolution_cm), tuple(meta.standardization_mean), tuple(meta.standardization_std),
+                   meta.input_channel_order)
+
+
+def init_model_input(path) -> ModelInput | None:
+    """The input the INIT model at ``path`` was trained on: a BirdsEye ONNX model's metadata, or what a checkpoint
+    of this recipe records; None for a checkpoint written before they were recorded, or a bare state dict."""
+    if is_onnx(path):
+        from ..detect.model_metadata import read_onnx_metadata
+
+        return ModelInput.of(read_onnx_metadata(path))
+    record = _checkpoint_record(path)
+    if record is None or record.get("resolution_cm") is None or record.get("standardization_mean") is None:
+        return None
+    return ModelInput(float(record["resolution_cm"]), tuple(float(x) for x in record["standardization_mean"]),
+                      tuple(float(x) for x in record["standardization_std"]),
+                      str(record.get("input_channel_order") or "RGB"))
+
+
+def model_resolution(asked: float | None, init: ModelInput | None, init_path=None) -> float:
+    """The resolution (cm/px) a run trains at: ``asked`` (RESOLUTION_CM, --resolution-cm), else the INIT model's
+    (``init``), else :data:`RESOLUTION_CM`. Refuses an ``asked`` resolution the INIT model was not trained at: its
+    filters have learnt targets of a size in pixels."""
+    if init is None:
+        return float(asked) if asked is not None else RESOLUTION_CM
+    if asked is None or math.isclose(float(asked), init.resolution_cm, rel_tol=1e-6):
+        return init.resolution_cm
+    raise InputError(f"was trained at {init.resolution_cm:g} cm/px, but the resolution asked for is {float(asked):g} "
+                     f"cm/px (RESOLUTION_CM, --resolution-cm): leave it empty to fine-tune at {init.resolution_cm:g} "
+                     "cm/px, or start from a model trained at the resolution you want", source=str(init_path),
+                     field="INIT")
+
+
+def label_class_names(label_dirs, log=print) -> tuple:
+    """The model's class names from the ``label`` column of the folders' labels.csv: the one class they all
+    share, or — the heatmap has one output channel, which cannot tell classes apart — every class, sorted,
+    joined by ``+`` into that channel's one name (said in the log). :data:`DEFAULT_CLASS_NAMES` when no folder
+    names a class."""
+    import csv
+
+    names = set()
+    for folder in label_dirs:
+        path = Path(folder) / "labels.csv"
+        if path.is_file():
+            with open(path, newline="", encoding="utf-8") as f:
+                names |= {str(row.get("label") or "").strip() for row in csv.DictReader(f)}
+    names = sorted(n for n in names if n)
+    if not names:
+        return DEFAULT_CLASS_NAMES
+    if len(names) > 1:
+        log(f"the labels name {len(names)} classes ({', '.join(names)}); the heatmap has one output channel, "
+            f"which detects them all alike: its class is named '{'+'.join(names)}'")
+    return ("+".join(names),)
 
 
 # ====================================================================================== data
@@ -335,6 +405,7 @@ def load_tiles(sources, resolution_cm: float, log=print, is_canceled: Callable[[
     missing = set()
     for k, (folder, gsd_of) in enumerate(sources):
         tile_dir = Path(folder) / "tiles"
+        centres = label_centres(folder)
         for name in tile_names(folder):
             if is_canceled():
                 return None
@@ -352,7 +423,8 @@ def load_tiles(sources, resolution_cm: float, log=print, is_canceled: Callable[[
             size = model_size(img.shape[1], img.shape[0], gsd_of[frame_id], resolution_cm)
             images.append(resample(img, size))
             labels.append(resample(lab.astype(np.float32) / 255.0, size))
-            positive.append(lab.max() >= 250)  # the tile holds a target's centre
+            positive.append(tile_holds_centre(name, lab.shape, centres) if centres is not None
+                            else lab.max() >= 250)  # no labels.csv: the raster's peak, missed under σ ≈ 3.5 px
             gsd.append(gsd_of[frame_id])
             keys.append(f"{k}:{frame_id}")
     if missing:
@@ -361,6 +433,40 @@ def load_tiles(sources, resolution_cm: float, log=print, is_canceled: Callable[[
         raise InputError("no training tiles: no tile's frame has a ground sample distance (give the frame "
                          "layers the labels were written from)", field="FRAMES")
     return TileSet(images, labels, np.asarray(positive, bool), np.asarray(gsd, float), keys)
+
+
+def label_centres(folder) -> dict | None:
+    """``{frame_id: (n, 2) array of u, v}`` of the labels in a writelabels folder's labels.csv (the labels its
+    positive tiles were cut around), or None without labels.csv (or without those columns)."""
+    import csv
+
+    path = Path(folder) / "labels.csv"
+    if not path.is_file():
+        return None
+    with open(path, newline="", encoding="utf-8") as f:
+        reader = csv.DictReader(f)
+        if not {"frame_id", "u", "v"} <= set(reader.fieldnames or ()):
+            return None
+        rows = {}
+        for row in reader:
+            try:
+                rows.setdefault(str(row["frame_id"]), []).append((float(row["u"]), float(row["v"])))
+            except (TypeError, ValueError):
+                continue
+    return {frame: np.asarray(uv, float) for frame, uv in rows.items()}
+
+
+def tile_holds_centre(name: str, shape, centres: dict) -> bool:
+    """Whether the tile ``<frame_id>_<y0>_<x0>.png`` of size ``shape`` (h, w px) holds a label centre of its frame,
+    by the rule writelabels cut it with (``training_set._inside``: pixel centres at integers, a pixel's square
+    from −0.5 to +0.5)."""
+    frame_id, y0, x0 = Path(name).stem.rsplit("_", 2)
+    uv = centres.get(frame_id)
+    if uv is None or not len(uv):
+        return False
+    y0, x0, (h, w) = int(y0), int(x0), shape[:2]
+    return bool(np.any((uv[:, 0] >= x0 - 0.5) & (uv[:, 0] < x0 + w - 0.5)
+                       & (uv[:, 1] >= y0 - 0.5) & (uv[:, 1] < y0 + h - 0.5)))
 
 
 def split_tiles(tiles: TileSet, fraction: float, seed: int) -> tuple[TileSet, TileSet | None]:
@@ -662,23 +768,34 @@ def _round(x):
 
 
 # ====================================================================================== checkpoints, export
-def save_checkpoint(net, path, backbone: str, width: int, extra: dict | None = None) -> Path:
+def save_checkpoint(net, path, backbone: str, width: int, extra: dict | None = None,
+                    meta: ModelMetadata | None = None) -> Path:
     """The network's weights with what rebuilds it, written atomically (temporary file, then rename):
-    a run killed while writing leaves the previous checkpoint whole."""
+    a run killed while writing leaves the previous checkpoint whole.
+
+    Besides the weights: the batch norms whose statistics are frozen (``frozen_stats_batch_norms``, from an ONNX
+    INIT, :mod:`.onnx_init`) and, with ``meta``, the input the model was trained on (``resolution_cm``,
+    ``standardization_mean``/``_std``, ``input_channel_order``: what INIT takes over) and its ``class_names``."""
     import torch
 
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
     state = {k: v.detach().cpu() for k, v in net.state_dict().items()}
-    torch.save({"format": CHECKPOINT_FORMAT, "backbone": backbone, "width": width, "state_dict": state,
-                **(extra or {})}, str(tmp))
+    record = {"format": CHECKPOINT_FORMAT, "backbone": backbone, "width": width, "state_dict": state,
+              "frozen_stats_batch_norms": frozen_batch_norms(net)}
+    if meta is not None:
+        record.update({"resolution_cm": float(meta.resolution_cm),
+                       "standardization_mean": [float(x) for x in meta.standardization_mean],
+                       "standardization_std": [float(x) for x in meta.standardization_std],
+                       "input_channel_order": meta.input_channel_order, "class_names": list(meta.class_names)})
+    torch.save({**record, **(extra or {})}, str(tmp))
     os.replace(tmp, path)
     return path
 
 
-def checkpoint_backbone(path) -> str | None:
-    """The backbone a checkpoint of this recipe was trained with (None for a bare state dict)."""
+def _checkpoint_record(path) -> dict | None:
+    """A checkpoint of this recipe as saved (None for an ONNX model or a bare state dict)."""
     import torch
 
     if is_onnx(path):
@@ -687,20 +804,30 @@ def checkpoint_backbone(path) -> str | None:
         obj = torch.load(str(path), map_location="cpu", weights_only=True)
     except Exception as exc:  # noqa: BLE001
         raise InputError(f"is not a PyTorch checkpoint ({exc})", source=str(path), field="INIT") from exc
-    return obj.get("backbone") if isinstance(obj, dict) and obj.get("format") == CHECKPOINT_FORMAT else None
+    return obj if isinstance(obj, dict) and obj.get("format") == CHECKPOINT_FORMAT else None
 
 
-def load_init(net, path) -> None:
+def checkpoint_backbone(path) -> str | None:
+    """The backbone a checkpoint of this recipe was trained with (None for a bare state dict)."""
+    record = _checkpoint_record(path)
+    return None if record is None else record.get("backbone")
+
+
+def load_init(net, path) -> list[str]:
     """Start from a checkpoint of this recipe (or a bare state dict of the same network), or from a BirdsEye
-    ONNX model of the same network (:mod:`.onnx_init`)."""
+    ONNX model of the same network (:mod:`.onnx_init`); returns the names of the batch norms whose statistics
+    stay frozen: those the ONNX export folded, or those the checkpoint records (it was trained from such a
+    model; a checkpoint written before they were recorded names none)."""
     if is_onnx(path):
-        load_onnx_init(net, path)
-        return
+        return load_onnx_init(net, path)
     try:
         net.load_state_dict(read_state_dict(path))
     except RuntimeError as exc:
         raise InputError(f"does not fit the chosen network ({str(exc).splitlines()[0]}); train with the "
                          "backbone it was trained with", source=str(path), field="INIT") from exc
+    frozen = list((_checkpoint_record(path) or {}).get("frozen_stats_batch_norms") or [])
+    freeze_batch_norm_stats(net, frozen, source=str(path))
+    return frozen
 
 
 def export_onnx(net, meta: ModelMetadata, path, producer: str = "BirdsEye heatmap recipe") -> Path:
@@ -742,11 +869,14 @@ def export_onnx(net, meta: ModelMetadata, path, producer: str = "BirdsEye heatma
 
 
 def make_metadata(tiles: TileSet, resolution_cm: float, threshold: float, label_sigma_px: float | None,
-                  description: str, mean_std=None) -> ModelMetadata:
-    mean, std = channel_stats(tiles) if mean_std is None else mean_std
+                  description: str, mean_std=None, class_names: tuple = DEFAULT_CLASS_NAMES,
+                  channel_order: str = "RGB") -> ModelMetadata:
+    """The model's metadata (§4.9); ``mean_std`` None: the tiles' channel statistics in ``channel_order``."""
+    mean, std = channel_stats(tiles, channel_order) if mean_std is None else mean_std
     return ModelMetadata(resolution_cm=resolution_cm, tile_size=TILE_SIZE, tiles_overlap_pct=TILES_OVERLAP_PCT,
                          output_kind="probability", default_threshold=threshold, standardization_mean=tuple(mean),
-                         standardization_std=tuple(std), class_names=("burrow",), input_channel_order="RGB",
+                         standardization_std=tuple(std), class_names=tuple(class_names),
+                         input_channel_order=channel_order,
                          training_gsd_cm=round(float(np.median(tiles.source_gsd_cm)), 4),
                          label_sigma_px=label_sigma_px, description=description)
 

@@ -10,7 +10,9 @@ import numpy as np
 
 
 def make_label_folder(folder, n_frames: int = 8, tiles_per_frame: int = 2, tile: int = 96, seed: int = 0,
-                      sigma_px: float = 3.0) -> Path:
+                      sigma_px: float = 3.0, centre_offset_px: float = 0.0, class_name: str = "burrow") -> Path:
+    """``centre_offset_px`` moves every label centre off the pixel grid (u, v = pixel + offset);
+    ``class_name`` is the class of every row of labels.csv."""
     import cv2
 
     folder = Path(folder)
@@ -26,11 +28,11 @@ def make_label_folder(folder, n_frames: int = 8, tiles_per_frame: int = 2, tile:
             label = np.zeros((tile, tile), np.float32)
             if k == 0:  # the first tile of a frame holds targets, the others none
                 for _ in range(int(rng.integers(1, 3))):
-                    cy, cx = rng.integers(12, tile - 12, 2)
+                    cy, cx = rng.integers(12, tile - 12, 2) + centre_offset_px
                     img[(yy - cy) ** 2 + (xx - cx) ** 2 <= 16] = (40, 45, 50)
                     label = np.maximum(label, np.exp(-((yy - cy) ** 2 + (xx - cx) ** 2) / (2 * sigma_px ** 2)))
                     geotag += 1
-                    rows.append([frame, f"frame_{frame}.jpg", geotag, "burrow", cx, cy, sigma_px, 20.0,
+                    rows.append([frame, f"frame_{frame}.jpg", geotag, class_name, cx, cy, sigma_px, 20.0,
                                  "review" if geotag % 3 == 0 else "survey"])
             name = f"{frame}_{k * tile}_0.png"
             cv2.imwrite(str(folder / "tiles" / "images" / name), np.clip(img, 0, 255).astype(np.uint8))
