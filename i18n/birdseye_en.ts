@@ -804,22 +804,22 @@ QGIS&apos;s own packages are not changed. pip downloads them from the Python Pac
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="266"/>
+        <location filename="../processing/algorithms/traindetector.py" line="270"/>
         <source>Training: {stage}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="268"/>
+        <location filename="../processing/algorithms/traindetector.py" line="272"/>
         <source>Training process {pid} started: torch {torch} on {device} ({threads} threads), backbone {backbone}.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="273"/>
+        <location filename="../processing/algorithms/traindetector.py" line="277"/>
         <source>{stage} step {step}: loss {loss:.4f}, validation {val} ({seconds:.0f} s)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="277"/>
+        <location filename="../processing/algorithms/traindetector.py" line="281"/>
         <source>Checkpoint written: {path} ({stage}, step {step})</source>
         <translation type="unfinished"></translation>
     </message>
@@ -3345,123 +3345,123 @@ exact</source>
 <context>
     <name>TrainDetector</name>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="47"/>
+        <location filename="../processing/algorithms/traindetector.py" line="44"/>
         <source>Train detector (heatmap model from training labels)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="85"/>
+        <location filename="../processing/algorithms/traindetector.py" line="82"/>
         <source>Training time budget (minutes)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="90"/>
+        <location filename="../processing/algorithms/traindetector.py" line="87"/>
         <source>Share of the frames held out for validation (0–0.5)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="93"/>
+        <location filename="../processing/algorithms/traindetector.py" line="90"/>
         <source>Random seed</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="99"/>
+        <location filename="../processing/algorithms/traindetector.py" line="96"/>
         <source>CPU threads for training (0: all cores)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="108"/>
+        <location filename="../processing/algorithms/traindetector.py" line="105"/>
         <source>Trained model (ONNX)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="110"/>
+        <location filename="../processing/algorithms/traindetector.py" line="107"/>
         <source>Model card (Markdown)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="111"/>
+        <location filename="../processing/algorithms/traindetector.py" line="108"/>
         <source>Loss curves (PNG)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="112"/>
+        <location filename="../processing/algorithms/traindetector.py" line="109"/>
         <source>Weights to fine-tune from (.pt)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="173"/>
+        <location filename="../processing/algorithms/traindetector.py" line="178"/>
         <source>Train detector needs PyTorch, which it runs in a separate Python process; no Python with torch, onnx and OpenCV was found ({tried}). In QGIS, choose {menu} and install the group '{group}' ({build} build); or install it yourself: {command}; or name a Python that has them (parameter {parameter}, or the environment variable {variable}) — for a virtual environment: &lt;venv&gt;/bin/python -m pip install &quot;torch=={torch}&quot; &quot;torchvision=={torchvision}&quot; onnx opencv-python-headless matplotlib</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="173"/>
+        <location filename="../processing/algorithms/traindetector.py" line="178"/>
         <source>none set up</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="184"/>
+        <location filename="../processing/algorithms/traindetector.py" line="189"/>
         <source>Training in {python} ({origin}): torch {torch}.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="220"/>
+        <location filename="../processing/algorithms/traindetector.py" line="224"/>
         <source>Cancelled by the user; no model was written.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="229"/>
+        <location filename="../processing/algorithms/traindetector.py" line="233"/>
         <source>The last checkpoint is kept: {path}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="234"/>
+        <location filename="../processing/algorithms/traindetector.py" line="238"/>
         <source>Wrote {model} (default threshold {threshold:g}), its model card and loss plot; training {train:.1f} s on {device}, {tiles_per_s:.1f} tiles/s; {overhead:.1f} s outside training (process start, loading tiles, validation, export; the first line came after {first:.1f} s).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="70"/>
+        <location filename="../processing/algorithms/traindetector.py" line="67"/>
         <source>Write-labels folders (with tiles)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="74"/>
+        <location filename="../processing/algorithms/traindetector.py" line="71"/>
         <source>Or one GSD for every frame (cm/px)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="77"/>
+        <location filename="../processing/algorithms/traindetector.py" line="74"/>
         <source>Network (small: from scratch)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="87"/>
-        <source>Model resolution (cm/px)</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../processing/algorithms/traindetector.py" line="72"/>
+        <location filename="../processing/algorithms/traindetector.py" line="69"/>
         <source>Frame layers (for each frame&apos;s GSD)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="79"/>
+        <location filename="../processing/algorithms/traindetector.py" line="76"/>
         <source>ImageNet weights of the encoder (.pth)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="82"/>
+        <location filename="../processing/algorithms/traindetector.py" line="79"/>
         <source>Earlier model to fine-tune (.pt, .onnx)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="96"/>
+        <location filename="../processing/algorithms/traindetector.py" line="93"/>
         <source>Default threshold (empty: held-out F1)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="101"/>
+        <location filename="../processing/algorithms/traindetector.py" line="98"/>
         <source>Python with PyTorch</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/traindetector.py" line="84"/>
+        <source>Model resolution (cm/px; empty: the earlier model&apos;s, else 1)</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
@@ -5060,14 +5060,14 @@ exact</source>
     </message>
     <message>
         <location filename="../resources/help/traindetector.md" line="11"/>
-        <source>- **LABELS** — Write training labels output folders written with a tile size (`tiles/images`, `tiles/labels`); pick the folder or any file in it (e.g. its `summary.json`). `labels.csv`&apos;s `provenance` column (survey, review), when present, is counted in the model card.
+        <source>- **LABELS** — Write training labels output folders written with a tile size (`tiles/images`, `tiles/labels`); pick the folder or any file in it (e.g. its `summary.json`); in a model or a script, a list of them, or text joining them with `;`. `labels.csv` decides which tiles hold a target (a label&apos;s u, v inside the tile); its `label` column names the model&apos;s class — the one class all labels share, or, since the heatmap has one output channel that cannot tell classes apart, every class joined by `+` (e.g. `burrow+nest`; the log says so). Its `provenance` column (survey, review), when present, is counted in the model card.
 - **FRAMES** — the frame layers the labels were written from: each frame&apos;s `gsd_cm` (ground sample distance, cm/px). One per labels folder in the same order, or one for all. Tiles of frames without a GSD are left out (counted in the log).
 - **GSD_CM** — instead of frame layers: one ground sample distance (cm/px) for every frame.
 - **BACKBONE** — `small` (the default): the recipe&apos;s own small encoder–decoder, trained from scratch, works offline. Or an ImageNet-pretrained torchvision encoder (EfficientNet B0–B3, EfficientNetV2-S, ResNet-18/34/50) under a light decoder; slower per step, better features for few labels.
 - **WEIGHTS** — the pretrained encoder&apos;s ImageNet weights (.pth, a torchvision state dict). Empty: torchvision&apos;s cache (`~/.cache/torch/hub/checkpoints`, the file name torchvision uses). Nothing is downloaded; when the file is in neither place the run stops and says which file to put where.
-- **INIT** — fine-tune from the weights (`&lt;model&gt;.pt`) of an earlier training with the same backbone, e.g. a model trained on simulated campaigns adapted to real labels. No ImageNet weights are needed then. A BirdsEye ONNX model of the small network (the bundled `birdseye_demo_heatmap.onnx`, or any model this algorithm wrote) serves too: its weights are read back from the ONNX graph and checked against onnxruntime&apos;s output; the batch norms the export folded into convolutions keep their statistics frozen while their scale and shift still learn.
+- **INIT** — fine-tune from the weights (`&lt;model&gt;.pt`) of an earlier training with the same backbone, e.g. a model trained on simulated campaigns adapted to real labels. No ImageNet weights are needed then. A BirdsEye ONNX model of the small network (the bundled `birdseye_demo_heatmap.onnx`, or any model this algorithm wrote) serves too: its weights are read back from the ONNX graph and checked against onnxruntime&apos;s output; the batch norms the export folded into convolutions keep their statistics frozen while their scale and shift still learn, and stay frozen when you fine-tune again from the `.pt` that run wrote. The new model keeps the earlier model&apos;s resolution and normalisation (mean, std, channel order); a `.pt` written by an older BirdsEye records neither, and the run then trains at RESOLUTION_CM normalised as a new model (the log says so).
 - **MINUTES** — training time budget in minutes (default 20); loading tiles, validation and export come on top.
-- **RESOLUTION_CM** — the model&apos;s resolution in cm/px (default 1.0).
+- **RESOLUTION_CM** — the model&apos;s resolution in cm/px. Empty (the default): the INIT model&apos;s, else 1.0. A value other than the INIT model&apos;s resolution is refused: its filters learnt targets of a size in pixels.
 - **VALIDATION_FRACTION** — share of the frames held out for validation, 0–0.5 (default 0.15). Neighbouring frames see the same ground, so these figures are optimistic: score the model on a flight it never saw with Evaluate detections.
 - **SEED** — random seed of the split, the crops and the initial weights.
 - **THRESHOLD** (advanced) — default threshold written into the model; empty: the highest threshold whose F1 on the held-out tiles is within one target&apos;s worth (1 / held-out targets) of the best, i.e. the fewest detections among F1 values the held-out tiles cannot tell apart (0.5 without targets there).
