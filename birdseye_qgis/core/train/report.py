@@ -139,7 +139,7 @@ def _preset_lines(settings: dict) -> list[str]:
 
 
 _ENDED_BY = {"steps": "its number of steps", "time budget": "the time budget",
-             "early stopping": "early stopping (no lower validation loss for the preset's patience)",
+             "early stopping": "early stopping (the preset's patience ran out without a lower loss)",
              "stopped": "a cancel"}
 
 
