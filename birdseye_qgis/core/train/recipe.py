@@ -17,7 +17,9 @@ Networks (:data:`BACKBONES`):
 Training: binary cross-entropy on the soft labels of ``writelabels`` (values / 255), each pixel weighted
 by ``1 + POSITIVE_WEIGHT·label``; first with the encoder frozen (decoder and head learn to read its
 features), then fine-tuning every layer with a cosine-decaying learning rate; on a time budget or a
-fixed number of steps; on the GPU when torch sees one.
+fixed number of steps; on the GPU when torch sees one. That is the ``fast`` preset; a
+:class:`.preset.TrainingPreset` (``method``: the published method's recipe) sets every one of these
+choices differently, and :func:`train_network` reads them from it.
 """
 from __future__ import annotations
 
