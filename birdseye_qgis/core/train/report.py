@@ -31,8 +31,10 @@ def plot_losses(history: dict, path) -> Path:
     change = next((seconds[i] for i in range(1, len(stages)) if stages[i] != stages[i - 1]), None)
     if change is not None:
         ax.axvline(change, color="0.6", ls="--", lw=1)
-        ax.annotate("encoder unfrozen", (change, 1.0), xycoords=("data", "axes fraction"), ha="left", va="top",
-                    fontsize=8, color="0.4")
+        top, blocks = history.get("unfrozen_blocks"), history.get("encoder_blocks")
+        text = f"top {top}/{blocks} encoder blocks unfrozen" if top and blocks and top < blocks else "encoder unfrozen"
+        ax.annotate(text, (change, 0.5), xycoords=("data", "axes fraction"), xytext=(-3, 0),
+                    textcoords="offset points", rotation=90, ha="right", va="center", fontsize=8, color="0.4")
     ax.set_xlabel("training time (s)")
     ax.set_ylabel(history.get("loss_name") or "weighted binary cross-entropy")
     ax.set_title("Train detector: loss curves")

@@ -182,6 +182,7 @@ def test_a_method_job_without_weights_trains_from_random_init_and_the_card_says_
     """The job with the method preset (its crop and batch made tiny): the frames' own resolution, random
     initialisation named plainly, the preset and its settings and what ended the run in card and JSON."""
     monkeypatch.setattr(torch.hub, "get_dir", lambda: str(tmp_path / "hub"))  # no cached ImageNet weights
+    monkeypatch.setattr(torch.hub, "load_state_dict_from_url", lambda *a, **k: pytest.fail("a download"))
     monkeypatch.setattr(job_module, "find_preset", lambda name: dataclasses.replace(METHOD, crop_px=32, batch=4))
     labels = make_label_folder(tmp_path / "labels", n_frames=6)
     job = TrainJob(sources=[Source(str(labels), gsd_default=0.5)], out=str(tmp_path / "m.onnx"), steps=4,
@@ -196,3 +197,21 @@ def test_a_method_job_without_weights_trains_from_random_init_and_the_card_says_
     assert "Method (EfficientNetV2, two stages, AdamW 1e-5, early stopping)" in card
     assert "NOT ImageNet-pretrained" in card and "EfficientNetV2-B3" in card and "not resampled" in card
     assert "AdamW" in card and "15 epochs" in card and "ended by" in card
+
+
+def test_a_method_job_takes_the_encoder_weights_from_a_local_file(tmp_path, monkeypatch):
+    """WEIGHTS (a torchvision efficientnet_v2_s state dict made here, standing in for ImageNet's): loaded,
+    named in the card, and the pretrained encoder's batch norms kept in inference mode."""
+    monkeypatch.setattr(torch.hub, "load_state_dict_from_url", lambda *a, **k: pytest.fail("a download"))
+    monkeypatch.setattr(job_module, "find_preset", lambda name: dataclasses.replace(METHOD, crop_px=32, batch=4))
+    tv = recipe.import_torchvision()
+    torch.manual_seed(2)
+    weights = tmp_path / "efficientnet_v2_s_random.pth"
+    torch.save(tv.models.efficientnet_v2_s(weights=None).state_dict(), weights)
+    labels = make_label_folder(tmp_path / "labels", n_frames=4)
+    job = TrainJob(sources=[Source(str(labels), gsd_default=1.0)], out=str(tmp_path / "w.onnx"), steps=2,
+                   val_fraction=0.0, threads=2, preset="method", weights=str(weights))
+    result = run_job(job)
+    assert result["settings"]["encoder_start"] == f"ImageNet weights from {weights}"
+    assert result["history"]["batchnorm_frozen"] and result["history"]["monitor"] == "training loss"
+    assert f"ImageNet weights from {weights}" in Path(result["card"]).read_text()
