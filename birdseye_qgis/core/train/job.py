@@ -223,6 +223,8 @@ def run_job(job: TrainJob, emit: Callable[[dict], None] = lambda event: None,
                                    preset=preset, encoder_pretrained=pretrained or bool(job.init))
     if history["stopped"]:
         return _stopped(job, emit, history)
+    message("; ".join(f"stage {s['stage']}: {s['steps']} steps, ended by {report.ENDED_BY.get(s['ended_by'])}"
+                      for s in history["stages"]))
     emit({"type": "progress", "stage": "validating", "fraction": 0.93})
     figures = recipe.validation_figures(net, val, meta) if val is not None and len(val) else None
     threshold = job.threshold if job.threshold is not None else recipe.best_threshold(figures)

@@ -140,7 +140,8 @@ def _preset_lines(settings: dict) -> list[str]:
     return lines
 
 
-_ENDED_BY = {"steps": "its number of steps", "time budget": "the time budget",
+#: What ended a training stage (``history["stages"][i]["ended_by"]``), in words.
+ENDED_BY = {"steps": "its number of steps", "time budget": "the time budget",
              "early stopping": "early stopping (the preset's patience ran out without a lower loss)",
              "stopped": "a cancel"}
 
@@ -155,6 +156,6 @@ def _stage_lines(history: dict) -> list[str]:
         best = (f"; best epoch {s['best_epoch']} ({history.get('monitor')} {_fmt(s['best_loss'], 4)})"
                 + (", its weights restored" if s.get("restored_best") else "")) if s.get("best_epoch") else ""
         lines.append(f"- Stage `{s['stage']}`: {s['steps']} steps, epochs {s['epochs']}, ended by "
-                     f"{_ENDED_BY.get(s['ended_by'], s['ended_by'])}{best}.")
-    lines.append(f"- The run was ended by {_ENDED_BY.get(history.get('ended_by'), history.get('ended_by'))}.")
+                     f"{ENDED_BY.get(s['ended_by'], s['ended_by'])}{best}.")
+    lines.append(f"- The run was ended by {ENDED_BY.get(history.get('ended_by'), history.get('ended_by'))}.")
     return lines
