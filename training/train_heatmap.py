@@ -64,6 +64,7 @@ _plugin_on_path()
 from birdseye.birdseye_qgis.core.detect.detector import file_digest  # noqa: E402
 from birdseye.birdseye_qgis.core.errors import InputError  # noqa: E402
 from birdseye.birdseye_qgis.core.train.job import Source, TrainJob, run_job  # noqa: E402
+from birdseye.birdseye_qgis.core.train.preset import PRESETS  # noqa: E402
 from birdseye.birdseye_qgis.core.train.recipe import (  # noqa: E402,F401 — the recipe's names, as before
     BACKBONES,
     CROP_PX,
@@ -103,9 +104,9 @@ def cmd_train(args) -> None:
     job = TrainJob(sources=sources, out=args.out, backbone=args.backbone, weights=args.weights, init=args.init,
                    minutes=args.minutes, steps=args.steps, resolution_cm=args.resolution_cm,
                    val_fraction=args.val_fraction, seed=args.seed, threads=args.threads, threshold=args.threshold,
-                   width=args.width, producer="BirdsEye training/train_heatmap.py",
+                   width=args.width, producer="BirdsEye training/train_heatmap.py", preset=args.preset,
                    description=f"trained by training/train_heatmap.py on {', '.join(p.name for p in label_dirs)}")
-    print(f"training {args.backbone} for {args.minutes:g} min", flush=True)
+    print(f"training {args.backbone} (preset {args.preset}) for {args.minutes:g} min", flush=True)
     result = run_job(job, _print_event)
     out = Path(result["model"])
     print(f"wrote {out} ({out.stat().st_size / 1e6:.2f} MB), {result['weights']}, {result['card']}; "
@@ -386,6 +387,9 @@ def main(argv=None) -> None:
     t.add_argument("--threads", type=int, default=2)
     t.add_argument("--init", help="a .pt checkpoint of this recipe (same backbone) or a BirdsEye ONNX model of the "
                                   "small network to start from; its resolution and normalisation are kept")
+    t.add_argument("--preset", choices=[p.name for p in PRESETS], default="fast",
+                   help="fast (the recipe's own settings) or method (EfficientNetV2, frames' own GSD, two stages, "
+                        "AdamW 1e-5, plain cross-entropy, early stopping; sets the network and resolution)")
     t.add_argument("--out", required=True)
     t.set_defaults(func=cmd_train)
     d = sub.add_parser("demo", help="simulate campaigns, train, tune and validate the bundled demo model")

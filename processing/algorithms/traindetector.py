@@ -27,6 +27,7 @@ from ...birdseye_qgis import dependencies
 from ...birdseye_qgis.core.errors import Cancelled, InputError
 from ...birdseye_qgis.core.train.backbones import BACKBONES
 from ...birdseye_qgis.core.train.job import Source, TrainJob
+from ...birdseye_qgis.core.train.preset import PRESETS
 from ...birdseye_qgis.core.train.protocol import TrainingFailed, run_child
 from ...birdseye_qgis.qgis_enums import (
     FILE_BEHAVIOR_FILE,
@@ -38,6 +39,12 @@ from ...birdseye_qgis.qgis_enums import (
 )
 from .base import BirdsEyeAlgorithm
 
+#: PRESET's choices, in the order of core.train.preset.PRESETS (their titles, for translation).
+PRESET_LABELS = (
+    QT_TRANSLATE_NOOP("TrainDetector", "Fast (default)"),
+    QT_TRANSLATE_NOOP("TrainDetector", "Method (EfficientNetV2, two stages, AdamW 1e-5, early stopping)"),
+)
+
 
 class TrainDetector(BirdsEyeAlgorithm):
     ALG_ID = "traindetector"
@@ -46,6 +53,7 @@ class TrainDetector(BirdsEyeAlgorithm):
     LABELS = "LABELS"
     FRAMES = "FRAMES"
     GSD_CM = "GSD_CM"
+    PRESET = "PRESET"
     BACKBONE = "BACKBONE"
     WEIGHTS = "WEIGHTS"
     INIT = "INIT"
@@ -72,7 +80,11 @@ class TrainDetector(BirdsEyeAlgorithm):
             self.GSD_CM, self.tr("Or one GSD for every frame (cm/px)"), NUMBER_DOUBLE, optional=True,
             minValue=0.001))
         self.addParameter(QgsProcessingParameterEnum(
-            self.BACKBONE, self.tr("Network (small: from scratch)"), list(BACKBONES), defaultValue=0))
+            self.PRESET, self.tr("Training preset"), options=[self.tr(label) for label in PRESET_LABELS],
+            defaultValue=0))
+        self.addParameter(QgsProcessingParameterEnum(
+            self.BACKBONE, self.tr("Network (small: from scratch; the Method preset sets its own)"), list(BACKBONES),
+            defaultValue=0))
         self.addParameter(QgsProcessingParameterFile(
             self.WEIGHTS, self.tr("ImageNet weights of the encoder (.pth)"),
             FILE_BEHAVIOR_FILE, fileFilter="PyTorch weights (*.pth *.pt)", optional=True))
@@ -207,7 +219,8 @@ class TrainDetector(BirdsEyeAlgorithm):
             seed=self.parameterAsInt(parameters, self.SEED, context),
             threads=self.parameterAsInt(parameters, self.THREADS, context),
             threshold=self._optional_double(parameters, self.THRESHOLD, context),
-            producer="BirdsEye birdseye:traindetector")
+            producer="BirdsEye birdseye:traindetector",
+            preset=PRESETS[self.parameterAsEnum(parameters, self.PRESET, context)].name)
         python = self._python(parameters, context, feedback)
         Path(out).parent.mkdir(parents=True, exist_ok=True)
         with tempfile.TemporaryDirectory(prefix="birdseye-train-") as scratch:

@@ -215,3 +215,28 @@ def test_init_takes_the_earlier_models_resolution_and_refuses_another(birdseye_p
         run("traindetector", {**common, "INIT": first["OUTPUT_MODEL"], "RESOLUTION_CM": 1.0,
                               "OUTPUT_MODEL": str(tmp_path / "refused.onnx")})
     assert not (tmp_path / "refused.onnx").exists() and "torch" not in sys.modules
+
+
+def test_the_method_preset_trains_on_the_cpu_and_its_card_names_it(birdseye_provider, tmp_path, monkeypatch):
+    """PRESET 1 (the method): EfficientNetV2-S from random initialisation (no weights file, an empty torch
+    hub folder), at the frames' own GSD, a 3-second budget (a step or two of each stage); the card and
+    training JSON name the preset, its settings and what ended the run."""
+    from birdseye.birdseye_qgis.core.train.preset import PRESETS
+    from birdseye.processing.algorithms.traindetector import PRESET_LABELS
+
+    assert PRESET_LABELS == tuple(p.title for p in PRESETS), "PRESET lists core.train.preset.PRESETS in order"
+    monkeypatch.setenv("TORCH_HOME", str(tmp_path / "torch"))  # the child finds no cached ImageNet weights
+    labels = make_label_folder(tmp_path / "labels", n_frames=4)
+    out = tmp_path / "method.onnx"
+    result = run("traindetector", {"LABELS": [str(labels)], "GSD_CM": 0.5, "PRESET": 1, "MINUTES": 0.05,
+                                   "THREADS": 2, "PYTHON": TRAINING_PYTHON, "OUTPUT_MODEL": str(out)})
+    assert "torch" not in sys.modules and out.is_file()
+    report = json.loads(out.with_name("method.training.json").read_text(encoding="utf-8"))
+    settings, history = report["settings"], report["history"]
+    assert settings["preset"] == "method" and settings["backbone"] == "efficientnet_v2_s"
+    assert settings["resolution_cm"] == 0.5 and settings["crop_px"] == 224 and settings["positive_weight"] == 0
+    assert [s["stage"] for s in history["stages"]] == ["frozen-encoder", "fine-tune"]
+    assert history["ended_by"] in ("time budget", "early stopping") and history["unfrozen_blocks"] == 8
+    card = Path(result["MODEL_CARD"]).read_text(encoding="utf-8")
+    assert "**Method (EfficientNetV2, two stages, AdamW 1e-5, early stopping)** (`method`)" in card
+    assert "NOT ImageNet-pretrained" in card and "The run was ended by" in card and "not resampled" in card

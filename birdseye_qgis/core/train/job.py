@@ -13,12 +13,11 @@ figures). Every file is written under a temporary name and renamed.
 from __future__ import annotations
 
 import csv
-import dataclasses
 import json
 import os
 import platform
 import time
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, dataclass, field, replace
 from pathlib import Path
 from typing import Callable
 
@@ -26,6 +25,8 @@ import numpy as np
 
 from ..errors import InputError
 from . import recipe
+from .preset import TrainingPreset
+from .preset import preset as find_preset
 
 
 @dataclass
@@ -66,6 +67,8 @@ class TrainJob:
     description: str = ""
     producer: str = "BirdsEye heatmap recipe"
     extra: dict = field(default_factory=dict)
+    #: the training preset's name (:mod:`.preset`); jobs written before presets read as ``fast``
+    preset: str = "fast"
 
     def __post_init__(self):
         self.sources = [s if isinstance(s, Source) else Source(**s) for s in self.sources]
@@ -155,6 +158,8 @@ def run_job(job: TrainJob, emit: Callable[[dict], None] = lambda event: None,
     from . import report
 
     t_start = time.perf_counter()
+    preset = find_preset(job.preset)
+    job = replace(job, backbone=preset.backbone or job.backbone, batch=preset.batch or job.batch)
 
     def message(text: str) -> None:
         emit({"type": "message", "text": text})
@@ -167,12 +172,17 @@ def run_job(job: TrainJob, emit: Callable[[dict], None] = lambda event: None,
           "threads": threads, "backbone": job.backbone, "pid": os.getpid()})
     emit({"type": "progress", "stage": "loading tiles", "fraction": 0.0})
     init_input = recipe.init_model_input(job.init) if job.init else None  # INIT's resolution and normalisation
-    job = dataclasses.replace(job, resolution_cm=recipe.model_resolution(job.resolution_cm, init_input, job.init))
+    job = replace(job, resolution_cm=recipe.model_resolution(job.resolution_cm, init_input, job.init))
     if job.init and init_input is None:
         message(f"{job.init} records no resolution or normalisation (written before they were recorded): training "
                 f"at {job.resolution_cm:g} cm/px, normalised with the tiles' statistics")
     sources = [(s.folder, s.gsd_of()) for s in job.sources]
-    tiles = recipe.load_tiles(sources, job.resolution_cm, log=message, is_canceled=should_stop)
+    if preset.native_resolution:  # the frames' own GSD: the model runs at the training frames' median
+        tiles = recipe.load_native_tiles(sources, log=message, is_canceled=should_stop)
+        if tiles is not None:
+            job = replace(job, resolution_cm=round(float(np.median(tiles.source_gsd_cm)), 4))
+    else:
+        tiles = recipe.load_tiles(sources, job.resolution_cm, log=message, is_canceled=should_stop)
     if tiles is None:
         return _stopped(job, emit, None)
     train, val = recipe.split_tiles(tiles, job.val_fraction, job.seed)
@@ -191,7 +201,9 @@ def run_job(job: TrainJob, emit: Callable[[dict], None] = lambda event: None,
     if job.init and job.backbone != (recipe.checkpoint_backbone(job.init) or job.backbone):
         raise InputError(f"was trained with the backbone '{recipe.checkpoint_backbone(job.init)}', not "
                          f"'{job.backbone}'", source=job.init, field="INIT")
-    net = recipe.build_network(job.backbone, job.width, job.weights, pretrained=not job.init, log=message)
+    pretrained, encoder_start = _encoder_start(job, preset)
+    message(f"preset {preset.name}: {job.backbone}, {encoder_start}")
+    net = recipe.build_network(job.backbone, job.width, job.weights, pretrained=pretrained, log=message)
     if job.init:
         frozen = recipe.load_init(net, job.init)
         message(f"fine-tuning from {job.init} at {job.resolution_cm:g} cm/px"
@@ -216,9 +228,12 @@ def run_job(job: TrainJob, emit: Callable[[dict], None] = lambda event: None,
 
     history = recipe.train_network(net, train, meta, job.minutes, steps=job.steps, batch=job.batch, seed=job.seed,
                                    log=lambda text: None, val=val, should_stop=should_stop, checkpoint=checkpoint,
-                                   on_point=lambda record: emit({"type": "point", **record}), on_step=on_step)
+                                   on_point=lambda record: emit({"type": "point", **record}), on_step=on_step,
+                                   preset=preset, encoder_pretrained=pretrained or bool(job.init))
     if history["stopped"]:
         return _stopped(job, emit, history)
+    message("; ".join(f"stage {s['stage']}: {s['steps']} steps, ended by {report.ENDED_BY.get(s['ended_by'])}"
+                      for s in history["stages"]))
     emit({"type": "progress", "stage": "validating", "fraction": 0.93})
     figures = recipe.validation_figures(net, val, meta) if val is not None and len(val) else None
     threshold = job.threshold if job.threshold is not None else recipe.best_threshold(figures)
@@ -237,7 +252,7 @@ def run_job(job: TrainJob, emit: Callable[[dict], None] = lambda event: None,
         "checkpoint": None, "card": str(job.card_path), "plot": None, "report": str(job.report_path),
         "device": str(dev), "torch": torch.__version__, "threads": threads, "parameters": n_params,
         "threshold": threshold, "threshold_rule": threshold_rule, "data": data, "validation": figures,
-        "history": history, "settings": _settings(job),
+        "history": history, "settings": _settings(job, preset, encoder_start),
         "metadata": {k: json.loads(v) for k, v in meta.to_props().items()},
         "seconds": {"train": history["train_seconds"], "total": round(time.perf_counter() - t_start, 1)},
     }
@@ -253,11 +268,34 @@ def run_job(job: TrainJob, emit: Callable[[dict], None] = lambda event: None,
     return result
 
 
-def _settings(job: TrainJob) -> dict:
+def _settings(job: TrainJob, preset: TrainingPreset, encoder_start: str) -> dict:
     return {"backbone": job.backbone, "weights": job.weights, "init": job.init, "minutes": job.minutes,
             "steps": job.steps, "resolution_cm": job.resolution_cm, "validation_fraction": job.val_fraction,
-            "seed": job.seed, "batch": job.batch, "crop_px": recipe.CROP_PX, "width": job.width,
-            "tile_size": recipe.TILE_SIZE, "positive_weight": recipe.POSITIVE_WEIGHT}
+            "seed": job.seed, "batch": job.batch, "crop_px": preset.crop_px, "width": job.width,
+            "tile_size": recipe.TILE_SIZE, "positive_weight": preset.positive_weight,
+            "preset": preset.name, "preset_settings": preset.settings(), "encoder_start": encoder_start,
+            "native_resolution": preset.native_resolution}
+
+
+def _encoder_start(job: TrainJob, preset: TrainingPreset) -> tuple[bool, str]:
+    """(load ImageNet weights into the encoder, how the encoder starts — for the log and the model card).
+
+    A preset with ``random_init_without_weights`` trains from random initialisation when no weights file is
+    named and torchvision's cache has none; any other run without them stops (:func:`.recipe.build_network`).
+    """
+    if job.init:
+        return False, f"fine-tuned from {job.init}"
+    if job.backbone == "small":
+        return False, "trained from scratch (random initialisation)"
+    if job.weights:
+        return True, f"ImageNet weights from {job.weights}"
+    cached, _ = recipe.cached_weights_path(job.backbone)
+    if cached.is_file():
+        return True, f"ImageNet weights from torchvision's cache ({cached})"
+    if preset.random_init_without_weights:
+        return False, ("random initialisation — NOT ImageNet-pretrained: no weights file was named and "
+                       f"torchvision's cache has no {cached.name}")
+    return True, "ImageNet weights"  # build_network stops, saying which file goes where
 
 
 def _stopped(job: TrainJob, emit, history) -> dict:

@@ -17,7 +17,9 @@ Networks (:data:`BACKBONES`):
 Training: binary cross-entropy on the soft labels of ``writelabels`` (values / 255), each pixel weighted
 by ``1 + POSITIVE_WEIGHT·label``; first with the encoder frozen (decoder and head learn to read its
 features), then fine-tuning every layer with a cosine-decaying learning rate; on a time budget or a
-fixed number of steps; on the GPU when torch sees one.
+fixed number of steps; on the GPU when torch sees one. That is the ``fast`` preset; a
+:class:`.preset.TrainingPreset` (``method``: the published method's recipe) sets every one of these
+choices differently, and :func:`train_network` reads them from it.
 """
 from __future__ import annotations
 
@@ -29,6 +31,7 @@ import sys
 import time
 import types
 from dataclasses import dataclass
+from dataclasses import replace as dataclass_replace
 from pathlib import Path
 from typing import Callable
 
@@ -39,16 +42,17 @@ from ..detect.model_metadata import ModelMetadata, embed_metadata
 from ..errors import InputError
 from .backbones import BACKBONES
 from .onnx_init import freeze_batch_norm_stats, frozen_batch_norms, is_onnx, load_onnx_init
+from .preset import FAST, TrainingPreset
 
 #: Defaults of the demo model (and of ``train``): see models/README.md for why.
 RESOLUTION_CM = 1.0
 TILE_SIZE = 288
 TILES_OVERLAP_PCT = 20.0
-CROP_PX = 96
+CROP_PX = FAST.crop_px
 WIDTH = 16
 #: Target pixels are ~0.1 % of a tile: weighting each pixel's cross-entropy by 1 + POSITIVE_WEIGHT·label
 #: keeps them from drowning in background (it does not move the optimum: still p = label per pixel).
-POSITIVE_WEIGHT = 10.0
+POSITIVE_WEIGHT = FAST.positive_weight
 #: ImageNet statistics (RGB) the pretrained encoders were trained with.
 IMAGENET_MEAN = (0.485, 0.456, 0.406)
 IMAGENET_STD = (0.229, 0.224, 0.225)
@@ -348,6 +352,41 @@ def label_class_names(label_dirs, log=print) -> tuple:
     return ("+".join(names),)
 
 
+def encoder_units(net) -> list:
+    """The encoder's blocks in forward order, down to single blocks: a stem, each inverted-residual block
+    of an EfficientNet stage, each residual block of a ResNet layer, each convolution of the small
+    network; modules without parameters (a max-pool) are left out. What a preset's unfrozen share counts."""
+    from torch import nn
+
+    units = []
+
+    def visit(module, top=False):
+        children = list(module.children())
+        weighted = [c for c in children if any(True for _ in c.parameters())]
+        of_blocks = weighted and all(any(True for _ in c.children()) for c in weighted)
+        if top or isinstance(module, nn.ModuleList) or (isinstance(module, nn.Sequential) and of_blocks):
+            for child in children:
+                visit(child)
+        elif any(True for _ in module.parameters()):
+            units.append(module)
+
+    visit(net.encoder, top=True)
+    return units
+
+
+def load_native_tiles(sources, log=print, is_canceled: Callable[[], bool] = lambda: False) -> "TileSet":
+    """Every tile pair of writelabels folders at its frame's own ground sample distance: no tile is
+    resampled (:func:`load_tiles` told that each frame's GSD is the model's); ``source_gsd_cm`` still
+    holds each tile's frame GSD. ``sources`` as for :func:`load_tiles`; None when cancelled."""
+    tiles = load_tiles([(folder, {frame: 1.0 for frame in gsd_of}) for folder, gsd_of in sources], 1.0,
+                       log=log, is_canceled=is_canceled)
+    if tiles is None:
+        return None
+    keys = [key.split(":", 1) for key in tiles.frame_key]
+    tiles.source_gsd_cm = np.asarray([sources[int(k)][1][frame] for k, frame in keys], float)
+    return tiles
+
+
 # ====================================================================================== data
 @dataclass
 class TileSet:
@@ -552,11 +591,14 @@ class Augmenter:
 
 
 # ====================================================================================== training
-def loss_fn(logits, target):
-    """Pixel-weighted binary cross-entropy on soft labels (weights normalised to mean 1)."""
+def loss_fn(logits, target, positive_weight: float = POSITIVE_WEIGHT):
+    """Binary cross-entropy on soft labels, each pixel weighted 1 + ``positive_weight``·label (weights
+    normalised to mean 1); plain, unweighted binary cross-entropy for ``positive_weight`` 0."""
     import torch
 
-    weight = 1.0 + POSITIVE_WEIGHT * target
+    if not positive_weight:
+        return torch.nn.functional.binary_cross_entropy_with_logits(logits, target)
+    weight = 1.0 + positive_weight * target
     return torch.nn.functional.binary_cross_entropy_with_logits(logits, target, weight) / weight.mean()
 
 
@@ -597,42 +639,77 @@ def predict_tiles(net, tiles: TileSet, meta: ModelMetadata, limit: int | None = 
     return out
 
 
-def validation_loss(net, tiles: TileSet, meta: ModelMetadata, limit: int = 32) -> float:
-    """Mean loss over up to ``limit`` held-out tiles (no augmentation)."""
+def validation_loss(net, tiles: TileSet, meta: ModelMetadata, limit: int | None = 32,
+                    positive_weight: float = POSITIVE_WEIGHT) -> float:
+    """Mean loss (:func:`loss_fn`) over up to ``limit`` held-out tiles (None: all), no augmentation."""
     import torch
 
     pairs = predict_tiles(net, tiles, meta, limit)
-    return float(np.mean([loss_fn(torch.from_numpy(z), torch.from_numpy(y)).item() for z, y in pairs]))
+    return float(np.mean([loss_fn(torch.from_numpy(z), torch.from_numpy(y), positive_weight).item()
+                          for z, y in pairs]))
 
 
 def train_network(net, tiles: TileSet, meta: ModelMetadata, minutes: float, frozen_fraction: float = 0.2,
                   batch: int = 16, crop: int = CROP_PX, lr: float = 3e-3, seed: int = 0, steps: int | None = None,
                   log=print, val: TileSet | None = None, on_point: Callable[[dict], None] | None = None,
                   on_step: Callable[[dict], None] | None = None, should_stop: Callable[[], bool] = lambda: False,
-                  checkpoint: Callable[[str, int], None] | None = None, checkpoint_every_s: float = 30.0) -> dict:
-    """Two stages on a time budget (or a fixed number of ``steps``): encoder frozen, then all layers.
+                  checkpoint: Callable[[str, int], None] | None = None, checkpoint_every_s: float = 30.0,
+                  preset: TrainingPreset | None = None, encoder_pretrained: bool = True) -> dict:
+    """Two stages on a time budget (or a fixed number of ``steps``): encoder frozen, then all layers
+    (or the top share of its blocks, :func:`encoder_units`).
 
-    The encoder's weights are frozen in stage 1 (its batch-norm statistics still follow the data);
-    stage 2 fine-tunes everything with a cosine-decaying learning rate. A point of the loss history is
-    taken every 50 steps or every few seconds of a short budget, and at each stage's end, with the
-    validation loss on ``val`` (when given); ``on_point`` receives each, ``on_step`` every step's
-    progress, ``checkpoint(stage, step)`` is called at most every ``checkpoint_every_s`` and at each
-    stage's end. ``should_stop()`` ends training early (history["stopped"]). Returns the history.
+    ``preset`` (:class:`.preset.TrainingPreset`) fixes the crop, batch (unless None), stage split, unfrozen
+    share, optimiser, learning rates and schedule, loss and early stopping; without one, the ``fast``
+    preset with ``frozen_fraction``, ``crop`` and ``lr``. The encoder's weights are frozen in stage 1; its
+    batch-norm statistics follow the data unless the preset freezes them and the encoder starts from
+    trained weights (``encoder_pretrained``). A point of the loss history is taken every 50 steps or every
+    few seconds of a short budget and at each stage's end, with the validation loss on ``val`` (when
+    given) — with early stopping instead at each epoch's end (one pass over ``tiles``). A stage with
+    early stopping ends after ``patience_epochs`` epochs without a lower validation loss (training loss
+    without ``val``) and, with ``restore_best``, ends on its best epoch's weights. ``on_point`` receives
+    each point, ``on_step`` every step's progress, ``checkpoint(stage, step)`` is called at most every
+    ``checkpoint_every_s`` and at each stage's end. ``should_stop()`` ends training early
+    (history["stopped"]). Returns the history; ``history["stages"]`` says what ended each stage
+    (``time budget``, ``steps``, ``early stopping``, ``stopped``) and ``history["ended_by"]`` the run.
     """
+    import copy
+
     import torch
 
+    if preset is None:
+        preset = dataclass_replace(FAST, frozen_fraction=frozen_fraction, crop_px=crop, lr=lr)
+    batch = preset.batch or batch
+    crop = preset.crop_px
+    frozen_fraction = preset.frozen_fraction
     torch.manual_seed(seed)
     dev = next(net.parameters()).device
     aug = Augmenter(tiles, meta, crop, seed)
-    history = {"stage": [], "step": [], "loss": [], "val_loss": [], "seconds": [], "stopped": False}
+    history = {"stage": [], "step": [], "loss": [], "val_loss": [], "seconds": [], "stopped": False,
+               "stages": [], "loss_name": preset.loss_name()}
     start = time.perf_counter()
     budget = minutes * 60.0
     point_s = max(1.0, min(15.0, budget / 30.0))
     last_checkpoint = [start]
     total_steps = [0]
+    units = encoder_units(net)
+    n_top = len(units) if preset.unfrozen_fraction >= 1 else max(1, int(round(preset.unfrozen_fraction * len(units))))
+    steps_per_epoch = max(1, math.ceil(len(tiles) / batch))
+    patience = preset.patience_epochs
+    freeze_bn = preset.freeze_batchnorm and encoder_pretrained
+    history.update(encoder_blocks=len(units), unfrozen_blocks=n_top, steps_per_epoch=steps_per_epoch,
+                   batchnorm_frozen=freeze_bn,
+                   monitor=None if patience is None else ("validation loss" if val is not None and len(val)
+                                                           else "training loss"))
 
-    def point(name, step, smoothed):
-        val_loss = None if val is None else round(validation_loss(net, val, meta), 5)
+    def val_loss_now():
+        if val is None or not len(val):
+            return None
+        value = round(validation_loss(net, val, meta, preset.validation_tiles, preset.positive_weight), 5)
+        set_modes()  # predict_tiles put every batch norm back into training mode
+        return value
+
+    def point(name, step, smoothed, val_loss="measure"):
+        val_loss = val_loss_now() if val_loss == "measure" else val_loss
         record = {"stage": name, "step": step, "loss": round(smoothed, 5), "val_loss": val_loss,
                   "seconds": round(time.perf_counter() - start, 1)}
         for key, value in record.items():
@@ -642,22 +719,33 @@ def train_network(net, tiles: TileSet, meta: ModelMetadata, minutes: float, froz
         if on_point is not None:
             on_point(record)
 
+    def set_modes():
+        net.train()
+        if freeze_bn:
+            for module in net.encoder.modules():
+                if isinstance(module, torch.nn.modules.batchnorm._BatchNorm):
+                    module.eval()
+
     def run_stage(name, params, stage_steps, stage_seconds, lr0, base_fraction, stage_share):
-        opt = torch.optim.AdamW(params, lr=lr0, weight_decay=1e-4)
+        opt = torch.optim.AdamW(params, lr=lr0, betas=tuple(preset.betas), weight_decay=preset.weight_decay)
         t0 = time.perf_counter()
         last_point = t0
         step, smoothed = 0, None
-        net.train()
+        epoch, best, best_epoch, best_step, wait, best_state, epoch_losses = 0, math.inf, 0, 0, 0, None, []
+        ended_by = "steps" if stage_steps is not None else "time budget"
+        set_modes()
         while (step < stage_steps) if stage_steps is not None else (time.perf_counter() - t0 < stage_seconds):
             if should_stop():
                 history["stopped"] = True
+                ended_by = "stopped"
                 break
-            frac = (step / stage_steps) if stage_steps else (time.perf_counter() - t0) / stage_seconds
-            for group in opt.param_groups:
-                group["lr"] = lr0 * 0.5 * (1.0 + math.cos(math.pi * min(1.0, frac))) + 1e-5
+            if preset.schedule == "cosine":
+                frac = (step / stage_steps) if stage_steps else (time.perf_counter() - t0) / stage_seconds
+                for group in opt.param_groups:
+                    group["lr"] = lr0 * 0.5 * (1.0 + math.cos(math.pi * min(1.0, frac))) + 1e-5
             x, y = aug.batch(batch)
             logits = net(torch.from_numpy(x).to(dev))
-            loss = loss_fn(logits, torch.from_numpy(y).to(dev))
+            loss = loss_fn(logits, torch.from_numpy(y).to(dev), preset.positive_weight)
             opt.zero_grad()
             loss.backward()
             opt.step()
@@ -670,31 +758,69 @@ def train_network(net, tiles: TileSet, meta: ModelMetadata, minutes: float, froz
                 on_step({"stage": name, "step": step, "loss": round(smoothed, 5),
                          "fraction": round(base_fraction + stage_share * min(1.0, done), 4),
                          "tiles_per_s": round(total_steps[0] * batch / max(now - start, 1e-9), 2)})
-            if step % 50 == 0 or (stage_steps is None and now - last_point >= point_s):
+            if patience is not None:
+                epoch_losses.append(loss.item())
+                if step % steps_per_epoch == 0:  # an epoch's end: one pass over the training tiles
+                    epoch += 1
+                    val_loss = val_loss_now()
+                    point(name, step, smoothed, val_loss)
+                    monitored = float(np.mean(epoch_losses)) if val_loss is None else val_loss
+                    epoch_losses = []
+                    if monitored < best:
+                        best, best_epoch, best_step, wait = monitored, epoch, step, 0
+                        if preset.restore_best:
+                            best_state = copy.deepcopy(net.state_dict())
+                    else:
+                        wait += 1
+                        if wait >= patience:
+                            ended_by = "early stopping"
+                            break
+            elif step % 50 == 0 or (stage_steps is None and now - last_point >= point_s):
                 point(name, step, smoothed)
                 last_point = time.perf_counter()
             if checkpoint is not None and time.perf_counter() - last_checkpoint[0] >= checkpoint_every_s:
                 checkpoint(name, step)
                 last_checkpoint[0] = time.perf_counter()
-        if step and (not history["step"] or history["stage"][-1] != name or history["step"][-1] != step):
+        restored = best_state is not None and ended_by != "stopped" and best_step != step
+        if restored:
+            net.load_state_dict(best_state)
+            log(f"  {name}: the weights of epoch {best_epoch} (lowest {history['monitor']}) restored")
+        if step and (restored or not history["step"] or history["stage"][-1] != name or history["step"][-1] != step):
             point(name, step, smoothed)
         if checkpoint is not None and step:
             checkpoint(name, step)
             last_checkpoint[0] = time.perf_counter()
+        history["stages"].append({"stage": name, "steps": step, "epochs": epoch if patience is not None
+                                  else round(step / steps_per_epoch, 2), "ended_by": ended_by,
+                                  "best_epoch": best_epoch if patience is not None else None,
+                                  "best_loss": None if best == math.inf else round(best, 5),
+                                  "restored_best": restored, "lr": lr0,
+                                  "seconds": round(time.perf_counter() - t0, 1)})
         return step
 
     for p in net.encoder.parameters():
         p.requires_grad_(False)
     n1 = None if steps is None else max(1, int(steps * frozen_fraction))
     history["frozen_steps"] = run_stage("frozen-encoder", net.decoder_parameters(), n1, budget * frozen_fraction,
-                                        lr, 0.0, frozen_fraction)
-    for p in net.encoder.parameters():
-        p.requires_grad_(True)
+                                        preset.lr, 0.0, frozen_fraction)
+    # Stage 2: the top n_top encoder blocks learn with the decoder (every block: every parameter).
+    for unit in units[len(units) - n_top:]:
+        for p in unit.parameters():
+            p.requires_grad_(True)
+    if n_top == len(units):
+        for p in net.encoder.parameters():
+            p.requires_grad_(True)
     history["finetune_steps"] = 0
     if not history["stopped"]:
-        n2 = None if steps is None else steps - n1
-        history["finetune_steps"] = run_stage("fine-tune", list(net.parameters()), n2, budget * (1 - frozen_fraction),
-                                              lr / 3, frozen_fraction, 1 - frozen_fraction)
+        n2 = None if steps is None else steps - history["frozen_steps"]
+        # a stage 1 ended early leaves its unused time to stage 2
+        seconds2 = max(budget * (1 - frozen_fraction), budget - (time.perf_counter() - start))
+        params = list(net.parameters()) if n_top == len(units) else [p for p in net.parameters() if p.requires_grad]
+        history["finetune_steps"] = run_stage("fine-tune", params, n2, seconds2, preset.lr * preset.finetune_lr_factor,
+                                              frozen_fraction, 1 - frozen_fraction)
+    for p in net.encoder.parameters():
+        p.requires_grad_(True)
+    history["ended_by"] = history["stages"][-1]["ended_by"] if history["stages"] else None
     history["train_seconds"] = round(time.perf_counter() - start, 1)
     history["batch"] = batch
     history["crop_px"] = crop

@@ -31,10 +31,12 @@ def plot_losses(history: dict, path) -> Path:
     change = next((seconds[i] for i in range(1, len(stages)) if stages[i] != stages[i - 1]), None)
     if change is not None:
         ax.axvline(change, color="0.6", ls="--", lw=1)
-        ax.annotate("encoder unfrozen", (change, 1.0), xycoords=("data", "axes fraction"), ha="left", va="top",
-                    fontsize=8, color="0.4")
+        top, blocks = history.get("unfrozen_blocks"), history.get("encoder_blocks")
+        text = f"top {top}/{blocks} encoder blocks unfrozen" if top and blocks and top < blocks else "encoder unfrozen"
+        ax.annotate(text, (change, 0.5), xycoords=("data", "axes fraction"), xytext=(-3, 0),
+                    textcoords="offset points", rotation=90, ha="right", va="center", fontsize=8, color="0.4")
     ax.set_xlabel("training time (s)")
-    ax.set_ylabel("weighted binary cross-entropy")
+    ax.set_ylabel(history.get("loss_name") or "weighted binary cross-entropy")
     ax.set_title("Train detector: loss curves")
     ax.grid(True, alpha=0.3)
     ax.legend(loc="upper right", fontsize=8)
@@ -58,8 +60,10 @@ def model_card(result: dict) -> str:
              result["metadata"].get("description", ""), "",
              "## Data", "",
              f"- Tiles: {data['tiles']} ({data['positive_tiles']} with a target, {data['negative_tiles']} without), "
-             f"native ground sample distance {data['native_gsd_cm']} cm/px (median), resampled to "
-             f"{settings['resolution_cm']:g} cm/px.",
+             f"native ground sample distance {data['native_gsd_cm']} cm/px (median), "
+             + ("kept at each frame's own ground sample distance (not resampled); the model runs at the median, "
+                f"{settings['resolution_cm']:g} cm/px." if settings.get("native_resolution")
+                else f"resampled to {settings['resolution_cm']:g} cm/px."),
              f"- Training: {data['training_tiles']} tiles; validation: {data['validation_tiles']} tiles "
              f"({data['validation_positive_tiles']} with a target) — {settings['validation_fraction']:.0%} of the "
              "frames held out with all their tiles.", ""]
@@ -70,21 +74,23 @@ def model_card(result: dict) -> str:
                          for p, v in sorted((f.get("provenance") or {}).items())) or "–"
         lines.append(f"| `{f['folder']}` | {f['tiles']} | {f.get('labels', '–')} | {prov} | "
                      f"{f.get('hard_negative_tiles', '–')} |")
-    lines += ["", "## Settings", "",
-              f"- Network: `{settings['backbone']}` ({result['parameters']:,} parameters)"
-              + (f", ImageNet weights from `{settings['weights']}`" if settings.get("weights") else "")
-              + (f", fine-tuned from `{settings['init']}`" if settings.get("init") else "") + ".",
+    lines += ["", "## Settings", ""] + _preset_lines(settings)
+    lines += [f"- Network: `{settings['backbone']}` ({result['parameters']:,} parameters)"
+              + (f"; encoder: {settings['encoder_start']}" if settings.get("encoder_start") else
+                 (f", ImageNet weights from `{settings['weights']}`" if settings.get("weights") else "")
+                 + (f", fine-tuned from `{settings['init']}`" if settings.get("init") else "")) + ".",
               f"- Budget: {settings['minutes']:g} min"
               + (f" ({settings['steps']} steps)" if settings.get("steps") else "")
               + f"; batch {settings['batch']} crops of {settings['crop_px']} px; seed {settings['seed']}; "
-              f"positive weight {settings['positive_weight']:g}.",
+              + (f"positive weight {settings['positive_weight']:g}." if settings['positive_weight'] else
+                 "plain binary cross-entropy (no positive weight)."),
               f"- Model tiles {settings['tile_size']} px at {settings['resolution_cm']:g} cm/px; default threshold "
               f"{result['threshold']:g} ({result['threshold_rule']}).", "",
               "## Training", "",
               f"- Device: {result['device']} (torch {result['torch']}, {result['threads']} threads).",
               f"- Time: {result['seconds']['train']:.1f} s training, {result['seconds']['total']:.1f} s in all; "
               f"{history['frozen_steps']} steps with the encoder frozen, {history['finetune_steps']} fine-tuning; "
-              f"{history['tiles_per_s']:.1f} tiles/s.",
+              f"{history['tiles_per_s']:.1f} tiles/s.", *_stage_lines(history),
               f"- Final loss: training {_fmt(history['loss'][-1] if history['loss'] else None, 4)}, validation "
               f"{_fmt(history['val_loss'][-1] if history['val_loss'] else None, 4)}.", ""]
     figures = result.get("validation")
@@ -109,3 +115,47 @@ def model_card(result: dict) -> str:
         plot = Path(result["plot"]).name
         lines += [f"- `{plot}`: the loss curves.", "", f"![loss curves]({plot})"]
     return "\n".join(lines) + "\n"
+
+
+def _preset_lines(settings: dict) -> list[str]:
+    """The preset and what it fixed (runs written before presets: nothing)."""
+    p = settings.get("preset_settings")
+    if not p:
+        return []
+    stage2 = ("every layer" if p["unfrozen_fraction"] >= 1
+              else f"the top {p['unfrozen_fraction']:.0%} of the encoder's blocks unfrozen")
+    stopping = "each stage runs its share of the budget"
+    if p["patience_epochs"]:
+        stopping = (f"each stage ends after {p['patience_epochs']} epochs (passes over the training tiles) without a "
+                    "lower validation loss" + (", back on its best epoch's weights" if p["restore_best"] else "")
+                    + ", or at its share of the budget")
+    lines = [f"- Preset: **{p['title']}** (`{p['name']}`): stage 1 with the encoder frozen "
+             f"({p['frozen_fraction']:.0%} of the budget), stage 2 with {stage2}; {p['optimizer']} at "
+             f"{p['lr']:g}" + ("" if p["finetune_lr_factor"] == 1 else f" (stage 2: ×{p['finetune_lr_factor']:.3g})")
+             + f", β {p['betas'][0]:g}/{p['betas'][1]:g}, weight decay {p['weight_decay']:g}, {p['schedule']} rate; "
+             f"loss: {p['loss']}; {stopping}."]
+    if p["name"] == "method" and p["backbone"] == "efficientnet_v2_s":
+        lines.append("- The method's encoder is EfficientNetV2-B3; torchvision offers EfficientNetV2 from S up, so "
+                     "this preset trains `efficientnet_v2_s`, the nearest, cut after its stride-16 stage.")
+    return lines
+
+
+#: What ended a training stage (``history["stages"][i]["ended_by"]``), in words.
+ENDED_BY = {"steps": "its number of steps", "time budget": "the time budget",
+             "early stopping": "early stopping (the preset's patience ran out without a lower loss)",
+             "stopped": "a cancel"}
+
+
+def _stage_lines(history: dict) -> list[str]:
+    """What ended each stage and the run (runs written before presets: nothing)."""
+    stages = history.get("stages")
+    if not stages:
+        return []
+    lines = []
+    for s in stages:
+        best = (f"; best epoch {s['best_epoch']} ({history.get('monitor')} {_fmt(s['best_loss'], 4)})"
+                + (", its weights restored" if s.get("restored_best") else "")) if s.get("best_epoch") else ""
+        lines.append(f"- Stage `{s['stage']}`: {s['steps']} steps, epochs {s['epochs']}, ended by "
+                     f"{ENDED_BY.get(s['ended_by'], s['ended_by'])}{best}.")
+    lines.append(f"- The run was ended by {ENDED_BY.get(history.get('ended_by'), history.get('ended_by'))}.")
+    return lines
