@@ -804,22 +804,22 @@ QGIS&apos;s own packages are not changed. pip downloads them from the Python Pac
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="270"/>
+        <location filename="../processing/algorithms/traindetector.py" line="283"/>
         <source>Training: {stage}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="272"/>
+        <location filename="../processing/algorithms/traindetector.py" line="285"/>
         <source>Training process {pid} started: torch {torch} on {device} ({threads} threads), backbone {backbone}.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="277"/>
+        <location filename="../processing/algorithms/traindetector.py" line="290"/>
         <source>{stage} step {step}: loss {loss:.4f}, validation {val} ({seconds:.0f} s)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="281"/>
+        <location filename="../processing/algorithms/traindetector.py" line="294"/>
         <source>Checkpoint written: {path} ({stage}, step {step})</source>
         <translation type="unfinished"></translation>
     </message>
@@ -3345,123 +3345,138 @@ exact</source>
 <context>
     <name>TrainDetector</name>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="44"/>
+        <location filename="../processing/algorithms/traindetector.py" line="51"/>
         <source>Train detector (heatmap model from training labels)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="82"/>
+        <location filename="../processing/algorithms/traindetector.py" line="94"/>
         <source>Training time budget (minutes)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="87"/>
+        <location filename="../processing/algorithms/traindetector.py" line="99"/>
         <source>Share of the frames held out for validation (0–0.5)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="90"/>
+        <location filename="../processing/algorithms/traindetector.py" line="102"/>
         <source>Random seed</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="96"/>
+        <location filename="../processing/algorithms/traindetector.py" line="108"/>
         <source>CPU threads for training (0: all cores)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="105"/>
+        <location filename="../processing/algorithms/traindetector.py" line="117"/>
         <source>Trained model (ONNX)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="107"/>
+        <location filename="../processing/algorithms/traindetector.py" line="119"/>
         <source>Model card (Markdown)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="108"/>
+        <location filename="../processing/algorithms/traindetector.py" line="120"/>
         <source>Loss curves (PNG)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="109"/>
+        <location filename="../processing/algorithms/traindetector.py" line="121"/>
         <source>Weights to fine-tune from (.pt)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="178"/>
+        <location filename="../processing/algorithms/traindetector.py" line="190"/>
         <source>Train detector needs PyTorch, which it runs in a separate Python process; no Python with torch, onnx and OpenCV was found ({tried}). In QGIS, choose {menu} and install the group '{group}' ({build} build); or install it yourself: {command}; or name a Python that has them (parameter {parameter}, or the environment variable {variable}) — for a virtual environment: &lt;venv&gt;/bin/python -m pip install &quot;torch=={torch}&quot; &quot;torchvision=={torchvision}&quot; onnx opencv-python-headless matplotlib</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="178"/>
+        <location filename="../processing/algorithms/traindetector.py" line="190"/>
         <source>none set up</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="189"/>
+        <location filename="../processing/algorithms/traindetector.py" line="201"/>
         <source>Training in {python} ({origin}): torch {torch}.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="224"/>
+        <location filename="../processing/algorithms/traindetector.py" line="237"/>
         <source>Cancelled by the user; no model was written.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="233"/>
+        <location filename="../processing/algorithms/traindetector.py" line="246"/>
         <source>The last checkpoint is kept: {path}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="238"/>
+        <location filename="../processing/algorithms/traindetector.py" line="251"/>
         <source>Wrote {model} (default threshold {threshold:g}), its model card and loss plot; training {train:.1f} s on {device}, {tiles_per_s:.1f} tiles/s; {overhead:.1f} s outside training (process start, loading tiles, validation, export; the first line came after {first:.1f} s).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="67"/>
+        <location filename="../processing/algorithms/traindetector.py" line="75"/>
         <source>Write-labels folders (with tiles)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="71"/>
+        <location filename="../processing/algorithms/traindetector.py" line="79"/>
         <source>Or one GSD for every frame (cm/px)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="74"/>
-        <source>Network (small: from scratch)</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../processing/algorithms/traindetector.py" line="69"/>
+        <location filename="../processing/algorithms/traindetector.py" line="77"/>
         <source>Frame layers (for each frame&apos;s GSD)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="76"/>
+        <location filename="../processing/algorithms/traindetector.py" line="88"/>
         <source>ImageNet weights of the encoder (.pth)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="79"/>
+        <location filename="../processing/algorithms/traindetector.py" line="91"/>
         <source>Earlier model to fine-tune (.pt, .onnx)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="93"/>
+        <location filename="../processing/algorithms/traindetector.py" line="105"/>
         <source>Default threshold (empty: held-out F1)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="98"/>
+        <location filename="../processing/algorithms/traindetector.py" line="110"/>
         <source>Python with PyTorch</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="84"/>
+        <location filename="../processing/algorithms/traindetector.py" line="96"/>
         <source>Model resolution (cm/px; empty: the earlier model&apos;s, else 1)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/traindetector.py" line="43"/>
+        <source>Fast (default)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/traindetector.py" line="43"/>
+        <source>Method (EfficientNetV2, two stages, AdamW 1e-5, early stopping)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/traindetector.py" line="82"/>
+        <source>Training preset</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/traindetector.py" line="85"/>
+        <source>Network (small: from scratch; the Method preset sets its own)</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
@@ -5050,24 +5065,30 @@ exact</source>
     </message>
     <message>
         <location filename="../resources/help/traindetector.md" line="7"/>
-        <source>Each tile is resampled from its frame&apos;s ground sample distance to the model&apos;s resolution, as the detector resamples frames. Training runs in two stages on the time budget: 20 % with the encoder frozen, then every layer fine-tuned, on random 96 px crops with flips, quarter turns, scale and colour jitter. A share of the frames is held out with all their tiles; the validation loss is followed while training and, at the end, detection figures per threshold are measured on them.</source>
+        <source>With the **Fast** preset (the default) each tile is resampled from its frame&apos;s ground sample distance to the model&apos;s resolution, as the detector resamples frames. Training runs in two stages on the time budget: 20 % with the encoder frozen, then every layer fine-tuned, on random 96 px crops with flips, quarter turns, scale and colour jitter. A share of the frames is held out with all their tiles; the validation loss is followed while training and, at the end, detection figures per threshold are measured on them.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
         <location filename="../resources/help/traindetector.md" line="9"/>
-        <source>## Parameters</source>
+        <source>The **Method** preset follows the published method&apos;s recipe instead: an EfficientNetV2 encoder under a transposed-convolution decoder, 224 × 224 crops of tiles kept at their frames&apos; own ground sample distance (no resampling), two stages (encoder frozen, then its top 30 % of blocks unfrozen), AdamW at 1e-5 (β 0.9/0.999), plain binary cross-entropy, and early stopping: a stage ends after 15 epochs (passes over the training tiles) without a lower validation loss and goes back to its best epoch&apos;s weights, or at its share of the time budget, whichever comes first — the model card says which ended it. The method names EfficientNetV2-B3; torchvision offers EfficientNetV2 from S up, so the preset trains `efficientnet_v2_s`, the nearest.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
         <location filename="../resources/help/traindetector.md" line="11"/>
+        <source>## Parameters</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../resources/help/traindetector.md" line="13"/>
         <source>- **LABELS** — Write training labels output folders written with a tile size (`tiles/images`, `tiles/labels`); pick the folder or any file in it (e.g. its `summary.json`); in a model or a script, a list of them, or text joining them with `;`. `labels.csv` decides which tiles hold a target (a label&apos;s u, v inside the tile); its `label` column names the model&apos;s class — the one class all labels share, or, since the heatmap has one output channel that cannot tell classes apart, every class joined by `+` (e.g. `burrow+nest`; the log says so). Its `provenance` column (survey, review), when present, is counted in the model card.
 - **FRAMES** — the frame layers the labels were written from: each frame&apos;s `gsd_cm` (ground sample distance, cm/px). One per labels folder in the same order, or one for all. Tiles of frames without a GSD are left out (counted in the log).
 - **GSD_CM** — instead of frame layers: one ground sample distance (cm/px) for every frame.
+- **PRESET** — *Fast (default)*: the settings described first above, with the BACKBONE and RESOLUTION_CM you choose. *Method (EfficientNetV2, two stages, AdamW 1e-5, early stopping)*: the method&apos;s recipe; it sets the network (`efficientnet_v2_s`, so BACKBONE is not used) and trains at the frames&apos; own GSD (RESOLUTION_CM is not used: the model runs at the training frames&apos; median GSD). Its ImageNet weights come from WEIGHTS or torchvision&apos;s cache only; without them the encoder starts from random initialisation and the model card says plainly that it is not ImageNet-pretrained. At 1e-5, with 224 px crops through a larger network, it needs many more steps than Fast: give it a long budget and let early stopping end it.
 - **BACKBONE** — `small` (the default): the recipe&apos;s own small encoder–decoder, trained from scratch, works offline. Or an ImageNet-pretrained torchvision encoder (EfficientNet B0–B3, EfficientNetV2-S, ResNet-18/34/50) under a light decoder; slower per step, better features for few labels.
 - **WEIGHTS** — the pretrained encoder&apos;s ImageNet weights (.pth, a torchvision state dict). Empty: torchvision&apos;s cache (`~/.cache/torch/hub/checkpoints`, the file name torchvision uses). Nothing is downloaded; when the file is in neither place the run stops and says which file to put where.
 - **INIT** — fine-tune from the weights (`&lt;model&gt;.pt`) of an earlier training with the same backbone, e.g. a model trained on simulated campaigns adapted to real labels. No ImageNet weights are needed then. A BirdsEye ONNX model of the small network (the bundled `birdseye_demo_heatmap.onnx`, or any model this algorithm wrote) serves too: its weights are read back from the ONNX graph and checked against onnxruntime&apos;s output; the batch norms the export folded into convolutions keep their statistics frozen while their scale and shift still learn, and stay frozen when you fine-tune again from the `.pt` that run wrote. The new model keeps the earlier model&apos;s resolution and normalisation (mean, std, channel order); a `.pt` written by an older BirdsEye records neither, and the run then trains at RESOLUTION_CM normalised as a new model (the log says so).
 - **MINUTES** — training time budget in minutes (default 20); loading tiles, validation and export come on top.
-- **RESOLUTION_CM** — the model&apos;s resolution in cm/px. Empty (the default): the INIT model&apos;s, else 1.0. A value other than the INIT model&apos;s resolution is refused: its filters learnt targets of a size in pixels.
+- **RESOLUTION_CM** — the model&apos;s resolution in cm/px. Empty (the default): the INIT model&apos;s, else 1.0. A value other than the INIT model&apos;s resolution is refused: its filters learnt targets of a size in pixels. Not used by the Method preset, which trains at the frames&apos; own GSD.
 - **VALIDATION_FRACTION** — share of the frames held out for validation, 0–0.5 (default 0.15). Neighbouring frames see the same ground, so these figures are optimistic: score the model on a flight it never saw with Evaluate detections.
 - **SEED** — random seed of the split, the crops and the initial weights.
 - **THRESHOLD** (advanced) — default threshold written into the model; empty: the highest threshold whose F1 on the held-out tiles is within one target&apos;s worth (1 / held-out targets) of the best, i.e. the fewest detections among F1 values the held-out tiles cannot tell apart (0.5 without targets there).
@@ -5076,14 +5097,14 @@ exact</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../resources/help/traindetector.md" line="25"/>
+        <location filename="../resources/help/traindetector.md" line="28"/>
         <source>## Outputs</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../resources/help/traindetector.md" line="27"/>
+        <location filename="../resources/help/traindetector.md" line="30"/>
         <source>- **OUTPUT_MODEL** — the ONNX model (written under a temporary name and renamed at the end: a cancelled or failed run leaves none).
-- **MODEL_CARD** — `&lt;model&gt;.md`: the data (folders, tiles, positives, negatives, targets by provenance), the settings, training time and device, validation figures per threshold (recall, precision, F1, false detections per tile).
+- **MODEL_CARD** — `&lt;model&gt;.md`: the data (folders, tiles, positives, negatives, targets by provenance), the preset and its settings, how the encoder started (ImageNet weights, or random initialisation), what ended each stage (time budget, early stopping), training time and device, validation figures per threshold (recall, precision, F1, false detections per tile).
 - **PLOT** — `&lt;model&gt;_loss.png`: training and validation loss against training time (s).
 - **CHECKPOINT** — `&lt;model&gt;.pt`: the final weights, for INIT.
 - **TILES, THRESHOLD_USED, TRAIN_SECONDS, TILES_PER_SECOND** — for models and scripts.</source>
