@@ -3455,18 +3455,8 @@ exact</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="96"/>
-        <source>Model resolution (cm/px; empty: the earlier model&apos;s, else 1)</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
         <location filename="../processing/algorithms/traindetector.py" line="43"/>
         <source>Fast (default)</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../processing/algorithms/traindetector.py" line="43"/>
-        <source>Method (EfficientNetV2, two stages, AdamW 1e-5, early stopping)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
@@ -3475,8 +3465,18 @@ exact</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
+        <location filename="../processing/algorithms/traindetector.py" line="43"/>
+        <source>Method (EfficientNetV2, two stages, AdamW)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
         <location filename="../processing/algorithms/traindetector.py" line="85"/>
-        <source>Network (small: from scratch; the Method preset sets its own)</source>
+        <source>Network (the Method preset sets its own)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/traindetector.py" line="96"/>
+        <source>Model resolution (cm/px; empty: automatic)</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
@@ -5083,7 +5083,7 @@ exact</source>
         <source>- **LABELS** — Write training labels output folders written with a tile size (`tiles/images`, `tiles/labels`); pick the folder or any file in it (e.g. its `summary.json`); in a model or a script, a list of them, or text joining them with `;`. `labels.csv` decides which tiles hold a target (a label&apos;s u, v inside the tile); its `label` column names the model&apos;s class — the one class all labels share, or, since the heatmap has one output channel that cannot tell classes apart, every class joined by `+` (e.g. `burrow+nest`; the log says so). Its `provenance` column (survey, review), when present, is counted in the model card.
 - **FRAMES** — the frame layers the labels were written from: each frame&apos;s `gsd_cm` (ground sample distance, cm/px). One per labels folder in the same order, or one for all. Tiles of frames without a GSD are left out (counted in the log).
 - **GSD_CM** — instead of frame layers: one ground sample distance (cm/px) for every frame.
-- **PRESET** — *Fast (default)*: the settings described first above, with the BACKBONE and RESOLUTION_CM you choose. *Method (EfficientNetV2, two stages, AdamW 1e-5, early stopping)*: the method&apos;s recipe; it sets the network (`efficientnet_v2_s`, so BACKBONE is not used) and trains at the frames&apos; own GSD (RESOLUTION_CM is not used: the model runs at the training frames&apos; median GSD). Its ImageNet weights come from WEIGHTS or torchvision&apos;s cache only; without them the encoder starts from random initialisation and the model card says plainly that it is not ImageNet-pretrained. At 1e-5, with 224 px crops through a larger network, it needs many more steps than Fast: give it a long budget and let early stopping end it.
+- **PRESET** — *Fast (default)*: the settings described first above, with the BACKBONE and RESOLUTION_CM you choose. *Method (EfficientNetV2, two stages, AdamW)*: the method&apos;s recipe; it sets the network (`efficientnet_v2_s`, so BACKBONE is not used) and trains at the frames&apos; own GSD (RESOLUTION_CM is not used: the model runs at the training frames&apos; median GSD). Its ImageNet weights come from WEIGHTS or torchvision&apos;s cache only; without them the encoder starts from random initialisation and the model card says plainly that it is not ImageNet-pretrained. At 1e-5, with 224 px crops through a larger network, it needs many more steps than Fast: give it a long budget and let early stopping end it.
 - **BACKBONE** — `small` (the default): the recipe&apos;s own small encoder–decoder, trained from scratch, works offline. Or an ImageNet-pretrained torchvision encoder (EfficientNet B0–B3, EfficientNetV2-S, ResNet-18/34/50) under a light decoder; slower per step, better features for few labels.
 - **WEIGHTS** — the pretrained encoder&apos;s ImageNet weights (.pth, a torchvision state dict). Empty: torchvision&apos;s cache (`~/.cache/torch/hub/checkpoints`, the file name torchvision uses). Nothing is downloaded; when the file is in neither place the run stops and says which file to put where.
 - **INIT** — fine-tune from the weights (`&lt;model&gt;.pt`) of an earlier training with the same backbone, e.g. a model trained on simulated campaigns adapted to real labels. No ImageNet weights are needed then. A BirdsEye ONNX model of the small network (the bundled `birdseye_demo_heatmap.onnx`, or any model this algorithm wrote) serves too: its weights are read back from the ONNX graph and checked against onnxruntime&apos;s output; the batch norms the export folded into convolutions keep their statistics frozen while their scale and shift still learn, and stay frozen when you fine-tune again from the `.pt` that run wrote. The new model keeps the earlier model&apos;s resolution and normalisation (mean, std, channel order); a `.pt` written by an older BirdsEye records neither, and the run then trains at RESOLUTION_CM normalised as a new model (the log says so).

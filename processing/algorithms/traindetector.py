@@ -42,7 +42,7 @@ from .base import BirdsEyeAlgorithm
 #: PRESET's choices, in the order of core.train.preset.PRESETS (their titles, for translation).
 PRESET_LABELS = (
     QT_TRANSLATE_NOOP("TrainDetector", "Fast (default)"),
-    QT_TRANSLATE_NOOP("TrainDetector", "Method (EfficientNetV2, two stages, AdamW 1e-5, early stopping)"),
+    QT_TRANSLATE_NOOP("TrainDetector", "Method (EfficientNetV2, two stages, AdamW)"),
 )
 
 
@@ -83,7 +83,7 @@ class TrainDetector(BirdsEyeAlgorithm):
             self.PRESET, self.tr("Training preset"), options=[self.tr(label) for label in PRESET_LABELS],
             defaultValue=0))
         self.addParameter(QgsProcessingParameterEnum(
-            self.BACKBONE, self.tr("Network (small: from scratch; the Method preset sets its own)"), list(BACKBONES),
+            self.BACKBONE, self.tr("Network (the Method preset sets its own)"), list(BACKBONES),
             defaultValue=0))
         self.addParameter(QgsProcessingParameterFile(
             self.WEIGHTS, self.tr("ImageNet weights of the encoder (.pth)"),
@@ -94,7 +94,7 @@ class TrainDetector(BirdsEyeAlgorithm):
         self.addParameter(QgsProcessingParameterNumber(
             self.MINUTES, self.tr("Training time budget (minutes)"), NUMBER_DOUBLE, 20.0, minValue=0.05))
         self.addParameter(QgsProcessingParameterNumber(
-            self.RESOLUTION_CM, self.tr("Model resolution (cm/px; empty: the earlier model's, else 1)"),
+            self.RESOLUTION_CM, self.tr("Model resolution (cm/px; empty: automatic)"),
             NUMBER_DOUBLE, optional=True, minValue=0.01))
         self.addParameter(QgsProcessingParameterNumber(
             self.VALIDATION_FRACTION, self.tr("Share of the frames held out for validation (0–0.5)"), NUMBER_DOUBLE,

@@ -238,5 +238,5 @@ def test_the_method_preset_trains_on_the_cpu_and_its_card_names_it(birdseye_prov
     assert [s["stage"] for s in history["stages"]] == ["frozen-encoder", "fine-tune"]
     assert history["ended_by"] in ("time budget", "early stopping") and history["unfrozen_blocks"] == 8
     card = Path(result["MODEL_CARD"]).read_text(encoding="utf-8")
-    assert "**Method (EfficientNetV2, two stages, AdamW 1e-5, early stopping)** (`method`)" in card
+    assert "**Method (EfficientNetV2, two stages, AdamW)** (`method`)" in card
     assert "NOT ImageNet-pretrained" in card and "The run was ended by" in card and "not resampled" in card

@@ -76,7 +76,7 @@ class TrainingPreset:
 FAST = TrainingPreset(name="fast", title="Fast (default)")
 
 METHOD = TrainingPreset(
-    name="method", title="Method (EfficientNetV2, two stages, AdamW 1e-5, early stopping)",
+    name="method", title="Method (EfficientNetV2, two stages, AdamW)",
     backbone="efficientnet_v2_s", random_init_without_weights=True, crop_px=224, native_resolution=True,
     frozen_fraction=0.5, unfrozen_fraction=0.3, freeze_batchnorm=True, optimizer="AdamW", lr=1e-5,
     finetune_lr_factor=1.0, betas=(0.9, 0.999), weight_decay=0.004, schedule="constant", positive_weight=0.0,

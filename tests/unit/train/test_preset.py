@@ -194,7 +194,7 @@ def test_a_method_job_without_weights_trains_from_random_init_and_the_card_says_
     assert settings["preset_settings"]["patience_epochs"] == 15 and settings["preset_settings"]["lr"] == 1e-5
     assert "NOT ImageNet-pretrained" in settings["encoder_start"]
     card = Path(result["card"]).read_text()
-    assert "Method (EfficientNetV2, two stages, AdamW 1e-5, early stopping)" in card
+    assert "Method (EfficientNetV2, two stages, AdamW)" in card
     assert "NOT ImageNet-pretrained" in card and "EfficientNetV2-B3" in card and "not resampled" in card
     assert "AdamW" in card and "15 epochs" in card and "ended by" in card
 
