@@ -5,13 +5,14 @@ ground as the product scores a flight.
 
 * ``blocks`` (default) — every target of every Write-labels folder (``targets.csv``) falls into a square ground
   block of side :data:`BLOCK_FOOTPRINTS` × the frames' footprint diagonal (median, from the frame records; without
-  them the 90th percentile of the largest distance between two targets one frame sees). Blocks are drawn in a
-  seeded random order until the held-out targets reach the held-out share (never every block). A frame that sees
+  them the 90th percentile of the largest distance between two targets one frame sees). Blocks are taken in a
+  seeded random order, each held out while its targets still fit under the held-out share of all targets (the
+  smallest block alone when none fits; never every block). A frame that sees
   (``labels.csv``) only held-out targets goes to validation, one that sees only training targets to training, one
   that sees both is dropped and counted; a frame that sees none follows the block of its footprint centre
   (without frame records: the side of the nearest frame, in frame order, that sees a target). A held-out block
   is held out in every folder, so two flights over one site never put a target on both sides.
-* ``flights`` — whole folders (one flight, or one frame layer, each) held out, drawn the same way by their
+* ``flights`` — whole folders (one flight, or one frame layer, each) held out, taken the same way by their
   targets; needs two folders or more. Targets of the same id in a training and a held-out folder are counted.
 * ``none`` — nothing held out.
 
@@ -43,8 +44,9 @@ from ..geometry.geodesy import LocalFrame
 #: The validation splits a training run offers (``TrainJob.validation``); "frames" is the fallback for folders
 #: without targets.csv, never chosen.
 SPLITS = ("blocks", "flights", "none")
-#: Side of a spatial block, in frame footprint diagonals: a frame seldom sees two blocks, so few are dropped.
-BLOCK_FOOTPRINTS = 2.0
+#: Side of a spatial block, in frame footprint diagonals: the smallest block a frame's footprint fits in whole.
+#: Smaller blocks drop more frames (those that see two blocks), larger ones leave a small field a single block.
+BLOCK_FOOTPRINTS = 1.0
 #: Thresholds the ground figures are given at (the detector's peaks, one heatmap per frame).
 GROUND_THRESHOLDS = tuple(np.round(np.arange(0.1, 0.91, 0.1), 2).tolist())
 TRAIN, VAL, DROPPED = "train", "val", "dropped"
@@ -278,15 +280,17 @@ def _split_blocks(views, side, fraction, seed) -> SplitPlan:
 
 
 def _draw(units, weight, fraction, seed) -> set:
-    """Units drawn in a seeded random order until their targets reach ``fraction`` of all; never every unit."""
+    """The held-out units: in a seeded random order, each unit whose targets still fit under ``fraction`` of all
+    (the smallest unit alone when none fits); never every unit."""
     rng = np.random.default_rng(seed)
     total = sum(weight[u] for u in units)
     held, n = set(), 0
     for i in rng.permutation(len(units)):
-        if n >= fraction * total or len(held) == len(units) - 1:
-            break
-        held.add(units[i])
-        n += weight[units[i]]
+        if n + weight[units[i]] <= fraction * total and len(held) < len(units) - 1:
+            held.add(units[i])
+            n += weight[units[i]]
+    if not held:
+        held.add(min(units, key=lambda u: (weight[u], units.index(u))))
     return held
 
 

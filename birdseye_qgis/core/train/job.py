@@ -344,17 +344,25 @@ def choose_threshold(job: TrainJob, plan, figures: dict | None, ground: dict | N
     """(threshold, the rule that chose it, what it was validated on: "ground", "tiles" or None)."""
     if job.threshold is not None:
         return job.threshold, "given", None
-    if ground and ground.get("targets"):
+    if _informative(ground):
         return (recipe.best_threshold(ground), GROUND_RULE.format(split=describe_split(plan.info)), "ground")
-    if figures and figures.get("targets"):
+    if _informative(figures):
         return recipe.best_threshold(figures), TILE_RULE, "tiles"
     return 0.5, "not validated: no held-out targets to choose by (0.5)", None
+
+
+def _informative(figures: dict | None) -> bool:
+    """Whether figures can choose a threshold: held-out targets, and one found at some threshold (F1 > 0)."""
+    return bool(figures and figures.get("targets") and max(r["f1"] for r in figures["by_threshold"].values()) > 0)
 
 
 def not_validated_warning(plan, figures, ground, flights) -> str:
     """Why the default threshold was not validated on the ground."""
     if not plan.held_out:
         why = "nothing was held out"
+    elif ground is not None and ground.get("targets"):
+        why = ("the model recovered no held-out target at any threshold (train longer, or on more labels, and look "
+               "at the loss plot)")
     elif ground is not None:
         why = "no held-out target was in view of the held-out frames the detector could read"
     elif not flights:
@@ -363,7 +371,7 @@ def not_validated_warning(plan, figures, ground, flights) -> str:
         why = "the held-out frames could not be scored on the ground"
     return (f"the default threshold was not validated on the ground: {why}; "
             + ("it was chosen on the held-out tiles, whose figures are optimistic."
-               if figures and figures.get("targets") else "it is 0.5.")
+               if _informative(figures) else "it is 0.5.")
             + " Score the model on a flight it never saw with Evaluate detections before relying on it.")
 
 
