@@ -30,7 +30,7 @@ class Recorder(QgsProcessingFeedback):
 
     def __init__(self, cancel_when_training: bool = False):
         super().__init__()
-        self.infos, self.progress, self.pid = [], [], None
+        self.infos, self.warnings, self.progress, self.pid = [], [], [], None
         self.cancel_when_training = cancel_when_training
         self.progressChanged.connect(self._progress)
 
@@ -41,6 +41,10 @@ class Recorder(QgsProcessingFeedback):
             self.pid = int(found[1])
         super().pushInfo(info)
 
+    def pushWarning(self, warning):  # noqa: N802 — QGIS's name
+        self.warnings.append(warning)
+        super().pushWarning(warning)
+
     def _progress(self, value):
         self.progress.append(value)
         if self.cancel_when_training and value > 2.0 and not self.isCanceled():
@@ -49,9 +53,10 @@ class Recorder(QgsProcessingFeedback):
 
 @pytest.fixture(scope="module")
 def campaign(birdseye_provider, tmp_path_factory):
-    """A small simulated campaign, imported, and its training labels with 96 px tiles."""
+    """A small simulated campaign (two frame footprints long: spatial blocks can be held out), imported, and its
+    training labels with 96 px tiles."""
     folder = tmp_path_factory.mktemp("campaign")
-    simulate_campaign(CampaignConfig(seed=5, n_targets=8, field_width_m=6.0, field_length_m=5.0, image_width=480,
+    simulate_campaign(CampaignConfig(seed=5, n_targets=14, field_width_m=12.0, field_length_m=5.0, image_width=480,
                                      image_height=300), folder)
     geotags = run("importgeotags", {"INPUT": str(folder / "geotags.csv"), "OUTPUT": "TEMPORARY_OUTPUT"})["OUTPUT"]
     frames = run("importflightlog", {"POSE_LOG": str(folder / "poses.csv"), "IMAGES": str(folder / "frames"),
@@ -81,7 +86,24 @@ def test_trains_a_model_detect_accepts_without_torch_in_qgis(campaign, tmp_path)
     assert model.metadata.resolution_cm == 1.0 and model.metadata.tile_size == 288
     assert 0.0 < model.metadata.default_threshold < 1.0 and model.metadata.label_sigma_px
     card = Path(result["MODEL_CARD"]).read_text(encoding="utf-8")
-    assert "## Validation (held-out tiles)" in card and "| threshold | recall |" in card and "provenance" in card
+    assert "## Validation (held-out tiles, a diagnostic)" in card and "| threshold | recall |" in card
+    assert "## Validation split" in card and "provenance" in card
+    # Spatial blocks by default; the frame layer gives the held-out frames' poses: scored on the ground, or a
+    # warning says why the threshold was not validated there.
+    report = json.loads(out.with_name("mine.training.json").read_text(encoding="utf-8"))
+    split = report["split"]
+    assert split["method"] == "blocks" and report["settings"]["validation"] == "blocks"
+    print(f"split: {split}; threshold {report['threshold']} ({report['threshold_rule']})")
+    if split["held_out"]:
+        ground = report["ground_validation"]
+        assert ground["frames"] == split["frames"]["val"] and ground["frames_skipped"] == 0
+        assert "## Validation on the ground" in card and "| threshold | recall | GMCF |" in card
+        assert report["validated_on"] == "ground" or any("not validated on the ground" in w
+                                                         for w in report["warnings"])
+    else:
+        assert report["warnings"] and "not validated" in report["warnings"][0]
+    if report["validated_on"] != "ground":
+        assert feedback.warnings and "not validated" in " ".join(feedback.warnings)
     assert Path(result["PLOT"]).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     assert Path(result["CHECKPOINT"]).is_file() and not out.with_name("mine.checkpoint.pt").exists()
     assert result["TILES"] > 0 and result["TILES_PER_SECOND"] > 0

@@ -348,7 +348,7 @@ def choose_threshold(job: TrainJob, plan, figures: dict | None, ground: dict | N
         return (recipe.best_threshold(ground), GROUND_RULE.format(split=describe_split(plan.info)), "ground")
     if _informative(figures):
         return recipe.best_threshold(figures), TILE_RULE, "tiles"
-    return 0.5, "not validated: no held-out targets to choose by (0.5)", None
+    return 0.5, "not validated on held-out data: 0.5 (the warnings say why)", None
 
 
 def _informative(figures: dict | None) -> bool:
