@@ -238,7 +238,7 @@ def run_job(job: TrainJob, emit: Callable[[dict], None] = lambda event: None,
             warnings.append(text)
             warn(emit, text)
     threshold, threshold_rule, validated_on = choose_threshold(job, plan, figures, ground)
-    if validated_on != "ground" and job.threshold is None:
+    if validated_on != "ground" and job.threshold is None and plan.held_out:  # else the split's warning says it
         text = not_validated_warning(plan, figures, ground, flights)
         warnings.append(text)
         warn(emit, text)
@@ -360,6 +360,8 @@ def not_validated_warning(plan, figures, ground, flights) -> str:
     """Why the default threshold was not validated on the ground."""
     if not plan.held_out:
         why = "nothing was held out"
+    elif plan.method == "frames":
+        why = "the labels folders have no targets.csv to score the held-out frames against"
     elif ground is not None and ground.get("targets"):
         why = ("the model recovered no held-out target at any threshold (train longer, or on more labels, and look "
                "at the loss plot)")

@@ -142,6 +142,13 @@ def test_the_default_threshold_comes_from_the_ground_figures():
     assert choose_threshold(job, plan, tiles, ground) == (0.35, "given", None)
 
 
+def test_a_job_written_before_the_split_existed_reads_as_blocks_without_poses():
+    old = '{"sources": [{"folder": "f", "gsd_default": 1.0}], "out": "m.onnx", "val_fraction": 0.2}'
+    job = TrainJob.from_json(old)
+    assert job.validation == "blocks" and job.sources[0].frames is None
+    assert TrainJob.from_json(job.to_json()) == job
+
+
 # ====================================================================================== runs of the job
 def write_targets(folder, spacing_m=3.0):
     """targets.csv for a fake labels folder: frame f's targets about f·spacing_m east of a point."""
