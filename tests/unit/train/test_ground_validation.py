@@ -222,3 +222,53 @@ def test_tile_figures_match_one_peak_to_one_target():
     row = recipe.validation_figures(FixedHeatmap(heat), tiles, meta, thresholds=(0.5,),
                                     match_radius_px=3.0)["by_threshold"]["0.5"]
     assert (row["detections"], row["recall"], row["precision"], row["false_per_tile"]) == (2, 1.0, 0.5, 1.0)
+
+
+def test_ground_figures_count_held_out_targets_and_clusters_on_any_target(monkeypatch):
+    """Two nadir frames 10 m up see four targets 0.5 m apart: a, b, c held out, d a training target. The detector
+    (stood in for) finds, in both frames, a, b, d and a spot 0.5 m from every target at 0.3, and a alone at 0.6.
+    At 0.3: recall 2/3 (of the held-out targets), 4 clusters of which 3 on a target (d is no false cluster):
+    GMCF 3/4. At 0.6: recall 1/3, GMCF 1/1. Clustering and scoring are Evaluate detections' own."""
+    from birdseye.birdseye_qgis.core.detect import detector
+    from birdseye.birdseye_qgis.core.detect.detector import FrameDetections
+    from birdseye.birdseye_qgis.core.field.geotags import Geotags
+    from birdseye.birdseye_qgis.core.geometry.camera import CameraModel
+    from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame
+
+    nadir = np.eye(4)
+    nadir[:3, :3] = [[0.0, 1.0, 0.0], [-1.0, 0.0, 0.0], [0.0, 0.0, 1.0]]
+    camera = CameraModel(1920, 1200, 4264.0, 4264.0, 959.5, 599.5, (0.0, 0.0, 0.0, 0.0, 0.0), nadir)
+    site = LocalFrame(-27.55, 151.95, 400.0)
+    records = []
+    for k, east in enumerate((0.0, 0.3)):
+        lat, lon, h = site.to_geodetic(np.array([east, 0.0, 10.0]))
+        records.append({"frame_id": k + 1, "image": f"frame_{k + 1}.jpg", "lat": float(lat), "lon": float(lon),
+                        "height_m": float(h), "qw": 1.0, "qx": 0.0, "qy": 0.0, "qz": 0.0, "ground_h_m": 400.0,
+                        "height_ref": "ellipsoidal", "camera": camera.to_json()})
+    spots = {"a": (-0.5, 0.0), "b": (0.0, 0.5), "c": (0.5, 0.0), "d": (0.0, -0.5), "false": (1.0, 0.5)}
+    targets_xy = np.array([spots[t] for t in "abcd"])
+    lat, lon, h = site.to_geodetic(np.column_stack([targets_xy, np.zeros(4)]))
+    targets = Geotags(list("abcd"), lat, lon, h)
+
+    def found(frame_index, names, offset):
+        xy = np.array([spots[n] for n in names]).reshape(-1, 2) + offset
+        la, lo, he = site.to_geodetic(np.column_stack([xy, np.zeros(len(xy))]))
+        n = len(xy)
+        return FrameDetections(frame_index, frame_index + 1, "", np.zeros((n, 2)), np.full(n, 0.9),
+                               np.zeros((n, 3)), la, lo, he)
+
+    def fake_detect(model, poses, images, thresholds, local, is_canceled=None):
+        runs = [[found(k, ["a", "b", "d", "false"], 0.01 * k), found(k, ["a"], 0.01 * k)] for k in range(2)]
+        return runs, [0, 1]
+
+    monkeypatch.setattr(detector, "HeatmapModel", lambda path: None)
+    monkeypatch.setattr(gv, "detect_at_thresholds", fake_detect)
+    figures = gv.ground_figures("model.onnx", [gv.GroundFlight("f", records, targets, np.array([1, 1, 1, 0], bool))],
+                                thresholds=(0.3, 0.6))
+    assert figures["frames"] == 2 and figures["targets"] == 3
+    low, high = figures["by_threshold"]["0.3"], figures["by_threshold"]["0.6"]
+    assert (low["recall"], low["gmcf"], low["clusters"], low["detections"]) == (0.6667, 0.75, 4, 8)
+    assert (high["recall"], high["gmcf"], high["clusters"]) == (0.3333, 1.0, 1)
+    assert low["f1"] == round(2 * (2 / 3) * 0.75 / (2 / 3 + 0.75), 4)
+    # F1 0.71 at 0.3 and 0.5 at 0.6: within one target's worth (1/3) of each other, so the higher threshold.
+    assert recipe.best_threshold(figures) == 0.6
