@@ -189,7 +189,7 @@ class TrainDetector(BirdsEyeAlgorithm):
                 "({build} build); or install it yourself: {command}; or name a Python that has them (parameter "
                 "{parameter}, or the environment variable {variable}) — for a virtual environment: "
                 "<venv>/bin/python -m pip install \"torch=={torch}\" \"torchvision=={torchvision}\" onnx "
-                "opencv-python-headless matplotlib").format(
+                "opencv-python-headless matplotlib onnxruntime scipy").format(
                     tried="; ".join(tried) or self.tr("none set up"), menu=dependencies.MENU_PATH, group=group.title,
                     build=group.build.upper(), command=group.pip_command(python, folder), parameter=self.PYTHON,
                     variable=dependencies.TRAINING_PYTHON_VARIABLE, torch=dependencies.TORCH_VERSION,

@@ -325,7 +325,14 @@ def split_job(job: TrainJob, tiles: recipe.TileSet):
 
 def score_on_ground(net, meta, producer: str, flights, should_stop, emit) -> dict:
     """:func:`.ground_validation.ground_figures` of the network exported as the model will be (a temporary
-    ONNX file through :func:`.recipe.export_onnx`)."""
+    ONNX file through :func:`.recipe.export_onnx`). A training Python without what Detect needs raises
+    :class:`InputError` saying what to install."""
+    import importlib.util
+
+    missing = [name for name in ("onnxruntime", "scipy") if importlib.util.find_spec(name) is None]
+    if missing:
+        raise InputError(f"the training Python has no {' and no '.join(missing)}, which running the detector "
+                         f"needs: install {' '.join(missing)} into it")
     with tempfile.TemporaryDirectory(prefix="birdseye-validation-") as scratch:
         model = recipe.export_onnx(net, meta, Path(scratch) / "validation.onnx", producer)
         return ground_validation.ground_figures(

@@ -272,3 +272,14 @@ def test_ground_figures_count_held_out_targets_and_clusters_on_any_target(monkey
     assert low["f1"] == round(2 * (2 / 3) * 0.75 / (2 / 3 + 0.75), 4)
     # F1 0.71 at 0.3 and 0.5 at 0.6: within one target's worth (1/3) of each other, so the higher threshold.
     assert recipe.best_threshold(figures) == 0.6
+
+
+def test_a_training_python_without_onnxruntime_is_told_what_to_install(monkeypatch):
+    import importlib.util
+
+    from birdseye.birdseye_qgis.core.train.job import score_on_ground
+
+    real = importlib.util.find_spec
+    monkeypatch.setattr(importlib.util, "find_spec", lambda name, *a: None if name == "onnxruntime" else real(name))
+    with pytest.raises(InputError, match="no onnxruntime.*install onnxruntime into it"):
+        score_on_ground(None, None, "test", [], lambda: False, lambda event: None)
