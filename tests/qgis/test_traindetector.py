@@ -159,3 +159,16 @@ def test_missing_weights_and_missing_torch_say_what_to_do(tmp_path):
         run("traindetector", {"LABELS": [str(labels)], "GSD_CM": 1.0, "MINUTES": 0.1, "PYTHON": "/usr/bin/python3",
                               "OUTPUT_MODEL": str(tmp_path / "m.onnx")})
     assert not (tmp_path / "m.onnx").exists()
+
+
+def test_nothing_held_out_is_a_warning_and_leaves_the_ground_figures_empty(tmp_path):
+    labels = make_label_folder(tmp_path / "labels", n_frames=3)
+    feedback = Recorder()
+    out = tmp_path / "unvalidated.onnx"
+    result = run("traindetector", {"LABELS": [str(labels)], "GSD_CM": 1.0, "VALIDATION": 2, "MINUTES": 0.05,
+                                   "THREADS": 2, "PYTHON": TRAINING_PYTHON, "OUTPUT_MODEL": str(out)}, feedback)
+    assert result["THRESHOLD_USED"] == 0.5 and result["VALIDATION_RECALL"] is None
+    assert any("Nothing was held out for validation (no validation was asked for)" in w for w in feedback.warnings)
+    report = json.loads(out.with_name("unvalidated.training.json").read_text(encoding="utf-8"))
+    assert report["settings"]["validation"] == "none" and report["validated_on"] is None
+    assert "torch" not in sys.modules
