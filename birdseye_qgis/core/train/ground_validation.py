@@ -7,9 +7,9 @@ ground as the product scores a flight.
   block of side :data:`BLOCK_FOOTPRINTS` × the frames' footprint diagonal (median, from the frame records; without
   them the 90th percentile of the largest distance between two targets one frame sees). Blocks are taken in a
   seeded random order, each held out while its targets still fit under the held-out share of all targets (the
-  smallest block alone when none fits; never every block). A frame that sees
-  (``labels.csv``) only held-out targets goes to validation, one that sees only training targets to training, one
-  that sees both is dropped and counted; a frame that sees none follows the block of its footprint centre
+  smallest block alone when none fits; never every block). A frame that sees (``labels.csv``) only held-out
+  targets goes to validation, one that sees only training targets to training, one that sees both is dropped
+  and counted; a frame that sees none follows the block of its footprint centre
   (without frame records: the side of the nearest frame, in frame order, that sees a target). A held-out block
   is held out in every folder, so two flights over one site never put a target on both sides.
 * ``flights`` — whole folders (one flight, or one frame layer, each) held out, taken the same way by their
@@ -40,6 +40,7 @@ import numpy as np
 from ..errors import InputError, check_cancel
 from ..field.geotags import Geotags
 from ..geometry.geodesy import LocalFrame
+from .recipe import THRESHOLDS
 
 #: The validation splits a training run offers (``TrainJob.validation``); "frames" is the fallback for folders
 #: without targets.csv, never chosen.
@@ -47,8 +48,8 @@ SPLITS = ("blocks", "flights", "none")
 #: Side of a spatial block, in frame footprint diagonals: the smallest block a frame's footprint fits in whole.
 #: Smaller blocks drop more frames (those that see two blocks), larger ones leave a small field a single block.
 BLOCK_FOOTPRINTS = 1.0
-#: Thresholds the ground figures are given at (the detector's peaks, one heatmap per frame).
-GROUND_THRESHOLDS = tuple(np.round(np.arange(0.1, 0.91, 0.1), 2).tolist())
+#: Thresholds the ground figures are given at (the detector's peaks, one heatmap per frame): the tile figures'.
+GROUND_THRESHOLDS = THRESHOLDS
 TRAIN, VAL, DROPPED = "train", "val", "dropped"
 
 
