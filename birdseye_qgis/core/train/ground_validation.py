@@ -13,7 +13,8 @@ ground as the product scores a flight.
   (without frame records: the side of the nearest frame, in frame order, that sees a target). A held-out block
   is held out in every folder, so two flights over one site never put a target on both sides.
 * ``flights`` — whole folders (one flight, or one frame layer, each) held out, taken the same way by their
-  targets; needs two folders or more. Targets of the same id in a training and a held-out folder are counted.
+  targets; needs two folders or more. Held-out targets a training folder holds too (within
+  :data:`SAME_TARGET_M`; by id without positions) are counted, with a warning.
 * ``none`` — nothing held out.
 
 A folder without ``targets.csv`` (written before it existed) cannot be split by blocks: the frames are then held
@@ -315,20 +316,38 @@ def _split_flights(views, side, fraction, seed) -> SplitPlan:
     for (k, fid) in side:
         side[(k, fid)] = VAL if k in held else TRAIN
     ids = [{i for ids in v.frame_targets.values() for i in ids} for v in views]
-    train_ids = set().union(*(ids[k] for k in range(len(views)) if k not in held))
-    val_ids = set().union(*(ids[k] for k in held))
     info = {"method": "flights", "held_out_folders": [views[k].name for k in sorted(held)],
             "targets": {"train": sum(weight[k] for k in weight if k not in held),
                         "val": sum(weight[k] for k in held)},
-            "target_ids_on_both_sides": len(train_ids & val_ids)}
+            "targets_on_both_sides": _shared_targets(views, ids, held)}
     plan = _finish(views, side, "flights", info)
     if plan.held_out:
         plan.held_targets = {k: set(v.target_xy or ()) | ids[k] for k, v in enumerate(views) if k in held}
-    if plan.held_out and info["target_ids_on_both_sides"]:
-        plan.warnings.append(f"{info['target_ids_on_both_sides']} target id(s) appear in a training and a held-out "
-                             "folder (the same site flown twice?): the held-out flight is not independent of "
-                             "training for them; hold out spatial blocks instead.")
+    if plan.held_out and info["targets_on_both_sides"]:
+        plan.warnings.append(f"{info['targets_on_both_sides']} held-out target(s) are also in a training folder (the "
+                             "same site flown twice?): the held-out flight is not independent of training for them; "
+                             "hold out spatial blocks instead.")
     return plan
+
+
+#: Targets of two folders closer than this (m; the scoring's match radius) are one target seen twice.
+SAME_TARGET_M = 0.20
+
+
+def _shared_targets(views, ids, held) -> int:
+    """Held-out targets that a training folder holds too: within :data:`SAME_TARGET_M` of one of its targets when
+    every folder has positions (ids of independent surveys may repeat), else by id."""
+    train = [k for k in range(len(views)) if k not in held]
+    if all(v.target_xy is not None for v in views):
+        train_xy = np.array([views[k].target_xy[i] for k in train for i in ids[k] if i in views[k].target_xy])
+        val_xy = np.array([views[k].target_xy[i] for k in held for i in ids[k] if i in views[k].target_xy])
+        if not len(train_xy) or not len(val_xy):
+            return 0
+        from scipy.spatial import cKDTree
+
+        d, _ = cKDTree(train_xy.reshape(-1, 2)).query(val_xy.reshape(-1, 2), distance_upper_bound=SAME_TARGET_M)
+        return int(np.sum(d <= SAME_TARGET_M))
+    return len(set().union(*(ids[k] for k in train)) & set().union(*(ids[k] for k in held)))
 
 
 def _finish(views, side, method, info) -> SplitPlan:
