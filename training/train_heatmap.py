@@ -115,9 +115,10 @@ def cmd_train(args) -> None:
           f"{result['history']['tiles_per_s']:.1f} tiles/s over {result['seconds']['train']:.1f} s", flush=True)
 
 
-def frame_records_from_gpkg(path) -> list[dict]:
+def frame_records_from_gpkg(path) -> list[dict] | None:
     """The frame records of a GeoPackage frame layer (the table with frame_id and camera), read with sqlite as
-    ``qgis_io.layers.read_frame_layer`` reads them in QGIS: a camera split over camera, camera_2, … joined."""
+    ``qgis_io.layers.read_frame_layer`` reads them in QGIS: a camera split over camera, camera_2, … joined. None
+    when no table has both (a table of GSDs alone trains, but is validated on tiles only)."""
     import sqlite3
 
     from birdseye.birdseye_qgis.core.field.frame_records import FRAME_FIELD_NAMES, join_camera
@@ -138,7 +139,7 @@ def frame_records_from_gpkg(path) -> list[dict]:
                 return records
     finally:
         con.close()
-    raise InputError("no layer with fields frame_id and camera (is it a BirdsEye frame layer?)", source=str(path))
+    return None
 
 
 def _print_event(event: dict) -> None:
