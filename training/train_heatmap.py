@@ -63,6 +63,7 @@ _plugin_on_path()
 
 from birdseye.birdseye_qgis.core.detect.detector import file_digest  # noqa: E402
 from birdseye.birdseye_qgis.core.errors import InputError  # noqa: E402
+from birdseye.birdseye_qgis.core.train.choices import SPLITS  # noqa: E402
 from birdseye.birdseye_qgis.core.train.job import Source, TrainJob, run_job  # noqa: E402
 from birdseye.birdseye_qgis.core.train.preset import PRESETS  # noqa: E402
 from birdseye.birdseye_qgis.core.train.recipe import (  # noqa: E402,F401 — the recipe's names, as before
@@ -96,21 +97,51 @@ def cmd_train(args) -> None:
     sources = []
     for i, folder in enumerate(label_dirs):
         if args.frames:
-            sources.append(Source(str(folder), gsd_cm=frame_gsd_from_gpkg(args.frames[min(i, len(args.frames) - 1)])))
+            layer = args.frames[min(i, len(args.frames) - 1)]
+            sources.append(Source(str(folder), gsd_cm=frame_gsd_from_gpkg(layer),
+                                  frames=frame_records_from_gpkg(layer)))
         elif args.gsd_cm:
             sources.append(Source(str(folder), gsd_default=args.gsd_cm))
         else:
             raise SystemExit("give the frames' GSD: --frames frames.gpkg (per --labels) or --gsd-cm")
     job = TrainJob(sources=sources, out=args.out, backbone=args.backbone, weights=args.weights, init=args.init,
                    minutes=args.minutes, steps=args.steps, resolution_cm=args.resolution_cm,
-                   val_fraction=args.val_fraction, seed=args.seed, threads=args.threads, threshold=args.threshold,
-                   width=args.width, producer="BirdsEye training/train_heatmap.py", preset=args.preset,
+                   val_fraction=args.val_fraction, validation=args.validation, seed=args.seed, threads=args.threads,
+                   threshold=args.threshold, width=args.width, producer="BirdsEye training/train_heatmap.py",
+                   preset=args.preset,
                    description=f"trained by training/train_heatmap.py on {', '.join(p.name for p in label_dirs)}")
     print(f"training {args.backbone} (preset {args.preset}) for {args.minutes:g} min", flush=True)
     result = run_job(job, _print_event)
     out = Path(result["model"])
     print(f"wrote {out} ({out.stat().st_size / 1e6:.2f} MB), {result['weights']}, {result['card']}; "
           f"{result['history']['tiles_per_s']:.1f} tiles/s over {result['seconds']['train']:.1f} s", flush=True)
+
+
+def frame_records_from_gpkg(path) -> list[dict] | None:
+    """The frame records of a GeoPackage frame layer (the table with frame_id and camera), read with sqlite as
+    ``qgis_io.layers.read_frame_layer`` reads them in QGIS: a camera split over camera, camera_2, … joined. None
+    when no table has both (a table of GSDs alone trains, but is validated on tiles only)."""
+    import sqlite3
+
+    from birdseye.birdseye_qgis.core.field.frame_records import FRAME_FIELD_NAMES, join_camera
+
+    con = sqlite3.connect(str(path))
+    try:
+        for (table,) in con.execute("SELECT table_name FROM gpkg_contents"):
+            cols = [r[1] for r in con.execute(f'PRAGMA table_info("{table}")')]
+            if "frame_id" in cols and "camera" in cols:
+                parts = ["camera"] + sorted((c for c in cols if c.startswith("camera_")), key=lambda c: int(c[7:]))
+                rows = con.execute(f'SELECT {", ".join(chr(34) + c + chr(34) for c in cols)} FROM "{table}"')
+                records = []
+                for row in rows:
+                    rec = dict(zip(cols, row))
+                    out = {n: rec[n] for n in FRAME_FIELD_NAMES if n in rec and n != "camera"}
+                    out["camera"] = join_camera(rec[p] for p in parts)
+                    records.append(out)
+                return records
+    finally:
+        con.close()
+    return None
 
 
 def _print_event(event: dict) -> None:
@@ -157,6 +188,7 @@ class Campaign:
     geotags: object
     truth: object
     gsd_of: dict
+    records: list | None = None  # the frame-layer records (what traindetector passes its training process)
 
 
 def simulate(folder: Path, seed: int, fps: float | None = None) -> Path:
@@ -190,7 +222,8 @@ def load_campaign(folder: Path) -> Campaign:
     truth = Geotags([int(r["id"]) for r in rows], [float(r["lat"]) for r in rows], [float(r["lon"]) for r in rows],
                     [float(r["h_ground"]) for r in rows], ["burrow"] * len(rows))
     return Campaign(folder.name, poses, [records[i]["image"] for i in index], geotags, truth,
-                    {str(records[i]["frame_id"]): float(records[i]["gsd_cm"]) for i in index})
+                    {str(records[i]["frame_id"]): float(records[i]["gsd_cm"]) for i in index},
+                    [records[i] for i in index])
 
 
 def label_campaign(campaign: Campaign, out: Path, seed: int) -> Path:
@@ -213,18 +246,21 @@ def evaluate(model_path, campaigns, thresholds) -> dict:
       :func:`core.scoring.evaluation.evaluate_flights` with its default operating point);
     * ``truth_recall``: in-view simulated targets (surveyed or not) with a detection within
       MATCH_RADIUS_M in some frame; ``view_recall``: (frame, in-view target) pairs detected in that
-      very frame; ``truth_precision``: detections within MATCH_RADIUS_M of a true target.
+      very frame; ``truth_precision``: detections matched to a true target within MATCH_RADIUS_M, one to one in
+      each frame (a second detection of a target in one frame is a false one; :func:`pixel_matches`).
     Each frame's heatmap is computed once and its peaks extracted at every threshold
     (:func:`detect_frames_at_thresholds`): what a run at that threshold gives, not a score filter of a
     lower one (a blob splits at a higher threshold).
     """
     from scipy.spatial import cKDTree
 
-    from birdseye.birdseye_qgis.core.detect.detector import HeatmapModel, detect_frames_at_thresholds
+    from birdseye.birdseye_qgis.core.detect.detector import HeatmapModel
     from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame
     from birdseye.birdseye_qgis.core.labels.training_set import project_labels
-    from birdseye.birdseye_qgis.core.scoring.evaluation import Detections, Flight, evaluate_flights
+    from birdseye.birdseye_qgis.core.scoring.evaluation import Flight, evaluate_flights
     from birdseye.birdseye_qgis.core.scoring.operating_point import OperatingPoint
+    from birdseye.birdseye_qgis.core.scoring.screening import pixel_matches
+    from birdseye.birdseye_qgis.core.train.ground_validation import detect_at_thresholds, detections_of
 
     model = HeatmapModel(model_path)
     totals = {t: dict(n_in_view=0, n_recovered=0, n_clusters=0, n_hit_clusters=0, truth_in_view=0,
@@ -234,34 +270,29 @@ def evaluate(model_path, campaigns, thresholds) -> dict:
     for c in campaigns:
         local = LocalFrame.around(c.poses.lat, c.poses.lon, c.poses.ground_height)
         t0 = time.perf_counter()
-        per_frame = [runs for runs in detect_frames_at_thresholds(model, c.poses, c.images, thresholds, local=local)
-                     if runs[0].skipped is None]
+        per_frame, _ = detect_at_thresholds(model, c.poses, c.images, thresholds, local)
         seconds += time.perf_counter() - t0
         truth_xy = local.from_geodetic(c.truth.lat, c.truth.lon, c.truth.height)[:, :2]
         views = project_labels(c.poses, c.truth, 0.0, local)
         in_view_truth = np.zeros(len(c.truth), bool)
         for fl in views:
             in_view_truth[fl.geotag_index[~fl.edge]] = True
-        truth_tree = cKDTree(truth_xy)
         for k, t in enumerate(thresholds):
             tot = totals[t]
             found = [runs[k] for runs in per_frame]
-            fid = np.concatenate([np.full(len(f), f.frame_id) for f in found]) if found else np.zeros(0)
-            det = {key: np.concatenate([getattr(f, key) for f in found]) if found else np.zeros(0)
-                   for key in ("lat", "lon", "height", "score")}
             det_xy = np.concatenate([f.ground_local[:, :2] for f in found]) if found else np.zeros((0, 2))
-            ev = evaluate_flights(
-                [Flight(Detections(det["lat"], det["lon"], det["height"], fid, det["score"]), [c.poses], c.name)],
-                c.geotags,
-                OperatingPoint(threshold=t), local=local)
+            ev = evaluate_flights([Flight(detections_of(found), [c.poses], c.name)], c.geotags,
+                                  OperatingPoint(threshold=t), local=local)
             for key in ("n_in_view", "n_recovered", "n_clusters", "n_hit_clusters"):
                 tot[key] += getattr(ev.pooled, key)
             recovered = np.zeros(len(c.truth), bool)
             if len(det_xy):
                 d, _ = cKDTree(det_xy).query(truth_xy, distance_upper_bound=MATCH_RADIUS_M)
                 recovered = d <= MATCH_RADIUS_M
-                near_truth = truth_tree.query(det_xy, distance_upper_bound=MATCH_RADIUS_M)[0] <= MATCH_RADIUS_M
-                tot["detections_on_target"] += int(near_truth.sum())
+                det_frame = np.concatenate([np.full(len(f), j) for j, f in enumerate(found)])
+                tot["detections_on_target"] += pixel_matches(
+                    det_frame, det_xy, np.repeat(np.arange(len(found)), len(truth_xy)),
+                    np.tile(truth_xy, (len(found), 1)), MATCH_RADIUS_M)
             tot["truth_in_view"] += int(in_view_truth.sum())
             tot["truth_recovered"] += int((recovered & in_view_truth).sum())
             for f in found:
@@ -375,11 +406,13 @@ def main(argv=None) -> None:
                    help=f"the model's resolution (default: the --init model's, else {RESOLUTION_CM:g})")
     t.add_argument("--threshold", type=float,
                    help="default threshold written into the model (default: the highest threshold within one "
-                        "held-out target of the best F1)")
+                        "held-out target of the best ground F1 on the held-out frames)")
     t.add_argument("--backbone", choices=BACKBONES, default="small",
                    help="small (from scratch) or a torchvision encoder with ImageNet weights")
     t.add_argument("--weights", help="ImageNet weights (.pth) of the encoder (default: torchvision's cache)")
-    t.add_argument("--val-fraction", type=float, default=0.15, help="share of the frames held out for validation")
+    t.add_argument("--validation", choices=SPLITS, default="blocks",
+                   help="hold out spatial blocks of targets (default), whole --labels folders, or nothing")
+    t.add_argument("--val-fraction", type=float, default=0.15, help="share of the targets held out for validation")
     t.add_argument("--seed", type=int, default=0)
     t.add_argument("--steps", type=int, help="a fixed number of steps instead of --minutes")
     t.add_argument("--width", type=int, default=WIDTH)

@@ -25,7 +25,7 @@ from qgis.PyQt.QtCore import QT_TRANSLATE_NOOP
 
 from ...birdseye_qgis import dependencies
 from ...birdseye_qgis.core.errors import Cancelled, InputError
-from ...birdseye_qgis.core.train.backbones import BACKBONES
+from ...birdseye_qgis.core.train.choices import BACKBONES, SPLITS
 from ...birdseye_qgis.core.train.job import Source, TrainJob
 from ...birdseye_qgis.core.train.preset import PRESETS
 from ...birdseye_qgis.core.train.protocol import TrainingFailed, run_child
@@ -37,6 +37,7 @@ from ...birdseye_qgis.qgis_enums import (
     SOURCE_FILE,
     SOURCE_VECTOR,
 )
+from ...birdseye_qgis.qgis_io.layers import read_frame_layer
 from .base import BirdsEyeAlgorithm
 
 #: PRESET's choices, in the order of core.train.preset.PRESETS (their titles, for translation).
@@ -59,6 +60,7 @@ class TrainDetector(BirdsEyeAlgorithm):
     INIT = "INIT"
     MINUTES = "MINUTES"
     RESOLUTION_CM = "RESOLUTION_CM"
+    VALIDATION = "VALIDATION"
     VALIDATION_FRACTION = "VALIDATION_FRACTION"
     SEED = "SEED"
     THRESHOLD = "THRESHOLD"
@@ -75,7 +77,8 @@ class TrainDetector(BirdsEyeAlgorithm):
         self.addParameter(QgsProcessingParameterMultipleLayers(
             self.LABELS, self.tr("Write-labels folders (with tiles)"), SOURCE_FILE))
         self.addParameter(QgsProcessingParameterMultipleLayers(
-            self.FRAMES, self.tr("Frame layers (for each frame's GSD)"), SOURCE_VECTOR, optional=True))
+            self.FRAMES, self.tr("Frame layers (each frame's GSD and pose, for validation on the ground)"),
+            SOURCE_VECTOR, optional=True))
         self.addParameter(QgsProcessingParameterNumber(
             self.GSD_CM, self.tr("Or one GSD for every frame (cm/px)"), NUMBER_DOUBLE, optional=True,
             minValue=0.001))
@@ -96,14 +99,18 @@ class TrainDetector(BirdsEyeAlgorithm):
         self.addParameter(QgsProcessingParameterNumber(
             self.RESOLUTION_CM, self.tr("Model resolution (cm/px; empty: automatic)"),
             NUMBER_DOUBLE, optional=True, minValue=0.01))
+        self.addParameter(QgsProcessingParameterEnum(
+            self.VALIDATION, self.tr("Validation: hold out"),
+            [self.tr("Spatial blocks (no target shared with training)"),
+             self.tr("Whole flights (labels folders)"), self.tr("Nothing (threshold not validated)")], defaultValue=0))
         self.addParameter(QgsProcessingParameterNumber(
-            self.VALIDATION_FRACTION, self.tr("Share of the frames held out for validation (0–0.5)"), NUMBER_DOUBLE,
+            self.VALIDATION_FRACTION, self.tr("Share of the targets held out for validation (0–0.5)"), NUMBER_DOUBLE,
             0.15, minValue=0.0, maxValue=0.5))
         self.addParameter(QgsProcessingParameterNumber(
             self.SEED, self.tr("Random seed"), NUMBER_INTEGER, 0, minValue=0))
         advanced = [
             QgsProcessingParameterNumber(
-                self.THRESHOLD, self.tr("Default threshold (empty: held-out F1)"), NUMBER_DOUBLE,
+                self.THRESHOLD, self.tr("Default threshold (empty: best F1 on the held-out frames)"), NUMBER_DOUBLE,
                 optional=True, minValue=0.0, maxValue=1.0),
             QgsProcessingParameterNumber(
                 self.THREADS, self.tr("CPU threads for training (0: all cores)"), NUMBER_INTEGER, 0, minValue=0),
@@ -121,7 +128,9 @@ class TrainDetector(BirdsEyeAlgorithm):
         self.addOutput(QgsProcessingOutputFile(self.CHECKPOINT, self.tr("Weights to fine-tune from (.pt)")))
         for name, text in (("TILES", "Training tiles"), ("THRESHOLD_USED", "Default threshold of the model"),
                            ("TRAIN_SECONDS", "Training time (s)"), ("TILES_PER_SECOND", "Training throughput "
-                                                                                         "(tiles/s)")):
+                                                                                         "(tiles/s)"),
+                           ("VALIDATION_RECALL", "Recall of the held-out targets at the default threshold"),
+                           ("VALIDATION_GMCF", "GMCF on the held-out frames at the default threshold")):
             self.addOutput(QgsProcessingOutputNumber(name, self.tr(text)))
 
     # ------------------------------------------------------------------ inputs
@@ -155,7 +164,9 @@ class TrainDetector(BirdsEyeAlgorithm):
             raise self.user_error(InputError(f"{len(layers)} frame layers for {len(folders)} labels folders: give one "
                                              "per folder, in the same order, or one for all", field=self.FRAMES))
         maps = [self._gsd_of(layer) for layer in layers]
-        return [Source(str(f), gsd_cm=maps[0] if len(maps) == 1 else maps[i]) for i, f in enumerate(folders)]
+        records = [self.run_core(read_frame_layer, layer, layer.name()) for layer in layers]
+        return [Source(str(f), gsd_cm=maps[0] if len(maps) == 1 else maps[i],
+                       frames=records[0] if len(records) == 1 else records[i]) for i, f in enumerate(folders)]
 
     def _optional_double(self, parameters, name, context) -> float | None:
         """An optional number, None when empty: parameterAsDouble alone reads an empty value as 0. Its text
@@ -193,7 +204,7 @@ class TrainDetector(BirdsEyeAlgorithm):
                 "({build} build); or install it yourself: {command}; or name a Python that has them (parameter "
                 "{parameter}, or the environment variable {variable}) — for a virtual environment: "
                 "<venv>/bin/python -m pip install \"torch=={torch}\" \"torchvision=={torchvision}\" onnx "
-                "opencv-python-headless matplotlib").format(
+                "opencv-python-headless matplotlib onnxruntime scipy").format(
                     tried="; ".join(tried) or self.tr("none set up"), menu=dependencies.MENU_PATH, group=group.title,
                     build=group.build.upper(), command=group.pip_command(python, folder), parameter=self.PYTHON,
                     variable=dependencies.TRAINING_PYTHON_VARIABLE, torch=dependencies.TORCH_VERSION,
@@ -216,6 +227,7 @@ class TrainDetector(BirdsEyeAlgorithm):
             minutes=self.parameterAsDouble(parameters, self.MINUTES, context),
             resolution_cm=self._optional_double(parameters, self.RESOLUTION_CM, context),
             val_fraction=self.parameterAsDouble(parameters, self.VALIDATION_FRACTION, context),
+            validation=SPLITS[self.parameterAsEnum(parameters, self.VALIDATION, context)],
             seed=self.parameterAsInt(parameters, self.SEED, context),
             threads=self.parameterAsInt(parameters, self.THREADS, context),
             threshold=self._optional_double(parameters, self.THRESHOLD, context),
@@ -255,11 +267,20 @@ class TrainDetector(BirdsEyeAlgorithm):
                 model=result["model"], threshold=result["threshold"], train=result["seconds"]["train"],
                 device=result["device"], tiles_per_s=result["history"]["tiles_per_s"], overhead=overhead,
                 first=run.first_event_s or 0.0))
+        feedback.pushInfo(self.tr("Default threshold: {rule}.").format(rule=result["threshold_rule"]))
+        at_default = self._ground_row(result)
         feedback.setProgress(100)
         return {self.OUTPUT_MODEL: result["model"], self.MODEL_CARD: result["card"], self.PLOT: result.get("plot"),
                 self.CHECKPOINT: result["weights"], "TILES": result["data"]["training_tiles"],
                 "THRESHOLD_USED": result["threshold"], "TRAIN_SECONDS": result["seconds"]["train"],
-                "TILES_PER_SECOND": result["history"]["tiles_per_s"]}
+                "TILES_PER_SECOND": result["history"]["tiles_per_s"], "VALIDATION_RECALL": at_default.get("recall"),
+                "VALIDATION_GMCF": at_default.get("gmcf")}
+
+    @staticmethod
+    def _ground_row(result: dict) -> dict:
+        """The ground figures (recall, GMCF) at the model's default threshold, empty when not measured there."""
+        ground = result.get("ground_validation") or {}
+        return (ground.get("by_threshold") or {}).get(f"{result['threshold']:g}") or {}
 
 
 class _Relay:
@@ -293,6 +314,8 @@ class _Relay:
         elif kind == "checkpoint":
             feedback.pushDebugInfo(tr("Checkpoint written: {path} ({stage}, step {step})").format(
                 path=event.get("path"), stage=event.get("stage"), step=event.get("step")))
+        elif kind == "message" and event.get("level") == "warning":
+            feedback.pushWarning(event.get("text", ""))
         elif kind == "message":
             feedback.pushInfo(event.get("text", ""))
         elif kind == "error" and event.get("kind") != "input":

@@ -31,7 +31,7 @@ class Recorder(QgsProcessingFeedback):
 
     def __init__(self, cancel_when_training: bool = False):
         super().__init__()
-        self.infos, self.progress, self.pid = [], [], None
+        self.infos, self.warnings, self.progress, self.pid = [], [], [], None
         self.cancel_when_training = cancel_when_training
         self.progressChanged.connect(self._progress)
 
@@ -42,6 +42,10 @@ class Recorder(QgsProcessingFeedback):
             self.pid = int(found[1])
         super().pushInfo(info)
 
+    def pushWarning(self, warning):  # noqa: N802 — QGIS's name
+        self.warnings.append(warning)
+        super().pushWarning(warning)
+
     def _progress(self, value):
         self.progress.append(value)
         if self.cancel_when_training and value > 2.0 and not self.isCanceled():
@@ -50,9 +54,10 @@ class Recorder(QgsProcessingFeedback):
 
 @pytest.fixture(scope="module")
 def campaign(birdseye_provider, tmp_path_factory):
-    """A small simulated campaign, imported, and its training labels with 96 px tiles."""
+    """A small simulated campaign (two frame footprints long: spatial blocks can be held out), imported, and its
+    training labels with 96 px tiles."""
     folder = tmp_path_factory.mktemp("campaign")
-    simulate_campaign(CampaignConfig(seed=5, n_targets=8, field_width_m=6.0, field_length_m=5.0, image_width=480,
+    simulate_campaign(CampaignConfig(seed=5, n_targets=14, field_width_m=12.0, field_length_m=5.0, image_width=480,
                                      image_height=300), folder)
     geotags = run("importgeotags", {"INPUT": str(folder / "geotags.csv"), "OUTPUT": "TEMPORARY_OUTPUT"})["OUTPUT"]
     frames = run("importflightlog", {"POSE_LOG": str(folder / "poses.csv"), "IMAGES": str(folder / "frames"),
@@ -82,7 +87,24 @@ def test_trains_a_model_detect_accepts_without_torch_in_qgis(campaign, tmp_path)
     assert model.metadata.resolution_cm == 1.0 and model.metadata.tile_size == 288
     assert 0.0 < model.metadata.default_threshold < 1.0 and model.metadata.label_sigma_px
     card = Path(result["MODEL_CARD"]).read_text(encoding="utf-8")
-    assert "## Validation (held-out tiles)" in card and "| threshold | recall |" in card and "provenance" in card
+    assert "## Validation (held-out tiles, a diagnostic)" in card and "| threshold | recall |" in card
+    assert "## Validation split" in card and "provenance" in card
+    # Spatial blocks by default; the frame layer gives the held-out frames' poses: scored on the ground, or a
+    # warning says why the threshold was not validated there.
+    report = json.loads(out.with_name("mine.training.json").read_text(encoding="utf-8"))
+    split = report["split"]
+    assert split["method"] == "blocks" and report["settings"]["validation"] == "blocks"
+    print(f"split: {split}; threshold {report['threshold']} ({report['threshold_rule']})")
+    if split["held_out"]:
+        ground = report["ground_validation"]
+        assert ground["frames"] == split["frames"]["val"] and ground["frames_skipped"] == 0
+        assert "## Validation on the ground" in card and "| threshold | recall | GMCF |" in card
+        assert report["validated_on"] == "ground" or any("not validated on the ground" in w
+                                                         for w in report["warnings"])
+    else:
+        assert report["warnings"] and "not validated" in report["warnings"][0]
+    if report["validated_on"] != "ground":
+        assert feedback.warnings and "not validated" in " ".join(feedback.warnings)
     assert Path(result["PLOT"]).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     assert Path(result["CHECKPOINT"]).is_file() and not out.with_name("mine.checkpoint.pt").exists()
     assert result["TILES"] > 0 and result["TILES_PER_SECOND"] > 0
@@ -240,3 +262,16 @@ def test_the_method_preset_trains_on_the_cpu_and_its_card_names_it(birdseye_prov
     card = Path(result["MODEL_CARD"]).read_text(encoding="utf-8")
     assert "**Method (EfficientNetV2, two stages, AdamW)** (`method`)" in card
     assert "NOT ImageNet-pretrained" in card and "The run was ended by" in card and "not resampled" in card
+
+
+def test_nothing_held_out_is_a_warning_and_leaves_the_ground_figures_empty(birdseye_provider, tmp_path):
+    labels = make_label_folder(tmp_path / "labels", n_frames=3)
+    feedback = Recorder()
+    out = tmp_path / "unvalidated.onnx"
+    result = run("traindetector", {"LABELS": [str(labels)], "GSD_CM": 1.0, "VALIDATION": 2, "MINUTES": 0.05,
+                                   "THREADS": 2, "PYTHON": TRAINING_PYTHON, "OUTPUT_MODEL": str(out)}, feedback)
+    assert result["THRESHOLD_USED"] == 0.5 and result["VALIDATION_RECALL"] is None
+    assert any("Nothing was held out for validation (no validation was asked for)" in w for w in feedback.warnings)
+    report = json.loads(out.with_name("unvalidated.training.json").read_text(encoding="utf-8"))
+    assert report["settings"]["validation"] == "none" and report["validated_on"] is None
+    assert "torch" not in sys.modules

@@ -2,8 +2,11 @@
 
 :func:`run_job` is what the child process of ``birdseye:traindetector`` runs (:mod:`.child`) and what
 ``training/train_heatmap.py train`` runs: load the tiles, hold out a share of the frames for
-validation, train (:func:`.recipe.train_network`), choose the default threshold on the held-out tiles
-(unless given), export the ONNX model and write the model card (:mod:`.report`) and the plot.
+validation — frames that share no targets with training (:mod:`.ground_validation`: spatial blocks, whole
+flights or none) —, train (:func:`.recipe.train_network`), score the trained network on the held-out frames as
+Detect and Evaluate detections score a flight and choose the default threshold from those ground figures (unless
+given; on the held-out tiles, with a warning, when the frames' poses are not known), export the ONNX model and
+write the model card (:mod:`.report`) and the plot.
 
 Files beside the model ``<name>.onnx``: ``<name>.pt`` (the final weights, a checkpoint ``--init``/INIT
 takes), ``<name>.checkpoint.pt`` (the last good checkpoint while training; removed once the model is
@@ -16,6 +19,7 @@ import csv
 import json
 import os
 import platform
+import tempfile
 import time
 from dataclasses import asdict, dataclass, field, replace
 from pathlib import Path
@@ -23,19 +27,22 @@ from typing import Callable
 
 import numpy as np
 
-from ..errors import InputError
-from . import recipe
+from ..errors import Cancelled, InputError
+from . import ground_validation, recipe
 from .preset import TrainingPreset
 from .preset import preset as find_preset
 
 
 @dataclass
 class Source:
-    """A writelabels folder and the GSD (cm/px) of its frames: per frame id, or one for all."""
+    """A writelabels folder and the GSD (cm/px) of its frames: per frame id, or one for all; ``frames``: the
+    frame-layer records of its flight (``qgis_io.layers.read_frame_layer``), which the split's footprints and the
+    ground validation need (None: a GSD alone, validated on tiles only)."""
 
     folder: str
     gsd_cm: dict | None = None
     gsd_default: float | None = None
+    frames: list | None = None
 
     def gsd_of(self) -> dict:
         if self.gsd_cm is not None:
@@ -59,6 +66,8 @@ class TrainJob:
     steps: int | None = None
     resolution_cm: float | None = None  # None: the INIT model's, else recipe.RESOLUTION_CM
     val_fraction: float = 0.15
+    #: how frames are held out: "blocks", "flights" or "none" (:data:`.ground_validation.SPLITS`)
+    validation: str = "blocks"
     seed: int = 0
     threads: int = 0
     threshold: float | None = None
@@ -185,11 +194,17 @@ def run_job(job: TrainJob, emit: Callable[[dict], None] = lambda event: None,
         tiles = recipe.load_tiles(sources, job.resolution_cm, log=message, is_canceled=should_stop)
     if tiles is None:
         return _stopped(job, emit, None)
-    train, val = recipe.split_tiles(tiles, job.val_fraction, job.seed)
+    ground_validation.require_positive_tiles(tiles.positive, [s.folder for s in job.sources])
+    emit({"type": "progress", "stage": "splitting", "fraction": 0.01})
+    plan, train, val, flights = split_job(job, tiles)
+    warnings = list(plan.warnings)
+    for text in plan.warnings:
+        warn(emit, text)
     data = data_summary(job, train, val)
+    data["dropped_tiles"] = plan.info.get("tiles", {}).get("dropped", 0)
     emit({"type": "data", **data})
     message(f"{data['tiles']} tiles ({data['positive_tiles']} with a target): {len(train)} for training, "
-            f"{data['validation_tiles']} held out for validation")
+            f"{data['validation_tiles']} held out for validation ({describe_split(plan.info)})")
     sigma = recipe.label_sigma([s.folder for s in job.sources], tiles, job.resolution_cm)
     description = job.description or (f"BirdsEye heatmap model ({job.backbone}) trained on "
                                       + ", ".join(Path(s.folder).name for s in job.sources))
@@ -236,10 +251,22 @@ def run_job(job: TrainJob, emit: Callable[[dict], None] = lambda event: None,
                       for s in history["stages"]))
     emit({"type": "progress", "stage": "validating", "fraction": 0.93})
     figures = recipe.validation_figures(net, val, meta) if val is not None and len(val) else None
-    threshold = job.threshold if job.threshold is not None else recipe.best_threshold(figures)
-    threshold_rule = "given" if job.threshold is not None else (
-        "highest threshold within one target of the best F1 on the held-out tiles"
-        if figures and figures.get("targets") else "no held-out targets to choose by")
+    ground = None
+    if flights:
+        emit({"type": "progress", "stage": "validating on the ground", "fraction": 0.935})
+        try:
+            ground = score_on_ground(net, meta, job.producer, flights, should_stop, emit)
+        except Cancelled:
+            return _stopped(job, emit, history)
+        except InputError as exc:  # no onnxruntime in the training Python, an image gone: say so, go on
+            text = f"the held-out frames could not be scored on the ground ({exc})"
+            warnings.append(text)
+            warn(emit, text)
+    threshold, threshold_rule, validated_on = choose_threshold(job, plan, figures, ground)
+    if validated_on != "ground" and job.threshold is None and plan.held_out:  # else the split's warning says it
+        text = not_validated_warning(plan, figures, ground, flights)
+        warnings.append(text)
+        warn(emit, text)
     meta = recipe.make_metadata(train, job.resolution_cm, threshold, sigma, description, mean_std, **layout)
     emit({"type": "progress", "stage": "exporting", "fraction": 0.96})
     model = recipe.export_onnx(net, meta, job.model_path, job.producer)
@@ -251,7 +278,8 @@ def run_job(job: TrainJob, emit: Callable[[dict], None] = lambda event: None,
         "type": "result", "stopped": False, "model": str(model), "weights": str(job.weights_path),
         "checkpoint": None, "card": str(job.card_path), "plot": None, "report": str(job.report_path),
         "device": str(dev), "torch": torch.__version__, "threads": threads, "parameters": n_params,
-        "threshold": threshold, "threshold_rule": threshold_rule, "data": data, "validation": figures,
+        "threshold": threshold, "threshold_rule": threshold_rule, "validated_on": validated_on,
+        "split": plan.info, "ground_validation": ground, "warnings": warnings, "data": data, "validation": figures,
         "history": history, "settings": _settings(job, preset, encoder_start),
         "metadata": {k: json.loads(v) for k, v in meta.to_props().items()},
         "seconds": {"train": history["train_seconds"], "total": round(time.perf_counter() - t_start, 1)},
@@ -270,7 +298,8 @@ def run_job(job: TrainJob, emit: Callable[[dict], None] = lambda event: None,
 
 def _settings(job: TrainJob, preset: TrainingPreset, encoder_start: str) -> dict:
     return {"backbone": job.backbone, "weights": job.weights, "init": job.init, "minutes": job.minutes,
-            "steps": job.steps, "resolution_cm": job.resolution_cm, "validation_fraction": job.val_fraction,
+            "steps": job.steps, "resolution_cm": job.resolution_cm, "validation": job.validation,
+            "validation_fraction": job.val_fraction,
             "seed": job.seed, "batch": job.batch, "crop_px": preset.crop_px, "width": job.width,
             "tile_size": recipe.TILE_SIZE, "positive_weight": preset.positive_weight,
             "preset": preset.name, "preset_settings": preset.settings(), "encoder_start": encoder_start,
@@ -296,6 +325,124 @@ def _encoder_start(job: TrainJob, preset: TrainingPreset) -> tuple[bool, str]:
         return False, ("random initialisation — NOT ImageNet-pretrained: no weights file was named and "
                        f"torchvision's cache has no {cached.name}")
     return True, "ImageNet weights"  # build_network stops, saying which file goes where
+
+
+def warn(emit, text: str) -> None:
+    """A warning for the log (the parent shows it as one) and the model card."""
+    emit({"type": "message", "level": "warning", "text": "Warning: " + text})
+
+
+def split_job(job: TrainJob, tiles: recipe.TileSet):
+    """(plan, training tiles, validation tiles or None, the :class:`.ground_validation.GroundFlight` of each
+    folder with held-out frames whose records were given) — :func:`.ground_validation.plan_split` on the job's
+    folders; folders without targets.csv fall back to :func:`.recipe.split_tiles`."""
+    folders = [s.folder for s in job.sources]
+    keys = [key.split(":", 1) for key in (tiles.frame_key or [])]
+    with_tiles = [sorted({fid for j, fid in keys if j == str(k)}) for k in range(len(folders))]
+    views, _, targets = ground_validation.folder_views(folders, [s.frames for s in job.sources], with_tiles)
+    plan = ground_validation.plan_split(views, job.validation, job.val_fraction, job.seed)
+    if plan.method == "frames":
+        train, val = recipe.split_tiles(tiles, job.val_fraction, job.seed)
+        plan.info.update({"held_out": val is not None, "tiles": {"train": len(train),
+                                                                 "val": 0 if val is None else len(val)}})
+        return plan, train, val, []
+    sides = [plan.side.get((int(j), fid), ground_validation.TRAIN) for j, fid in keys]
+    train_i = [i for i, side in enumerate(sides) if side == ground_validation.TRAIN]
+    val_i = [i for i, side in enumerate(sides) if side == ground_validation.VAL]
+    if val_i and not tiles.positive[train_i].any():
+        plan = ground_validation.nothing_held({key: ground_validation.TRAIN for key in plan.side}, plan.method,
+                                               f"the {plan.method} split left no tile with a target for training")
+        train_i, val_i, sides = list(range(len(tiles))), [], [ground_validation.TRAIN] * len(tiles)
+    train, val = tiles.subset(train_i), (tiles.subset(val_i) if val_i else None)
+    plan.info["tiles"] = {"train": len(train_i), "val": len(val_i),
+                          "dropped": sum(side == ground_validation.DROPPED for side in sides),
+                          "train_positive": int(train.positive.sum()),
+                          "val_positive": 0 if val is None else int(val.positive.sum())}
+    flights = []
+    for k, source in enumerate(job.sources):
+        held_frames = set(plan.frames(k))
+        if not held_frames or not source.frames or targets[k] is None:
+            continue
+        records = [r for r in source.frames if str(r.get("frame_id")) in held_frames]
+        held = np.isin(np.array([str(i) for i in targets[k].ids], dtype=object),
+                       sorted(plan.held_targets.get(k, ())))
+        if records:
+            flights.append(ground_validation.GroundFlight(Path(source.folder).name, records, targets[k], held))
+    return plan, train, val, flights
+
+
+def score_on_ground(net, meta, producer: str, flights, should_stop, emit) -> dict:
+    """:func:`.ground_validation.ground_figures` of the network exported as the model will be (a temporary
+    ONNX file through :func:`.recipe.export_onnx`). A training Python without what Detect needs raises
+    :class:`InputError` saying what to install."""
+    import importlib.util
+
+    missing = [name for name in ("onnxruntime", "scipy") if importlib.util.find_spec(name) is None]
+    if missing:
+        raise InputError(f"the training Python has no {' and no '.join(missing)}, which running the detector "
+                         f"needs: install {' '.join(missing)} into it")
+    with tempfile.TemporaryDirectory(prefix="birdseye-validation-") as scratch:
+        model = recipe.export_onnx(net, meta, Path(scratch) / "validation.onnx", producer)
+        return ground_validation.ground_figures(
+            model, flights, is_canceled=should_stop,
+            progress=lambda f: emit({"type": "progress", "stage": "validating on the ground",
+                                     "fraction": round(0.935 + 0.02 * f, 4)}))
+
+
+#: The threshold rule: the same tie rule (:func:`.recipe.best_threshold`) on whichever figures were measured.
+GROUND_RULE = ("highest threshold within one target of the best F1 of recall and GMCF, scored on the ground over "
+               "the held-out frames ({split})")
+TILE_RULE = "highest threshold within one target of the best F1 on the held-out tiles (not validated on the ground)"
+
+
+def choose_threshold(job: TrainJob, plan, figures: dict | None, ground: dict | None) -> tuple[float, str, str | None]:
+    """(threshold, the rule that chose it, what it was validated on: "ground", "tiles" or None)."""
+    if job.threshold is not None:
+        return job.threshold, "given", None
+    if _informative(ground):
+        return (recipe.best_threshold(ground), GROUND_RULE.format(split=describe_split(plan.info)), "ground")
+    if _informative(figures):
+        return recipe.best_threshold(figures), TILE_RULE, "tiles"
+    return 0.5, "not validated on held-out data: 0.5 (the warnings say why)", None
+
+
+def _informative(figures: dict | None) -> bool:
+    """Whether figures can choose a threshold: held-out targets, and one found at some threshold (F1 > 0)."""
+    return bool(figures and figures.get("targets") and max(r["f1"] for r in figures["by_threshold"].values()) > 0)
+
+
+def not_validated_warning(plan, figures, ground, flights) -> str:
+    """Why the default threshold was not validated on the ground."""
+    if not plan.held_out:
+        why = "nothing was held out"
+    elif plan.method == "frames":
+        why = "the labels folders have no targets.csv to score the held-out frames against"
+    elif ground is not None and ground.get("targets"):
+        why = ("the model recovered no held-out target at any threshold (train longer, or on more labels, and look "
+               "at the loss plot)")
+    elif ground is not None:
+        why = "no held-out target was in view of the held-out frames the detector could read"
+    elif not flights:
+        why = "the frames' poses are not known (no frame layer given, only a GSD)"
+    else:
+        why = "the held-out frames could not be scored on the ground"
+    return (f"the default threshold was not validated on the ground: {why}; "
+            + ("it was chosen on the held-out tiles, whose figures are optimistic."
+               if _informative(figures) else "it is 0.5.")
+            + " Score the model on a flight it never saw with Evaluate detections before relying on it.")
+
+
+def describe_split(info: dict) -> str:
+    """The split in a few words, for the log and the threshold rule."""
+    method = info.get("method")
+    if not info.get("held_out"):
+        return f"nothing held out ({info.get('reason', method)})"
+    if method == "blocks":
+        return (f"{info['held_out_blocks']} of {info['blocks']} spatial blocks of {info['block_m']:g} m held out, "
+                f"{info['frames_dropped']} frames seeing both sides dropped")
+    if method == "flights":
+        return "flights held out: " + ", ".join(info["held_out_folders"])
+    return "frames held out at random"
 
 
 def _stopped(job: TrainJob, emit, history) -> dict:

@@ -10,7 +10,7 @@ message, and stderr is kept for the error report. Events (``type``):
   ``tiles_per_s`` (at most twice a second);
 * ``point`` — a point of the loss history: ``stage``, ``step``, ``loss``, ``val_loss``, ``seconds``;
 * ``checkpoint`` — the last good checkpoint was written (atomically) to ``path``;
-* ``message`` — ``text`` for the log;
+* ``message`` — ``text`` for the log (``level`` ``warning``: a warning, e.g. a threshold not validated);
 * ``error`` — ``kind`` (``input`` for input the user can fix, else ``crash``) and ``text``;
 * ``result`` — the run's outcome: files, figures, history (``stopped`` after a cancel).
 

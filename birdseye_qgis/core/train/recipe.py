@@ -40,7 +40,7 @@ import numpy as np
 from ..detect.detector import find_peaks, model_size, normalise, resample
 from ..detect.model_metadata import ModelMetadata, embed_metadata
 from ..errors import InputError
-from .backbones import BACKBONES
+from .choices import BACKBONES
 from .onnx_init import freeze_batch_norm_stats, frozen_batch_norms, is_onnx, load_onnx_init
 from .preset import FAST, TrainingPreset
 
@@ -836,12 +836,16 @@ def validation_figures(net, val: TileSet, meta: ModelMetadata, thresholds=THRESH
     """Detection figures per threshold on the held-out tiles, peaks found as the detector finds them
     (:func:`~..detect.detector.find_peaks`, the model's blur).
 
-    Targets are the label maxima of at least :data:`CENTRE_MIN_LABEL` (centres); a peak within
-    ``match_radius_px`` (default 2·σ of the labels at the model's resolution, at least 3 px) of a target
-    detects it, one peak per target. Per threshold: ``recall`` (targets detected / targets),
-    ``precision`` (peaks on a target / peaks), ``f1``, ``false_per_tile`` (peaks on no target per tile).
+    Targets are the label maxima of at least :data:`CENTRE_MIN_LABEL` (centres); peaks and targets of a tile
+    are matched one to one, nearest first, within ``match_radius_px`` (default 2·σ of the labels at the model's
+    resolution, at least 3 px; :func:`..scoring.screening.pixel_matches`): a second peak on a target is a false
+    one. Per threshold: ``recall`` (targets matched / targets), ``precision`` (peaks matched / peaks), ``f1``,
+    ``false_per_tile`` (peaks not matched per tile). Neighbouring frames show the same targets: a diagnostic,
+    not a prediction of a flight (:mod:`.ground_validation` is).
     """
     import cv2
+
+    from ..scoring.screening import pixel_matches
 
     radius = match_radius_px or max(3.0, 2.0 * (meta.label_sigma_px or 1.5))
     pairs = predict_tiles(net, val, meta)
@@ -854,29 +858,30 @@ def validation_figures(net, val: TileSet, meta: ModelMetadata, thresholds=THRESH
     n_targets = int(sum(len(t) for t in targets))
     out = {"tiles": len(val), "tiles_with_target": int(val.positive.sum()), "targets": n_targets,
            "match_radius_px": round(radius, 2), "by_threshold": {}}
+    target_tile = np.concatenate([np.full(len(tgt), i) for i, tgt in enumerate(targets)] + [np.zeros(0, int)])
+    target_uv = np.concatenate(targets + [np.zeros((0, 2))])
     for t in thresholds:
-        found = hit_targets = on_target = 0
-        for h, tgt in zip(heat, targets):
-            uv, _ = find_peaks(h, t, meta.peak_blur_sigma_px)
-            found += len(uv)
-            if len(uv) and len(tgt):
-                d = np.linalg.norm(uv[:, None, :] - tgt[None, :, :], axis=2)
-                hit_targets += int((d.min(axis=0) <= radius).sum())
-                on_target += int((d.min(axis=1) <= radius).sum())
-        recall = hit_targets / n_targets if n_targets else None
-        precision = on_target / found if found else None
+        peaks = [find_peaks(h, t, meta.peak_blur_sigma_px)[0] for h in heat]
+        found = int(sum(len(uv) for uv in peaks))
+        peak_tile = np.concatenate([np.full(len(uv), i) for i, uv in enumerate(peaks)] + [np.zeros(0, int)])
+        matched = pixel_matches(peak_tile, np.concatenate(peaks + [np.zeros((0, 2))]), target_tile, target_uv,
+                                radius)
+        recall = matched / n_targets if n_targets else None
+        precision = matched / found if found else None
         f1 = (2 * recall * precision / (recall + precision)) if recall and precision else 0.0
         out["by_threshold"][f"{t:g}"] = {"recall": _round(recall), "precision": _round(precision),
                                          "f1": round(f1, 4), "detections": found,
-                                         "false_per_tile": round((found - on_target) / len(val), 4)}
+                                         "false_per_tile": round((found - matched) / len(val), 4)}
     return out
 
 
 def best_threshold(figures: dict | None, default: float = 0.5) -> float:
-    """The highest threshold whose F1 on the held-out tiles is within one target's worth (1 / targets) of
-    the best (``default`` without targets there).
+    """The highest threshold whose F1 is within one target's worth (1 / targets) of the best (``default``
+    without targets there). ``figures``: ``{"targets": n, "by_threshold": {t: {"f1": ...}}}`` — the held-out
+    tiles' (:func:`validation_figures`) or the ground figures of the held-out frames
+    (:func:`.ground_validation.ground_figures`, F1 of recall and GMCF, ``targets`` the held-out targets in view).
 
-    Held-out tiles hold a few dozen targets: F1 values closer than one target more or less found are not
+    Held-out data hold a few dozen targets: F1 values closer than one target more or less found are not
     told apart by them, and measured over a run they swing from threshold to threshold (0.59–0.61 from
     0.2 to 0.5 on the loop demo's tiles). Among those, the highest threshold gives the fewest detections,
     so the fewest false clusters to review for the same F1; the best-F1 pick alone chose 0.2 in one run

@@ -137,6 +137,7 @@ def test_train_command_on_writelabels_output_and_a_frame_geopackage(recipe, labe
     con.commit()
     con.close()
     assert recipe.frame_gsd_from_gpkg(gpkg) == pytest.approx(labelled["gsd_of"])
+    assert recipe.frame_records_from_gpkg(gpkg) is None  # GSDs alone: no poses to validate on the ground with
     out = tmp_path / "mine.onnx"
     args = ["train", "--labels", str(labelled["folder"]), "--frames", str(gpkg), "--resolution-cm", "0.5",
             "--minutes", "0.01", "--width", "4", "--threads", "1", "--threshold", "0.4", "--out", str(out)]
@@ -148,6 +149,23 @@ def test_train_command_on_writelabels_output_and_a_frame_geopackage(recipe, labe
     # A second model starts from the first one's weights.
     recipe.main(args[:-1] + [str(tmp_path / "again.onnx"), "--init", str(out.with_suffix(".pt"))])
     assert HeatmapModel(tmp_path / "again.onnx").metadata.default_threshold == 0.4
+
+
+def test_frame_records_from_a_geopackage_join_a_split_camera(recipe, tmp_path):
+    import sqlite3
+
+    gpkg = tmp_path / "frames.gpkg"
+    con = sqlite3.connect(gpkg)
+    con.execute("CREATE TABLE gpkg_contents (table_name TEXT, data_type TEXT)")
+    con.execute("INSERT INTO gpkg_contents VALUES ('frames', 'features')")
+    con.execute("CREATE TABLE frames (fid INTEGER PRIMARY KEY, frame_id INTEGER, lat REAL, gsd_cm REAL, "
+                "camera TEXT, camera_2 TEXT, camera_10 TEXT, other TEXT)")
+    con.execute("INSERT INTO frames (frame_id, lat, gsd_cm, camera, camera_2, camera_10, other) "
+                "VALUES (7, -27.5, 0.23, '{\"a\": ', '1', '}', 'x')")
+    con.commit()
+    con.close()
+    (record,) = recipe.frame_records_from_gpkg(gpkg)
+    assert record == {"frame_id": 7, "lat": -27.5, "gsd_cm": 0.23, "camera": '{"a": 1}'}
 
 
 def test_threshold_figures_are_runs_at_each_threshold_not_a_score_filter(recipe, tmp_path):
