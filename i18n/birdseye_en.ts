@@ -804,22 +804,22 @@ QGIS&apos;s own packages are not changed. pip downloads them from the Python Pac
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="283"/>
+        <location filename="../processing/algorithms/traindetector.py" line="304"/>
         <source>Training: {stage}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="285"/>
+        <location filename="../processing/algorithms/traindetector.py" line="306"/>
         <source>Training process {pid} started: torch {torch} on {device} ({threads} threads), backbone {backbone}.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="290"/>
+        <location filename="../processing/algorithms/traindetector.py" line="311"/>
         <source>{stage} step {step}: loss {loss:.4f}, validation {val} ({seconds:.0f} s)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="294"/>
+        <location filename="../processing/algorithms/traindetector.py" line="315"/>
         <source>Checkpoint written: {path} ({stage}, step {step})</source>
         <translation type="unfinished"></translation>
     </message>
@@ -3345,138 +3345,163 @@ exact</source>
 <context>
     <name>TrainDetector</name>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="51"/>
+        <location filename="../processing/algorithms/traindetector.py" line="52"/>
         <source>Train detector (heatmap model from training labels)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="94"/>
+        <location filename="../processing/algorithms/traindetector.py" line="97"/>
         <source>Training time budget (minutes)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="99"/>
-        <source>Share of the frames held out for validation (0–0.5)</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../processing/algorithms/traindetector.py" line="102"/>
+        <location filename="../processing/algorithms/traindetector.py" line="109"/>
         <source>Random seed</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="108"/>
+        <location filename="../processing/algorithms/traindetector.py" line="115"/>
         <source>CPU threads for training (0: all cores)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="117"/>
+        <location filename="../processing/algorithms/traindetector.py" line="124"/>
         <source>Trained model (ONNX)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="119"/>
+        <location filename="../processing/algorithms/traindetector.py" line="126"/>
         <source>Model card (Markdown)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="120"/>
+        <location filename="../processing/algorithms/traindetector.py" line="127"/>
         <source>Loss curves (PNG)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="121"/>
+        <location filename="../processing/algorithms/traindetector.py" line="128"/>
         <source>Weights to fine-tune from (.pt)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="190"/>
-        <source>Train detector needs PyTorch, which it runs in a separate Python process; no Python with torch, onnx and OpenCV was found ({tried}). In QGIS, choose {menu} and install the group '{group}' ({build} build); or install it yourself: {command}; or name a Python that has them (parameter {parameter}, or the environment variable {variable}) — for a virtual environment: &lt;venv&gt;/bin/python -m pip install &quot;torch=={torch}&quot; &quot;torchvision=={torchvision}&quot; onnx opencv-python-headless matplotlib</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../processing/algorithms/traindetector.py" line="190"/>
+        <location filename="../processing/algorithms/traindetector.py" line="201"/>
         <source>none set up</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="201"/>
+        <location filename="../processing/algorithms/traindetector.py" line="212"/>
         <source>Training in {python} ({origin}): torch {torch}.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="237"/>
+        <location filename="../processing/algorithms/traindetector.py" line="249"/>
         <source>Cancelled by the user; no model was written.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="246"/>
+        <location filename="../processing/algorithms/traindetector.py" line="258"/>
         <source>The last checkpoint is kept: {path}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="251"/>
+        <location filename="../processing/algorithms/traindetector.py" line="263"/>
         <source>Wrote {model} (default threshold {threshold:g}), its model card and loss plot; training {train:.1f} s on {device}, {tiles_per_s:.1f} tiles/s; {overhead:.1f} s outside training (process start, loading tiles, validation, export; the first line came after {first:.1f} s).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="75"/>
+        <location filename="../processing/algorithms/traindetector.py" line="77"/>
         <source>Write-labels folders (with tiles)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="79"/>
+        <location filename="../processing/algorithms/traindetector.py" line="82"/>
         <source>Or one GSD for every frame (cm/px)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="77"/>
-        <source>Frame layers (for each frame&apos;s GSD)</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../processing/algorithms/traindetector.py" line="88"/>
+        <location filename="../processing/algorithms/traindetector.py" line="91"/>
         <source>ImageNet weights of the encoder (.pth)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="91"/>
+        <location filename="../processing/algorithms/traindetector.py" line="94"/>
         <source>Earlier model to fine-tune (.pt, .onnx)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="105"/>
-        <source>Default threshold (empty: held-out F1)</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../processing/algorithms/traindetector.py" line="110"/>
+        <location filename="../processing/algorithms/traindetector.py" line="117"/>
         <source>Python with PyTorch</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="43"/>
+        <location filename="../processing/algorithms/traindetector.py" line="44"/>
         <source>Fast (default)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="82"/>
+        <location filename="../processing/algorithms/traindetector.py" line="85"/>
         <source>Training preset</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="43"/>
+        <location filename="../processing/algorithms/traindetector.py" line="44"/>
         <source>Method (EfficientNetV2, two stages, AdamW)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="85"/>
+        <location filename="../processing/algorithms/traindetector.py" line="88"/>
         <source>Network (the Method preset sets its own)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="96"/>
+        <location filename="../processing/algorithms/traindetector.py" line="99"/>
         <source>Model resolution (cm/px; empty: automatic)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/traindetector.py" line="79"/>
+        <source>Frame layers (each frame&apos;s GSD and pose, for validation on the ground)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/traindetector.py" line="102"/>
+        <source>Validation: hold out</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/traindetector.py" line="102"/>
+        <source>Spatial blocks (no target shared with training)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/traindetector.py" line="102"/>
+        <source>Whole flights (labels folders)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/traindetector.py" line="102"/>
+        <source>Nothing (threshold not validated)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/traindetector.py" line="106"/>
+        <source>Share of the targets held out for validation (0–0.5)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/traindetector.py" line="112"/>
+        <source>Default threshold (empty: best F1 on the held-out frames)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/traindetector.py" line="201"/>
+        <source>Train detector needs PyTorch, which it runs in a separate Python process; no Python with torch, onnx and OpenCV was found ({tried}). In QGIS, choose {menu} and install the group '{group}' ({build} build); or install it yourself: {command}; or name a Python that has them (parameter {parameter}, or the environment variable {variable}) — for a virtual environment: &lt;venv&gt;/bin/python -m pip install &quot;torch=={torch}&quot; &quot;torchvision=={torchvision}&quot; onnx opencv-python-headless matplotlib onnxruntime scipy</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/traindetector.py" line="270"/>
+        <source>Default threshold: {rule}.</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
@@ -5065,49 +5090,56 @@ exact</source>
     </message>
     <message>
         <location filename="../resources/help/traindetector.md" line="7"/>
-        <source>With the **Fast** preset (the default) each tile is resampled from its frame&apos;s ground sample distance to the model&apos;s resolution, as the detector resamples frames. Training runs in two stages on the time budget: 20 % with the encoder frozen, then every layer fine-tuned, on random 96 px crops with flips, quarter turns, scale and colour jitter. A share of the frames is held out with all their tiles; the validation loss is followed while training and, at the end, detection figures per threshold are measured on them.</source>
+        <source>With the **Fast** preset (the default) each tile is resampled from its frame&apos;s ground sample distance to the model&apos;s resolution, as the detector resamples frames. Training runs in two stages on the time budget: 20 % with the encoder frozen, then every layer fine-tuned, on random 96 px crops with flips, quarter turns, scale and colour jitter. Validation holds out frames that share no target with training (VALIDATION) — at 5 frames/s each target is in many frames, so frames held out at random would show the network the targets it trained on. At the end, the trained network is exported as the model will be and run with Detect targets&apos; own detector over the held-out frames&apos; full images; its detections are clustered and scored as Evaluate detections scores a flight: **recall** (held-out targets recovered) and **GMCF** (clusters on a target) per threshold, and the default threshold is chosen from them. The held-out tiles&apos; figures remain in the model card as a diagnostic; they do not predict a flight.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
         <location filename="../resources/help/traindetector.md" line="9"/>
-        <source>The **Method** preset follows the published method&apos;s recipe instead: an EfficientNetV2 encoder under a transposed-convolution decoder, 224 × 224 crops of tiles kept at their frames&apos; own ground sample distance (no resampling), two stages (encoder frozen, then its top 30 % of blocks unfrozen), AdamW at 1e-5 (β 0.9/0.999), plain binary cross-entropy, and early stopping: a stage ends after 15 epochs (passes over the training tiles) without a lower validation loss and goes back to its best epoch&apos;s weights, or at its share of the time budget, whichever comes first — the model card says which ended it. The method names EfficientNetV2-B3; torchvision offers EfficientNetV2 from S up, so the preset trains `efficientnet_v2_s`, the nearest.</source>
+        <source>A labels set without a tile holding a target is refused (no model is written). When nothing is held out (too few targets, blocks or flights, VALIDATION nothing) or the held-out frames cannot be scored on the ground (no frame layer, only a GSD), the log and the model card warn that the default threshold was not validated on the ground.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
         <location filename="../resources/help/traindetector.md" line="11"/>
-        <source>## Parameters</source>
+        <source>The **Method** preset follows the published method&apos;s recipe instead: an EfficientNetV2 encoder under a transposed-convolution decoder, 224 × 224 crops of tiles kept at their frames&apos; own ground sample distance (no resampling), two stages (encoder frozen, then its top 30 % of blocks unfrozen), AdamW at 1e-5 (β 0.9/0.999), plain binary cross-entropy, and early stopping: a stage ends after 15 epochs (passes over the training tiles) without a lower validation loss and goes back to its best epoch&apos;s weights, or at its share of the time budget, whichever comes first — the model card says which ended it. The method names EfficientNetV2-B3; torchvision offers EfficientNetV2 from S up, so the preset trains `efficientnet_v2_s`, the nearest.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
         <location filename="../resources/help/traindetector.md" line="13"/>
+        <source>## Parameters</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../resources/help/traindetector.md" line="15"/>
         <source>- **LABELS** — Write training labels output folders written with a tile size (`tiles/images`, `tiles/labels`); pick the folder or any file in it (e.g. its `summary.json`); in a model or a script, a list of them, or text joining them with `;`. `labels.csv` decides which tiles hold a target (a label&apos;s u, v inside the tile); its `label` column names the model&apos;s class — the one class all labels share, or, since the heatmap has one output channel that cannot tell classes apart, every class joined by `+` (e.g. `burrow+nest`; the log says so). Its `provenance` column (survey, review), when present, is counted in the model card.
-- **FRAMES** — the frame layers the labels were written from: each frame&apos;s `gsd_cm` (ground sample distance, cm/px). One per labels folder in the same order, or one for all. Tiles of frames without a GSD are left out (counted in the log).
-- **GSD_CM** — instead of frame layers: one ground sample distance (cm/px) for every frame.
+- **FRAMES** — the frame layers the labels were written from: each frame&apos;s `gsd_cm` (ground sample distance, cm/px), and its pose and image, with which the held-out frames are run through the detector and scored on the ground. One per labels folder in the same order, or one for all. Tiles of frames without a GSD are left out (counted in the log).
+- **GSD_CM** — instead of frame layers: one ground sample distance (cm/px) for every frame. The frames&apos; poses are then unknown: the threshold is chosen on the held-out tiles, with a warning.
 - **PRESET** — *Fast (default)*: the settings described first above, with the BACKBONE and RESOLUTION_CM you choose. *Method (EfficientNetV2, two stages, AdamW)*: the method&apos;s recipe; it sets the network (`efficientnet_v2_s`, so BACKBONE is not used) and trains at the frames&apos; own GSD (RESOLUTION_CM is not used: the model runs at the training frames&apos; median GSD). Its ImageNet weights come from WEIGHTS or torchvision&apos;s cache only; without them the encoder starts from random initialisation and the model card says plainly that it is not ImageNet-pretrained. At 1e-5, with 224 px crops through a larger network, it needs many more steps than Fast: give it a long budget and let early stopping end it.
 - **BACKBONE** — `small` (the default): the recipe&apos;s own small encoder–decoder, trained from scratch, works offline. Or an ImageNet-pretrained torchvision encoder (EfficientNet B0–B3, EfficientNetV2-S, ResNet-18/34/50) under a light decoder; slower per step, better features for few labels.
 - **WEIGHTS** — the pretrained encoder&apos;s ImageNet weights (.pth, a torchvision state dict). Empty: torchvision&apos;s cache (`~/.cache/torch/hub/checkpoints`, the file name torchvision uses). Nothing is downloaded; when the file is in neither place the run stops and says which file to put where.
 - **INIT** — fine-tune from the weights (`&lt;model&gt;.pt`) of an earlier training with the same backbone, e.g. a model trained on simulated campaigns adapted to real labels. No ImageNet weights are needed then. A BirdsEye ONNX model of the small network (the bundled `birdseye_demo_heatmap.onnx`, or any model this algorithm wrote) serves too: its weights are read back from the ONNX graph and checked against onnxruntime&apos;s output; the batch norms the export folded into convolutions keep their statistics frozen while their scale and shift still learn, and stay frozen when you fine-tune again from the `.pt` that run wrote. The new model keeps the earlier model&apos;s resolution and normalisation (mean, std, channel order); a `.pt` written by an older BirdsEye records neither, and the run then trains at RESOLUTION_CM normalised as a new model (the log says so).
 - **MINUTES** — training time budget in minutes (default 20); loading tiles, validation and export come on top.
 - **RESOLUTION_CM** — the model&apos;s resolution in cm/px. Empty (the default): the INIT model&apos;s, else 1.0. A value other than the INIT model&apos;s resolution is refused: its filters learnt targets of a size in pixels. Not used by the Method preset, which trains at the frames&apos; own GSD.
-- **VALIDATION_FRACTION** — share of the frames held out for validation, 0–0.5 (default 0.15). Neighbouring frames see the same ground, so these figures are optimistic: score the model on a flight it never saw with Evaluate detections.
+- **VALIDATION** — what is held out. *Spatial blocks* (default): the targets (`targets.csv` of each labels folder) are grouped into square ground blocks one frame footprint diagonal wide and whole blocks are held out; frames that see only held-out targets validate, frames that see only training targets train, frames that see both are dropped (counted in the model card); frames that see no target follow the block of their footprint&apos;s centre. A block is held out in every labels folder, so two flights over one site keep each target on one side. *Whole flights*: whole labels folders held out (needs two or more). *Nothing*: every frame trains; the threshold is not validated. A labels folder written before `targets.csv` existed is split by random frames instead, with a warning.
+- **VALIDATION_FRACTION** — share of the targets held out, 0–0.5 (default 0.15): blocks (or flights) are taken in a random order while their targets fit under it (the smallest alone when none fits).
 - **SEED** — random seed of the split, the crops and the initial weights.
-- **THRESHOLD** (advanced) — default threshold written into the model; empty: the highest threshold whose F1 on the held-out tiles is within one target&apos;s worth (1 / held-out targets) of the best, i.e. the fewest detections among F1 values the held-out tiles cannot tell apart (0.5 without targets there).
+- **THRESHOLD** (advanced) — default threshold written into the model; empty: chosen on the ground figures of the held-out frames — the highest threshold whose F1 (harmonic mean of recall and GMCF) is within one target&apos;s worth (1 / held-out targets in view) of the best, i.e. the fewest detections among F1 values the held-out targets cannot tell apart. Without ground figures, the same rule on the held-out tiles&apos; F1, with a warning; 0.5 when neither found a target.
 - **THREADS** (advanced) — CPU threads for training; 0 uses every core.
-- **PYTHON** (advanced) — a Python interpreter with torch, onnx, OpenCV (and torchvision for a pretrained encoder, matplotlib for the plot). Empty: the environment variable BIRDSEYE_TRAINING_PYTHON, else QGIS&apos;s Python with the folder Install dependencies installed PyTorch into.</source>
+- **PYTHON** (advanced) — a Python interpreter with torch, onnx, OpenCV (and torchvision for a pretrained encoder, matplotlib for the plot, onnxruntime and scipy for the validation on the ground). Empty: the environment variable BIRDSEYE_TRAINING_PYTHON, else QGIS&apos;s Python with the folder Install dependencies installed PyTorch into.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../resources/help/traindetector.md" line="28"/>
+        <location filename="../resources/help/traindetector.md" line="31"/>
         <source>## Outputs</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../resources/help/traindetector.md" line="30"/>
+        <location filename="../resources/help/traindetector.md" line="33"/>
         <source>- **OUTPUT_MODEL** — the ONNX model (written under a temporary name and renamed at the end: a cancelled or failed run leaves none).
-- **MODEL_CARD** — `&lt;model&gt;.md`: the data (folders, tiles, positives, negatives, targets by provenance), the preset and its settings, how the encoder started (ImageNet weights, or random initialisation), what ended each stage (time budget, early stopping), training time and device, validation figures per threshold (recall, precision, F1, false detections per tile).
+- **MODEL_CARD** — `&lt;model&gt;.md`: the data (folders, tiles, positives, negatives, targets by provenance), the preset and its settings, how the encoder started (ImageNet weights, or random initialisation), what ended each stage (time budget, early stopping), training time and device, the validation split (method; targets, frames and tiles on each side; frames dropped; warnings), the ground figures per threshold (recall, GMCF, F1, clusters) and the held-out tiles&apos; figures (recall, precision, F1, false detections per tile; peaks and targets matched one to one). `&lt;model&gt;.training.json` holds the same in `split`, `ground_validation`, `validation`, `threshold_rule`, `validated_on` and `warnings`.
 - **PLOT** — `&lt;model&gt;_loss.png`: training and validation loss against training time (s).
 - **CHECKPOINT** — `&lt;model&gt;.pt`: the final weights, for INIT.
-- **TILES, THRESHOLD_USED, TRAIN_SECONDS, TILES_PER_SECOND** — for models and scripts.</source>
+- **TILES, THRESHOLD_USED, TRAIN_SECONDS, TILES_PER_SECOND** — for models and scripts.
+- **VALIDATION_RECALL, VALIDATION_GMCF** — the ground figures of the held-out frames at the default threshold (empty when not measured).</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
