@@ -208,6 +208,8 @@ def test_labels_without_a_positive_tile_are_refused_and_no_model_is_written(tmp_
     labels = make_label_folder(tmp_path / "labels", n_frames=3)
     for path in (labels / "tiles" / "labels").glob("*.png"):
         cv2.imwrite(str(path), np.zeros((96, 96), np.uint8))
+    labels_csv = labels / "labels.csv"  # labels.csv decides which tiles hold a target: none does
+    labels_csv.write_text(labels_csv.read_text(encoding="utf-8").splitlines()[0] + "\n", encoding="utf-8")
     job = TrainJob(sources=[Source(str(labels), gsd_default=1.0)], out=str(tmp_path / "none.onnx"), steps=2)
     with pytest.raises(InputError, match=r"no training tile holds a target .*labels.*needs positive tiles"):
         run_job(job)
