@@ -3460,11 +3460,6 @@ exact</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="79"/>
-        <source>Frame layers (each frame&apos;s GSD and pose, for validation on the ground)</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
         <location filename="../processing/algorithms/traindetector.py" line="102"/>
         <source>Validation: hold out</source>
         <translation type="unfinished"></translation>
@@ -3485,16 +3480,6 @@ exact</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="106"/>
-        <source>Share of the targets held out for validation (0–0.5)</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../processing/algorithms/traindetector.py" line="112"/>
-        <source>Default threshold (empty: best F1 on the held-out frames)</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
         <location filename="../processing/algorithms/traindetector.py" line="201"/>
         <source>Train detector needs PyTorch, which it runs in a separate Python process; no Python with torch, onnx and OpenCV was found ({tried}). In QGIS, choose {menu} and install the group '{group}' ({build} build); or install it yourself: {command}; or name a Python that has them (parameter {parameter}, or the environment variable {variable}) — for a virtual environment: &lt;venv&gt;/bin/python -m pip install &quot;torch=={torch}&quot; &quot;torchvision=={torchvision}&quot; onnx opencv-python-headless matplotlib onnxruntime scipy</source>
         <translation type="unfinished"></translation>
@@ -3502,6 +3487,21 @@ exact</source>
     <message>
         <location filename="../processing/algorithms/traindetector.py" line="270"/>
         <source>Default threshold: {rule}.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/traindetector.py" line="79"/>
+        <source>Frame layers (GSD and pose of each frame)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/traindetector.py" line="106"/>
+        <source>Share of the targets held out (0–0.5)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/traindetector.py" line="112"/>
+        <source>Default threshold (empty: from validation)</source>
         <translation type="unfinished"></translation>
     </message>
 </context>

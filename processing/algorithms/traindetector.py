@@ -77,7 +77,7 @@ class TrainDetector(BirdsEyeAlgorithm):
         self.addParameter(QgsProcessingParameterMultipleLayers(
             self.LABELS, self.tr("Write-labels folders (with tiles)"), SOURCE_FILE))
         self.addParameter(QgsProcessingParameterMultipleLayers(
-            self.FRAMES, self.tr("Frame layers (each frame's GSD and pose, for validation on the ground)"),
+            self.FRAMES, self.tr("Frame layers (GSD and pose of each frame)"),
             SOURCE_VECTOR, optional=True))
         self.addParameter(QgsProcessingParameterNumber(
             self.GSD_CM, self.tr("Or one GSD for every frame (cm/px)"), NUMBER_DOUBLE, optional=True,
@@ -104,13 +104,13 @@ class TrainDetector(BirdsEyeAlgorithm):
             [self.tr("Spatial blocks (no target shared with training)"),
              self.tr("Whole flights (labels folders)"), self.tr("Nothing (threshold not validated)")], defaultValue=0))
         self.addParameter(QgsProcessingParameterNumber(
-            self.VALIDATION_FRACTION, self.tr("Share of the targets held out for validation (0–0.5)"), NUMBER_DOUBLE,
+            self.VALIDATION_FRACTION, self.tr("Share of the targets held out (0–0.5)"), NUMBER_DOUBLE,
             0.15, minValue=0.0, maxValue=0.5))
         self.addParameter(QgsProcessingParameterNumber(
             self.SEED, self.tr("Random seed"), NUMBER_INTEGER, 0, minValue=0))
         advanced = [
             QgsProcessingParameterNumber(
-                self.THRESHOLD, self.tr("Default threshold (empty: best F1 on the held-out frames)"), NUMBER_DOUBLE,
+                self.THRESHOLD, self.tr("Default threshold (empty: from validation)"), NUMBER_DOUBLE,
                 optional=True, minValue=0.0, maxValue=1.0),
             QgsProcessingParameterNumber(
                 self.THREADS, self.tr("CPU threads for training (0: all cores)"), NUMBER_INTEGER, 0, minValue=0),
