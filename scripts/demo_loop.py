@@ -230,6 +230,13 @@ def simulated_review(campaign: Campaign, values: dict, out: Path) -> dict:
 POOLED = ("n_in_view", "n_recovered", "n_clusters", "n_hit_clusters")
 
 
+def f1_of(recall, gmcf) -> float | None:
+    """The method's F1 of a recall and a GMCF (:func:`core.scoring.pre_review.f1_geo`); None where either is."""
+    from birdseye.birdseye_qgis.core.scoring.pre_review import f1_geo
+
+    return None if recall is None or gmcf is None else float(f1_geo(recall, gmcf))
+
+
 def pooled_comparison(values: dict, loop: LoopRound) -> dict:
     """Before and after, pooled over the test campaigns (sums of counts, one division), and the changes."""
     sums = {side: dict.fromkeys(POOLED, 0) for side in ("before", "after")}
@@ -247,8 +254,8 @@ def pooled_comparison(values: dict, loop: LoopRound) -> dict:
 
     out = {}
     for side, s in sums.items():
-        out[side] = dict(s, recall_pre=ratio(s["n_recovered"], s["n_in_view"]),
-                         gmcf_pre=ratio(s["n_hit_clusters"], s["n_clusters"]))
+        recall, gmcf = ratio(s["n_recovered"], s["n_in_view"]), ratio(s["n_hit_clusters"], s["n_clusters"])
+        out[side] = dict(s, recall_pre=recall, gmcf_pre=gmcf, f1_geo=f1_of(recall, gmcf))
     out["changes"] = changes
     return out
 
@@ -290,6 +297,10 @@ def summary_lines(numbers: dict, shown_out: str) -> str:
               "clusters in the training labels",
               f" Training    {numbers['training']['tiles']} tiles, {numbers['training']['seconds']:.0f} s, "
               f"threshold {demo.fmt(numbers['training']['threshold'], 2)} → model/retrained.onnx",
+              f" Validation held-out frames at that threshold: recall "
+              f"{demo.fmt(numbers['training']['validation_recall'])}, GMCF "
+              f"{demo.fmt(numbers['training']['validation_gmcf'])}, F1 {demo.fmt(numbers['training']['validation_f1'])}"
+              f" (test campaigns after: F1 {demo.fmt(a['f1_geo'])})",
               f" Test        recall_pre {demo.fmt(b['recall_pre'])} → {demo.fmt(a['recall_pre'])}, "
               f"gmcf_pre {demo.fmt(b['gmcf_pre'])} → {demo.fmt(a['gmcf_pre'])} "
               f"({b['n_clusters']} → {a['n_clusters']} clusters)",
@@ -357,6 +368,9 @@ def run(out: Path, size_name: str, minutes: float | None, loop: LoopRound | None
                          "minutes_budget": minutes, "threads": TRAINING_THREADS,
                          "cpu_minutes": round(float(train["TRAIN_SECONDS"]) * TRAINING_THREADS / 60.0, 2),
                          "threshold": train["THRESHOLD_USED"],
+                         # the held-out frames' ground figures at that threshold (Train detector's validation)
+                         "validation_recall": train["VALIDATION_RECALL"], "validation_gmcf": train["VALIDATION_GMCF"],
+                         "validation_f1": f1_of(train["VALIDATION_RECALL"], train["VALIDATION_GMCF"]),
                          "tiles_per_second": train["TILES_PER_SECOND"], "model_card": Path(train["MODEL_CARD"]).name},
             "round": {"seeds": {c.key: c.seed for c in loop.campaigns}, "model": str(loop.model),
                       "model_name": "The bundled model" if loop.model == demo.BUNDLED_MODEL else loop.model.name,
