@@ -386,14 +386,7 @@ QTimer.singleShot(500, install)
 def test_install_from_zip_in_the_desktop(package, tmp_path):
     """The real desktop, a fresh profile without BirdsEye, QGIS's own Install-from-ZIP code: the plugin
     lands in the profile's python/plugins, starts, registers every algorithm and adds its menu."""
-    profiles = tmp_path / "profiles"
-    ini = profiles / "profiles" / "default" / "QGIS" / "QGIS3.ini"
-    ini.parent.mkdir(parents=True)
-    ini.write_text("[PythonPlugins]\nprocessing=true\n\n" + OFFLINE_SETTINGS)
-    probe = tmp_path / "install_probe.py"
-    probe.write_text(INSTALL_PROBE, encoding="utf-8")
-    env = {k: v for k, v in os.environ.items() if k not in {"QGIS_CUSTOM_CONFIG_PATH", "QGIS_PLUGINPATH",
-                                                            "PYTHONPATH"}}
+    profiles, probe, env = fresh_profile(tmp_path, "install_probe.py", INSTALL_PROBE)
     report, output = run_desktop_probe(profiles, probe, {**env, "BIRDSEYE_ZIP": str(package)}, tmp_path, 120,
                                "install-from-zip-timeout.png")
     assert report["errors"] == []
@@ -494,15 +487,8 @@ def test_install_from_the_plugin_repository_in_the_desktop(package, repository_f
     added by its file:// URL in the Add-repository dialog, read (one plugin, BirdsEye, at the zip's version),
     and the plugin installed from it — downloaded from its download_url — starts, registers every algorithm
     and adds its menu."""
-    profiles = tmp_path / "profiles"
-    ini = profiles / "profiles" / "default" / "QGIS" / "QGIS3.ini"
-    ini.parent.mkdir(parents=True)
-    ini.write_text("[PythonPlugins]\nprocessing=true\n\n" + OFFLINE_SETTINGS)
-    probe = tmp_path / "repository_probe.py"
-    probe.write_text(REPOSITORY_PROBE, encoding="utf-8")
+    profiles, probe, env = fresh_profile(tmp_path, "repository_probe.py", REPOSITORY_PROBE)
     REPOSITORY_SCREENSHOT.parent.mkdir(parents=True, exist_ok=True)
-    env = {k: v for k, v in os.environ.items() if k not in {"QGIS_CUSTOM_CONFIG_PATH", "QGIS_PLUGINPATH",
-                                                            "PYTHONPATH"}}
     report, output = run_desktop_probe(profiles, probe, {**env, "BIRDSEYE_REPOSITORY_NAME": REPOSITORY_NAME,
                                                          "BIRDSEYE_REPOSITORY_URL": repository_file.resolve().as_uri(),
                                                          "BIRDSEYE_SCREENSHOT": str(REPOSITORY_SCREENSHOT)},
@@ -714,6 +700,21 @@ def test_installer_brings_a_bare_profile_to_a_working_detect(package, wheelhouse
     detections = json.loads(detected.stdout)["results"]
     assert detections["FRAMES_PROCESSED"] == results["FRAME_COUNT"] > 0
     assert detections["DETECTION_COUNT"] > 0 and (tmp_path / "detections.gpkg").is_file()
+
+
+def fresh_profile(tmp_path, probe_name: str, probe_text: str):
+    """(a profiles folder whose default profile has only Processing enabled and QGIS kept offline, the probe
+    script written beside it, the environment without this checkout's plugin path): QGIS as a user without
+    BirdsEye starts it."""
+    profiles = tmp_path / "profiles"
+    ini = profiles / "profiles" / "default" / "QGIS" / "QGIS3.ini"
+    ini.parent.mkdir(parents=True)
+    ini.write_text("[PythonPlugins]\nprocessing=true\n\n" + OFFLINE_SETTINGS)
+    probe = tmp_path / probe_name
+    probe.write_text(probe_text, encoding="utf-8")
+    env = {k: v for k, v in os.environ.items() if k not in {"QGIS_CUSTOM_CONFIG_PATH", "QGIS_PLUGINPATH",
+                                                            "PYTHONPATH"}}
+    return profiles, probe, env
 
 
 def run_desktop_probe(profiles, probe, env, tmp_path, timeout_s, stuck_png):

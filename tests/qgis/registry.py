@@ -32,6 +32,19 @@ def run(alg_id, params, feedback=None):
     return processing.run(f"birdseye:{alg_id}", params, feedback=feedback)
 
 
+def imported_campaign(folder, config):
+    """A simulated campaign (``core.sim.campaign.CampaignConfig``) written to ``folder`` and imported as the
+    toolbox imports one: (its geotags layer, its frame layer), both temporary."""
+    from birdseye.birdseye_qgis.core.sim.campaign import simulate_campaign
+
+    simulate_campaign(config, folder)
+    geotags = run("importgeotags", {"INPUT": str(folder / "geotags.csv"), "OUTPUT": "TEMPORARY_OUTPUT"})["OUTPUT"]
+    frames = run("importflightlog", {"POSE_LOG": str(folder / "poses.csv"), "IMAGES": str(folder / "frames"),
+                                     "CALIBRATION": str(folder / "calibration.yaml"),
+                                     "OUTPUT": "TEMPORARY_OUTPUT"})["OUTPUT"]
+    return geotags, frames
+
+
 def rows(path):
     """The rows of a CSV file an algorithm wrote, as dicts."""
     with open(path, newline="", encoding="utf-8") as handle:

@@ -23,9 +23,9 @@ from pathlib import Path
 
 import pytest
 from qgis.core import QgsProcessingException
-from registry import Recorder, run
+from registry import Recorder, imported_campaign, run
 
-from birdseye.birdseye_qgis.core.sim.campaign import CampaignConfig, simulate_campaign
+from birdseye.birdseye_qgis.core.sim.campaign import CampaignConfig
 
 REPO_ROOT = Path(__file__).resolve().parents[2]
 BRIGHTON = REPO_ROOT / "tests" / "data" / "brighton_beach_960"
@@ -53,12 +53,8 @@ def test_a_number_out_of_range_names_the_range_and_unit(birdseye_provider, alg_i
 def flight(birdseye_provider, tmp_path_factory):
     """A small simulated flight's geotags and frames."""
     folder = tmp_path_factory.mktemp("flight")
-    simulate_campaign(CampaignConfig(seed=5, n_targets=4, field_width_m=6.0, field_length_m=4.0, image_width=320,
-                                     image_height=200), folder)
-    geotags = run("importgeotags", {"INPUT": str(folder / "geotags.csv"), "OUTPUT": "TEMPORARY_OUTPUT"})["OUTPUT"]
-    frames = run("importflightlog", {"POSE_LOG": str(folder / "poses.csv"), "IMAGES": str(folder / "frames"),
-                                     "CALIBRATION": str(folder / "calibration.yaml"),
-                                     "OUTPUT": "TEMPORARY_OUTPUT"})["OUTPUT"]
+    geotags, frames = imported_campaign(folder, CampaignConfig(seed=5, n_targets=4, field_width_m=6.0,
+                                                               field_length_m=4.0, image_width=320, image_height=200))
     return {"geotags": geotags, "frames": frames}
 
 

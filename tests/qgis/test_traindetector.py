@@ -14,13 +14,13 @@ from pathlib import Path
 import pytest
 from qgis.core import QgsProcessingException, QgsProcessingFeedback
 
-from birdseye.birdseye_qgis.core.sim.campaign import CampaignConfig, simulate_campaign
+from birdseye.birdseye_qgis.core.sim.campaign import CampaignConfig
 from birdseye.birdseye_qgis.core.train.protocol import process_alive
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "unit" / "train"))
 from fake_labels import make_label_folder  # noqa: E402
 from registry import Recorder as Log
-from registry import run
+from registry import imported_campaign, run
 from training_python import TRAINING_PYTHON, needs_training_python
 
 pytestmark = needs_training_python
@@ -57,12 +57,8 @@ def campaign(birdseye_provider, tmp_path_factory):
     """A small simulated campaign (two frame footprints long: spatial blocks can be held out), imported, and its
     training labels with 96 px tiles."""
     folder = tmp_path_factory.mktemp("campaign")
-    simulate_campaign(CampaignConfig(seed=5, n_targets=14, field_width_m=12.0, field_length_m=5.0, image_width=480,
-                                     image_height=300), folder)
-    geotags = run("importgeotags", {"INPUT": str(folder / "geotags.csv"), "OUTPUT": "TEMPORARY_OUTPUT"})["OUTPUT"]
-    frames = run("importflightlog", {"POSE_LOG": str(folder / "poses.csv"), "IMAGES": str(folder / "frames"),
-                                     "CALIBRATION": str(folder / "calibration.yaml"),
-                                     "OUTPUT": "TEMPORARY_OUTPUT"})["OUTPUT"]
+    geotags, frames = imported_campaign(folder, CampaignConfig(seed=5, n_targets=14, field_width_m=12.0,
+                                                               field_length_m=5.0, image_width=480, image_height=300))
     labels = folder / "labels"
     run("writelabels", {"GEOTAGS": geotags, "FRAMES": frames, "WRITE_RASTERS": False, "WRITE_TILES": True,
                         "TILE_SIZE": 96, "OUTPUT_FOLDER": str(labels), "OUTPUT_FRAMES": None,
