@@ -22,6 +22,7 @@ Runs in a standalone QGIS application, every step through the Processing registr
 
     .venv/bin/python scripts/demo_loop.py [--out birdseye-demo-loop] [--size full|small] [--minutes M]
         [--seeds R1,R2,T1,T2] [--model round1/model/retrained.onnx [--init round1/model/retrained.pt]]
+        [--validation-fraction F]
 
 ``--seeds`` simulates other campaigns (two review, two test seeds) than the demo's 401, 402, 501, 502: a round on
 campaigns the project has not used. ``--model`` starts the round from another model than the bundled one (it
@@ -77,13 +78,16 @@ class LoopRound:
     campaigns: tuple
     model: Path
     init: Path
+    validation_fraction: float | None = None  # Train detector's share of held-out targets (None: its default)
 
     @classmethod
-    def of(cls, seeds=None, model: Path | None = None, init: Path | None = None) -> "LoopRound":
+    def of(cls, seeds=None, model: Path | None = None, init: Path | None = None,
+           validation_fraction: float | None = None) -> "LoopRound":
         campaigns = CAMPAIGNS if seeds is None else [replace(c, seed=s) for c, s in zip(CAMPAIGNS, seeds)]
         model = Path(model or demo.BUNDLED_MODEL)
         beside = model.with_suffix(".pt")
-        return cls(tuple(campaigns), model, Path(init) if init else beside if beside.is_file() else model)
+        return cls(tuple(campaigns), model, Path(init) if init else beside if beside.is_file() else model,
+                   validation_fraction)
 
     @property
     def reviewed(self) -> list:
@@ -157,6 +161,7 @@ def relabel_and_train_steps(size: demo.DemoSize, minutes: float, loop: LoopRound
         "LABELS": [f"{{labels_{c.key}[OUTPUT_FOLDER]}}" for c in loop.reviewed],
         "FRAMES": [f"{{flight_{c.key}[OUTPUT]}}" for c in loop.reviewed],
         "INIT": str(loop.init), "MINUTES": minutes, "THREADS": TRAINING_THREADS, "SEED": 1,
+        **({} if loop.validation_fraction is None else {"VALIDATION_FRACTION": loop.validation_fraction}),
         # The demo runs in the repository's venv, which has the training extra (requirements-train.txt).
         "PYTHON": sys.executable,
         "OUTPUT_MODEL": "{out}/model/retrained.onnx"}))
@@ -373,6 +378,7 @@ def run(out: Path, size_name: str, minutes: float | None, loop: LoopRound | None
                          "validation_f1": f1_of(train["VALIDATION_RECALL"], train["VALIDATION_GMCF"]),
                          "tiles_per_second": train["TILES_PER_SECOND"], "model_card": Path(train["MODEL_CARD"]).name},
             "round": {"seeds": {c.key: c.seed for c in loop.campaigns}, "model": str(loop.model),
+                      "validation_fraction": loop.validation_fraction,
                       "model_name": "The bundled model" if loop.model == demo.BUNDLED_MODEL else loop.model.name,
                       "init": str(loop.init)},
             "test": pooled_comparison(values, loop),
@@ -414,7 +420,11 @@ def main(argv=None) -> int:
                         help="the ONNX model the round starts from (default: the bundled model)")
     parser.add_argument("--init", type=Path, default=None,
                         help="the weights retraining starts from (default: the .pt beside --model, else --model)")
+    parser.add_argument("--validation-fraction", type=float, default=None,
+                        help="share of the review campaigns' targets Train detector holds out (default: its own)")
     args = parser.parse_args(argv)
+    if args.validation_fraction is not None and not 0 < args.validation_fraction <= 0.5:
+        parser.error("--validation-fraction must lie in (0, 0.5]")
     if args.minutes is not None and not (0 < args.minutes and math.isfinite(args.minutes)):
         parser.error("--minutes must be a positive number")
     seeds = None
@@ -428,7 +438,8 @@ def main(argv=None) -> int:
     for given in (args.model, args.init):
         if given is not None and not given.is_file():
             parser.error(f"{given}: no such file")
-    loop = LoopRound.of(seeds, args.model and args.model.resolve(), args.init and args.init.resolve())
+    loop = LoopRound.of(seeds, args.model and args.model.resolve(), args.init and args.init.resolve(),
+                        args.validation_fraction)
     return run(args.out.resolve(), args.size, args.minutes, loop)
 
 
