@@ -48,11 +48,11 @@ from pathlib import Path
 
 import numpy as np
 
-from ..errors import check_cancel
+from ..errors import InputError, check_cancel
 from ..field.geotags import PROVENANCES, REVIEW, UNLABELLED, Geotags
 from ..geometry.geodesy import LocalFrame
 from ..geometry.ground import GroundModel, LevelPlaneGround
-from ..geometry.heights import ELLIPSOIDAL_REFERENCE, convert_heights
+from ..geometry.heights import ELLIPSOIDAL_REFERENCE, VerticalReference, convert_heights
 from ..geometry.poses import FrameGeometry, FramePoses
 from ..geometry.projection import Projection, pixel_to_ground, project_in_view
 from .relief import ReliefCheck, TargetRelief
@@ -490,6 +490,44 @@ class LabelWriter:
         return LabelSetResult(summary, fpg, lpf)
 
 
+def read_targets(folder) -> Geotags | None:
+    """The targets of a Write-labels folder, as :func:`_write_targets` wrote them to ``targets.csv``; None when the
+    folder has none (written before it existed). Heights are ellipsoidal (``height_ref``); an empty height (a
+    review target) reads as NaN. A row whose height is in another reference, or not a number, is refused with
+    its row and field."""
+    path = Path(folder) / "targets.csv"
+    if not path.is_file():
+        return None
+    with open(path, newline="", encoding="utf-8") as f:
+        reader = csv.DictReader(f)
+        missing = [name for name in TARGETS_CSV_FIELDS if name not in (reader.fieldnames or ())]
+        if missing:
+            raise InputError(f"is not a targets.csv of Write training labels: no column {', '.join(missing)}",
+                             source=str(path))
+        rows = list(reader)
+    heights = []
+    for row_number, row in enumerate(rows, start=2):  # the header is line 1
+        text = (row["height_m"] or "").strip()
+        if not text:
+            heights.append(np.nan)
+            continue
+        reference = VerticalReference.parse(row["height_ref"], str(path), row_number, "height_ref")
+        if reference != ELLIPSOIDAL_REFERENCE:
+            raise InputError(f"the height is {reference.describe()}; targets.csv holds ellipsoidal heights (WGS84)",
+                             source=str(path), row=row_number, field="height_ref")
+        try:
+            heights.append(float(text))
+        except ValueError as exc:
+            raise InputError(f"{text!r} is not a height in metres", source=str(path), row=row_number,
+                             field="height_m") from exc
+    try:
+        lat, lon = [float(r["lat"]) for r in rows], [float(r["lon"]) for r in rows]
+    except ValueError as exc:
+        raise InputError(f"is not a targets.csv of Write training labels ({exc})", source=str(path)) from exc
+    return Geotags([r["geotag_id"] for r in rows], lat, lon, heights, [r["label"] or "target" for r in rows],
+                   [r["provenance"] or "survey" for r in rows], source=str(path))
+
+
 def _write_targets(path: Path, geotags: Geotags, written) -> None:
     """targets.csv: the targets written to labels.csv, in geotag order (module docstring)."""
     with open(path, "w", newline="", encoding="utf-8") as f:
@@ -503,7 +541,9 @@ def _write_targets(path: Path, geotags: Geotags, written) -> None:
                           ELLIPSOIDAL_REFERENCE.text if known else ""])
 
 
-def _inside(uv, x0, y0, t) -> np.ndarray:
+def inside_tile(uv, x0, y0, t) -> np.ndarray:
+    """Which points of ``uv`` (n, 2) lie in the t × t px tile at (x0, y0): pixel centres at integers, a pixel's
+    square from −0.5 to +0.5. The rule tiles are cut by, and Train detector's positive tiles are told by."""
     if not len(uv):
         return np.zeros(0, bool)
     return (uv[:, 0] >= x0 - 0.5) & (uv[:, 0] < x0 + t - 0.5) & (uv[:, 1] >= y0 - 0.5) & (uv[:, 1] < y0 + t - 0.5)
@@ -543,7 +583,7 @@ def _write_tiles(tile_dir: Path, frame_id, image, raster, uv, request: LabelRequ
         for x0 in tile_origins(w, t):
             if _near(ignore_uv, x0, y0, t, request.label_radius_px):
                 n_ignored += 1
-            elif _inside(uv, x0, y0, t).any():
+            elif inside_tile(uv, x0, y0, t).any():
                 positives.append((y0, x0))
             else:
                 candidates.append((y0, x0))
@@ -551,7 +591,7 @@ def _write_tiles(tile_dir: Path, frame_id, image, raster, uv, request: LabelRequ
     hard, negatives = [], []
     for (y0, x0), ok in zip(candidates, inside):
         if ok:
-            (hard if _inside(hard_uv, x0, y0, t).any() else negatives).append((y0, x0))
+            (hard if inside_tile(hard_uv, x0, y0, t).any() else negatives).append((y0, x0))
     n_neg = min(len(hard) + len(negatives), int(round(request.negative_ratio * max(1, len(positives)))))
     n_hard = min(len(hard), n_neg)
     keep_hard = [hard[i] for i in sorted(rng.choice(len(hard), n_hard, replace=False))] if n_hard else []

@@ -32,7 +32,6 @@ No torch here: numpy and the plugin's core; the detector needs onnxruntime.
 from __future__ import annotations
 
 import csv
-import math
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -41,6 +40,7 @@ import numpy as np
 from ..errors import InputError, check_cancel
 from ..field.geotags import Geotags
 from ..geometry.geodesy import LocalFrame
+from ..labels.training_set import read_targets
 from .choices import SPLITS
 from .recipe import THRESHOLDS
 
@@ -72,24 +72,6 @@ class FolderView:
     target_xy: dict | None
     centre_xy: dict = field(default_factory=dict)
     footprint_m: float | None = None
-
-
-def read_targets(folder) -> Geotags | None:
-    """The targets of a Write-labels folder (``targets.csv``, :mod:`..labels.training_set`); None when the folder
-    has none (written before it existed). Heights left empty (a review target) read as NaN."""
-    path = Path(folder) / "targets.csv"
-    if not path.is_file():
-        return None
-    with open(path, newline="", encoding="utf-8") as f:
-        rows = list(csv.DictReader(f))
-    try:
-        return Geotags([r["geotag_id"] for r in rows], [float(r["lat"]) for r in rows],
-                       [float(r["lon"]) for r in rows],
-                       [float(r["height_m"]) if (r.get("height_m") or "").strip() else math.nan for r in rows],
-                       [r.get("label") or "target" for r in rows],
-                       [r.get("provenance") or "survey" for r in rows], source=str(path))
-    except (KeyError, ValueError) as exc:
-        raise InputError(f"is not a targets.csv of Write training labels ({exc})", source=str(path)) from exc
 
 
 def read_frame_targets(folder) -> dict:
@@ -136,7 +118,7 @@ def footprints(records, local: LocalFrame) -> tuple[dict, float | None]:
 
 def folder_views(folders, records_of, frames_with_tiles) -> tuple[list[FolderView], LocalFrame | None, list]:
     """The :class:`FolderView` of each folder, their common local frame (None without targets and records) and
-    each folder's targets (:func:`read_targets`, None where absent).
+    each folder's targets (:func:`..labels.training_set.read_targets`, None where absent).
 
     ``records_of[k]``: frame records of folder k (None: none given); ``frames_with_tiles[k]``: its frame ids
     (text) that have tiles."""

@@ -496,16 +496,13 @@ def label_centres(folder) -> dict | None:
 
 
 def tile_holds_centre(name: str, shape, centres: dict) -> bool:
-    """Whether the tile ``<frame_id>_<y0>_<x0>.png`` of size ``shape`` (h, w px) holds a label centre of its frame,
-    by the rule writelabels cut it with (``training_set._inside``: pixel centres at integers, a pixel's square
-    from −0.5 to +0.5)."""
+    """Whether the tile ``<frame_id>_<y0>_<x0>.png`` (square, ``shape[0]`` px) holds a label centre of its frame,
+    by the rule writelabels cut it with (:func:`..labels.training_set.inside_tile`)."""
+    from ..labels.training_set import inside_tile
+
     frame_id, y0, x0 = Path(name).stem.rsplit("_", 2)
     uv = centres.get(frame_id)
-    if uv is None or not len(uv):
-        return False
-    y0, x0, (h, w) = int(y0), int(x0), shape[:2]
-    return bool(np.any((uv[:, 0] >= x0 - 0.5) & (uv[:, 0] < x0 + w - 0.5)
-                       & (uv[:, 1] >= y0 - 0.5) & (uv[:, 1] < y0 + h - 0.5)))
+    return uv is not None and bool(inside_tile(uv, int(x0), int(y0), shape[0]).any())
 
 
 def split_tiles(tiles: TileSet, fraction: float, seed: int) -> tuple[TileSet, TileSet | None]:

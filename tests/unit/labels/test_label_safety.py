@@ -21,6 +21,7 @@ from birdseye.birdseye_qgis.core.labels.relief import TargetRelief, dem_relief_m
 from birdseye.birdseye_qgis.core.labels.training_set import (
     LabelRequest,
     project_labels,
+    read_targets,
     tile_origins,
     tile_outlines_px,
     write_label_set,
@@ -177,6 +178,19 @@ def test_targets_csv_lists_the_targets_written_with_their_heights(tmp_path):
     assert rows[2] == ["det#7", "burrow", "review", f"{geotags.lat[2]:.9f}", f"{geotags.lon[2]:.9f}", "", ""]
     assert len(rows) == 3  # geotag 2 is never in view: not in labels.csv, not here
     assert abs(float(rows[1][5]) - 400.0) < 0.01
+
+    # Read back as Train detector reads it: the targets written, heights ellipsoidal, a review target's unknown.
+    back = read_targets(tmp_path)
+    assert list(back.ids) == ["1", "det#7"] and list(back.provenance) == ["survey", "review"]
+    assert back.lat[0] == pytest.approx(geotags.lat[0], abs=1e-9) and back.height[0] == pytest.approx(400.0, abs=0.01)
+    assert np.isnan(back.height[1])
+    assert read_targets(tmp_path / "elsewhere") is None
+    # A height in another reference (an edited file) is refused, naming its row and field.
+    text = (tmp_path / "targets.csv").read_text(encoding="utf-8")
+    (tmp_path / "targets.csv").write_text(text.replace(",ellipsoidal", ",EGM96"), encoding="utf-8")
+    with pytest.raises(InputError, match=r"row 2.*height_ref.*EGM96 geoid.*ellipsoidal") as err:
+        read_targets(tmp_path)
+    assert err.value.row == 2
 
 
 def test_sigma_measured_on_a_label_check_is_the_per_axis_rms():
