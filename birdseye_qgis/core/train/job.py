@@ -213,9 +213,10 @@ def run_job(job: TrainJob, emit: Callable[[dict], None] = lambda event: None,
               "channel_order": init_input.channel_order if init_input else "RGB"}
     meta = recipe.make_metadata(train, job.resolution_cm, 0.5 if job.threshold is None else job.threshold,
                                 sigma, description, mean_std, **layout)
-    if job.init and job.backbone != (recipe.checkpoint_backbone(job.init) or job.backbone):
-        raise InputError(f"was trained with the backbone '{recipe.checkpoint_backbone(job.init)}', not "
-                         f"'{job.backbone}'", source=job.init, field="INIT")
+    init_backbone = recipe.checkpoint_backbone(job.init) if job.init else None
+    if init_backbone is not None and init_backbone != job.backbone:
+        raise InputError(f"was trained with the backbone '{init_backbone}', not '{job.backbone}'", source=job.init,
+                         field="INIT")
     pretrained, encoder_start = _encoder_start(job, preset)
     message(f"preset {preset.name}: {job.backbone}, {encoder_start}")
     net = recipe.build_network(job.backbone, job.width, job.weights, pretrained=pretrained, log=message)

@@ -948,12 +948,13 @@ def load_init(net, path) -> list[str]:
     model; a checkpoint written before they were recorded names none)."""
     if is_onnx(path):
         return load_onnx_init(net, path)
+    record = _checkpoint_record(path)  # read once: the weights and what the checkpoint records beside them
     try:
-        net.load_state_dict(read_state_dict(path))
+        net.load_state_dict(record["state_dict"] if record is not None else read_state_dict(path))
     except RuntimeError as exc:
         raise InputError(f"does not fit the chosen network ({str(exc).splitlines()[0]}); train with the "
                          "backbone it was trained with", source=str(path), field="INIT") from exc
-    frozen = list((_checkpoint_record(path) or {}).get("frozen_stats_batch_norms") or [])
+    frozen = list((record or {}).get("frozen_stats_batch_norms") or [])
     freeze_batch_norm_stats(net, frozen, source=str(path))
     return frozen
 
