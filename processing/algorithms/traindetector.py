@@ -153,8 +153,7 @@ class TrainDetector(BirdsEyeAlgorithm):
 
     def _sources(self, parameters, context, folders) -> list[Source]:
         layers = self.parameterAsLayerList(parameters, self.FRAMES, context) or []
-        gsd = parameters.get(self.GSD_CM)
-        gsd = None if gsd in (None, "") else self.parameterAsDouble(parameters, self.GSD_CM, context)
+        gsd = self._optional_double(parameters, self.GSD_CM, context)
         if not layers:
             if gsd is None:
                 raise self.user_error(InputError("give the frame layers the labels were written from, or one ground "
@@ -163,8 +162,9 @@ class TrainDetector(BirdsEyeAlgorithm):
         if len(layers) not in (1, len(folders)):
             raise self.user_error(InputError(f"{len(layers)} frame layers for {len(folders)} labels folders: give one "
                                              "per folder, in the same order, or one for all", field=self.FRAMES))
-        maps = [self._gsd_of(layer) for layer in layers]
-        records = [self.run_core(read_frame_layer, layer, layer.name()) for layer in layers]
+        records = [self._frame_records(layer) for layer in layers]
+        maps = [{str(r["frame_id"]): float(r["gsd_cm"]) for r in recs
+                 if r.get("frame_id") is not None and r.get("gsd_cm") is not None} for recs in records]
         return [Source(str(f), gsd_cm=maps[0] if len(maps) == 1 else maps[i],
                        frames=records[0] if len(records) == 1 else records[i]) for i, f in enumerate(folders)]
 
@@ -175,17 +175,13 @@ class TrainDetector(BirdsEyeAlgorithm):
             return None
         return self.parameterAsDouble(parameters, name, context)
 
-    def _gsd_of(self, layer) -> dict:
+    def _frame_records(self, layer) -> list[dict]:
+        """The frame layer's records (:func:`read_frame_layer`: each frame's GSD, pose and image), read once."""
         names = layer.fields().names()
         if "frame_id" not in names or "gsd_cm" not in names:
             raise self.user_error(InputError("has no fields frame_id and gsd_cm (is it a BirdsEye frame layer?)",
                                              source=layer.name(), field=self.FRAMES))
-        out = {}
-        for feature in layer.getFeatures():
-            frame_id, value = feature["frame_id"], feature["gsd_cm"]
-            if frame_id is not None and value not in (None, "") and str(value) != "NULL":
-                out[str(frame_id)] = float(value)
-        return out
+        return self.run_core(read_frame_layer, layer, layer.name())
 
     def _python(self, parameters, context, feedback):
         configured = self.parameterAsFile(parameters, self.PYTHON, context) or None
