@@ -22,7 +22,7 @@ Runs in a standalone QGIS application, every step through the Processing registr
 
     .venv/bin/python scripts/demo_loop.py [--out birdseye-demo-loop] [--size full|small] [--minutes M]
         [--seeds R1,R2,T1,T2] [--model round1/model/retrained.onnx [--init round1/model/retrained.pt]]
-        [--validation-fraction F]
+        [--validation-fraction F] [--validation blocks|flights|none]
 
 ``--seeds`` simulates other campaigns (two review, two test seeds) than the demo's 401, 402, 501, 502: a round on
 campaigns the project has not used. ``--model`` starts the round from another model than the bundled one (it
@@ -37,6 +37,7 @@ import csv
 import json
 import math
 import os
+import runpy
 import sys
 import time
 from dataclasses import dataclass, replace
@@ -51,6 +52,8 @@ SUMMARY_NAME = "loop_summary.json"
 LOOK_ALIKES = 4.0          # times the simulator's default look-alike density
 EPS_PRED_M = 0.20          # the reviewer's "same spot": the matching radius of the scores
 REVIEWER = "simulated reviewer (the simulator's truth)"
+#: Train detector's VALIDATION choices, from the plugin's one list (standard library only: readable before QGIS starts).
+SPLITS = runpy.run_path(str(REPO_ROOT / "birdseye_qgis" / "core" / "train" / "choices.py"))["SPLITS"]
 GROUPS = ["survey", "flight", "detections", "review", "labels", "model", "comparison", "farm map"]
 
 
@@ -79,15 +82,16 @@ class LoopRound:
     model: Path
     init: Path
     validation_fraction: float | None = None  # Train detector's share of held-out targets (None: its default)
+    validation: str | None = None  # Train detector's VALIDATION split (None: its default, blocks)
 
     @classmethod
     def of(cls, seeds=None, model: Path | None = None, init: Path | None = None,
-           validation_fraction: float | None = None) -> "LoopRound":
+           validation_fraction: float | None = None, validation: str | None = None) -> "LoopRound":
         campaigns = CAMPAIGNS if seeds is None else [replace(c, seed=s) for c, s in zip(CAMPAIGNS, seeds)]
         model = Path(model or demo.BUNDLED_MODEL)
         beside = model.with_suffix(".pt")
         return cls(tuple(campaigns), model, Path(init) if init else beside if beside.is_file() else model,
-                   validation_fraction)
+                   validation_fraction, validation)
 
     @property
     def reviewed(self) -> list:
@@ -162,6 +166,7 @@ def relabel_and_train_steps(size: demo.DemoSize, minutes: float, loop: LoopRound
         "FRAMES": [f"{{flight_{c.key}[OUTPUT]}}" for c in loop.reviewed],
         "INIT": str(loop.init), "MINUTES": minutes, "THREADS": TRAINING_THREADS, "SEED": 1,
         **({} if loop.validation_fraction is None else {"VALIDATION_FRACTION": loop.validation_fraction}),
+        **({} if loop.validation is None else {"VALIDATION": SPLITS.index(loop.validation)}),
         # The demo runs in the repository's venv, which has the training extra (requirements-train.txt).
         "PYTHON": sys.executable,
         "OUTPUT_MODEL": "{out}/model/retrained.onnx"}))
@@ -378,7 +383,7 @@ def run(out: Path, size_name: str, minutes: float | None, loop: LoopRound | None
                          "validation_f1": f1_of(train["VALIDATION_RECALL"], train["VALIDATION_GMCF"]),
                          "tiles_per_second": train["TILES_PER_SECOND"], "model_card": Path(train["MODEL_CARD"]).name},
             "round": {"seeds": {c.key: c.seed for c in loop.campaigns}, "model": str(loop.model),
-                      "validation_fraction": loop.validation_fraction,
+                      "validation_fraction": loop.validation_fraction, "validation": loop.validation,
                       "model_name": "The bundled model" if loop.model == demo.BUNDLED_MODEL else loop.model.name,
                       "init": str(loop.init)},
             "test": pooled_comparison(values, loop),
@@ -422,6 +427,9 @@ def main(argv=None) -> int:
                         help="the weights retraining starts from (default: the .pt beside --model, else --model)")
     parser.add_argument("--validation-fraction", type=float, default=None,
                         help="share of the review campaigns' targets Train detector holds out (default: its own)")
+    parser.add_argument("--validation", choices=SPLITS, default=None,
+                        help="how Train detector holds targets out: blocks of ground, whole review campaigns "
+                             "(flights) or none (default: its own, blocks)")
     args = parser.parse_args(argv)
     if args.validation_fraction is not None and not 0 < args.validation_fraction <= 0.5:
         parser.error("--validation-fraction must lie in (0, 0.5]")
@@ -439,7 +447,7 @@ def main(argv=None) -> int:
         if given is not None and not given.is_file():
             parser.error(f"{given}: no such file")
     loop = LoopRound.of(seeds, args.model and args.model.resolve(), args.init and args.init.resolve(),
-                        args.validation_fraction)
+                        args.validation_fraction, args.validation)
     return run(args.out.resolve(), args.size, args.minutes, loop)
 
 

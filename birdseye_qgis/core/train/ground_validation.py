@@ -9,7 +9,8 @@ ground as the product scores a flight.
   seeded random order, each held out while its targets still fit under the held-out share of all targets (the
   smallest block alone when none fits; never every block). A frame that sees (``labels.csv``) only held-out
   targets goes to validation, one that sees only training targets to training, one that sees both is dropped
-  and counted; a frame that sees none follows the block of its footprint centre
+  from both tile sets and counted, but scored on the ground (:meth:`SplitPlan.ground_frames`: every view of a
+  held-out target counts there, as in a flight); a frame that sees none follows the block of its footprint centre
   (without frame records: the side of the nearest frame, in frame order, that sees a target). A held-out block
   is held out in every folder, so two flights over one site never put a target on both sides.
 * ``flights`` — whole folders (one flight, or one frame layer, each) held out, taken the same way by their
@@ -23,9 +24,11 @@ out at random (:func:`.recipe.split_tiles`) and the result says those figures ar
 **Ground figures** (:func:`ground_figures`): the exported model runs with the plugin's detector over the held-out
 frames' full images (:func:`detect_frames_at_thresholds`, one heatmap per frame, peaks at each threshold),
 detections are back-projected, clustered and scored by :func:`..scoring.evaluation.evaluate_flights` at each
-threshold. ``recall`` counts the held-out targets in view of the held-out frames recovered by a cluster; ``gmcf``
-the clusters on a target (any target of the folder: a cluster on a training target seen at a frame's edge is no
-false cluster). The default threshold is chosen from them (:func:`.recipe.best_threshold`).
+threshold. ``recall`` counts the held-out targets in view of the scored frames recovered by a cluster; ``gmcf``
+the clusters on a held-out target among the clusters that are not on a training target (a training target seen
+at a frame's edge is neither a false cluster nor a validated one: the model learnt it). The default threshold is
+chosen from them (:func:`.recipe.best_threshold`). Fewer than :data:`FEW_HELD_OUT_TARGETS` held-out targets
+in view make a warning: one target then moves recall by more than a tenth.
 
 No torch here: numpy and the plugin's core; the detector needs onnxruntime.
 """
@@ -53,6 +56,8 @@ BLOCK_FOOTPRINTS = 1.0
 #: Thresholds the ground figures are given at (the detector's peaks, one heatmap per frame): the tile figures'.
 GROUND_THRESHOLDS = THRESHOLDS
 TRAIN, VAL, DROPPED = "train", "val", "dropped"
+#: Below this many held-out targets in view, the ground figures and the threshold chosen from them get a warning.
+FEW_HELD_OUT_TARGETS = 10
 
 
 # ====================================================================================== what a folder holds
@@ -174,6 +179,11 @@ class SplitPlan:
 
     def frames(self, k: int, which: str = VAL) -> list:
         return [fid for (j, fid), s in self.side.items() if j == k and s == which]
+
+    def ground_frames(self, k: int) -> list:
+        """The frames of folder ``k`` scored on the ground: the held-out ones and those dropped for seeing
+        held-out and training targets both (no tile of theirs is trained or validated on)."""
+        return [fid for (j, fid), s in self.side.items() if j == k and s in (VAL, DROPPED)]
 
 
 def plan_split(views: list[FolderView], method: str = "blocks", fraction: float = 0.15, seed: int = 0) -> SplitPlan:
@@ -389,8 +399,8 @@ def ground_figures(model_path, flights: list[GroundFlight], thresholds=GROUND_TH
     division), the model run as Detect runs it (module docstring).
 
     Returns ``{"frames", "frames_skipped", "targets" (held-out targets in view), "by_threshold": {t: {"recall",
-    "gmcf", "f1", "clusters", "detections", ...}}, "operating_point"}``; ``f1`` is the harmonic mean of recall and
-    GMCF (:func:`..scoring.pre_review.f1_geo`)."""
+    "gmcf", "f1", "clusters" (those GMCF counts), "clusters_on_training_targets", "detections", ...}},
+    "operating_point"}``; ``f1`` is the harmonic mean of recall and GMCF (:func:`..scoring.pre_review.f1_geo`)."""
     from dataclasses import replace
 
     from ..detect.detector import HeatmapModel
@@ -402,7 +412,8 @@ def ground_figures(model_path, flights: list[GroundFlight], thresholds=GROUND_TH
     op = op or OperatingPoint()
     model = HeatmapModel(model_path)
     thresholds = [float(t) for t in thresholds]
-    tot = {t: dict(in_view=0, recovered=0, clusters=0, hit_clusters=0, detections=0) for t in thresholds}
+    tot = {t: dict(in_view=0, recovered=0, clusters=0, hit_clusters=0, training_clusters=0, detections=0)
+           for t in thresholds}
     n_frames = n_skipped = 0
     for n, flight in enumerate(flights):
         groups = poses_from_records(flight.records, flight.name)
@@ -427,8 +438,11 @@ def ground_figures(model_path, flights: list[GroundFlight], thresholds=GROUND_TH
             counted = ev.in_view.mask & flight.held
             tot[t]["in_view"] += int(counted.sum())
             tot[t]["recovered"] += int((ev.score.recovered & counted).sum())
-            tot[t]["clusters"] += int(ev.score.counts.n_clusters)
-            tot[t]["hit_clusters"] += int(ev.score.counts.n_hit_clusters)
+            on_held = np.array([bool(flight.held[g].any()) for g in ev.score.cluster_geotags], dtype=bool)
+            on_training_only = ev.score.cluster_hit & ~on_held
+            tot[t]["clusters"] += int(ev.score.counts.n_clusters - on_training_only.sum())
+            tot[t]["hit_clusters"] += int(on_held.sum())
+            tot[t]["training_clusters"] += int(on_training_only.sum())
             tot[t]["detections"] += int(ev.n_detections)
         if progress is not None:
             progress((n + 1) / len(flights))
@@ -439,7 +453,8 @@ def ground_figures(model_path, flights: list[GroundFlight], thresholds=GROUND_TH
         f1 = float(f1_geo(recall, gmcf)) if recall is not None and gmcf is not None else 0.0
         by[f"{t:g}"] = {"recall": _round(recall), "gmcf": _round(gmcf), "f1": round(f1 if np.isfinite(f1) else 0.0, 4),
                         "targets_recovered": c["recovered"], "clusters": c["clusters"],
-                        "clusters_on_target": c["hit_clusters"], "detections": c["detections"]}
+                        "clusters_on_target": c["hit_clusters"],
+                        "clusters_on_training_targets": c["training_clusters"], "detections": c["detections"]}
     return {"frames": n_frames, "frames_skipped": n_skipped, "targets": tot[thresholds[0]]["in_view"],
             "by_threshold": by, "operating_point": {k: v for k, v in op.to_dict().items() if k != "threshold"}}
 

@@ -264,8 +264,8 @@ def run_job(job: TrainJob, emit: Callable[[dict], None] = lambda event: None,
             warnings.append(text)
             warn(emit, text)
     threshold, threshold_rule, validated_on = choose_threshold(job, plan, figures, ground)
-    if validated_on != "ground" and job.threshold is None and plan.held_out:  # else the split's warning says it
-        text = not_validated_warning(plan, figures, ground, flights)
+    text = threshold_warning(job, plan, figures, ground, flights, validated_on)
+    if text:
         warnings.append(text)
         warn(emit, text)
     meta = recipe.make_metadata(train, job.resolution_cm, threshold, sigma, description, mean_std, **layout)
@@ -361,7 +361,7 @@ def split_job(job: TrainJob, tiles: recipe.TileSet):
                           "val_positive": 0 if val is None else int(val.positive.sum())}
     flights = []
     for k, source in enumerate(job.sources):
-        held_frames = set(plan.frames(k))
+        held_frames = set(plan.ground_frames(k))
         if not held_frames or not source.frames or targets[k] is None:
             continue
         records = [r for r in source.frames if str(r.get("frame_id")) in held_frames]
@@ -412,6 +412,26 @@ def _informative(figures: dict | None) -> bool:
     return bool(figures and figures.get("targets") and max(r["f1"] for r in figures["by_threshold"].values()) > 0)
 
 
+def threshold_warning(job: TrainJob, plan, figures, ground, flights, validated_on) -> str | None:
+    """What the log and the card say of the default threshold, if anything: not validated on the ground (when
+    something was held out: else the split's warning says it), or validated on few held-out targets."""
+    if validated_on == "ground" and ground["targets"] < ground_validation.FEW_HELD_OUT_TARGETS:
+        return few_targets_warning(ground["targets"], plan)
+    if validated_on != "ground" and job.threshold is None and plan.held_out:
+        return not_validated_warning(plan, figures, ground, flights)
+    return None
+
+
+def few_targets_warning(targets: int, plan) -> str:
+    """The ground figures rest on few held-out targets: how far one target moves them, and what gives more."""
+    more = ("a larger VALIDATION_FRACTION, or whole flights (VALIDATION flights) when there are several"
+            if plan.method == "blocks" else "a larger VALIDATION_FRACTION, or more flights")
+    return (f"the default threshold rests on {targets} held-out target(s) in view: one target more or less found "
+            f"moves their recall by {1 / targets:.2f}, so the validation figures and the threshold are rough. "
+            f"For firmer figures hold out more targets ({more}), or score the model on a flight it never saw "
+            "with Evaluate detections.")
+
+
 def not_validated_warning(plan, figures, ground, flights) -> str:
     """Why the default threshold was not validated on the ground."""
     if not plan.held_out:
@@ -440,7 +460,7 @@ def describe_split(info: dict) -> str:
         return f"nothing held out ({info.get('reason', method)})"
     if method == "blocks":
         return (f"{info['held_out_blocks']} of {info['blocks']} spatial blocks of {info['block_m']:g} m held out, "
-                f"{info['frames_dropped']} frames seeing both sides dropped")
+                f"{info['frames_dropped']} frames seeing both sides kept out of the tiles, scored on the ground")
     if method == "flights":
         return "flights held out: " + ", ".join(info["held_out_folders"])
     return "frames held out at random"

@@ -170,8 +170,9 @@ def split_section(result: dict) -> list[str]:
         lines.append(f"- Nothing held out ({split.get('reason', 'no split')}).")
     elif method == "blocks":
         lines.append(f"- Spatial blocks: the targets grouped into {split['blocks']} ground blocks of "
-                     f"{split['block_m']:g} m; {split['held_out_blocks']} held out. Frames seeing a held-out target "
-                     "validate, frames seeing only training targets train, frames seeing both are dropped.")
+                     f"{split['block_m']:g} m; {split['held_out_blocks']} held out. Frames seeing only held-out targets "
+                     "validate, frames seeing only training targets train, frames seeing both have no tile on "
+                     "either side but are scored on the ground with the held-out frames.")
     elif method == "flights":
         lines.append("- Whole flights held out: " + ", ".join(f"`{n}`" for n in split["held_out_folders"]) + ".")
     else:
@@ -198,9 +199,10 @@ def ground_section(result: dict) -> list[str]:
         note = ("the default threshold was chosen on the held-out tiles" if result.get("validated_on") == "tiles"
                 else "the default threshold was not validated")
         return lines + [f"Not measured: {note}.", ""]
-    lines += [f"{ground['frames']} held-out frames run whole through the detector ({ground['frames_skipped']} "
-              f"skipped), detections clustered and scored against {ground['targets']} held-out targets in view. "
-              "Recall: held-out targets recovered; GMCF: clusters on a target; F1: their harmonic mean.", "",
+    lines += [f"{ground['frames']} frames that see held-out targets run whole through the detector "
+              f"({ground['frames_skipped']} skipped), detections clustered and scored against {ground['targets']} "
+              "held-out targets in view. Recall: held-out targets recovered; GMCF: clusters on a held-out target "
+              "among the clusters not on a training target; F1: their harmonic mean.", "",
               "| threshold | recall | GMCF | F1 | clusters | detections |",
               "| ---: | ---: | ---: | ---: | ---: | ---: |"]
     for t, row in ground["by_threshold"].items():

@@ -22,6 +22,7 @@ from birdseye.birdseye_qgis.core.train.job import (
     choose_threshold,
     not_validated_warning,
     run_job,
+    threshold_warning,
 )
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
@@ -79,6 +80,9 @@ def test_blocks_put_no_target_on_both_sides_and_count_the_frames_dropped(seed):
     # Frame 22 (no target, no footprint) takes the side of its neighbour in frame order, frame 21.
     assert got["22"] == got["21"]
     assert plan.info["frames"]["val"] == sum(s == "val" for s in got.values())
+    # Scored on the ground: every frame that sees a held-out target, those that see training targets too.
+    assert set(plan.ground_frames(0)) == {f for f, s in got.items() if s in ("val", "dropped")}
+    assert {t for f in plan.ground_frames(0) for t in view.frame_targets.get(f, ())} >= held
 
 
 def test_a_block_is_held_out_in_every_folder():
@@ -147,6 +151,20 @@ def test_the_default_threshold_comes_from_the_ground_figures():
     assert choose_threshold(job, plan, None, None)[2] is None
     job.threshold = 0.35
     assert choose_threshold(job, plan, tiles, ground) == (0.35, "given", None)
+
+
+@pytest.mark.parametrize("targets, warned", [(gv.FEW_HELD_OUT_TARGETS - 1, True), (gv.FEW_HELD_OUT_TARGETS, False)])
+def test_a_threshold_chosen_on_few_held_out_targets_says_how_rough_it_is(targets, warned):
+    ground = {"targets": targets, "by_threshold": {"0.3": {"f1": 0.7}, "0.5": {"f1": 0.6}}}
+    plan = gv.plan_split([line_of_frames()], "blocks", 0.3, 0)
+    job = TrainJob(sources=[], out="m.onnx")
+    assert choose_threshold(job, plan, None, ground)[2] == "ground"
+    text = threshold_warning(job, plan, None, ground, ["a flight"], "ground")
+    if warned:
+        assert f"rests on {targets} held-out target(s)" in text and f"by {1 / targets:.2f}" in text
+        assert "VALIDATION flights" in text
+    else:
+        assert text is None
 
 
 def test_a_job_written_before_the_split_existed_reads_as_blocks_without_poses():
@@ -233,11 +251,12 @@ def test_tile_figures_match_one_peak_to_one_target():
     assert (row["detections"], row["recall"], row["precision"], row["false_per_tile"]) == (2, 1.0, 0.5, 1.0)
 
 
-def test_ground_figures_count_held_out_targets_and_clusters_on_any_target(monkeypatch):
+def test_ground_figures_count_held_out_targets_and_leave_training_targets_out(monkeypatch):
     """Two nadir frames 10 m up see four targets 0.5 m apart: a, b, c held out, d a training target. The detector
     (stood in for) finds, in both frames, a, b, d and a spot 0.5 m from every target at 0.3, and a alone at 0.6.
-    At 0.3: recall 2/3 (of the held-out targets), 4 clusters of which 3 on a target (d is no false cluster):
-    GMCF 3/4. At 0.6: recall 1/3, GMCF 1/1. Clustering and scoring are Evaluate detections' own."""
+    At 0.3: recall 2/3 (of the held-out targets), 4 clusters: one on d (learnt in training: neither false nor
+    validated, left out), 2 of the other 3 on a held-out target: GMCF 2/3. At 0.6: recall 1/3, GMCF 1/1.
+    Clustering and scoring are Evaluate detections' own."""
     from birdseye.birdseye_qgis.core.detect import detector
     from birdseye.birdseye_qgis.core.detect.detector import FrameDetections
     from birdseye.birdseye_qgis.core.field.geotags import Geotags
@@ -276,10 +295,11 @@ def test_ground_figures_count_held_out_targets_and_clusters_on_any_target(monkey
                                 thresholds=(0.3, 0.6))
     assert figures["frames"] == 2 and figures["targets"] == 3
     low, high = figures["by_threshold"]["0.3"], figures["by_threshold"]["0.6"]
-    assert (low["recall"], low["gmcf"], low["clusters"], low["detections"]) == (0.6667, 0.75, 4, 8)
-    assert (high["recall"], high["gmcf"], high["clusters"]) == (0.3333, 1.0, 1)
-    assert low["f1"] == round(2 * (2 / 3) * 0.75 / (2 / 3 + 0.75), 4)
-    # F1 0.71 at 0.3 and 0.5 at 0.6: within one target's worth (1/3) of each other, so the higher threshold.
+    assert (low["recall"], low["gmcf"], low["clusters"], low["detections"]) == (0.6667, 0.6667, 3, 8)
+    assert (low["clusters_on_target"], low["clusters_on_training_targets"]) == (2, 1)
+    assert (high["recall"], high["gmcf"], high["clusters"], high["clusters_on_training_targets"]) == (0.3333, 1.0, 1, 0)
+    assert low["f1"] == round(2 * (2 / 3) * (2 / 3) / (2 / 3 + 2 / 3), 4)
+    # F1 0.67 at 0.3 and 0.5 at 0.6: within one target's worth (1/3) of each other, so the higher threshold.
     assert recipe.best_threshold(figures) == 0.6
 
 
