@@ -804,22 +804,22 @@ QGIS&apos;s own packages are not changed. pip downloads them from the Python Pac
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="304"/>
+        <location filename="../processing/algorithms/traindetector.py" line="300"/>
         <source>Training: {stage}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="306"/>
+        <location filename="../processing/algorithms/traindetector.py" line="302"/>
         <source>Training process {pid} started: torch {torch} on {device} ({threads} threads), backbone {backbone}.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="311"/>
+        <location filename="../processing/algorithms/traindetector.py" line="307"/>
         <source>{stage} step {step}: loss {loss:.4f}, validation {val} ({seconds:.0f} s)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="315"/>
+        <location filename="../processing/algorithms/traindetector.py" line="311"/>
         <source>Checkpoint written: {path} ({stage}, step {step})</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1818,6 +1818,79 @@ exact</source>
     <message>
         <location filename="../processing/algorithms/detect.py" line="48"/>
         <source>Threshold (empty: the model&apos;s own)</source>
+        <translation type="unfinished"></translation>
+    </message>
+</context>
+<context>
+    <name>DetectRaster</name>
+    <message>
+        <location filename="../processing/algorithms/detectraster.py" line="50"/>
+        <source>Detect targets on a raster (orthomosaic)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/detectraster.py" line="62"/>
+        <source>Raster (orthomosaic)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/detectraster.py" line="63"/>
+        <source>ONNX model (empty: the bundled one)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/detectraster.py" line="66"/>
+        <source>Threshold (empty: the model&apos;s own)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/detectraster.py" line="69"/>
+        <source>Only inside these polygons</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/detectraster.py" line="72"/>
+        <source>Only inside this extent</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/detectraster.py" line="74"/>
+        <source>Bands read as red, green, blue</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/detectraster.py" line="76"/>
+        <source>Values mapped to 0–255 (not 8-bit)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/detectraster.py" line="81"/>
+        <source>Detections</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/detectraster.py" line="86"/>
+        <source>SHA-256 of the model</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/detectraster.py" line="110"/>
+        <source>The raster is not 8-bit: values mapped to 0–255 from {ranges}.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/detectraster.py" line="112"/>
+        <source>Raster {width} × {height} px at {gsd:.2f} cm/px, bands {bands} as red, green, blue; model {name} (sha256 {digest}…) at {resolution:g} cm/px, threshold {used:g}.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/detectraster.py" line="119"/>
+        <source>The raster ({gsd:.2f} cm/px) is coarser than 1.5× the model's resolution of {resolution:g} cm/px: targets look smaller than in training, so expect fewer detections.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/detectraster.py" line="141"/>
+        <source>{count} detections from {windows} windows ({skipped} outside the area asked for not read); {merged} found on a seam by two windows kept once.</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
@@ -3385,27 +3458,27 @@ exact</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="201"/>
+        <location filename="../processing/algorithms/traindetector.py" line="197"/>
         <source>none set up</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="212"/>
+        <location filename="../processing/algorithms/traindetector.py" line="208"/>
         <source>Training in {python} ({origin}): torch {torch}.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="249"/>
+        <location filename="../processing/algorithms/traindetector.py" line="245"/>
         <source>Cancelled by the user; no model was written.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="258"/>
+        <location filename="../processing/algorithms/traindetector.py" line="254"/>
         <source>The last checkpoint is kept: {path}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="263"/>
+        <location filename="../processing/algorithms/traindetector.py" line="259"/>
         <source>Wrote {model} (default threshold {threshold:g}), its model card and loss plot; training {train:.1f} s on {device}, {tiles_per_s:.1f} tiles/s; {overhead:.1f} s outside training (process start, loading tiles, validation, export; the first line came after {first:.1f} s).</source>
         <translation type="unfinished"></translation>
     </message>
@@ -3480,12 +3553,12 @@ exact</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="201"/>
+        <location filename="../processing/algorithms/traindetector.py" line="197"/>
         <source>Train detector needs PyTorch, which it runs in a separate Python process; no Python with torch, onnx and OpenCV was found ({tried}). In QGIS, choose {menu} and install the group '{group}' ({build} build); or install it yourself: {command}; or name a Python that has them (parameter {parameter}, or the environment variable {variable}) — for a virtual environment: &lt;venv&gt;/bin/python -m pip install &quot;torch=={torch}&quot; &quot;torchvision=={torchvision}&quot; onnx opencv-python-headless matplotlib onnxruntime scipy</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="270"/>
+        <location filename="../processing/algorithms/traindetector.py" line="266"/>
         <source>Default threshold: {rule}.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -3863,6 +3936,61 @@ exact</source>
     <message>
         <location filename="../resources/help/detect.md" line="28"/>
         <source>**Ground model without a DEM** (advanced, GROUND_MODEL) — as in Write labels: the level ground at the tilt-corrected altimeter depth (default) or the method&apos;s plane, normal to the optical axis at the raw altimeter reading, to reproduce the method&apos;s figures. At 3° of tilt the method&apos;s plane moves detections at the frame edges by 3–14 px (the deployed camera; see Write labels); frames without a ground height are skipped, as on the level ground, and frames of a camera without a radar altimeter (DJI gimbal frames) are refused. Clusters made from these detections inherit the choice.</source>
+        <translation type="unfinished"></translation>
+    </message>
+</context>
+<context>
+    <name>help:detectraster</name>
+    <message>
+        <location filename="../resources/help/detectraster.md" line="1"/>
+        <source>Runs an ONNX heatmap model over a raster layer — an orthomosaic from OpenDroneMap/WebODM, DJI Terra, Pix4D or a service provider, or any georeferenced image — and puts each detection on the map, with the same fields as the detections of Detect targets.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../resources/help/detectraster.md" line="3"/>
+        <source>The raster is resampled from its own pixel size to the resolution the model was trained at (the model&apos;s `resolution`, cm/px), so a target covers as many pixels as in training. It is read in windows of a few thousand pixels through QGIS&apos;s raster provider, never whole: a 20,000 × 20,000 px orthomosaic runs in the memory of one window. Each window is cut into the model&apos;s overlapping tiles exactly as a frame is; neighbouring windows overlap by a tile, each keeps the detections whose centre lies in its own part, and a target found by two windows on their seam is kept once (the log counts them). The progress bar moves per window and Cancel stops between windows.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../resources/help/detectraster.md" line="5"/>
+        <source>## Parameters</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../resources/help/detectraster.md" line="7"/>
+        <source>- **RASTER** — the raster, north up, in a projected CRS in metres or feet (a raster in degrees is refused: reproject it with Raster › Projections › Warp to the field&apos;s UTM zone). Pixels at the bands&apos; no-data value, or transparent in an alpha band (OpenDroneMap&apos;s RGBA orthophotos), count as no data: nothing is detected there.
+- **MODEL** — an ONNX heatmap model with BirdsEye metadata, as for Detect targets. Empty: the bundled demo model (simulated burrows only).
+- **THRESHOLD** — probability (0–1) a smoothed heatmap peak must exceed. Empty: the model&apos;s `default_threshold`.
+- **MASK** — optional polygons (any CRS): only windows that touch them are read, and only detections inside them are kept — the field, or the surveyed area.
+- **EXTENT** — optional rectangle, for instance the map canvas&apos;s extent: only inside it. With MASK, inside both.
+- **BANDS** (advanced) — the bands read as red, green and blue, in that order (three bands, or one band for all three). Empty: bands 1, 2, 3, or band 1 three times for a single-band raster.
+- **VALUE_RANGE** (advanced) — for a raster that is not 8-bit (16-bit, floating point): the value mapped to 0 and the value mapped to 255, for every band. Empty: each band&apos;s 2 %–98 % cumulative cut over the area, from a sample of the raster (QGIS&apos;s own default stretch); the log says the ranges used.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../resources/help/detectraster.md" line="15"/>
+        <source>## Outputs</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../resources/help/detectraster.md" line="17"/>
+        <source>- **OUTPUT** — detections, PointZ in the raster&apos;s CRS, with the fields of Detect targets: `frame_id` 0 (the raster is one image); `u`, `v` — the detection&apos;s column and row in the raster, px, pixel (0, 0) = centre of the top-left pixel; `score`; `model`; `model_digest`; `threshold`; `ground` = `raster` and `dem_source` = the raster&apos;s source. An orthomosaic carries no heights: Z is 0 and `height_ref` is `unknown`.
+- **DETECTION_COUNT, WINDOWS_READ, THRESHOLD_USED, MODEL_DIGEST** — for models and scripts.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../resources/help/detectraster.md" line="20"/>
+        <source>## What differs from detecting on frames</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../resources/help/detectraster.md" line="22"/>
+        <source>A frame shows each target at the drone&apos;s own resolution and from many viewpoints: Detect targets gives several detections per target, which Cluster detections merges. An orthomosaic shows each target once, resampled and blended from the frames (seams and smear where they disagree): one detection per target. Cluster detections, Evaluate detections, Compare detectors and the review stand on frames (which geotags each frame saw), and refuse raster detections for now, saying so.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../resources/help/detectraster.md" line="24"/>
+        <source>A warning is given when the raster is much coarser than the model&apos;s resolution (targets then look smaller than in training).</source>
         <translation type="unfinished"></translation>
     </message>
 </context>

@@ -25,7 +25,8 @@ DETECTION_FIELDS = [
     ("threshold", "double", "probability threshold of the run"),
     # The ground model Detect placed the detection on, on every feature so it survives any format and any
     # copy of the features (names of at most 10 characters, so a Shapefile keeps them whole).
-    ("ground", "string", "ground model the detection was placed on: level, method_plane or dem"),
+    ("ground", "string", "ground model the detection was placed on: level, method_plane, dem, or raster "
+                         "(found on a raster, no frame between)"),
     ("dem_source", "string", "the DEM's file (ground = dem; empty otherwise)"),
     ("dem_datum", "string", "what the DEM's heights are measured from: ellipsoidal, msl or unknown"),
     ("dem_n_m", "double", "geoid undulation N given with the DEM (m; ellipsoidal = MSL + N), empty when none"),

@@ -46,8 +46,8 @@ WORKFLOW = {
     "field": ("importgeotags", "importflightlog", "importdjiimages", "importcameras", "refineposes", "processodm"),
     "plan": ("planflight",),
     "labels": ("writelabels", "traindetector"),
-    "detect": ("detect", "clusterdetections", "evaluatedetections", "comparedetectors", "sweepoperatingpoints",
-               "screencheckpoints", "selectarms", "sealpreregistration"),
+    "detect": ("detect", "detectraster", "clusterdetections", "evaluatedetections", "comparedetectors",
+               "sweepoperatingpoints", "screencheckpoints", "selectarms", "sealpreregistration"),
     "design": ("sensorbound", "montecarlobound", "terrainslope"),
     "simulate": ("simulatecampaign",),
 }

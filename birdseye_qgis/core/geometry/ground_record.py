@@ -17,7 +17,9 @@ from .dem import DemGroundFactory, DemRaster
 from .ground import MethodPlaneGround
 
 LEVEL_PLANE, METHOD_PLANE, DEM = "level", "method_plane", "dem"
-GROUND_MODELS = (LEVEL_PLANE, METHOD_PLANE, DEM)
+#: Detections found on a raster (an orthomosaic, ``birdseye:detectraster``): on the map itself, no frame between.
+RASTER = "raster"
+GROUND_MODELS = (LEVEL_PLANE, METHOD_PLANE, DEM, RASTER)
 
 
 @dataclass(frozen=True)
@@ -51,6 +53,8 @@ class GroundRecord:
             return f"the DEM {self.dem_source or '(source not recorded)'} (heights {self.dem_datum}{undulation})"
         if self.model == METHOD_PLANE:
             return "the method's plane (normal to the optical axis at the raw altimeter range)"
+        if self.model == RASTER:
+            return f"the raster {self.dem_source or '(source not recorded)'} itself (found on the map)"
         return "the level plane at each frame's altimeter ground"
 
     def factory(self, dem: DemRaster | None, source: str | None = None, dem_field: str = "DEM"):
@@ -61,6 +65,10 @@ class GroundRecord:
         detection layer, and ``dem_field``): the in-view test would stand on other ground than the
         detections, and the recall denominator would change with it.
         """
+        if self.model == RASTER:
+            raise InputError(f"its detections were found on {self.describe()}, not in frames: frames cannot say "
+                             "which geotags they saw. Scoring raster detections against frames is not available "
+                             "yet; compare them with the survey on the map", source=source)
         if self.model == DEM:
             if dem is None:
                 raise InputError(f"its detections were placed on {self.describe()}: give that DEM ({dem_field}, "

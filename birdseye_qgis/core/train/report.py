@@ -170,8 +170,8 @@ def split_section(result: dict) -> list[str]:
         lines.append(f"- Nothing held out ({split.get('reason', 'no split')}).")
     elif method == "blocks":
         lines.append(f"- Spatial blocks: the targets grouped into {split['blocks']} ground blocks of "
-                     f"{split['block_m']:g} m; {split['held_out_blocks']} held out. Frames seeing only held-out targets "
-                     "validate, frames seeing only training targets train, frames seeing both have no tile on "
+                     f"{split['block_m']:g} m; {split['held_out_blocks']} held out. Frames seeing only held-out "
+                     "targets validate, frames seeing only training targets train, frames seeing both have no tile on "
                      "either side but are scored on the ground with the held-out frames.")
     elif method == "flights":
         lines.append("- Whole flights held out: " + ", ".join(f"`{n}`" for n in split["held_out_folders"]) + ".")

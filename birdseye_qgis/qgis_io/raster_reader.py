@@ -1,0 +1,133 @@
+"""A QGIS raster layer read window by window for :mod:`..core.detect.raster_detect`.
+
+Pixels are read through the layer's data provider (``QgsRasterDataProvider.block``) on the raster's own pixel
+grid — never resampled by the provider, never the whole band: each call reads the bands asked for over one
+window, clipped to the raster, and pads the rest as invalid.
+"""
+from __future__ import annotations
+
+import numpy as np
+from qgis.core import QgsRasterBandStats, QgsRectangle, QgsUnitTypes
+
+from ..core.detect.raster_detect import RasterGrid
+from ..core.errors import InputError
+
+#: numpy types of QGIS's raster data types (``Qgis.DataType``'s values, the same in QGIS 3.22 to 3.44).
+_NUMPY_TYPES = {1: np.uint8, 2: np.uint16, 3: np.int16, 4: np.uint32, 5: np.int32, 6: np.float32, 7: np.float64,
+                14: np.int8}
+
+
+def raster_grid(layer) -> RasterGrid:
+    """The pixel grid of a north-up raster layer in a projected CRS; an unprojected one is refused, saying how
+    to reproject it."""
+    crs = layer.crs()
+    if not crs.isValid():
+        raise InputError("the raster has no coordinate reference system: set it (Layer Properties › Source)",
+                         source=layer.source())
+    if crs.isGeographic():
+        raise InputError(f"the raster is in {crs.authid() or crs.description()}, whose units are degrees: pixels "
+                         "then have no one size on the ground. Reproject it to a projected CRS in metres (the UTM "
+                         "zone of the field) with Raster › Projections › Warp (Reproject), and run this again",
+                         source=layer.source())
+    extent = layer.extent()
+    unit_factor = QgsUnitTypes.fromUnitToUnitFactor(crs.mapUnits(), QgsUnitTypes.DistanceMeters)
+    return RasterGrid(layer.width(), layer.height(), extent.xMinimum(), extent.yMaximum(),
+                      layer.rasterUnitsPerPixelX(), layer.rasterUnitsPerPixelY(), unit_factor)
+
+
+def band_choice(layer, bands) -> list[int]:
+    """The bands that feed the model's red, green and blue (1-based): ``bands`` as given (three, or one for all
+    three), else 1, 2, 3 of a raster with three or more bands and band 1 three times of a single-band one."""
+    count = layer.bandCount()
+    bands = [int(b) for b in (bands or [])]
+    if not bands:
+        if count >= 3:
+            return [1, 2, 3]
+        if count == 1:
+            return [1, 1, 1]
+        raise InputError(f"the raster has {count} bands: say which feed the model's red, green and blue (BANDS)",
+                         source=layer.source(), field="BANDS")
+    if len(bands) == 1:
+        bands = bands * 3
+    if len(bands) != 3:
+        raise InputError(f"{len(bands)} bands given: the model reads three (red, green, blue), or give one band "
+                         "for all three", field="BANDS")
+    wrong = [b for b in bands if not 1 <= b <= count]
+    if wrong:
+        raise InputError(f"band {wrong[0]} does not exist: the raster has {count}", source=layer.source(),
+                         field="BANDS")
+    return bands
+
+
+def needs_value_range(layer, bands) -> bool:
+    """Whether the bands are anything but 8-bit unsigned (their values need a range to become 0..255)."""
+    provider = layer.dataProvider()
+    return any(_NUMPY_TYPES.get(int(provider.dataType(b))) is not np.uint8 for b in set(bands))
+
+
+def statistics_value_range(layer, bands, extent=None, sample_size: int = 250_000) -> list[tuple[float, float]]:
+    """Per band, the 2 % and 98 % cumulative cut of its values (QGIS's own default stretch), from a sample
+    of the raster (or ``extent``): what an orthomosaic's 16-bit values map to 0..255 by. Where the cut is one
+    value (a band of mostly one background value), its minimum and maximum instead."""
+    provider = layer.dataProvider()
+    area = extent or QgsRectangle()
+    out = []
+    for b in bands:
+        low, high = provider.cumulativeCut(b, 0.02, 0.98, area, sample_size)
+        if not high > low:
+            stats = provider.bandStatistics(b, QgsRasterBandStats.Min | QgsRasterBandStats.Max, area, sample_size)
+            low, high = stats.minimumValue, stats.maximumValue
+        if not high > low:
+            raise InputError(f"band {b} holds one value ({low:g}) over the area: nothing to detect on",
+                             source=layer.source(), field="BANDS")
+        out.append((float(low), float(high)))
+    return out
+
+
+class ProviderWindows:
+    """``read(col0, row0, cols, rows)`` of :data:`..core.detect.raster_detect.ReadWindow` over a raster layer's
+    provider: the bands in ``bands`` order; pixels at a band's no-data value, or transparent in an alpha band,
+    invalid."""
+
+    def __init__(self, layer, grid: RasterGrid, bands):
+        self.provider = layer.dataProvider().clone()  # a provider of its own: reads may run off the main thread
+        self.grid, self.bands = grid, list(bands)
+        self.alpha = [b for b in range(1, self.provider.bandCount() + 1)
+                      if self.provider.colorInterpretationName(b) == "Alpha"]
+        self.dtypes = {}
+        for b in set(self.bands) | set(self.alpha):
+            dtype = _NUMPY_TYPES.get(int(self.provider.dataType(b)))
+            if dtype is None:
+                raise InputError(f"band {b}'s data type ({self.provider.dataType(b)}) is not a plain number type",
+                                 source=layer.source(), field="BANDS")
+            self.dtypes[b] = dtype
+
+    def _band(self, b: int, extent, cols: int, rows: int) -> np.ndarray:
+        block = self.provider.block(b, extent, cols, rows)
+        if not block.isValid():
+            raise InputError(f"band {b} could not be read over {cols} × {rows} px at {extent.toString(2)}",
+                             source=self.provider.dataSourceUri())
+        return np.frombuffer(bytes(block.data()), dtype=self.dtypes[b]).reshape(rows, cols)
+
+    def __call__(self, col0: int, row0: int, cols: int, rows: int):
+        grid = self.grid
+        dtype = np.result_type(*self.dtypes.values())
+        planes = np.zeros((3, rows, cols), dtype=dtype)
+        valid = np.zeros((rows, cols), dtype=bool)
+        c0, r0 = max(col0, 0), max(row0, 0)
+        c1, r1 = min(col0 + cols, grid.width), min(row0 + rows, grid.height)
+        if c1 <= c0 or r1 <= r0:
+            return planes, valid
+        extent = QgsRectangle(grid.origin_x + c0 * grid.pixel_x, grid.origin_y - r1 * grid.pixel_y,
+                              grid.origin_x + c1 * grid.pixel_x, grid.origin_y - r0 * grid.pixel_y)
+        inside = np.ones((r1 - r0, c1 - c0), dtype=bool)
+        read = {b: self._band(b, extent, c1 - c0, r1 - r0) for b in set(self.bands) | set(self.alpha)}
+        for b in set(self.bands):
+            if self.provider.sourceHasNoDataValue(b) and self.provider.useSourceNoDataValue(b):
+                inside &= read[b] != self.provider.sourceNoDataValue(b)
+        for b in self.alpha:  # an orthomosaic's alpha band (OpenDroneMap's RGBA): transparent is no data
+            inside &= read[b] > 0
+        for k, b in enumerate(self.bands):
+            planes[k, r0 - row0:r1 - row0, c0 - col0:c1 - col0] = read[b]
+        valid[r0 - row0:r1 - row0, c0 - col0:c1 - col0] = inside
+        return planes, valid

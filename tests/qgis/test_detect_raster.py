@@ -1,0 +1,155 @@
+"""birdseye:detectraster through the registry: GeoTIFFs written by GDAL in, detections on the map out.
+
+The model's heatmap is the image itself (``test_detect.identity_model``), so every detection is where a hump
+was painted: its map position is checked with the GeoTIFF's own geotransform (GDAL's, not ours).
+"""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from osgeo import gdal, osr
+from qgis.core import (
+    QgsCoordinateReferenceSystem,
+    QgsCoordinateTransform,
+    QgsFeature,
+    QgsGeometry,
+    QgsPointXY,
+    QgsProcessingException,
+    QgsProject,
+    QgsRasterLayer,
+    QgsVectorLayer,
+)
+from test_detect import identity_model
+
+ORIGIN = (500000.0, 6000000.0)  # top-left corner, EPSG:32756
+PIXEL_M = 0.01
+pytestmark = pytest.mark.usefixtures("birdseye_provider")
+
+
+def run(params):
+    import processing
+
+    return processing.run("birdseye:detectraster", params)
+
+
+def humps(width, height, centres, sigma=2.5, amplitude=0.9):
+    yy, xx = np.mgrid[0:height, 0:width]
+    img = np.zeros((height, width))
+    for u, v in centres:
+        img = np.maximum(img, amplitude * np.exp(-((xx - u) ** 2 + (yy - v) ** 2) / (2 * sigma ** 2)))
+    return img
+
+
+def write_geotiff(path, bands, epsg=32756, dtype=gdal.GDT_Byte, alpha=None, pixel=PIXEL_M, origin=ORIGIN):
+    """A GeoTIFF (tiled, as orthomosaics are) with ``bands`` (list of 2-D arrays), an optional alpha band."""
+    height, width = bands[0].shape
+    count = len(bands) + (alpha is not None)
+    ds = gdal.GetDriverByName("GTiff").Create(str(path), width, height, count, dtype, ["TILED=YES"])
+    ds.SetGeoTransform((origin[0], pixel, 0.0, origin[1], 0.0, -pixel))
+    srs = osr.SpatialReference()
+    srs.ImportFromEPSG(epsg)
+    ds.SetProjection(srs.ExportToWkt())
+    for k, band in enumerate(bands):
+        ds.GetRasterBand(k + 1).WriteArray(band)
+    if alpha is not None:
+        ds.GetRasterBand(count).WriteArray(alpha)
+        ds.GetRasterBand(count).SetColorInterpretation(gdal.GCI_AlphaBand)
+    ds.FlushCache()
+    ds = None
+    return str(path)
+
+
+def map_of(path, col, row):
+    """GDAL's geotransform applied to pixel centres."""
+    gt = gdal.Open(str(path)).GetGeoTransform()
+    return gt[0] + (col + 0.5) * gt[1], gt[3] + (row + 0.5) * gt[5]
+
+
+def targets_found(result):
+    """The TARGETS the detections lie on (within 0.3 px), each once, and no other detection."""
+    found = detections(result)
+    on = [next(t for t in TARGETS if abs(f["u"] - t[0]) < 0.3 and abs(f["v"] - t[1]) < 0.3) for f in found]
+    assert len(set(on)) == len(on)
+    return sorted(on)
+
+
+def detections(result):
+    layer = QgsVectorLayer(result["OUTPUT"], "d", "ogr") if isinstance(result["OUTPUT"], str) else result["OUTPUT"]
+    return [f for f in layer.getFeatures()]
+
+
+# Window seams of the default windows (8 tiles of 64 px, a tile of overlap) lie near 544 and 1024 px.
+TARGETS = [(60.0, 70.0), (543.5, 200.0), (1023.5, 120.0), (300.0, 543.5), (800.0, 400.0), (1100.0, 560.0)]
+
+
+@pytest.fixture
+def rgba_ortho(tmp_path):
+    """An 8-bit RGBA orthomosaic, 1200 × 640 px at 1 cm, transparent over the last target."""
+    img = np.rint(255 * humps(1200, 640, TARGETS)).astype(np.uint8)
+    alpha = np.full(img.shape, 255, np.uint8)
+    alpha[540:640, 1040:1200] = 0
+    return write_geotiff(tmp_path / "ortho.tif", [img, img, img], alpha=alpha)
+
+
+def test_an_orthomosaic_gives_one_detection_per_target_where_gdal_puts_it(rgba_ortho, tmp_path):
+    model = identity_model(tmp_path / "m.onnx")
+    result = run({"RASTER": rgba_ortho, "MODEL": model, "OUTPUT": str(tmp_path / "det.gpkg")})
+    found = detections(result)
+    kept = TARGETS[:-1]  # the last one is transparent
+    assert result["DETECTION_COUNT"] == len(found) == len(kept) and result["WINDOWS_READ"] >= 4
+    for u, v in kept:
+        x, y = map_of(rgba_ortho, u, v)
+        near = [f for f in found if abs(f["u"] - u) < 0.2 and abs(f["v"] - v) < 0.2]
+        assert len(near) == 1, (u, v)
+        point = near[0].geometry().constGet()
+        assert point.x() == pytest.approx(x, abs=0.2 * PIXEL_M) and point.y() == pytest.approx(y, abs=0.2 * PIXEL_M)
+        assert near[0]["ground"] == "raster" and near[0]["height_ref"] == "unknown" and near[0]["frame_id"] == 0
+        assert near[0]["dem_source"].endswith("ortho.tif") and near[0]["threshold"] == pytest.approx(0.3)
+
+
+def test_sixteen_bit_single_band_rasters_are_stretched_from_their_statistics(tmp_path):
+    img = (humps(700, 300, TARGETS[:2], amplitude=1.0) * 3000 + 800).astype(np.uint16)
+    path = write_geotiff(tmp_path / "ms.tif", [img], dtype=gdal.GDT_UInt16)
+    model = identity_model(tmp_path / "m.onnx", threshold=0.5)
+    result = run({"RASTER": path, "MODEL": model, "OUTPUT": str(tmp_path / "d16.gpkg")})
+    found = detections(result)
+    assert sorted(round(f["u"]) for f in found) == [60, 544]
+    # A range given: a range that leaves the humps below the threshold finds nothing.
+    result = run({"RASTER": path, "MODEL": model, "VALUE_RANGE": [0, 65535], "OUTPUT": str(tmp_path / "e.gpkg")})
+    assert result["DETECTION_COUNT"] == 0
+
+
+def test_a_mask_and_an_extent_keep_their_inside_only(rgba_ortho, tmp_path):
+    model = identity_model(tmp_path / "m.onnx")
+    mask = QgsVectorLayer("Polygon?crs=EPSG:4326", "field", "memory")  # another CRS than the raster's
+    to_wgs84 = QgsCoordinateTransform(QgsCoordinateReferenceSystem("EPSG:32756"),
+                                      QgsCoordinateReferenceSystem("EPSG:4326"), QgsProject.instance())
+    x0, y0 = map_of(rgba_ortho, 0, 0)
+    x1, y1 = map_of(rgba_ortho, 600, 300)
+    corners = [to_wgs84.transform(QgsPointXY(x, y)) for x, y in ((x0, y0), (x1, y0), (x1, y1), (x0, y1))]
+    feature = QgsFeature()
+    feature.setGeometry(QgsGeometry.fromPolygonXY([corners]))
+    mask.dataProvider().addFeatures([feature])
+    result = run({"RASTER": rgba_ortho, "MODEL": model, "MASK": mask, "OUTPUT": str(tmp_path / "m.gpkg")})
+    assert targets_found(result) == sorted(TARGETS[:2])
+    assert result["WINDOWS_READ"] < 6
+    extent = f"{ORIGIN[0]},{ORIGIN[0] + 6.0},{ORIGIN[1] - 6.0},{ORIGIN[1]} [EPSG:32756]"
+    result = run({"RASTER": rgba_ortho, "MODEL": model, "EXTENT": extent, "OUTPUT": str(tmp_path / "x.gpkg")})
+    assert targets_found(result) == sorted(TARGETS[:2] + TARGETS[3:4])
+
+
+def test_a_raster_in_degrees_is_refused_saying_how_to_reproject(tmp_path):
+    img = np.zeros((50, 50), np.uint8)
+    path = write_geotiff(tmp_path / "deg.tif", [img, img, img], epsg=4326, pixel=1e-7, origin=(151.0, -27.0))
+    assert QgsRasterLayer(path, "deg").isValid()
+    with pytest.raises(QgsProcessingException, match="degrees.*Warp"):
+        run({"RASTER": path, "MODEL": identity_model(tmp_path / "m.onnx"), "OUTPUT": "memory:"})
+
+
+def test_two_bands_need_to_be_told_which_feed_the_model(tmp_path):
+    img = np.zeros((50, 50), np.uint8)
+    path = write_geotiff(tmp_path / "two.tif", [img, img])
+    model = identity_model(tmp_path / "m.onnx")
+    with pytest.raises(QgsProcessingException, match="2 bands.*BANDS"):
+        run({"RASTER": path, "MODEL": model, "OUTPUT": "memory:"})
+    assert run({"RASTER": path, "MODEL": model, "BANDS": [2], "OUTPUT": "memory:"})["DETECTION_COUNT"] == 0
