@@ -1756,37 +1756,37 @@ exact</source>
 <context>
     <name>Detect</name>
     <message>
-        <location filename="../processing/algorithms/detect.py" line="55"/>
+        <location filename="../processing/algorithms/detect.py" line="48"/>
         <source>Detections</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/detect.py" line="57"/>
+        <location filename="../processing/algorithms/detect.py" line="50"/>
         <source>Heatmap folder (one PNG per frame)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/detect.py" line="63"/>
+        <location filename="../processing/algorithms/detect.py" line="56"/>
         <source>SHA-256 of the model</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/detect.py" line="85"/>
+        <location filename="../processing/algorithms/detect.py" line="75"/>
         <source>Model {name} (sha256 {value}…): {resolution_cm:g} cm/px, tiles {tile_size} px with {overlap_px} px overlap, threshold {used:g}{value2}.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/detect.py" line="108"/>
+        <location filename="../processing/algorithms/detect.py" line="98"/>
         <source>{detections} detections in {processed} frames ({value:.2f} per frame); {edge} dropped within {edge_buffer_px:g} px of the border, {no_ground} whose ray missed the ground; {skipped} frames skipped.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/detect.py" line="139"/>
+        <location filename="../processing/algorithms/detect.py" line="129"/>
         <source>Frame {frame_id}: {skipped}; skipped.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/detect.py" line="158"/>
+        <location filename="../processing/algorithms/detect.py" line="148"/>
         <source>{n_coarse} frame(s) (e.g. {items}) are coarser than 1.5× the model's resolution of {resolution_cm:g} cm/px: targets look smaller than in training, so expect fewer detections (fly lower or use a model trained at that resolution).</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1796,100 +1796,80 @@ exact</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/detect.py" line="99"/>
+        <location filename="../processing/algorithms/detect.py" line="89"/>
         <source>{FRAMES} has no CRS: the detections are written in {crs}, the UTM zone of the site.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/detect.py" line="43"/>
+        <location filename="../processing/algorithms/detect.py" line="41"/>
         <source>Frames</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/detect.py" line="51"/>
+        <location filename="../processing/algorithms/detect.py" line="44"/>
         <source>Edge buffer at the image border (px)</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../processing/algorithms/detect.py" line="45"/>
-        <source>ONNX model (empty: the bundled one)</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../processing/algorithms/detect.py" line="48"/>
-        <source>Threshold (empty: the model&apos;s own)</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
 <context>
     <name>DetectRaster</name>
     <message>
-        <location filename="../processing/algorithms/detectraster.py" line="50"/>
+        <location filename="../processing/algorithms/detectraster.py" line="48"/>
         <source>Detect targets on a raster (orthomosaic)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/detectraster.py" line="62"/>
+        <location filename="../processing/algorithms/detectraster.py" line="58"/>
         <source>Raster (orthomosaic)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/detectraster.py" line="63"/>
-        <source>ONNX model (empty: the bundled one)</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../processing/algorithms/detectraster.py" line="66"/>
-        <source>Threshold (empty: the model&apos;s own)</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../processing/algorithms/detectraster.py" line="69"/>
+        <location filename="../processing/algorithms/detectraster.py" line="60"/>
         <source>Only inside these polygons</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/detectraster.py" line="72"/>
+        <location filename="../processing/algorithms/detectraster.py" line="63"/>
         <source>Only inside this extent</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/detectraster.py" line="74"/>
+        <location filename="../processing/algorithms/detectraster.py" line="65"/>
         <source>Bands read as red, green, blue</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/detectraster.py" line="76"/>
+        <location filename="../processing/algorithms/detectraster.py" line="67"/>
         <source>Values mapped to 0–255 (not 8-bit)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/detectraster.py" line="81"/>
+        <location filename="../processing/algorithms/detectraster.py" line="72"/>
         <source>Detections</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/detectraster.py" line="86"/>
+        <location filename="../processing/algorithms/detectraster.py" line="77"/>
         <source>SHA-256 of the model</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/detectraster.py" line="110"/>
+        <location filename="../processing/algorithms/detectraster.py" line="98"/>
         <source>The raster is not 8-bit: values mapped to 0–255 from {ranges}.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/detectraster.py" line="112"/>
+        <location filename="../processing/algorithms/detectraster.py" line="100"/>
         <source>Raster {width} × {height} px at {gsd:.2f} cm/px, bands {bands} as red, green, blue; model {name} (sha256 {digest}…) at {resolution:g} cm/px, threshold {used:g}.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/detectraster.py" line="119"/>
+        <location filename="../processing/algorithms/detectraster.py" line="107"/>
         <source>The raster ({gsd:.2f} cm/px) is coarser than 1.5× the model's resolution of {resolution:g} cm/px: targets look smaller than in training, so expect fewer detections.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/detectraster.py" line="141"/>
+        <location filename="../processing/algorithms/detectraster.py" line="129"/>
         <source>{count} detections from {windows} windows ({skipped} outside the area asked for not read); {merged} found on a seam by two windows kept once.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -2361,6 +2341,19 @@ exact</source>
     <message>
         <location filename="../processing/algorithms/importgeotags.py" line="82"/>
         <source>Largest horizontal accuracy kept (m)</source>
+        <translation type="unfinished"></translation>
+    </message>
+</context>
+<context>
+    <name>ModelParametersMixin</name>
+    <message>
+        <location filename="../processing/parameters/model.py" line="18"/>
+        <source>ONNX model (empty: the bundled one)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/parameters/model.py" line="21"/>
+        <source>Threshold (empty: the model&apos;s own)</source>
         <translation type="unfinished"></translation>
     </message>
 </context>

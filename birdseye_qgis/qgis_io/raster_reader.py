@@ -11,6 +11,7 @@ from qgis.core import QgsRasterBandStats, QgsRectangle, QgsUnitTypes
 
 from ..core.detect.raster_detect import RasterGrid
 from ..core.errors import InputError
+from ..qgis_enums import DISTANCE_METERS
 
 #: numpy types of QGIS's raster data types (``Qgis.DataType``'s values, the same in QGIS 3.22 to 3.44).
 _NUMPY_TYPES = {1: np.uint8, 2: np.uint16, 3: np.int16, 4: np.uint32, 5: np.int32, 6: np.float32, 7: np.float64,
@@ -30,7 +31,7 @@ def raster_grid(layer) -> RasterGrid:
                          "zone of the field) with Raster › Projections › Warp (Reproject), and run this again",
                          source=layer.source())
     extent = layer.extent()
-    unit_factor = QgsUnitTypes.fromUnitToUnitFactor(crs.mapUnits(), QgsUnitTypes.DistanceMeters)
+    unit_factor = QgsUnitTypes.fromUnitToUnitFactor(crs.mapUnits(), DISTANCE_METERS)
     return RasterGrid(layer.width(), layer.height(), extent.xMinimum(), extent.yMaximum(),
                       layer.rasterUnitsPerPixelX(), layer.rasterUnitsPerPixelY(), unit_factor)
 

@@ -6,7 +6,6 @@ from qgis.core import (
     QgsProcessingOutputNumber,
     QgsProcessingOutputString,
     QgsProcessingParameterFeatureSink,
-    QgsProcessingParameterFile,
     QgsProcessingParameterFolderDestination,
     QgsProcessingParameterNumber,
 )
@@ -22,18 +21,17 @@ from ...birdseye_qgis.qgis_io import layer_kinds, layers
 from ...birdseye_qgis.qgis_io.detections import DETECTION_FIELDS, ground_attributes
 from ..parameters.dem import DemParametersMixin
 from ..parameters.layer_parameters import source_parameter
+from ..parameters.model import ModelParametersMixin
 from .base import BirdsEyeAlgorithm
 
 DEFAULT_MODEL = BUNDLED_MODEL
 
 
-class Detect(DemParametersMixin, BirdsEyeAlgorithm):
+class Detect(ModelParametersMixin, DemParametersMixin, BirdsEyeAlgorithm):
     ALG_ID = "detect"
     DISPLAY_NAME = QT_TRANSLATE_NOOP("Detect", "Detect targets (ONNX heatmap model)")
     GROUP = "detect"
     FRAMES = "FRAMES"
-    MODEL = "MODEL"
-    THRESHOLD = "THRESHOLD"
     EDGE_BUFFER_PX = "EDGE_BUFFER_PX"
     OUTPUT = "OUTPUT"
     OUTPUT_HEATMAPS = "OUTPUT_HEATMAPS"
@@ -42,12 +40,7 @@ class Detect(DemParametersMixin, BirdsEyeAlgorithm):
     def initAlgorithm(self, config=None):
         self.addParameter(source_parameter(
             self.FRAMES, self.tr("Frames"), layer_kinds.FRAMES, [SOURCE_VECTOR_POLYGON, SOURCE_VECTOR_POINT]))
-        self.addParameter(QgsProcessingParameterFile(
-            self.MODEL, self.tr("ONNX model (empty: the bundled one)"),
-            fileFilter="ONNX models (*.onnx)", defaultValue=str(DEFAULT_MODEL), optional=True))
-        self.addParameter(QgsProcessingParameterNumber(
-            self.THRESHOLD, self.tr("Threshold (empty: the model's own)"),
-            NUMBER_DOUBLE, optional=True, minValue=0.0, maxValue=1.0))
+        self.add_model_parameters()
         self.addParameter(QgsProcessingParameterNumber(
             self.EDGE_BUFFER_PX, self.tr("Edge buffer at the image border (px)"),
             NUMBER_DOUBLE, 0.0, minValue=0.0))
@@ -68,10 +61,7 @@ class Detect(DemParametersMixin, BirdsEyeAlgorithm):
             raise self.user_error(InputError("no frame layer given", field=self.FRAMES))
         self.dem = self.read_dem(parameters, context)
         self.report_dem(feedback, self.dem)
-        model_path = self.parameterAsFile(parameters, self.MODEL, context) or str(DEFAULT_MODEL)
-        threshold = None
-        if parameters.get(self.THRESHOLD) not in (None, ""):
-            threshold = self.parameterAsDouble(parameters, self.THRESHOLD, context)
+        model_path, threshold = self.model_choice(parameters, context)
         heat_dir = None
         if parameters.get(self.OUTPUT_HEATMAPS) not in (None, ""):
             heat_dir = self.parameterAsString(parameters, self.OUTPUT_HEATMAPS, context) or None

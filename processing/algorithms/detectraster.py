@@ -12,15 +12,12 @@ from qgis.core import (
     QgsProcessingParameterBand,
     QgsProcessingParameterExtent,
     QgsProcessingParameterFeatureSink,
-    QgsProcessingParameterFile,
-    QgsProcessingParameterNumber,
     QgsProcessingParameterRange,
     QgsProcessingParameterRasterLayer,
     QgsRectangle,
 )
 from qgis.PyQt.QtCore import QT_TRANSLATE_NOOP
 
-from ...birdseye_qgis.__about__ import BUNDLED_MODEL
 from ...birdseye_qgis.core.detect.detector import HeatmapModel
 from ...birdseye_qgis.core.detect.raster_detect import detect_raster
 from ...birdseye_qgis.core.errors import InputError
@@ -42,17 +39,16 @@ from ...birdseye_qgis.qgis_io.raster_reader import (
     statistics_value_range,
 )
 from ..parameters.layer_parameters import source_parameter
+from ..parameters.model import ModelParametersMixin
 from .base import BirdsEyeAlgorithm
 
 
-class DetectRaster(BirdsEyeAlgorithm):
+class DetectRaster(ModelParametersMixin, BirdsEyeAlgorithm):
     ALG_ID = "detectraster"
     DISPLAY_NAME = QT_TRANSLATE_NOOP("DetectRaster", "Detect targets on a raster (orthomosaic)")
     GROUP = "detect"
     RASTER = "RASTER"
     BANDS = "BANDS"
-    MODEL = "MODEL"
-    THRESHOLD = "THRESHOLD"
     MASK = "MASK"
     EXTENT = "EXTENT"
     VALUE_RANGE = "VALUE_RANGE"
@@ -60,12 +56,7 @@ class DetectRaster(BirdsEyeAlgorithm):
 
     def initAlgorithm(self, config=None):
         self.addParameter(QgsProcessingParameterRasterLayer(self.RASTER, self.tr("Raster (orthomosaic)")))
-        self.addParameter(QgsProcessingParameterFile(
-            self.MODEL, self.tr("ONNX model (empty: the bundled one)"),
-            fileFilter="ONNX models (*.onnx)", defaultValue=str(BUNDLED_MODEL), optional=True))
-        self.addParameter(QgsProcessingParameterNumber(
-            self.THRESHOLD, self.tr("Threshold (empty: the model's own)"),
-            NUMBER_DOUBLE, optional=True, minValue=0.0, maxValue=1.0))
+        self.add_model_parameters()
         self.addParameter(source_parameter(
             self.MASK, self.tr("Only inside these polygons"), layer_kinds.AREAS, [SOURCE_VECTOR_POLYGON],
             optional=True))
@@ -91,10 +82,7 @@ class DetectRaster(BirdsEyeAlgorithm):
             raise self.user_error(InputError("no raster given, or it cannot be opened", field=self.RASTER))
         grid = self.run_core(raster_grid, layer)
         bands = self.run_core(band_choice, layer, self.parameterAsInts(parameters, self.BANDS, context))
-        model_path = self.parameterAsFile(parameters, self.MODEL, context) or str(BUNDLED_MODEL)
-        threshold = None
-        if parameters.get(self.THRESHOLD) not in (None, ""):
-            threshold = self.parameterAsDouble(parameters, self.THRESHOLD, context)
+        model_path, threshold = self.model_choice(parameters, context)
         model = self.run_core(HeatmapModel, model_path, log=feedback.pushInfo)
         meta = model.metadata
         used = meta.default_threshold if threshold is None else threshold
