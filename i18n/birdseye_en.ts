@@ -1577,78 +1577,83 @@ exact</source>
 <context>
     <name>CompareDetectors</name>
     <message>
-        <location filename="../processing/algorithms/comparedetectors.py" line="36"/>
+        <location filename="../processing/algorithms/comparedetectors.py" line="37"/>
         <source>Compare detectors</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/comparedetectors.py" line="50"/>
+        <location filename="../processing/algorithms/comparedetectors.py" line="51"/>
         <source>Detections of the old detector (before)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/comparedetectors.py" line="59"/>
+        <location filename="../processing/algorithms/comparedetectors.py" line="60"/>
         <source>Geotags</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/comparedetectors.py" line="66"/>
+        <location filename="../processing/algorithms/comparedetectors.py" line="67"/>
         <source>What changed</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/comparedetectors.py" line="68"/>
+        <location filename="../processing/algorithms/comparedetectors.py" line="69"/>
         <source>Comparison (JSON)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/comparedetectors.py" line="70"/>
+        <location filename="../processing/algorithms/comparedetectors.py" line="71"/>
         <source>Report (HTML)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/comparedetectors.py" line="84"/>
+        <location filename="../processing/algorithms/comparedetectors.py" line="85"/>
         <source>{name}: the layer cannot be read.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/comparedetectors.py" line="89"/>
+        <location filename="../processing/algorithms/comparedetectors.py" line="90"/>
         <source>{name}: {n} detection(s) without a position or score left out</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/comparedetectors.py" line="94"/>
+        <location filename="../processing/algorithms/comparedetectors.py" line="95"/>
         <source>Both layers come from the same model file (model_digest) at the same threshold: the comparison shows no change of detector.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/comparedetectors.py" line="105"/>
+        <location filename="../processing/algorithms/comparedetectors.py" line="109"/>
         <source>GEOTAGS: the layer holds no point with a position.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/comparedetectors.py" line="133"/>
+        <location filename="../processing/algorithms/comparedetectors.py" line="148"/>
         <source>OUTPUT: the change layer cannot be created.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/comparedetectors.py" line="161"/>
+        <location filename="../processing/algorithms/comparedetectors.py" line="176"/>
         <source>{name}: cannot write {path} ({exc})</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/comparedetectors.py" line="53"/>
+        <location filename="../processing/algorithms/comparedetectors.py" line="54"/>
         <source>Detections of the new detector (same flight)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/comparedetectors.py" line="56"/>
+        <location filename="../processing/algorithms/comparedetectors.py" line="57"/>
         <source>Frames of the flight</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/comparedetectors.py" line="63"/>
+        <location filename="../processing/algorithms/comparedetectors.py" line="64"/>
         <source>Review verdicts (for scores after review)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/comparedetectors.py" line="114"/>
+        <source>{name} was found on the raster {raster}: both layers are scored over the geotags in view of the frames and on the raster&apos;s pixels ({n} of {total} lie on the raster); its detections beyond the frames&apos; view are left out, and each of its detections can be a cluster by itself (one image shows a target once).</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
@@ -5243,7 +5248,7 @@ exact</source>
 - **VALIDATION** — what is held out. *Spatial blocks* (default): the targets (`targets.csv` of each labels folder) are grouped into square ground blocks one frame footprint diagonal wide and whole blocks are held out; frames that see only held-out targets validate, frames that see only training targets train, frames that see both are dropped (counted in the model card); frames that see no target follow the block of their footprint&apos;s centre. A block is held out in every labels folder, so two flights over one site keep each target on one side. *Whole flights*: whole labels folders held out (needs two or more). *Nothing*: every frame trains; the threshold is not validated. A labels folder written before `targets.csv` existed is split by random frames instead, with a warning.
 - **VALIDATION_FRACTION** — share of the targets held out, 0–0.5 (default 0.15): blocks (or flights) are taken in a random order while their targets fit under it (the smallest alone when none fits).
 - **SEED** — random seed of the split, the crops and the initial weights.
-- **THRESHOLD** (advanced) — default threshold written into the model; empty: chosen on the ground figures of the held-out frames — the highest threshold whose F1 (harmonic mean of recall and GMCF) is within one target&apos;s worth (1 / held-out targets in view) of the best, i.e. the fewest detections among F1 values the held-out targets cannot tell apart. Without ground figures, the same rule on the held-out tiles&apos; F1, with a warning; 0.5 when neither found a target.
+- **THRESHOLD** (advanced) — default threshold written into the model; empty: chosen on the ground figures of the held-out frames — the highest threshold whose F1 (harmonic mean of recall and GMCF) is within one target&apos;s worth (1 / held-out targets in view) of the best without finding fewer held-out targets than the best, i.e. the fewest detections among F1 values the held-out targets cannot tell apart, never at the cost of a target. Without ground figures, the same rule on the held-out tiles&apos; F1, with a warning; 0.5 when neither found a target.
 - **THREADS** (advanced) — CPU threads for training; 0 uses every core.
 - **PYTHON** (advanced) — a Python interpreter with torch, onnx, OpenCV (and torchvision for a pretrained encoder, matplotlib for the plot, onnxruntime and scipy for the validation on the ground). Empty: the environment variable BIRDSEYE_TRAINING_PYTHON, else QGIS&apos;s Python with the folder Install dependencies installed PyTorch into.</source>
         <translation type="unfinished"></translation>

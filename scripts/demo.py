@@ -10,7 +10,8 @@ what the toolbox, the Graphical Modeler and ``qgis_process`` run:
 3. write training labels, with tiles, for the training flights (``writelabels``);
 4. detect targets on the held-out flight with the bundled model (``detect``);
 5. cluster the detections and score them against the survey (``clusterdetections``,
-   ``evaluatedetections``);
+   ``evaluatedetections``); detect on the held-out field's orthomosaic too (``detectraster``) and compare
+   frames and mosaic over the same geotags (``comparedetectors``);
 6. plan the next flight over the held-out field's geotags, with its mission files (``planflight``);
 7. the sensor bound of the simulated platform's pose noise (``sensorbound``).
 
@@ -54,6 +55,7 @@ OSM_RIGHTS = "© OpenStreetMap contributors, ODbL (https://www.openstreetmap.org
 
 SIGMAS = "0.01,0.01,0.06,0.04,0.04,0.13"  # the deployed platform's pose noise Σ0 (m, m, m, °, °, °)
 ALTITUDE_M = 10.0  # flying height of the simulated flights and of the sensor bound (m above ground)
+HELD_OUT_ORTHO_PIXEL_M = 0.005  # the held-out field's orthomosaic: finer than the bundled model's 1 cm/px
 
 
 @dataclass(frozen=True)
@@ -179,7 +181,10 @@ def build_steps(size: DemoSize, model: Path | None) -> list[Step]:
             "FPS": size.training_fps if flight.training else size.held_out_fps,
             "IMAGE_WIDTH": size.image_width, "IMAGE_HEIGHT": size.image_height, "SIGMAS": SIGMAS,
             "SITE_LAT": SITE_LAT, "SITE_LON": field_longitude(flight.field_offset * size.field_spacing_m),
-            "OUTPUT_FOLDER": f"{{out}}/campaigns/{flight.key}"},
+            "OUTPUT_FOLDER": f"{{out}}/campaigns/{flight.key}",
+            # The held-out field's map finer than the model's resolution, as the frames are: detection on
+            # the mosaic is then compared with detection on the frames at one resolution.
+            **({} if flight.training else {"ORTHO_PIXEL_M": HELD_OUT_ORTHO_PIXEL_M})},
             tag=flight.tag, maps=(("ORTHOMOSAIC", "Mosaic"),), map_group=FARM_MAP))
     for flight in FLIGHTS:
         campaign = f"campaign_{flight.key}"
@@ -205,8 +210,9 @@ def build_steps(size: DemoSize, model: Path | None) -> list[Step]:
                 group="labels", tag=flight.tag, hidden=("OUTPUT_FRAMES", "OUTPUT_GEOTAGS")))
     h = held_out.key
     detect = {"FRAMES": f"{{flight_{h}[OUTPUT]}}", "OUTPUT": "{out}/detections/detections.gpkg"}
+    mosaic = {"RASTER": f"{{campaign_{h}[ORTHOMOSAIC]}}", "OUTPUT": "{out}/detections/detections_mosaic.gpkg"}
     if model is not None:
-        detect["MODEL"] = str(model)
+        detect["MODEL"] = mosaic["MODEL"] = str(model)
     steps += [
         Step("detect", "detect", f"Detect targets on the {held_out.title}", detect, group="detections",
              tag=held_out.tag, legend=("OUTPUT",)),
@@ -219,6 +225,14 @@ def build_steps(size: DemoSize, model: Path | None) -> list[Step]:
             "DETECTIONS": ["{detect[OUTPUT]}"], "GEOTAGS": f"{{geotags_{h}[OUTPUT]}}",
             "FRAMES": [f"{{flight_{h}[OUTPUT]}}"], "OUTPUT_JSON": "{out}/evaluation.json",
             "OUTPUT_REPORT": "{out}/evaluation.html"}),
+        Step("detect_mosaic", "detectraster", f"Detect targets on the {held_out.title}'s orthomosaic", mosaic,
+             group="detections", tag=held_out.tag, kinds={"OUTPUT": "Mosaic detections"}, hidden=("OUTPUT",)),
+        Step("mosaic_vs_frames", "comparedetectors", "Compare detection on the frames and on the mosaic", {
+            "DETECTIONS_OLD": "{detect[OUTPUT]}", "DETECTIONS_NEW": "{detect_mosaic[OUTPUT]}",
+            "FRAMES": f"{{flight_{h}[OUTPUT]}}", "GEOTAGS": f"{{geotags_{h}[OUTPUT]}}",
+            "OUTPUT": "{out}/detections/frames_vs_mosaic.gpkg", "OUTPUT_JSON": "{out}/frames_vs_mosaic.json",
+            "OUTPUT_REPORT": "{out}/frames_vs_mosaic.html"}, group="detections", tag=held_out.tag,
+            kinds={"OUTPUT": "Frames vs mosaic"}, hidden=("OUTPUT",)),
         Step("plan", "planflight", f"Plan the next flight over the {held_out.title}'s geotags", {
             "GEOTAGS": f"{{geotags_{h}[OUTPUT]}}", "CAMERA": f"{{campaign_{h}[CALIBRATION]}}",
             "ALTITUDE_M": ALTITUDE_M, "OUTPUT_WAYPOINTS": "{out}/plan/waypoints.gpkg",
@@ -544,6 +558,11 @@ def figures(values: dict, out: Path, project, model: Path | None) -> dict:
         "gmcf_pre": get("evaluation", "GMCF_PRE"),
         "eval_clusters": get("evaluation", "N_CLUSTERS"),
         "eval_hit_clusters": get("evaluation", "N_HIT_CLUSTERS"),
+        "mosaic_detections": get("detect_mosaic", "DETECTION_COUNT"),
+        "frames_vs_mosaic": {"recall_pre": [get("mosaic_vs_frames", "RECALL_PRE_OLD"),
+                                            get("mosaic_vs_frames", "RECALL_PRE_NEW")],
+                             "gmcf_pre": [get("mosaic_vs_frames", "GMCF_PRE_OLD"),
+                                          get("mosaic_vs_frames", "GMCF_PRE_NEW")]},
         "waypoints": get("plan", "WAYPOINT_COUNT"),
         "route_length_m": get("plan", "ROUTE_LENGTH_M"),
         "flight_time_min": get("plan", "FLIGHT_TIME_MIN"),
@@ -583,6 +602,10 @@ def summary(shown_out: str, numbers: dict, timings: list, elapsed: float) -> str
         f" Clusters    {f['clusters']}, of which {f['hit_clusters']} on a geotag → clusters/",
         f" Evaluation  recall_pre {f['n_recovered']}/{f['n_in_view']} = {fmt(f['recall_pre'])}, "
         f"gmcf_pre {f['eval_hit_clusters']}/{f['eval_clusters']} = {fmt(f['gmcf_pre'])} → evaluation.html",
+        f" Mosaic      {f['mosaic_detections']} detections on the held-out field's orthomosaic → detections/",
+        f"             frames vs mosaic: recall_pre {fmt(f['frames_vs_mosaic']['recall_pre'][0])} vs "
+        f"{fmt(f['frames_vs_mosaic']['recall_pre'][1])}, gmcf_pre {fmt(f['frames_vs_mosaic']['gmcf_pre'][0])} vs "
+        f"{fmt(f['frames_vs_mosaic']['gmcf_pre'][1])} → frames_vs_mosaic.html",
         f" Next flight {f['waypoints']} waypoints over the held-out geotags, route {f['route_length_m']:.1f} m, "
         f"{f['flight_time_min']:.1f} min → plan/",
     ]

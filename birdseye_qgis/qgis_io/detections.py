@@ -8,7 +8,7 @@ from qgis.core import QgsCoordinateReferenceSystem, QgsCoordinateTransform, QgsP
 from ..core.errors import InputError
 from ..core.field.frame_records import poses_from_records
 from ..core.geometry.geodesy import LocalFrame, ProjectedCRS
-from ..core.geometry.ground_record import DEM, LEVEL_PLANE, GroundRecord
+from ..core.geometry.ground_record import DEM, LEVEL_PLANE, RASTER, GroundRecord
 from ..core.scoring.evaluation import Detections
 from ..core.scoring.verdicts import VerdictLog
 from ..qgis_enums import GEOMETRY_POINT
@@ -85,9 +85,13 @@ def read_detections(source, context, name: str | None = None) -> tuple[Detection
         listed = ", ".join(f"{t:g}" for t in thresholds)
         raise InputError(f"mixes detections of {len(thresholds)} thresholds ({listed}); a threshold is a Detect "
                          "run, not a score filter: score one run per layer", source=name, field="threshold")
-    det = Detections(cols["lat"][ok], cols["lon"][ok], cols["z"][ok], frame_id[ok], score[ok], name=name,
+    ground = _ground_record(values, name)
+    # Detections found on a raster have no height (Z 0, height_ref unknown): NaN, which core code reads as
+    # the local ground's height.
+    height = np.full(int(ok.sum()), np.nan) if ground.model == RASTER else cols["z"][ok]
+    det = Detections(cols["lat"][ok], cols["lon"][ok], height, frame_id[ok], score[ok], name=name,
                      model=", ".join(models), model_digest=digests[0] if digests else "",
-                     threshold=max(thresholds) if thresholds else None, ground=_ground_record(values, name))
+                     threshold=max(thresholds) if thresholds else None, ground=ground)
     return det, int((~ok).sum())
 
 

@@ -14,7 +14,7 @@ from qgis.core import (
 )
 from qgis.PyQt.QtCore import QT_TRANSLATE_NOOP
 
-from ...birdseye_qgis.core.geometry.ground_record import common_ground
+from ...birdseye_qgis.core.geometry.ground_record import RASTER, common_ground
 from ...birdseye_qgis.core.scoring.compare import CHANGE_FIELDS, compare_detectors
 from ...birdseye_qgis.core.scoring.reports import comparison_report_html
 from ...birdseye_qgis.qgis_enums import SOURCE_VECTOR, SOURCE_VECTOR_POINT, WKB_POINT
@@ -25,6 +25,7 @@ from ...birdseye_qgis.qgis_io.detections import (
     read_verdicts,
     to_layer_xy,
 )
+from ...birdseye_qgis.qgis_io.raster_reader import covered_geotags
 from ..parameters.clustering import ClusteringParametersMixin
 from ..parameters.dem import DemParametersMixin
 from ..parameters.layer_parameters import source_parameter, vector_parameter
@@ -94,22 +95,36 @@ class CompareDetectors(ClusteringParametersMixin, DemParametersMixin, BirdsEyeAl
             feedback.pushWarning(self.tr("Both layers come from the same model file (model_digest) at the same "
                                          "threshold: the comparison shows no change of detector."))
         # A change of ground is not a change of detector: both layers must stand on one, which the
-        # in-view test of both then uses.
-        self.run_core(common_ground, [old.ground, new.ground], [old.name, new.name])
+        # in-view test of both then uses — or one was found on the flight's orthomosaic (frames or mosaic).
+        on_raster = [d for d in (old, new) if d.ground.model == RASTER]
+        on_frames = [d for d in (old, new) if d.ground.model != RASTER]
+        self.run_core(common_ground, [d.ground for d in on_frames] or [on_raster[0].ground],
+                      [d.name for d in on_frames] or [on_raster[0].name])
         dem = self.read_dem(parameters, context, sources[self.FRAMES], feedback)
         self.report_dem(feedback, dem)
-        ground = self.recorded_ground(old, dem, feedback)
+        ground = self.recorded_ground(on_frames[0], dem, feedback) if on_frames else None
         groups = self.run_core(read_pose_groups, sources[self.FRAMES])[0]
         geotags = self.run_core(layers.read_geotag_layer, sources[self.GEOTAGS], context.transformContext())
         if len(geotags) == 0:
             raise QgsProcessingException(self.tr("GEOTAGS: the layer holds no point with a position."))
+        inside_raster = None
+        if on_raster:
+            inside_raster = self.run_core(covered_geotags, on_raster[0].ground.dem_source, geotags.lat, geotags.lon,
+                                          context.transformContext())
+            feedback.pushInfo(self.tr("{name} was found on the raster {raster}: both layers are scored over the "
+                                      "geotags in view of the frames and on the raster's pixels ({n} of {total} "
+                                      "lie on the raster); its detections beyond the frames' view are left out, "
+                                      "and each of its detections can be a cluster by itself (one image shows a "
+                                      "target once).").format(name=on_raster[0].name,
+                                                              raster=on_raster[0].ground.dem_source,
+                                                              n=int(inside_raster.sum()), total=len(geotags)))
         review = self.parameterAsVectorLayer(parameters, self.REVIEW, context)
         log = self.run_core(read_verdicts, review, context) if review is not None else None
         op = self.read_operating_point(parameters, context)
         feedback.setProgress(10)
         progress, is_canceled = self.progress_callbacks(feedback, 10.0, 85.0)
         comparison = self.run_core(compare_detectors, old, new, groups, geotags, op, log, ground, progress,
-                                   is_canceled)
+                                   is_canceled, inside_raster)
         for note in comparison.before.review_notes:
             feedback.pushWarning(note)
         result = comparison.to_dict()

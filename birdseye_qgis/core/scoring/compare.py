@@ -16,16 +16,17 @@ flight's), so every figure is the one Evaluate detections gives for that layer a
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Sequence
 
 import numpy as np
 
+from ..errors import InputError
 from ..field.geotags import Geotags
-from ..geometry.ground_record import common_ground
+from ..geometry.ground_record import RASTER, GroundRecord, common_ground
 from ..geometry.poses import FramePoses
-from .evaluation import Detections, Evaluation, Flight, evaluate_flights, local_frame_for
-from .matching import match_to_clusters
+from .evaluation import Detections, Evaluation, Flight, evaluate_flights, local_frame_for, mosaic_flight
+from .matching import in_view, match_to_clusters
 from .operating_point import OperatingPoint
 from .pre_review import ratio
 from .verdicts import VerdictLog
@@ -153,28 +154,65 @@ class Comparison:
                                              "the other"}}
 
 
+#: The ground of two raster layers compared with each other (two models on one mosaic): one ground.
+RASTER_RECORD = GroundRecord(RASTER)
+
+
+def _geotags_local(local, geotags: Geotags) -> np.ndarray:
+    """The geotags in ``local`` (G, 3), a missing height at the frame's origin height."""
+    if not len(geotags):
+        return np.empty((0, 3))
+    return local.from_geodetic(geotags.lat, geotags.lon, np.where(np.isfinite(geotags.height), geotags.height,
+                                                                  local.h0))
+
+
+def _seen_by_frames(mosaic: Detections, pose_groups, local, op: OperatingPoint, ground) -> Detections:
+    """The mosaic's detections on ground the frames see: beyond it the frames could find nothing, and a
+    cluster there would count against the mosaic as a false one (no geotag in view matches it)."""
+    xy = mosaic.ground_positions(local).xy  # a mosaic has no heights: its points at the frames' ground level
+    points = np.column_stack([xy, np.zeros(len(xy))])
+    seen = in_view(pose_groups, local, points, op.edge_buffer_px, ground).mask
+    return replace(mosaic, lat=mosaic.lat[seen], lon=mosaic.lon[seen], height=mosaic.height[seen],
+                   frame_id=mosaic.frame_id[seen], score=mosaic.score[seen])
+
+
 def compare_detectors(old: Detections, new: Detections, pose_groups: Sequence[FramePoses], geotags: Geotags,
                       op: OperatingPoint = OperatingPoint(), log: VerdictLog | None = None, ground=None,
-                      progress=None, is_canceled=None) -> Comparison:
+                      progress=None, is_canceled=None, inside_raster=None) -> Comparison:
     """Score two detection layers of one flight as Evaluate detections does and classify what changed.
 
     Both must have been placed on one ground (a change of ground is not a change of detector), whose
-    factory ``ground`` (``old.ground.factory(dem)``; None = the level plane) the in-view test stands on."""
-    common_ground([old.ground, new.ground], [old.name, new.name])
+    factory ``ground`` (``old.ground.factory(dem)``; None = the level plane) the in-view test stands on —
+    except frames against mosaic: one layer found on a raster (an orthomosaic of the flight, ground RASTER)
+    and one on the frames' ground (``ground``'s). Both are then scored over the same geotags, those in view of
+    the frames *and* on the raster's valid pixels (``inside_raster`` (G,)); the mosaic's detections cluster
+    with a core test of one (:attr:`.evaluation.Flight.seen_once`)."""
     local = local_frame_for(pose_groups, geotags)
+    on_raster = [d.ground.model == RASTER for d in (old, new)]
+    if not any(on_raster):
+        common_ground([old.ground, new.ground], [old.name, new.name])
+        flights = [Flight(d, pose_groups, d.name, ground) for d in (old, new)]
+    else:
+        if inside_raster is None:
+            raise InputError("a layer of detections found on a raster is scored over the geotags the raster "
+                             "covers: give that raster", source=(old, new)[on_raster.index(True)].name)
+        frames_layers = [d for d, r in zip((old, new), on_raster) if not r]
+        common_ground([d.ground for d in frames_layers] or [RASTER_RECORD], [d.name for d in frames_layers] or [""])
+        geotag_local = _geotags_local(local, geotags)
+        frames_view = in_view(pose_groups, local, geotag_local, op.edge_buffer_px, ground).mask
+        flights = [mosaic_flight(_seen_by_frames(d, pose_groups, local, op, ground), pose_groups, inside_raster,
+                                 frames_view) if r
+                   else Flight(d, pose_groups, d.name, ground, np.asarray(inside_raster, dtype=bool))
+                   for d, r in zip((old, new), on_raster)]
 
     def half(fraction_start):
         if progress is None:
             return None
         return lambda f: progress(fraction_start + 0.5 * f)
 
-    before = evaluate_flights([Flight(old, pose_groups, old.name, ground)], geotags, op, log, local, half(0.0),
-                              is_canceled)
-    after = evaluate_flights([Flight(new, pose_groups, new.name, ground)], geotags, op, log, local, half(0.5),
-                             is_canceled)
-    geotag_xy = local.from_geodetic(geotags.lat, geotags.lon,
-                                    np.where(np.isfinite(geotags.height), geotags.height, local.h0))[:, :2] \
-        if len(geotags) else np.empty((0, 2))
+    before = evaluate_flights([flights[0]], geotags, op, log, local, half(0.0), is_canceled)
+    after = evaluate_flights([flights[1]], geotags, op, log, local, half(0.5), is_canceled)
+    geotag_xy = _geotags_local(local, geotags)[:, :2]
     changes = classify_changes(before.flights[0], after.flights[0], before.flights[0].in_view.mask, geotag_xy,
                                op.eps_pred_m)
     return Comparison(before, after, changes, (old, new))

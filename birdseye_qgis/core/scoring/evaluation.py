@@ -1,7 +1,7 @@
 """Evaluate detections of one or more flights against geotags, from geodetic inputs."""
 from __future__ import annotations
 
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, dataclass, field, replace
 from typing import Sequence
 
 import numpy as np
@@ -10,7 +10,7 @@ from ..detect.clustering import Clustering, GroundPositions, cluster_detections
 from ..errors import InputError, check_cancel
 from ..field.geotags import Geotags
 from ..geometry.geodesy import LocalFrame
-from ..geometry.ground_record import GroundRecord
+from ..geometry.ground_record import RASTER, GroundRecord
 from ..geometry.poses import FramePoses
 from .matching import InView, in_view
 from .operating_point import OperatingPoint
@@ -52,12 +52,33 @@ class Detections:
 class Flight:
     """One flight to score: its detections, its processed frames (pose groups, one per camera) and the
     ground-model factory the detections were placed with (``detections.ground.factory(dem)``; None = the
-    level plane), which the in-view test stands on."""
+    level plane), which the in-view test stands on.
+
+    ``view_mask`` (G,): for detections found on a raster (``ground`` RASTER, :func:`mosaic_flight`), the geotags
+    in view (its valid pixels cover them) instead of the frames' test; for frame detections, the geotags the
+    frames' test may count (the others are left out: a comparison with a mosaic over the same targets)."""
 
     detections: Detections
     pose_groups: Sequence[FramePoses]
     name: str = ""
     ground: object = None
+    view_mask: np.ndarray | None = None
+
+    @property
+    def seen_once(self) -> bool:
+        """Whether each target can be detected once only (a raster: one image), not once per frame."""
+        return self.detections.ground.model == RASTER
+
+
+def mosaic_flight(detections: Detections, pose_groups: Sequence[FramePoses], inside_raster, frames_in_view=None,
+                  name: str = "") -> Flight:
+    """The :class:`Flight` of detections found on a raster: the geotags in view are those ``inside_raster``
+    (G,) covers with valid pixels — and, given ``frames_in_view`` (G,), in view of the flight's frames too, so a
+    frames-against-mosaic comparison counts one set of targets for both."""
+    mask = np.asarray(inside_raster, dtype=bool)
+    if frames_in_view is not None:
+        mask = mask & np.asarray(frames_in_view, dtype=bool)
+    return Flight(detections, pose_groups, name or detections.name, None, mask)
 
 
 @dataclass
@@ -109,6 +130,14 @@ class Evaluation:
         return out
 
 
+def raster_view(mask, n_geotags: int) -> InView:
+    """The :class:`InView` of a raster's geotags in view: one image, no frames counted."""
+    mask = np.asarray(mask, dtype=bool).reshape(-1)
+    if len(mask) != n_geotags:
+        raise InputError(f"the raster's in-view mask has {len(mask)} entries for {n_geotags} geotags")
+    return InView(mask, 0, 0, np.empty(0, dtype=int))
+
+
 def local_frame_for(pose_groups: Sequence[FramePoses], geotags: Geotags | None = None) -> LocalFrame:
     """A local frame at the middle of every frame (and geotag) position, at the median ground height."""
     pose_groups = list(pose_groups)
@@ -154,9 +183,19 @@ def evaluate_flights(flights: Sequence[Flight], geotags: Geotags, op: OperatingP
         det = flight.detections
         keep = np.ones(len(det), dtype=bool) if op.threshold is None else det.score >= op.threshold
         positions = det.ground_positions(local).subset(keep)
+        # A raster shows each target once: one detection is a whole cluster there (DBSCAN's core test at 1).
+        min_samples = 1 if flight.seen_once else op.min_samples
         clustering = cluster_detections(positions, det.frame_id[keep], det.score[keep], op.dedup_cm, op.eps_m,
-                                        op.min_samples, core_count=op.core_count)
-        view = in_view(flight.pose_groups, local, geotag_local, op.edge_buffer_px, flight.ground)
+                                        min_samples, core_count=op.core_count)
+        if flight.seen_once:
+            if flight.view_mask is None:
+                raise InputError("detections found on a raster are scored over the geotags the raster covers: "
+                                 "give the raster", source=det.name)
+            view = raster_view(flight.view_mask, len(geotag_local))
+        else:
+            view = in_view(flight.pose_groups, local, geotag_local, op.edge_buffer_px, flight.ground)
+            if flight.view_mask is not None:
+                view = replace(view, mask=view.mask & np.asarray(flight.view_mask, dtype=bool))
         score = score_flight(clustering, geotag_local[:, :2], view.mask, op.eps_pred_m)
         ev = FlightEvaluation(flight.name or det.name, clustering, score, view, int(keep.sum()), ground=det.ground)
         if log is not None:

@@ -391,9 +391,10 @@ def score_on_ground(net, meta, producer: str, flights, should_stop, emit) -> dic
 
 
 #: The threshold rule: the same tie rule (:func:`.recipe.best_threshold`) on whichever figures were measured.
-GROUND_RULE = ("highest threshold within one target of the best F1 of recall and GMCF, scored on the ground over "
-               "the held-out frames ({split})")
-TILE_RULE = "highest threshold within one target of the best F1 on the held-out tiles (not validated on the ground)"
+GROUND_RULE = ("highest threshold within one target of the best F1 of recall and GMCF, losing no target, scored on "
+               "the ground over the held-out frames ({split})")
+TILE_RULE = ("highest threshold within one target of the best F1, losing no target, on the held-out tiles (not "
+             "validated on the ground)")
 
 
 def choose_threshold(job: TrainJob, plan, figures: dict | None, ground: dict | None) -> tuple[float, str, str | None]:

@@ -10,7 +10,7 @@ from test_scoring import SITE, detections, geodetic, grid9, poses_over
 
 from birdseye.birdseye_qgis.core.field.geotags import Geotags
 from birdseye.birdseye_qgis.core.scoring.compare import compare_detectors
-from birdseye.birdseye_qgis.core.scoring.evaluation import Flight, evaluate_flights
+from birdseye.birdseye_qgis.core.scoring.evaluation import Detections, Flight, evaluate_flights
 from birdseye.birdseye_qgis.core.scoring.operating_point import OperatingPoint
 
 OP = OperatingPoint(threshold=None, dedup_cm=3, eps_m=0.10, min_samples=3, eps_pred_m=0.20)
@@ -74,3 +74,35 @@ def test_figures_side_by_side_are_evaluate_detections_figures():
         assert {k: v for k, v in evaluation.to_dict().items()} == alone
     d = comparison.to_dict()
     assert (d["before"]["name"], d["after"]["name"]) == ("old", "new") and d["changes"]["false_added"] == 1
+
+
+def test_frames_against_a_mosaic_count_one_set_of_targets_and_a_mosaic_detection_is_a_cluster():
+    """The frames' layer is OLD; the mosaic shows each target once: one detection on g0, g2 and g4 (g4 is out
+    of the frame's view) and one false spot. The raster covers every geotag but g3. Both are scored over g0, g1
+    and g2 (in view of the frame *and* on the raster): the frames found g0, g1 (2 of 3), the mosaic g0, g2
+    (2 of 3). Its detection on g4 lies beyond the frame's view, where the frames could find nothing: left out.
+    Its 3 other single detections are 3 clusters (a core test of one), 2 on a geotag."""
+    from dataclasses import replace
+
+    from birdseye.birdseye_qgis.core.errors import InputError
+    from birdseye.birdseye_qgis.core.geometry.ground_record import RASTER, GroundRecord
+
+    frames = [poses_over([0.0, 0.0])]
+    lat, lon, h = geodetic([GEOTAGS["g0"], GEOTAGS["g2"], GEOTAGS["g4"], (2.0, -2.0)])
+    mosaic = Detections(lat, lon, np.full(4, np.nan), np.zeros(4, int), np.full(4, 0.8), name="mosaic",
+                        ground=GroundRecord(RASTER, "ortho.tif"))
+    inside_raster = np.array([True, True, True, False, True])
+    old = layer(OLD, "frames")
+    comparison = compare_detectors(old, mosaic, frames, geotags(), OP, inside_raster=inside_raster)
+    before, after = comparison.before.pooled, comparison.after.pooled
+    assert (before.n_in_view, before.n_recovered) == (after.n_in_view, after.n_recovered) == (3, 2)
+    assert (after.n_clusters, after.n_hit_clusters) == (3, 2)
+    assert comparison.counts()["found_by_both"] == 1 and comparison.counts()["lost_by_new"] == 1
+    assert comparison.counts()["found_only_by_new"] == 1 and comparison.counts()["missed_by_both"] == 0
+    # The frames' layer alone is scored over g0–g3 (g3 in view): the raster took g3 out of both.
+    assert evaluate_flights([Flight(old, frames, "frames")], geotags(), OP).pooled.n_in_view == 4
+    with pytest.raises(InputError, match="give that raster"):
+        compare_detectors(old, mosaic, frames, geotags(), OP)
+    with pytest.raises(InputError, match="one ground|placed on"):
+        compare_detectors(old, replace(old, ground=GroundRecord("dem", "d.tif", "ellipsoidal")), frames,
+                          geotags(), OP)

@@ -155,9 +155,13 @@ def test_validation_figures_count_peaks_against_label_centres_by_hand():
     assert (rows["0.3"]["recall"], rows["0.3"]["precision"], rows["0.3"]["false_per_tile"]) == (1.0, 0.6667, 1.0)
     assert (rows["0.5"]["recall"], rows["0.5"]["precision"]) == (0.5, 0.5)
     assert (rows["0.7"]["recall"], rows["0.7"]["precision"]) == (0.5, 1.0)
-    # F1 0.8 at 0.3, 0.5 at 0.5, 0.667 at 0.7. Two targets cannot tell F1 values within 1/2 apart: the
-    # highest threshold within 0.5 of the best is 0.7 (the fewest detections).
-    assert recipe.best_threshold(figures) == 0.7
+    # F1 0.8 at 0.3, 0.5 at 0.5, 0.667 at 0.7. Two targets cannot tell F1 values within 1/2 apart, but 0.5 and
+    # 0.7 find one target of two where 0.3 finds both: a tie never gives up a target, so 0.3.
+    assert recipe.best_threshold(figures) == 0.3
+    # Recall kept, the highest threshold within one target's worth: 0.5 (F1 0.75, recall 1) over 0.3 (0.8).
+    tied = {"targets": 2, "by_threshold": {"0.3": {"f1": 0.8, "recall": 1.0}, "0.5": {"f1": 0.75, "recall": 1.0},
+                                           "0.7": {"f1": 0.667, "recall": 0.5}}}
+    assert recipe.best_threshold(tied) == 0.5
     # With 50 targets only values within 0.02 tie: the loop demo's tiles (F1 0.559, 0.614, 0.594, 0.590,
     # 0.602, 0.406 at 0.1…0.6) give 0.5, where the best F1 alone gave 0.2.
     rows = dict(zip(("0.1", "0.2", "0.3", "0.4", "0.5", "0.6"), (0.559, 0.614, 0.594, 0.590, 0.602, 0.406)))
