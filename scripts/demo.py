@@ -226,13 +226,13 @@ def build_steps(size: DemoSize, model: Path | None) -> list[Step]:
             "FRAMES": [f"{{flight_{h}[OUTPUT]}}"], "OUTPUT_JSON": "{out}/evaluation.json",
             "OUTPUT_REPORT": "{out}/evaluation.html"}),
         Step("detect_mosaic", "detectraster", f"Detect targets on the {held_out.title}'s orthomosaic", mosaic,
-             group="detections", tag=held_out.tag, kinds={"OUTPUT": "Mosaic detections"}, hidden=("OUTPUT",)),
+             group="detections", tag=held_out.tag, kinds={"OUTPUT": "On mosaic"}, hidden=("OUTPUT",)),
         Step("mosaic_vs_frames", "comparedetectors", "Compare detection on the frames and on the mosaic", {
             "DETECTIONS_OLD": "{detect[OUTPUT]}", "DETECTIONS_NEW": "{detect_mosaic[OUTPUT]}",
             "FRAMES": f"{{flight_{h}[OUTPUT]}}", "GEOTAGS": f"{{geotags_{h}[OUTPUT]}}",
             "OUTPUT": "{out}/detections/frames_vs_mosaic.gpkg", "OUTPUT_JSON": "{out}/frames_vs_mosaic.json",
             "OUTPUT_REPORT": "{out}/frames_vs_mosaic.html"}, group="detections", tag=held_out.tag,
-            kinds={"OUTPUT": "Frames vs mosaic"}, hidden=("OUTPUT",)),
+            kinds={"OUTPUT": "Frames/mosaic"}, hidden=("OUTPUT",)),
         Step("plan", "planflight", f"Plan the next flight over the {held_out.title}'s geotags", {
             "GEOTAGS": f"{{geotags_{h}[OUTPUT]}}", "CAMERA": f"{{campaign_{h}[CALIBRATION]}}",
             "ALTITUDE_M": ALTITUDE_M, "OUTPUT_WAYPOINTS": "{out}/plan/waypoints.gpkg",
@@ -602,10 +602,10 @@ def summary(shown_out: str, numbers: dict, timings: list, elapsed: float) -> str
         f" Clusters    {f['clusters']}, of which {f['hit_clusters']} on a geotag → clusters/",
         f" Evaluation  recall_pre {f['n_recovered']}/{f['n_in_view']} = {fmt(f['recall_pre'])}, "
         f"gmcf_pre {f['eval_hit_clusters']}/{f['eval_clusters']} = {fmt(f['gmcf_pre'])} → evaluation.html",
-        f" Mosaic      {f['mosaic_detections']} detections on the held-out field's orthomosaic → detections/",
-        f"             frames vs mosaic: recall_pre {fmt(f['frames_vs_mosaic']['recall_pre'][0])} vs "
-        f"{fmt(f['frames_vs_mosaic']['recall_pre'][1])}, gmcf_pre {fmt(f['frames_vs_mosaic']['gmcf_pre'][0])} vs "
-        f"{fmt(f['frames_vs_mosaic']['gmcf_pre'][1])} → frames_vs_mosaic.html",
+        f" Mosaic      {f['mosaic_detections']} detections on the held-out orthomosaic → frames_vs_mosaic.html",
+        f"             frames | mosaic: recall_pre {fmt(f['frames_vs_mosaic']['recall_pre'][0])} | "
+        f"{fmt(f['frames_vs_mosaic']['recall_pre'][1])}, gmcf_pre {fmt(f['frames_vs_mosaic']['gmcf_pre'][0])} | "
+        f"{fmt(f['frames_vs_mosaic']['gmcf_pre'][1])}",
         f" Next flight {f['waypoints']} waypoints over the held-out geotags, route {f['route_length_m']:.1f} m, "
         f"{f['flight_time_min']:.1f} min → plan/",
     ]

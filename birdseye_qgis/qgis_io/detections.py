@@ -117,7 +117,8 @@ def _ground_record(values: dict, name: str) -> GroundRecord:
         try:
             found.add(GroundRecord(str(model), str(source or ""), str(datum or ""),
                                    None if undulation is None else float(undulation))
-                      if model == DEM else GroundRecord(str(model)))
+                      if model == DEM else GroundRecord(str(model), str(source or "")) if model == RASTER
+                      else GroundRecord(str(model)))
         except (InputError, TypeError, ValueError) as exc:
             raise InputError(str(exc), source=name, field="ground") from exc
     if len(found) > 1:

@@ -91,7 +91,8 @@ class CompareDetectors(ClusteringParametersMixin, DemParametersMixin, BirdsEyeAl
                     name=name, n=dropped))
             detections.append(det)
         old, new = detections
-        if old.model_digest and old.model_digest == new.model_digest and old.threshold == new.threshold:
+        if old.model_digest and old.model_digest == new.model_digest and old.threshold == new.threshold \
+                and old.ground.model == new.ground.model:  # frames against mosaic compares images, not detectors
             feedback.pushWarning(self.tr("Both layers come from the same model file (model_digest) at the same "
                                          "threshold: the comparison shows no change of detector."))
         # A change of ground is not a change of detector: both layers must stand on one, which the

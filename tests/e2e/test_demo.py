@@ -35,13 +35,14 @@ EXPECTED_STYLE = {
     "frames_labelled_train1": "frames.qml", "frames_labelled_train2": "frames.qml",
     "geotags_seen_train1": "geotags.qml", "geotags_seen_train2": "geotags.qml",
     "detections": "detections.qml", "clusters": "clusters.qml", "cluster_points": "cluster_points.qml",
+    "detections_mosaic": "detections.qml", "frames_vs_mosaic": "changes.qml",
     "waypoints": "waypoints.qml", "route": "route.qml",
 }
 EXPECTED_GROUP = {name: group for group, names in {
     "survey": ["geotags_train1", "geotags_train2", "geotags_heldout"],
     "flight": ["frames_train1", "frames_train2", "frames_heldout", "track_train1", "track_train2", "track_heldout"],
     "labels": ["frames_labelled_train1", "frames_labelled_train2", "geotags_seen_train1", "geotags_seen_train2"],
-    "detections": ["detections"], "clusters": ["clusters", "cluster_points"], "plan": ["waypoints", "route"],
+    "detections": ["detections", "detections_mosaic", "frames_vs_mosaic"], "clusters": ["clusters", "cluster_points"], "plan": ["waypoints", "route"],
 }.items() for name in names}
 
 pytestmark = pytest.mark.slow
@@ -121,8 +122,8 @@ def test_summary_screen(demo):
     assert len(screen.splitlines()) <= 24, "the summary must fit one screen"
     as_for_a_user = screen.replace(str(demo["out"]), "birdseye-demo")  # make demo's folder, not pytest's
     assert max(len(line) for line in as_for_a_user.splitlines()) <= 100, "and a terminal's width"
-    for step in range(1, 17):
-        assert f"[{step}/16]" in stdout  # progress names every step
+    for step in range(1, 19):
+        assert f"[{step}/18]" in stdout  # progress names every step
 
 
 def test_project_layers_valid_grouped_and_styled(qgis_app, demo):
@@ -313,6 +314,14 @@ def test_summary_figures_agree_with_the_outputs(qgis_app, demo):
     assert figures["route_length_m"] == pytest.approx(route, rel=0.02)
     bound = json.loads((out / "sensor_bound.json").read_text(encoding="utf-8"))
     assert [a["verdict_exact"] for a in figures["sensor_bound"]] == [a["verdict_exact"] for a in bound["altitudes"]]
+    # Frames against the held-out field's orthomosaic: the comparison's own JSON, over one set of geotags.
+    assert by_stem["detections_mosaic"].featureCount() == figures["mosaic_detections"] > 0
+    comparison = json.loads((out / "frames_vs_mosaic.json").read_text(encoding="utf-8"))
+    frames, mosaic = comparison["before"], comparison["after"]
+    assert frames["n_in_view"] == mosaic["n_in_view"] > 0
+    assert figures["frames_vs_mosaic"]["recall_pre"] == [pytest.approx(frames["recall_pre"]),
+                                                         pytest.approx(mosaic["recall_pre"])]
+    assert mosaic["recall_pre"] >= MIN_RECALL_SMALL, "the bundled model finds the targets on the mosaic too"
 
 
 # The small demo's floor on recall. Its held-out field holds 6 geotags (4 m × 3 m = 12 m²); a cluster
