@@ -42,7 +42,8 @@ EXPECTED_GROUP = {name: group for group, names in {
     "survey": ["geotags_train1", "geotags_train2", "geotags_heldout"],
     "flight": ["frames_train1", "frames_train2", "frames_heldout", "track_train1", "track_train2", "track_heldout"],
     "labels": ["frames_labelled_train1", "frames_labelled_train2", "geotags_seen_train1", "geotags_seen_train2"],
-    "detections": ["detections", "detections_mosaic", "frames_vs_mosaic"], "clusters": ["clusters", "cluster_points"], "plan": ["waypoints", "route"],
+    "detections": ["detections", "detections_mosaic", "frames_vs_mosaic"],
+    "clusters": ["clusters", "cluster_points"], "plan": ["waypoints", "route"],
 }.items() for name in names}
 
 pytestmark = pytest.mark.slow

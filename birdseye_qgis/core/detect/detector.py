@@ -225,14 +225,18 @@ def normalise(image_bgr: np.ndarray, meta: ModelMetadata) -> np.ndarray:
     return out
 
 
-def frame_heatmap(model: HeatmapModel, image_model_res: np.ndarray) -> np.ndarray:
-    """Probability heatmap (H, W) of a BGR frame already resampled to the model's resolution."""
+def frame_heatmap(model: HeatmapModel, image_model_res: np.ndarray, batch: int | None = None) -> np.ndarray:
+    """Probability heatmap (H, W) of a BGR frame already resampled to the model's resolution; its tiles run
+    ``batch`` at a time (None: all at once — a frame's few dozen)."""
     meta = model.metadata
     frame = normalise(image_model_res, meta)
     h, w = frame.shape[1:]
     spans_y = tile_spans(h, meta.tile_size, meta.overlap_px)
     spans_x = tile_spans(w, meta.tile_size, meta.overlap_px)
-    heat = stitch(model.run(cut_tiles(frame, spans_y, spans_x, meta.tile_size)), spans_y, spans_x, (h, w))
+    tiles = cut_tiles(frame, spans_y, spans_x, meta.tile_size)
+    step = len(tiles) if batch is None else max(1, int(batch))
+    outputs = np.concatenate([model.run(tiles[i:i + step]) for i in range(0, len(tiles), step)])
+    heat = stitch(outputs, spans_y, spans_x, (h, w))
     if meta.output_kind == "logits":
         heat = _sigmoid(heat)
     return heat

@@ -35,6 +35,9 @@ from .detector import HeatmapModel, find_peaks, frame_heatmap, tile_spans
 
 #: Window edge in model tiles: 8 tiles of 288 px make 2304 px windows, about 64 MB of float input each.
 WINDOW_TILES = 8
+#: Tiles run through the model at a time: ONNX Runtime's activations grow with the batch (tens of MB a tile for
+#: the bundled model), and a window holds about a hundred tiles.
+TILE_BATCH = 8
 #: Peaks of two windows closer than this (px at the model's resolution) are one target seen by both.
 SEAM_MERGE_PX = 2.0
 
@@ -202,7 +205,7 @@ def detect_raster(model: HeatmapModel, grid: RasterGrid, read: ReadWindow, thres
                     continue
             w, h = min(window, width - x0), min(window, height - y0)
             image, valid = _resampled_window(read, grid, s, x0, y0, w, h, value_range)
-            uv, score = find_peaks(frame_heatmap(model, image), threshold, meta.peak_blur_sigma_px)
+            uv, score = find_peaks(frame_heatmap(model, image, TILE_BATCH), threshold, meta.peak_blur_sigma_px)
             if len(uv):
                 u, v = uv[:, 0] + x0, uv[:, 1] + y0
                 # The core, widened by the merge radius: a peak at the edge is kept by both and merged below.
