@@ -44,7 +44,7 @@ from ..geometry.geodesy import LocalFrame
 from ..geometry.ground import LevelPlaneGround, placeable_frames
 from ..geometry.poses import FrameGeometry, FramePoses
 from ..geometry.projection import centre_gsd_m, pixel_to_ground
-from .model_metadata import ModelMetadata
+from .model_metadata import DEEPNESS_SCHEMA, ModelMetadata
 
 #: ONNX Runtime providers tried before the CPU, in order of preference.
 GPU_PROVIDERS = ("CUDAExecutionProvider", "ROCMExecutionProvider", "DmlExecutionProvider",
@@ -64,7 +64,8 @@ class HeatmapModel:
     """An ONNX heatmap model and its validated metadata, ready to run tiles.
 
     ``log`` receives one line saying which execution provider runs the model (a GPU provider when
-    ONNX Runtime has one that starts, else the CPU, with the reason).
+    ONNX Runtime has one that starts, else the CPU, with the reason), and for a model read by Deepness's
+    conventions (:mod:`.model_metadata`) one with the settings that gave.
     """
 
     def __init__(self, path, log: Callable[[str], None] | None = None, use_gpu: bool = True):
@@ -116,16 +117,25 @@ class HeatmapModel:
         out_shape = self.session.get_outputs()[0].shape
         self.metadata = ModelMetadata.from_props(dict(self.session.get_modelmeta().custom_metadata_map),
                                                  inp[0].shape, out_shape, source=str(path))
+        meta = self.metadata
+        if meta.schema_version == DEEPNESS_SCHEMA:  # the defaults taken are the user's to know
+            log(f"A Deepness segmentation model, read by Deepness's conventions: probabilities of output channel "
+                f"{meta.output_channel} ({meta.class_names[meta.output_channel]}), default threshold "
+                f"{meta.default_threshold:g}, tiles of {meta.tile_size} px overlapping {meta.tiles_overlap_pct:g} %.")
         batch_dim = inp[0].shape[0]
         self.max_batch = batch_dim if isinstance(batch_dim, int) and batch_dim > 0 else None
 
     def run(self, tiles: np.ndarray) -> np.ndarray:
-        """Raw model output for a batch of normalised tiles (N, 3, T, T) → (N, T, T)."""
+        """Raw model output for a batch of normalised tiles (N, 3, T, T) → (N, T, T): the metadata's
+        ``output_channel`` of an N×C×T×T output (the target of a background/target segmentor), or the
+        N×T×T output as it is."""
         if self.max_batch is None or len(tiles) <= self.max_batch:
             out = self.session.run(None, {self.input_name: tiles})[0]
         else:
             out = np.concatenate([self.session.run(None, {self.input_name: tiles[i:i + self.max_batch]})[0]
                                   for i in range(0, len(tiles), self.max_batch)])
+        if out.ndim == 4:
+            out = out[:, self.metadata.output_channel]
         return out.reshape(len(tiles), tiles.shape[2], tiles.shape[3])
 
 

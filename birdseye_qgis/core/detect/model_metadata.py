@@ -33,11 +33,32 @@ BirdsEye's own keys:
 ``description``             optional free text (training data, recipe, version)
 ==========================  ========================================================================
 
+**Models made for Deepness.** A model without ``birdseye_schema_version`` whose ``model_type`` is
+``"Segmentor"`` is read by Deepness's own conventions (its ``ModelBase``/``Segmentor`` and the defaults of
+its dock, ``deepness/common/config_entry_key.py``), and its metadata carries
+``schema_version`` :data:`DEEPNESS_SCHEMA` (0):
+
+* ``output_kind`` ``"probability"``: Deepness thresholds a segmentor's output as probabilities, so the
+  sigmoid or softmax is inside the model;
+* ``default_threshold`` from Deepness's ``seg_thresh`` when it lies in (0, 1), else Deepness's default
+  0.5 (``seg_thresh`` 0 switches Deepness's threshold off; on two channels that is an argmax, p > 0.5);
+* ``tiles_overlap`` 15 % (Deepness's default) when absent; ``tile_size`` the input's fixed size when
+  absent; ``input_channel_order`` ``"RGB"`` (Deepness feeds the raster's bands in order);
+* the output: one channel (N×1×H×W or N×H×W, Deepness's sigmoid case) is the target's probability; two
+  channels (background, target: Deepness's softmax case) give channel 1 (:attr:`ModelMetadata.output_channel`).
+  More classes, where the target is ambiguous, are refused; so are Deepness's other model types
+  (``"Detector"``: boxes, no heatmap; a ``"Regressor"`` without BirdsEye's keys: a measured quantity, no
+  probability).
+
+``resolution`` stays required: a model's scale cannot be guessed, and a wrong one finds nothing. A key a
+Deepness model also carries from BirdsEye's table (``output_kind``, ``default_threshold``, …) is honoured.
+
 A model with missing or contradictory metadata is refused with one message that lists everything
 wrong (:class:`ModelMetadataError`).
 """
 from __future__ import annotations
 
+import ast
 import json
 from dataclasses import dataclass, field
 
@@ -62,6 +83,13 @@ OPTIONAL_DEFAULTS = {
 }
 KNOWN_KEYS = REQUIRED_KEYS + tuple(OPTIONAL_DEFAULTS)
 
+#: ``schema_version`` of a model read by Deepness's conventions (no ``birdseye_schema_version`` key).
+DEEPNESS_SCHEMA = 0
+#: Deepness's threshold key for a segmentor (``ModelBase.get_metadata_segmentation_threshold``).
+DEEPNESS_THRESHOLD_KEY = "seg_thresh"
+#: Deepness's dock defaults (``ConfigEntryKey``) for what a Deepness model may leave out.
+DEEPNESS_DEFAULTS = {"tiles_overlap": 15, "output_kind": "probability", "default_threshold": 0.5}
+
 
 class ModelMetadataError(InputError):
     """A model whose metadata cannot be used; ``problems`` lists every reason."""
@@ -76,7 +104,12 @@ class ModelMetadataError(InputError):
 
 @dataclass(frozen=True)
 class ModelMetadata:
-    """The processing settings a heatmap model carries (units in the field names)."""
+    """The processing settings a heatmap model carries (units in the field names).
+
+    ``schema_version`` is :data:`DEEPNESS_SCHEMA` for a model read by Deepness's conventions;
+    ``output_channel`` is the output channel holding the target's probability (1 for Deepness's two-channel
+    background/target models, derived from the output's shape, never a key).
+    """
 
     resolution_cm: float
     tile_size: int
@@ -93,6 +126,7 @@ class ModelMetadata:
     description: str = ""
     model_type: str = "Regressor"
     schema_version: int = SCHEMA_VERSION
+    output_channel: int = 0
     extra: dict = field(default_factory=dict)
 
     @property
@@ -119,6 +153,8 @@ class ModelMetadata:
             "label_sigma_px": self.label_sigma_px,
             "description": self.description,
         }
+        if self.schema_version == DEEPNESS_SCHEMA:  # stays a Deepness model: its defaults written out
+            del values["birdseye_schema_version"]
         props = {k: json.dumps(v) for k, v in values.items() if v is not None}
         props.update(self.extra)
         return props
@@ -142,7 +178,7 @@ class ModelMetadata:
             peak_blur_sigma_px=float(values["peak_blur_sigma_px"]),
             label_sigma_px=None if values["label_sigma_px"] is None else float(values["label_sigma_px"]),
             description=str(values["description"]), model_type=str(values["model_type"]).capitalize(),
-            schema_version=int(values["birdseye_schema_version"]),
+            schema_version=int(values["birdseye_schema_version"]), output_channel=values["output_channel"],
             extra={k: v for k, v in props.items() if k not in KNOWN_KEYS})
 
 
@@ -190,17 +226,37 @@ def _parse(props: dict[str, str], input_shape, output_shape) -> tuple[dict, list
     problems: list[str] = []
     values: dict = {}
     for key, raw in props.items():
-        if key not in KNOWN_KEYS:
+        if key not in KNOWN_KEYS and key != DEEPNESS_THRESHOLD_KEY:
             continue
         try:
             values[key] = json.loads(raw)
         except (TypeError, json.JSONDecodeError):
+            if key == "class_names":  # Deepness also reads a Python literal (integer keys: {0: "field"})
+                try:
+                    values[key] = ast.literal_eval(raw)
+                    continue
+                except (ValueError, SyntaxError):
+                    pass
             problems.append(f"'{key}' is not JSON-encoded (got {raw!r}; a string value needs quotes, "
                             f"e.g. {json.dumps(str(raw))})")
-    missing = [k for k in REQUIRED_KEYS if k not in props]
-    if missing:
-        hint = (" — this looks like a model made for another tool; BirdsEye needs its own keys too"
-                if "birdseye_schema_version" in missing else "")
+    model_type = str(values.get("model_type", "")).capitalize()
+    type_ok = "model_type" not in values or model_type in MODEL_TYPES_READ
+    deepness = "birdseye_schema_version" not in props and model_type == "Segmentor"
+    if deepness:
+        _deepness_defaults(values, input_shape, problems)
+        required = ("model_type", "resolution", "tile_size")
+    else:
+        required = REQUIRED_KEYS
+    missing = [k for k in required if k not in values and k not in props]
+    if missing and type_ok:  # a model type that cannot cross says so below, without a list of keys
+        hint = ""
+        if "birdseye_schema_version" in missing:
+            hint = (" — a 'Regressor' without BirdsEye's keys is a Deepness regression model, whose output is a "
+                    "measured quantity, not a probability" if model_type == "Regressor" else
+                    " — this looks like a model made for another tool; BirdsEye needs its own keys too")
+            hint += " (a Deepness 'Segmentor' is read by Deepness's conventions)"
+        elif deepness and "tile_size" in missing:
+            hint = " (a Deepness model without it needs an input of fixed height and width)"
         problems.append(f"missing key(s): {', '.join(missing)}{hint}")
     for key, default in OPTIONAL_DEFAULTS.items():
         values.setdefault(key, default)
@@ -220,13 +276,17 @@ def _parse(props: dict[str, str], input_shape, output_shape) -> tuple[dict, list
             return None
         return v
 
-    if "model_type" in values and str(values["model_type"]).capitalize() not in MODEL_TYPES_READ:
+    if model_type == "Detector":
+        problems.append("'model_type' is 'Detector': a Deepness object detector (YOLO-style boxes) gives no "
+                        "heatmap; BirdsEye runs heatmap models ('Regressor' with BirdsEye's keys, or a "
+                        "one-target 'Segmentor')")
+    elif not type_ok:
         problems.append(f"'model_type' is {values['model_type']!r}; a heatmap model is "
                         f"{' or '.join(repr(t) for t in MODEL_TYPES_READ)} (one output channel of scores)")
     number("resolution", low=0, low_open=True)
     tile = number("tile_size", int, low=8)
     overlap = number("tiles_overlap", low=0, high=100, high_open=True)
-    version = number("birdseye_schema_version", int, low=1)
+    version = number("birdseye_schema_version", int, low=DEEPNESS_SCHEMA if deepness else 1)
     if version is not None and version > SCHEMA_VERSION:
         problems.append(f"'birdseye_schema_version' is {version}; this plugin reads up to {SCHEMA_VERSION} "
                         "(update the plugin)")
@@ -254,17 +314,55 @@ def _parse(props: dict[str, str], input_shape, output_shape) -> tuple[dict, list
     if isinstance(mean, list) and isinstance(std, list) and len(mean) != len(std):
         problems.append(f"'standardization_mean' has {len(mean)} values but 'standardization_std' has {len(std)}")
 
+    if deepness and "class_names" not in props:  # Deepness names unnamed channels itself; so do we
+        n_out = _output_channels(output_shape)
+        values["class_names"] = {"0": "background", "1": "target"} if n_out == 2 else {"0": "target"}
     classes = _class_list(values["class_names"])
     if classes is None:
         problems.append("'class_names' must map consecutive indices from \"0\" to names, "
                         f"e.g. {{\"0\": \"burrow\"}} (got {values['class_names']!r})")
 
-    problems += _shape_problems(input_shape, output_shape, tile, mean, classes)
+    shape_problems, values["output_channel"] = _shape_problems(input_shape, output_shape, tile, mean, classes,
+                                                               deepness)
+    problems += shape_problems
     return values, problems
 
 
-def _shape_problems(input_shape, output_shape, tile, mean, classes) -> list[str]:
+def _deepness_defaults(values: dict, input_shape, problems: list[str]) -> None:
+    """Fill in what a Deepness segmentor leaves out, by Deepness's conventions (module docstring)."""
+    values["birdseye_schema_version"] = DEEPNESS_SCHEMA
+    if "tile_size" not in values and input_shape is not None and len(input_shape) == 4:
+        h, w = input_shape[2:]
+        if isinstance(h, int) and h > 0 and h == w:
+            values["tile_size"] = h
+    for key in ("tiles_overlap", "output_kind"):
+        values.setdefault(key, DEEPNESS_DEFAULTS[key])
+    if "default_threshold" in values:
+        return
+    t = values.get(DEEPNESS_THRESHOLD_KEY)
+    if t is None or t == 0:
+        values["default_threshold"] = DEEPNESS_DEFAULTS["default_threshold"]
+    elif isinstance(t, (int, float)) and not isinstance(t, bool) and 0 < t < 1:
+        values["default_threshold"] = float(t)
+    else:
+        problems.append(f"'{DEEPNESS_THRESHOLD_KEY}' must be a probability from 0 to below 1 (got {t!r})")
+
+
+def _output_channels(output_shape):
+    """Channels of an N×C×H×W output (1 for N×H×W); None when unknown or dynamic."""
+    if output_shape is None:
+        return None
+    if len(output_shape) == 3:
+        return 1
+    if len(output_shape) == 4 and isinstance(output_shape[1], int):
+        return output_shape[1]
+    return None
+
+
+def _shape_problems(input_shape, output_shape, tile, mean, classes, deepness=False) -> tuple[list[str], int]:
+    """Problems of the input/output shapes against the metadata, and the output channel of the target."""
     problems = []
+    channel = 0
     if input_shape is not None:
         if len(input_shape) != 4:
             problems.append(f"the model input must be NCHW (4 dimensions); it has shape {input_shape}")
@@ -278,21 +376,30 @@ def _shape_problems(input_shape, output_shape, tile, mean, classes) -> list[str]
                 fixed = [d for d in (h, w) if isinstance(d, int) and d > 0]
                 if any(d != tile for d in fixed):
                     problems.append(f"'tile_size' is {tile} but the model input is {h}×{w} px")
-    if output_shape is not None:
-        if len(output_shape) not in (3, 4):
-            problems.append(f"the model output must be N×1×H×W or N×H×W; it has shape {output_shape}")
-        elif len(output_shape) == 4 and isinstance(output_shape[1], int):
-            n_out = output_shape[1]
-            if n_out != 1:
-                problems.append(f"the model output has {n_out} channels; a BirdsEye heatmap model has one")
-            elif classes is not None and len(classes) != n_out:
+    n_out = _output_channels(output_shape)
+    if deepness and n_out is None and classes is not None:
+        n_out = len(classes)  # Deepness names each output channel
+    if output_shape is not None and len(output_shape) not in (3, 4):
+        problems.append(f"the model output must be N×1×H×W or N×H×W; it has shape {output_shape}")
+    elif deepness and n_out is not None and n_out > 2:
+        names = f" ({', '.join(classes)})" if classes is not None and len(classes) == n_out else ""
+        problems.append(f"the model segments {n_out} classes{names}; BirdsEye detects one target: it reads a "
+                        "Deepness segmentor with one output channel (the target) or two (background, target)")
+    elif n_out is not None:
+        if n_out == 2 and deepness:
+            channel = 1
+        elif n_out != 1:
+            problems.append(f"the model output has {n_out} channels; a BirdsEye heatmap model has one")
+        if channel == 1 or n_out == 1:
+            if classes is not None and len(classes) != n_out:
                 problems.append(f"'class_names' names {len(classes)} classes for {n_out} output channel(s)")
-        if input_shape is not None and len(input_shape) == 4 and len(output_shape) in (3, 4):
-            hin, win = input_shape[2:]
-            hout, wout = output_shape[-2:]
-            if all(isinstance(d, int) for d in (hin, win, hout, wout)) and (hin, win) != (hout, wout):
-                problems.append(f"the heatmap ({hout}×{wout}) must have the input's size ({hin}×{win})")
-    return problems
+    if output_shape is not None and input_shape is not None and len(input_shape) == 4 \
+            and len(output_shape) in (3, 4):
+        hin, win = input_shape[2:]
+        hout, wout = output_shape[-2:]
+        if all(isinstance(d, int) for d in (hin, win, hout, wout)) and (hin, win) != (hout, wout):
+            problems.append(f"the heatmap ({hout}×{wout}) must have the input's size ({hin}×{win})")
+    return problems, channel
 
 
 def _class_list(class_names):

@@ -163,8 +163,10 @@ def _check_against_onnx(net, model, path) -> None:
     import onnxruntime as ort
     import torch
 
-    x = np.random.default_rng(0).normal(0.0, 1.0, (1, 3, 64, 64)).astype(np.float32)
     session = ort.InferenceSession(model.SerializeToString(), providers=["CPUExecutionProvider"])
+    # A fixed input size (export_onnx fixes it at the tile size) accepts nothing else; a dynamic one any.
+    h, w = (d if isinstance(d, int) and d > 0 else 64 for d in session.get_inputs()[0].shape[2:])
+    x = np.random.default_rng(0).normal(0.0, 1.0, (1, 3, h, w)).astype(np.float32)
     expected = session.run(None, {session.get_inputs()[0].name: x})[0]
     was_training = net.training
     net.eval()

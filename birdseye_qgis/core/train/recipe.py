@@ -966,8 +966,12 @@ def load_init(net, path) -> list[str]:
 
 
 def export_onnx(net, meta: ModelMetadata, path, producer: str = "BirdsEye heatmap recipe") -> Path:
-    """The network + a sigmoid (output: probabilities) as ONNX, dynamic batch and size, with ``meta``;
-    written to a temporary name and renamed, so no half-written model ever carries the final name."""
+    """The network + a sigmoid (output: probabilities) as ONNX, with ``meta``; written to a temporary name
+    and renamed, so no half-written model ever carries the final name.
+
+    The batch is dynamic, the height and width fixed at ``meta.tile_size``: BirdsEye only ever runs tiles of
+    that size, and Deepness's dock takes the tile size from the input's shape and refuses a named
+    (dynamic) height or width, so a fixed size is what lets the model run there too."""
     import io
     import warnings
 
@@ -989,7 +993,7 @@ def export_onnx(net, meta: ModelMetadata, path, producer: str = "BirdsEye heatma
         warnings.simplefilter("ignore")
         torch.onnx.export(wrapped, torch.zeros(1, 3, meta.tile_size, meta.tile_size), buffer,
                           input_names=["image"], output_names=["heatmap"], opset_version=17, dynamo=False,
-                          dynamic_axes={"image": {0: "n", 2: "h", 3: "w"}, "heatmap": {0: "n", 2: "h", 3: "w"}})
+                          dynamic_axes={"image": {0: "n"}, "heatmap": {0: "n"}})
     model = onnx.load_from_string(buffer.getvalue())
     model.producer_name = producer
     model.graph.name = "birdseye_heatmap"

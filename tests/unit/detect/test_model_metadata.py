@@ -7,6 +7,7 @@ import pytest
 from onnx import TensorProto, helper
 
 from birdseye.birdseye_qgis.core.detect.model_metadata import (
+    DEEPNESS_SCHEMA,
     ModelMetadata,
     ModelMetadataError,
     embed_metadata,
@@ -86,22 +87,76 @@ def test_every_problem_is_listed_at_once():
     assert all(p in str(err.value) for p in problems)
 
 
-def test_a_model_made_for_deepness_only_is_told_what_is_missing():
-    deepness_props = {"model_type": json.dumps("Segmentor"), "resolution": "3.0", "tile_size": "512",
-                      "tiles_overlap": "15", "class_names": json.dumps({0: "field"})}
-    problems = validate(deepness_props)
-    assert len(problems) == 1
-    assert "birdseye_schema_version, output_kind, default_threshold" in problems[0]
-    assert "another tool" in problems[0]
-    ok = dict(deepness_props, birdseye_schema_version="1", output_kind='"probability"', default_threshold="0.5")
-    meta = ModelMetadata.from_props(ok)
-    assert meta.model_type == "Segmentor" and meta.class_names == ("field",)
-    assert meta.overlap_px == round(512 * 0.15)
-    assert meta.standardization_mean == (0.0, 0.0, 0.0) and meta.input_channel_order == "RGB"
+DEEPNESS_PROPS = {"model_type": json.dumps("Segmentor"), "resolution": "3.0", "tile_size": "512",
+                  "tiles_overlap": "10", "class_names": json.dumps({"0": "field"})}
+
+
+def test_a_deepness_segmentor_is_read_by_deepness_conventions():
+    """Deepness's keys only: the defaults of Deepness's dock and segmentor, stated in the module docstring."""
+    meta = ModelMetadata.from_props(DEEPNESS_PROPS, ["n", 3, 512, 512], ["n", 1, 512, 512])
+    assert meta.schema_version == DEEPNESS_SCHEMA == 0
+    assert meta.model_type == "Segmentor" and meta.class_names == ("field",) and meta.output_channel == 0
+    assert (meta.resolution_cm, meta.tile_size, meta.tiles_overlap_pct) == (3.0, 512, 10.0)
+    assert meta.output_kind == "probability" and meta.default_threshold == 0.5
+    assert meta.input_channel_order == "RGB"
+    assert meta.standardization_mean == (0.0, 0.0, 0.0) and meta.standardization_std == (1.0, 1.0, 1.0)
+    # Deepness's own threshold key; its tiles_overlap default; tile_size from a fixed input; lower-case type;
+    # class names as a Python literal with integer keys (Deepness's ast fallback).
+    props = {"model_type": '"segmentor"', "resolution": "2", "seg_thresh": "0.7", "class_names": "{0: 'nest'}",
+             "standardization_mean": "[0.5, 0.5, 0.5]", "standardization_std": "[0.25, 0.25, 0.25]"}
+    meta = ModelMetadata.from_props(props, ["n", 3, 256, 256], ["n", 256, 256])
+    assert (meta.tile_size, meta.tiles_overlap_pct, meta.default_threshold) == (256, 15, 0.7)
+    assert meta.class_names == ("nest",) and meta.standardization_std == (0.25, 0.25, 0.25)
+    # seg_thresh 0 switches Deepness's threshold off: Deepness's default stands.
+    assert ModelMetadata.from_props(dict(props, seg_thresh="0"), ["n", 3, 256, 256]).default_threshold == 0.5
+    assert any("'seg_thresh' must be a probability" in p for p in validate(dict(props, seg_thresh="1.5")))
+    # A BirdsEye key on a Deepness model is honoured.
+    assert ModelMetadata.from_props(dict(DEEPNESS_PROPS, output_kind='"logits"')).output_kind == "logits"
+
+
+def test_a_deepness_segmentor_writes_back_as_one():
+    """to_props of a Deepness-read model states its defaults and stays a Deepness model (no schema key)."""
+    meta = ModelMetadata.from_props(dict(DEEPNESS_PROPS, seg_thresh="0.6", author='"lab"'))
+    props = meta.to_props()
+    assert "birdseye_schema_version" not in props and json.loads(props["default_threshold"]) == 0.6
+    assert props["seg_thresh"] == "0.6" and props["author"] == '"lab"'
+    assert ModelMetadata.from_props(props) == meta
+
+
+def test_a_background_target_segmentor_gives_its_target_channel():
+    two = ["n", 2, 512, 512]
+    meta = ModelMetadata.from_props(DEEPNESS_PROPS | {"class_names": json.dumps({"0": "background", "1": "nest"})},
+                                    ["n", 3, 512, 512], two)
+    assert meta.output_channel == 1 and meta.class_names == ("background", "nest")
+    unnamed = {k: v for k, v in DEEPNESS_PROPS.items() if k != "class_names"}
+    assert ModelMetadata.from_props(unnamed, None, two).class_names == ("background", "target")
+    # Without a shape, Deepness's one name per output channel tells.
+    assert ModelMetadata.from_props(DEEPNESS_PROPS | {"class_names": json.dumps(["bg", "nest"])}).output_channel == 1
+    assert any("names 1 classes for 2 output channel(s)" in p for p in validate(DEEPNESS_PROPS, None, two))
+    # A BirdsEye model stays one channel.
+    assert any("has 2 channels" in p for p in validate(demo_metadata(tile_size=512).to_props(), None, two))
+
+
+def test_what_cannot_cross_from_deepness_is_refused_clearly():
+    four = {"0": "water", "1": "forest", "2": "field", "3": "road"}
+    problems = validate(DEEPNESS_PROPS | {"class_names": json.dumps(four)}, ["n", 3, 512, 512], ["n", 4, 512, 512])
+    assert problems == ["the model segments 4 classes (water, forest, field, road); BirdsEye detects one target: "
+                        "it reads a Deepness segmentor with one output channel (the target) or two (background, "
+                        "target)"]
+    problems = validate(DEEPNESS_PROPS | {"model_type": '"Detector"', "det_conf": "0.3"})
+    assert len(problems) == 1 and "YOLO-style boxes" in problems[0] and "gives no heatmap" in problems[0]
+    problems = validate(DEEPNESS_PROPS | {"model_type": '"Regressor"'})
+    assert len(problems) == 1 and "measured quantity, not a probability" in problems[0]
+    assert "missing key(s): birdseye_schema_version, output_kind, default_threshold" in problems[0]
+    problems = validate({k: v for k, v in DEEPNESS_PROPS.items() if k not in ("resolution", "tile_size")},
+                        ["n", 3, "h", "w"])
+    assert problems == ["missing key(s): resolution, tile_size (a Deepness model without it needs an input of "
+                        "fixed height and width)"]
+    assert any("4 channels" in p for p in validate(DEEPNESS_PROPS, ["n", 4, 512, 512]))
 
 
 @pytest.mark.parametrize("key, value, message", [
-    ("model_type", '"Detector"', "a heatmap model is"),
+    ("model_type", '"Superresolution"', "a heatmap model is"),
     ("tiles_overlap", "100", "'tiles_overlap' must be < 100"),
     ("tiles_overlap", "96", "leaves no tile core"),
     ("birdseye_schema_version", "7", "update the plugin"),

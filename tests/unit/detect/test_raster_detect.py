@@ -140,3 +140,50 @@ def test_reads_are_windows_never_the_whole_raster_with_progress_and_cancel(tmp_p
 def test_a_raster_without_a_pixel_size_is_refused():
     with pytest.raises(InputError, match="georeferenced"):
         RasterGrid(10, 10, 0.0, 0.0, 0.0, 1.0)
+
+
+def deepness_segmentor(path, tile=32, **props):
+    """A Deepness-style segmentor with Deepness's keys only: two channels (background 1 − p, target p) of
+    p = the channel mean / 255, fixed input size, no tile_size key (Deepness reads the input's size)."""
+    import json
+
+    import onnx
+    from onnx import TensorProto, helper
+
+    x = helper.make_tensor_value_info("input", TensorProto.FLOAT, [1, 3, tile, tile])
+    y = helper.make_tensor_value_info("output", TensorProto.FLOAT, [1, 2, tile, tile])
+    weight = helper.make_tensor("k", TensorProto.FLOAT, [2, 3, 1, 1], [-1 / 3] * 3 + [1 / 3] * 3)
+    bias = helper.make_tensor("b", TensorProto.FLOAT, [2], [1.0, 0.0])
+    node = helper.make_node("Conv", ["input", "k", "b"], ["output"])
+    model = helper.make_model(helper.make_graph([node], "seg", [x], [y], [weight, bias]),
+                              opset_imports=[helper.make_opsetid("", 17)])
+    meta = {"model_type": "Segmentor", "resolution": 1.0, "tiles_overlap": 25,
+            "class_names": {"0": "background", "1": "nest"}, "seg_thresh": 0.3,
+            "standardization_mean": [0.0, 0.0, 0.0], "standardization_std": [1.0, 1.0, 1.0], **props}
+    for key, value in meta.items():
+        model.metadata_props.add(key=key, value=json.dumps(value))
+    onnx.save(model, str(path))
+    return path
+
+
+def test_a_deepness_segmentor_runs_as_a_heatmap(tmp_path):
+    """A two-channel Deepness segmentor (batch 1, fixed size) finds what the one-channel BirdsEye model with
+    the same heatmap finds, at its seg_thresh."""
+    lines = []
+    seg = HeatmapModel(deepness_segmentor(tmp_path / "seg.onnx"), log=lines.append)
+    assert "output channel 1 (nest), default threshold 0.3, tiles of 32 px overlapping 25 %" in lines[-1]
+    assert (seg.metadata.output_channel, seg.metadata.schema_version, seg.max_batch) == (1, 0, 1)
+    assert (seg.metadata.tile_size, seg.metadata.overlap_px, seg.metadata.default_threshold) == (32, 8, 0.3)
+    ours = HeatmapModel(conv_model(tmp_path / "m.onnx", tile=32, overlap_pct=25.0, threshold=0.3))
+    targets = [(40.0, 50.0), (150.0, 90.0), (95.5, 31.5)]
+    raster = ArrayRaster(gaussian_image(200, 160, targets, sigma=2.5))
+    found = detect_raster(seg, grid_of(200, 160), raster, window_tiles=3)
+    found_once_each(found, targets, tol=0.15)
+    expected = detect_raster(ours, grid_of(200, 160), raster, window_tiles=3)
+    assert np.allclose(found.col, expected.col, atol=1e-4) and np.allclose(found.score, expected.score, atol=1e-5)
+
+
+def test_a_deepness_segmentor_whose_names_contradict_its_output_is_refused(tmp_path):
+    path = deepness_segmentor(tmp_path / "seg.onnx", class_names={"0": "a", "1": "b", "2": "c"})
+    with pytest.raises(InputError, match=r"(?s)seg.onnx: .*names 3 classes for 2 output channel"):
+        HeatmapModel(path)

@@ -97,8 +97,8 @@ def test_train_export_and_detect(recipe, labelled, tmp_path):
 
     path = recipe.export_onnx(net, meta, tmp_path / "tiny.onnx")
     assert read_onnx_metadata(path) == meta
-    # The exported graph computes the network's probabilities.
-    x = np.random.default_rng(2).normal(size=(2, 3, 64, 96)).astype(np.float32)
+    # The exported graph computes the network's probabilities, on tiles of the model's size (fixed: Deepness).
+    x = np.random.default_rng(2).normal(size=(2, 3, meta.tile_size, meta.tile_size)).astype(np.float32)
     with torch.no_grad():
         expected = torch.sigmoid(net(torch.from_numpy(x))).numpy()
     got = onnxruntime.InferenceSession(str(path), providers=["CPUExecutionProvider"]).run(None, {"image": x})[0]
