@@ -45,7 +45,7 @@ GROUPS = {
 WORKFLOW = {
     "field": ("importgeotags", "importflightlog", "importdjiimages", "importcameras", "refineposes", "processodm"),
     "plan": ("planflight",),
-    "labels": ("writelabels", "traindetector"),
+    "labels": ("writelabels", "writelabelsraster", "traindetector"),
     "detect": ("detect", "detectraster", "clusterdetections", "evaluatedetections", "comparedetectors",
                "sweepoperatingpoints", "screencheckpoints", "selectarms", "sealpreregistration"),
     "design": ("sensorbound", "montecarlobound", "terrainslope"),

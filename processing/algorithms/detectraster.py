@@ -9,10 +9,8 @@ from qgis.core import (
     QgsPointXY,
     QgsProcessingOutputNumber,
     QgsProcessingOutputString,
-    QgsProcessingParameterBand,
     QgsProcessingParameterExtent,
     QgsProcessingParameterFeatureSink,
-    QgsProcessingParameterRange,
     QgsProcessingParameterRasterLayer,
     QgsRectangle,
 )
@@ -23,35 +21,25 @@ from ...birdseye_qgis.core.detect.raster_detect import detect_raster
 from ...birdseye_qgis.core.errors import InputError
 from ...birdseye_qgis.core.geometry.ground_record import RASTER
 from ...birdseye_qgis.qgis_enums import (
-    NUMBER_DOUBLE,
-    PARAMETER_ADVANCED,
     SOURCE_VECTOR_POINT,
     SOURCE_VECTOR_POLYGON,
     WKB_POINT_Z,
 )
 from ...birdseye_qgis.qgis_io import layer_kinds, layers
 from ...birdseye_qgis.qgis_io.detections import DETECTION_FIELDS
-from ...birdseye_qgis.qgis_io.raster_reader import (
-    ProviderWindows,
-    band_choice,
-    needs_value_range,
-    raster_grid,
-    statistics_value_range,
-)
+from ...birdseye_qgis.qgis_io.raster_reader import ProviderWindows, raster_grid
 from ..parameters.layer_parameters import source_parameter
 from ..parameters.model import ModelParametersMixin
+from ..parameters.raster_bands import RasterBandsParametersMixin
 from .base import BirdsEyeAlgorithm
 
 
-class DetectRaster(ModelParametersMixin, BirdsEyeAlgorithm):
+class DetectRaster(ModelParametersMixin, RasterBandsParametersMixin, BirdsEyeAlgorithm):
     ALG_ID = "detectraster"
     DISPLAY_NAME = QT_TRANSLATE_NOOP("DetectRaster", "Detect targets on a raster (orthomosaic)")
     GROUP = "detect"
-    RASTER = "RASTER"
-    BANDS = "BANDS"
     MASK = "MASK"
     EXTENT = "EXTENT"
-    VALUE_RANGE = "VALUE_RANGE"
     OUTPUT = "OUTPUT"
 
     def initAlgorithm(self, config=None):
@@ -62,13 +50,7 @@ class DetectRaster(ModelParametersMixin, BirdsEyeAlgorithm):
             optional=True))
         self.addParameter(QgsProcessingParameterExtent(
             self.EXTENT, self.tr("Only inside this extent"), optional=True))
-        bands = QgsProcessingParameterBand(self.BANDS, self.tr("Bands read as red, green, blue"), None,
-                                           self.RASTER, optional=True, allowMultiple=True)
-        value_range = QgsProcessingParameterRange(
-            self.VALUE_RANGE, self.tr("Values mapped to 0–255 (not 8-bit)"), NUMBER_DOUBLE, optional=True)
-        for advanced in (bands, value_range):
-            advanced.setFlags(advanced.flags() | PARAMETER_ADVANCED)
-            self.addParameter(advanced)
+        self.add_band_parameters()
         self.addParameter(QgsProcessingParameterFeatureSink(
             self.OUTPUT, self.tr("Detections"), SOURCE_VECTOR_POINT))
         for name, text in (("DETECTION_COUNT", "Detections written"), ("WINDOWS_READ", "Windows read"),
@@ -81,22 +63,13 @@ class DetectRaster(ModelParametersMixin, BirdsEyeAlgorithm):
         if layer is None or not layer.isValid():
             raise self.user_error(InputError("no raster given, or it cannot be opened", field=self.RASTER))
         grid = self.run_core(raster_grid, layer)
-        bands = self.run_core(band_choice, layer, self.parameterAsInts(parameters, self.BANDS, context))
+        bands = self.band_choice(parameters, context, layer)
         model_path, threshold = self.model_choice(parameters, context)
         model = self.run_core(HeatmapModel, model_path, log=feedback.pushInfo)
         meta = model.metadata
         used = meta.default_threshold if threshold is None else threshold
         area, extent = self._area(parameters, context, layer)
-        value_range = None
-        if needs_value_range(layer, bands):
-            given = self.parameterAsRange(parameters, self.VALUE_RANGE, context) \
-                if parameters.get(self.VALUE_RANGE) not in (None, "") else []
-            if len(given) == 2 and given[1] > given[0]:
-                value_range = [tuple(given)] * 3
-            else:
-                value_range = self.run_core(statistics_value_range, layer, bands, extent)
-            feedback.pushInfo(self.tr("The raster is not 8-bit: values mapped to 0–255 from {ranges}.").format(
-                ranges="; ".join(f"band {b}: {lo:g}–{hi:g}" for b, (lo, hi) in zip(bands, value_range))))
+        value_range = self.value_range(parameters, context, feedback, layer, bands, extent)
         feedback.pushInfo(self.tr("Raster {width} × {height} px at {gsd:.2f} cm/px, bands {bands} as red, green, "
                                   "blue; model {name} (sha256 {digest}…) at {resolution:g} cm/px, threshold "
                                   "{used:g}.").format(

@@ -25,6 +25,7 @@ from qgis.PyQt.QtCore import QT_TRANSLATE_NOOP
 
 from ...birdseye_qgis import dependencies
 from ...birdseye_qgis.core.errors import Cancelled, InputError
+from ...birdseye_qgis.core.labels.raster_labels import raster_record
 from ...birdseye_qgis.core.train.choices import BACKBONES, SPLITS
 from ...birdseye_qgis.core.train.job import Source, TrainJob
 from ...birdseye_qgis.core.train.preset import PRESETS
@@ -152,10 +153,13 @@ class TrainDetector(BirdsEyeAlgorithm):
         return folders
 
     def _sources(self, parameters, context, folders) -> list[Source]:
+        """A folder written on a raster carries its GSD and has no frames (:class:`Source`): it takes no frame layer
+        and needs no GSD_CM."""
         layers = self.parameterAsLayerList(parameters, self.FRAMES, context) or []
         gsd = self._optional_double(parameters, self.GSD_CM, context)
+        on_raster = [self.run_core(raster_record, f) is not None for f in folders]
         if not layers:
-            if gsd is None:
+            if gsd is None and not all(on_raster):
                 raise self.user_error(InputError("give the frame layers the labels were written from, or one ground "
                                                  "sample distance (GSD_CM)", field=self.FRAMES))
             return [Source(str(f), gsd_default=gsd) for f in folders]
@@ -165,8 +169,10 @@ class TrainDetector(BirdsEyeAlgorithm):
         records = [self._frame_records(layer) for layer in layers]
         maps = [{str(r["frame_id"]): float(r["gsd_cm"]) for r in recs
                  if r.get("frame_id") is not None and r.get("gsd_cm") is not None} for recs in records]
-        return [Source(str(f), gsd_cm=maps[0] if len(maps) == 1 else maps[i],
-                       frames=records[0] if len(records) == 1 else records[i]) for i, f in enumerate(folders)]
+        return [Source(str(f)) if raster else
+                Source(str(f), gsd_cm=maps[0] if len(maps) == 1 else maps[i],
+                       frames=records[0] if len(records) == 1 else records[i])
+                for i, (f, raster) in enumerate(zip(folders, on_raster))]
 
     def _optional_double(self, parameters, name, context) -> float | None:
         """An optional number, None when empty: parameterAsDouble alone reads an empty value as 0. Its text

@@ -24,7 +24,6 @@ from qgis.PyQt.QtCore import QT_TRANSLATE_NOOP
 
 from ...birdseye_qgis.__about__ import tr
 from ...birdseye_qgis.core.field.frame_records import local_frame_around, poses_from_records, uses_geotag_heights
-from ...birdseye_qgis.core.field.surveyed_area import DEFAULT_SURVEY_MARGIN_M, surveyed_area
 from ...birdseye_qgis.core.labels.mark_check import CONTROL_POINT, FEW_MARKS, measured_sigma
 from ...birdseye_qgis.core.labels.relief import LOGGED_FRAMES, RELIEF_WINDOW_M, TargetRelief, dem_relief_m
 from ...birdseye_qgis.core.labels.training_set import (
@@ -33,7 +32,6 @@ from ...birdseye_qgis.core.labels.training_set import (
     frames_without_ground,
     label_sigma_px,
     project_labels,
-    review_label_inputs,
 )
 from ...birdseye_qgis.qgis_enums import (
     NUMBER_DOUBLE,
@@ -46,6 +44,7 @@ from ...birdseye_qgis.qgis_io import layer_kinds, layers
 from ..parameters.dem import DemParametersMixin
 from ..parameters.layer_parameters import source_parameter, vector_parameter
 from ..parameters.review import ReviewParametersMixin
+from ..parameters.surveyed_area import SurveyedAreaParametersMixin
 from .base import BirdsEyeAlgorithm
 
 #: SIGMA_PX's default: the label σ of core's LabelRequest.
@@ -74,7 +73,7 @@ def sigma_from_bound_json(path: str) -> float:
     return label_sigma_px(tolerance)
 
 
-class WriteLabels(ReviewParametersMixin, DemParametersMixin, BirdsEyeAlgorithm):
+class WriteLabels(ReviewParametersMixin, DemParametersMixin, SurveyedAreaParametersMixin, BirdsEyeAlgorithm):
     ALG_ID = "writelabels"
     DISPLAY_NAME = QT_TRANSLATE_NOOP("WriteLabels", "Write training labels")
     GROUP = "labels"
@@ -85,8 +84,6 @@ class WriteLabels(ReviewParametersMixin, DemParametersMixin, BirdsEyeAlgorithm):
     SIGMA_SOURCE = "SIGMA_SOURCE"
     MARK_CHECK = "MARK_CHECK"
     EDGE_BUFFER_PX = "EDGE_BUFFER_PX"
-    SURVEYED_AREA = "SURVEYED_AREA"
-    SURVEY_MARGIN_M = "SURVEY_MARGIN_M"
     RELIEF_M = "RELIEF_M"
     WRITE_RASTERS = "WRITE_RASTERS"
     WRITE_TILES = "WRITE_TILES"
@@ -118,12 +115,7 @@ class WriteLabels(ReviewParametersMixin, DemParametersMixin, BirdsEyeAlgorithm):
         self.addParameter(QgsProcessingParameterNumber(
             self.EDGE_BUFFER_PX, self.tr("Edge buffer at the image border (px)"),
             NUMBER_DOUBLE, 0.0, minValue=0.0, maxValue=1000.0))
-        self.addParameter(source_parameter(
-            self.SURVEYED_AREA, self.tr("Surveyed area (polygons)"),
-            layer_kinds.AREAS, [SOURCE_VECTOR_POLYGON], optional=True))
-        self.addParameter(QgsProcessingParameterNumber(
-            self.SURVEY_MARGIN_M, self.tr("Margin around the geotags' hull (m)"),
-            NUMBER_DOUBLE, DEFAULT_SURVEY_MARGIN_M, minValue=0.0, maxValue=1000.0))
+        self.add_surveyed_area_parameters()
         self.addParameter(QgsProcessingParameterNumber(
             self.RELIEF_M, self.tr("Target relief h (m; empty: from the DEM)"),
             NUMBER_DOUBLE, None, optional=True, minValue=0.0, maxValue=100.0))
@@ -199,16 +191,6 @@ class WriteLabels(ReviewParametersMixin, DemParametersMixin, BirdsEyeAlgorithm):
         feedback.pushInfo(self.tr("σ = {value:g} px as given (SIGMA_PX)").format(value=value))
         return value, {"source": "given", "parameter": "SIGMA_PX"}
 
-    def surveyed(self, parameters, context, feedback, survey):
-        """The surveyed area: SURVEYED_AREA's polygons, else the survey's hull grown by SURVEY_MARGIN_M."""
-        drawn = self.parameterAsSource(parameters, self.SURVEYED_AREA, context)
-        rings = None if drawn is None else self.run_core(layers.read_polygon_rings, drawn, context.transformContext())
-        area = self.run_core(surveyed_area, survey.lat, survey.lon,
-                             self.parameterAsDouble(parameters, self.SURVEY_MARGIN_M, context), rings, survey.height)
-        feedback.pushInfo(self.tr("Surveyed area: {area}. Negative tiles only where it holds the tile's whole "
-                                  "ground; positives anywhere.").format(area=area.describe()))
-        return area
-
     def relief(self, parameters, context, feedback, geotags, dem):
         """Each target's relief for the relief check: RELIEF_M, else the DEM's range around it, else None."""
         if parameters.get(self.RELIEF_M) not in (None, ""):
@@ -245,14 +227,8 @@ class WriteLabels(ReviewParametersMixin, DemParametersMixin, BirdsEyeAlgorithm):
         area = self.surveyed(parameters, context, feedback, survey)
         reviewed = self.read_reviewed_clusters(parameters, context, steps, geotag_source,
                                                [poses for poses, _ in groups], dem=dem)
-        review_targets, hard, unresolved = review_label_inputs(reviewed or [], survey)
+        review_targets, hard, unresolved = self.review_label_inputs(feedback, reviewed, survey)
         geotags = survey + review_targets
-        if reviewed is not None:
-            feedback.pushInfo(self.tr("From the review: {targets} target(s) nobody surveyed are labelled "
-                                      "(provenance review); {hard} hard negative(s) put their tiles first "
-                                      "in the negative sample; no tile near one of the {unresolved} unresolved "
-                                      "cluster(s) is written.").format(targets=len(review_targets), hard=len(hard),
-                                                                       unresolved=len(unresolved)))
         relief = self.relief(parameters, context, feedback, geotags, dem)
         request = LabelRequest(
             sigma_px=sigma, sigma_source=sigma_source,

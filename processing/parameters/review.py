@@ -9,6 +9,7 @@ from qgis.core import (
 )
 
 from ...birdseye_qgis.core.geometry.ground_record import DEM
+from ...birdseye_qgis.core.labels.training_set import review_label_inputs
 from ...birdseye_qgis.core.scoring.evaluation import Flight, evaluate_flights
 from ...birdseye_qgis.core.scoring.reviewed_clusters import outcome_counts, reviewed_clusters
 from ...birdseye_qgis.qgis_enums import SOURCE_VECTOR, SOURCE_VECTOR_POINT
@@ -95,6 +96,18 @@ class ReviewParametersMixin(ClusteringParametersMixin):
             confirmed=counts["confirmed_real"], hard=counts["hard_negative"], conflicting=counts["conflicting"],
             uncertain=counts["uncertain"], unreviewed=counts["unreviewed"]))
         return clusters
+
+    def review_label_inputs(self, feedback, reviewed, survey):
+        """(targets, hard negatives, unresolved) a review adds to the labels of ``survey``
+        (:func:`core.labels.training_set.review_label_inputs`; all empty for ``reviewed`` None), said in the log."""
+        targets, hard, unresolved = review_label_inputs(reviewed or [], survey)
+        if reviewed is not None:
+            feedback.pushInfo(self.tr("From the review: {targets} target(s) nobody surveyed are labelled "
+                                      "(provenance review); {hard} hard negative(s) put their tiles first "
+                                      "in the negative sample; no tile near one of the {unresolved} unresolved "
+                                      "cluster(s) is written.").format(targets=len(targets), hard=len(hard),
+                                                                       unresolved=len(unresolved)))
+        return targets, hard, unresolved
 
     def review_ground(self, detections, dem, feedback):
         """The ground the review's in-view test stands on: the one the layer's detections were placed on

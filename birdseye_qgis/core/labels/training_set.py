@@ -449,7 +449,7 @@ class LabelWriter:
             (self.out / "coco_keypoints.json").write_text(json.dumps(self.coco), encoding="utf-8")
         lpf = np.asarray(self.labels_per_frame, dtype=np.int64)
         fpg = self.frames_per_geotag
-        _write_targets(self.out / "targets.csv", geotags, np.flatnonzero(fpg > 0))
+        write_targets(self.out / "targets.csv", geotags, np.flatnonzero(fpg > 0))
         summary = {
             "n_frames": len(lpf),
             "n_frames_with_labels": int((lpf > 0).sum()),
@@ -491,7 +491,7 @@ class LabelWriter:
 
 
 def read_targets(folder) -> Geotags | None:
-    """The targets of a Write-labels folder, as :func:`_write_targets` wrote them to ``targets.csv``; None when the
+    """The targets of a Write-labels folder, as :func:`write_targets` wrote them to ``targets.csv``; None when the
     folder has none (written before it existed). Heights are ellipsoidal (``height_ref``); an empty height (a
     review target) reads as NaN. A row whose height is in another reference, or not a number, is refused with
     its row and field."""
@@ -528,8 +528,8 @@ def read_targets(folder) -> Geotags | None:
                    [r["provenance"] or "survey" for r in rows], source=str(path))
 
 
-def _write_targets(path: Path, geotags: Geotags, written) -> None:
-    """targets.csv: the targets written to labels.csv, in geotag order (module docstring)."""
+def write_targets(path: Path, geotags: Geotags, written) -> None:
+    """targets.csv: the targets ``written`` (geotag indices, in order) to labels.csv (module docstring)."""
     with open(path, "w", newline="", encoding="utf-8") as f:
         out = csv.writer(f)
         out.writerow(TARGETS_CSV_FIELDS)
@@ -549,13 +549,19 @@ def inside_tile(uv, x0, y0, t) -> np.ndarray:
     return (uv[:, 0] >= x0 - 0.5) & (uv[:, 0] < x0 + t - 0.5) & (uv[:, 1] >= y0 - 0.5) & (uv[:, 1] < y0 + t - 0.5)
 
 
+def tile_distance(uv, x0, y0, t, t_rows: int | None = None) -> np.ndarray:
+    """Distance (px) of each point of ``uv`` (n, 2) from the t × t px tile at (x0, y0) — t × ``t_rows`` when given —
+    measured to its pixels' outer edges; 0 inside."""
+    uv = np.asarray(uv, dtype=float).reshape(-1, 2)
+    rows = t if t_rows is None else t_rows
+    du = np.maximum(np.maximum(x0 - 0.5 - uv[:, 0], uv[:, 0] - (x0 + t - 0.5)), 0.0)
+    dv = np.maximum(np.maximum(y0 - 0.5 - uv[:, 1], uv[:, 1] - (y0 + rows - 0.5)), 0.0)
+    return np.hypot(du, dv)
+
+
 def _near(uv, x0, y0, t, radius) -> bool:
     """Whether a point of ``uv`` lies within ``radius`` px of the tile (its pixels' outer edges)."""
-    if not len(uv):
-        return False
-    du = np.maximum(np.maximum(x0 - 0.5 - uv[:, 0], uv[:, 0] - (x0 + t - 0.5)), 0.0)
-    dv = np.maximum(np.maximum(y0 - 0.5 - uv[:, 1], uv[:, 1] - (y0 + t - 0.5)), 0.0)
-    return bool(np.any(du ** 2 + dv ** 2 <= radius ** 2))
+    return bool(np.any(tile_distance(uv, x0, y0, t) <= radius))
 
 
 def _write_tiles(tile_dir: Path, frame_id, image, raster, uv, request: LabelRequest, rng, hard_uv=(),

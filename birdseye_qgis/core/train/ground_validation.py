@@ -12,7 +12,9 @@ ground as the product scores a flight.
   from both tile sets and counted, but scored on the ground (:meth:`SplitPlan.ground_frames`: every view of a
   held-out target counts there, as in a flight); a frame that sees none follows the block of its footprint centre
   (without frame records: the side of the nearest frame, in frame order, that sees a target). A held-out block
-  is held out in every folder, so two flights over one site never put a target on both sides.
+  is held out in every folder, so two flights over one site never put a target on both sides. A folder written
+  on a raster (:mod:`..labels.raster_labels`) has one frame per tile, whose footprint is the tile's ground
+  diagonal; its tiles without a target follow their neighbour in tile order (the row they lie in).
 * ``flights`` — whole folders (one flight, or one frame layer, each) held out, taken the same way by their
   targets; needs two folders or more. Held-out targets a training folder holds too (within
   :data:`SAME_TARGET_M`; by id without positions) are counted, with a warning.
@@ -43,6 +45,7 @@ import numpy as np
 from ..errors import InputError, check_cancel
 from ..field.geotags import Geotags
 from ..geometry.geodesy import LocalFrame
+from ..labels.raster_labels import raster_record
 from ..labels.training_set import read_targets
 from .choices import SPLITS
 from .recipe import THRESHOLDS
@@ -145,7 +148,10 @@ def folder_views(folders, records_of, frames_with_tiles) -> tuple[list[FolderVie
             xy = {str(i): (float(p[0]), float(p[1])) for i, p in zip(targets[k].ids, pts)}
         centres, diagonal = {}, None
         records = [r for r in (records_of[k] or []) if str(r.get("frame_id")) in mine]
-        if records and local is not None:
+        raster = raster_record(folder)
+        if raster is not None:  # each tile is a frame (labels.raster_labels): its footprint is the tile's ground
+            diagonal = float(raster["tile_diagonal_m"])
+        elif records and local is not None:
             centres, diagonal = footprints(records, local)
         views.append(FolderView(Path(folder).name, sorted(mine, key=_frame_order), frame_targets[k], xy, centres,
                                 diagonal))

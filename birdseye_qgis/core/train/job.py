@@ -28,6 +28,7 @@ from typing import Callable
 import numpy as np
 
 from ..errors import Cancelled, InputError
+from ..labels.raster_labels import raster_record
 from . import ground_validation, recipe
 from .preset import TrainingPreset
 from .preset import preset as find_preset
@@ -37,7 +38,9 @@ from .preset import preset as find_preset
 class Source:
     """A writelabels folder and the GSD (cm/px) of its frames: per frame id, or one for all; ``frames``: the
     frame-layer records of its flight (``qgis_io.layers.read_frame_layer``), which the split's footprints and the
-    ground validation need (None: a GSD alone, validated on tiles only)."""
+    ground validation need (None: a GSD alone, validated on tiles only). A folder written on a raster
+    (:mod:`..labels.raster_labels`) carries its raster's GSD, which its tiles take whatever is given here: no frame
+    layer describes a raster."""
 
     folder: str
     gsd_cm: dict | None = None
@@ -45,6 +48,9 @@ class Source:
     frames: list | None = None
 
     def gsd_of(self) -> dict:
+        raster = raster_record(self.folder)
+        if raster is not None:
+            return {name.rsplit("_", 2)[0]: float(raster["gsd_cm"]) for name in recipe.tile_names(self.folder)}
         if self.gsd_cm is not None:
             return {str(k): float(v) for k, v in self.gsd_cm.items()}
         if self.gsd_default is None:
@@ -362,8 +368,8 @@ def split_job(job: TrainJob, tiles: recipe.TileSet):
     flights = []
     for k, source in enumerate(job.sources):
         held_frames = set(plan.ground_frames(k))
-        if not held_frames or not source.frames or targets[k] is None:
-            continue
+        if not held_frames or not source.frames or targets[k] is None or raster_record(source.folder) is not None:
+            continue  # a raster's tiles are no frames of a flight: nothing to detect on as Detect does
         records = [r for r in source.frames if str(r.get("frame_id")) in held_frames]
         held = np.isin(np.array([str(i) for i in targets[k].ids], dtype=object),
                        sorted(plan.held_targets.get(k, ())))
