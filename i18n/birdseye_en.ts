@@ -531,37 +531,37 @@ error</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="65"/>
+        <location filename="../processing/algorithms/writelabels.py" line="64"/>
         <source>{path}: not a sensorbound result (expected inputs.tolerance_px): {exc}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="70"/>
+        <location filename="../processing/algorithms/writelabels.py" line="69"/>
         <source>{path}: the pose-noise budget is rejected at {items}; labels of σ = {value:g} px would not contain the projection error there</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="334"/>
+        <location filename="../processing/algorithms/writelabels.py" line="310"/>
         <source>{n_labels} labels in {n_frames_with_labels} of {n_frames} frames (labels per labelled frame: mean {mean:g}, max {max}); {n_geotags_in_view} of {n_geotags} geotags in view (frames per geotag: mean {mean2:g}, max {max2})</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="353"/>
+        <location filename="../processing/algorithms/writelabels.py" line="329"/>
         <source>{n_occluded} projections were hidden behind terrain (not written)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="356"/>
+        <location filename="../processing/algorithms/writelabels.py" line="332"/>
         <source>{n_edge} projections fell within the edge buffer (not written)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="364"/>
+        <location filename="../processing/algorithms/writelabels.py" line="340"/>
         <source>{n_never} geotag(s) never in view of any frame: {shown}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="379"/>
+        <location filename="../processing/algorithms/writelabels.py" line="355"/>
         <source>{value} image(s) could not be read for tiles; first: {value2}</source>
         <translation type="unfinished"></translation>
     </message>
@@ -754,12 +754,12 @@ QGIS&apos;s own packages are not changed. pip downloads them from the Python Pac
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="344"/>
+        <location filename="../processing/algorithms/writelabels.py" line="320"/>
         <source>Of these, review targets: {n_in_view} of {n_targets} in view, {n_labels} labels.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="349"/>
+        <location filename="../processing/algorithms/writelabels.py" line="325"/>
         <source>Hard negatives: {n_in_view} of {n_clusters} in view, in {n_frames} frame(s); {n_tiles} hard-negative tile(s) written.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -804,22 +804,22 @@ QGIS&apos;s own packages are not changed. pip downloads them from the Python Pac
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="300"/>
+        <location filename="../processing/algorithms/traindetector.py" line="306"/>
         <source>Training: {stage}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="302"/>
+        <location filename="../processing/algorithms/traindetector.py" line="308"/>
         <source>Training process {pid} started: torch {torch} on {device} ({threads} threads), backbone {backbone}.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="307"/>
+        <location filename="../processing/algorithms/traindetector.py" line="313"/>
         <source>{stage} step {step}: loss {loss:.4f}, validation {val} ({seconds:.0f} s)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="311"/>
+        <location filename="../processing/algorithms/traindetector.py" line="317"/>
         <source>Checkpoint written: {path} ({stage}, step {step})</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1320,47 +1320,47 @@ exact</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="359"/>
+        <location filename="../processing/algorithms/writelabels.py" line="335"/>
         <source>{n} projections lay just beyond the image border, their label disc reaching in (not written)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="369"/>
+        <location filename="../processing/algorithms/writelabels.py" line="345"/>
         <source>{n} near a target in view but not labelled (edge buffer, beyond the border, an unresolved cluster)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="369"/>
+        <location filename="../processing/algorithms/writelabels.py" line="345"/>
         <source>{n} without a positive not wholly inside the surveyed area</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="369"/>
+        <location filename="../processing/algorithms/writelabels.py" line="345"/>
         <source>every tile of {n} frame(s) without a ground height</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="374"/>
+        <location filename="../processing/algorithms/writelabels.py" line="350"/>
         <source>Tiles: {positive} positive, {negative} negative written; skipped: {reasons}.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="374"/>
+        <location filename="../processing/algorithms/writelabels.py" line="350"/>
         <source>none</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="388"/>
+        <location filename="../processing/algorithms/writelabels.py" line="364"/>
         <source>Relief check ({source}): {n} label(s), largest displacement h·r/d {cm:.1f} cm = {px:.1f} px against the label radius {radius:.1f} px; {over} frame(s) exceed it</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="395"/>
+        <location filename="../processing/algorithms/writelabels.py" line="371"/>
         <source>frame {frame_id}: geotag {geotag_id}, {displacement_cm:g} cm = {displacement_px:g} px &gt; {label_radius_cm:g} cm = {label_radius_px:g} px</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="398"/>
+        <location filename="../processing/algorithms/writelabels.py" line="374"/>
         <source> (summary.json lists them all): {shown}</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1617,22 +1617,22 @@ exact</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/comparedetectors.py" line="95"/>
+        <location filename="../processing/algorithms/comparedetectors.py" line="96"/>
         <source>Both layers come from the same model file (model_digest) at the same threshold: the comparison shows no change of detector.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/comparedetectors.py" line="109"/>
+        <location filename="../processing/algorithms/comparedetectors.py" line="110"/>
         <source>GEOTAGS: the layer holds no point with a position.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/comparedetectors.py" line="148"/>
+        <location filename="../processing/algorithms/comparedetectors.py" line="149"/>
         <source>OUTPUT: the change layer cannot be created.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/comparedetectors.py" line="176"/>
+        <location filename="../processing/algorithms/comparedetectors.py" line="177"/>
         <source>{name}: cannot write {path} ({exc})</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1652,7 +1652,7 @@ exact</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/comparedetectors.py" line="114"/>
+        <location filename="../processing/algorithms/comparedetectors.py" line="115"/>
         <source>{name} was found on the raster {raster}: both layers are scored over the geotags in view of the frames and on the raster&apos;s pixels ({n} of {total} lie on the raster); its detections beyond the frames&apos; view are left out, and each of its detections can be a cluster by itself (one image shows a target once).</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1819,62 +1819,47 @@ exact</source>
 <context>
     <name>DetectRaster</name>
     <message>
-        <location filename="../processing/algorithms/detectraster.py" line="48"/>
+        <location filename="../processing/algorithms/detectraster.py" line="39"/>
         <source>Detect targets on a raster (orthomosaic)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/detectraster.py" line="58"/>
+        <location filename="../processing/algorithms/detectraster.py" line="46"/>
         <source>Raster (orthomosaic)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/detectraster.py" line="60"/>
+        <location filename="../processing/algorithms/detectraster.py" line="48"/>
         <source>Only inside these polygons</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/detectraster.py" line="63"/>
+        <location filename="../processing/algorithms/detectraster.py" line="51"/>
         <source>Only inside this extent</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/detectraster.py" line="65"/>
-        <source>Bands read as red, green, blue</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../processing/algorithms/detectraster.py" line="67"/>
-        <source>Values mapped to 0–255 (not 8-bit)</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../processing/algorithms/detectraster.py" line="72"/>
+        <location filename="../processing/algorithms/detectraster.py" line="54"/>
         <source>Detections</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/detectraster.py" line="77"/>
+        <location filename="../processing/algorithms/detectraster.py" line="59"/>
         <source>SHA-256 of the model</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/detectraster.py" line="98"/>
-        <source>The raster is not 8-bit: values mapped to 0–255 from {ranges}.</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../processing/algorithms/detectraster.py" line="100"/>
+        <location filename="../processing/algorithms/detectraster.py" line="73"/>
         <source>Raster {width} × {height} px at {gsd:.2f} cm/px, bands {bands} as red, green, blue; model {name} (sha256 {digest}…) at {resolution:g} cm/px, threshold {used:g}.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/detectraster.py" line="107"/>
+        <location filename="../processing/algorithms/detectraster.py" line="80"/>
         <source>The raster ({gsd:.2f} cm/px) is coarser than 1.5× the model's resolution of {resolution:g} cm/px: targets look smaller than in training, so expect fewer detections.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/detectraster.py" line="129"/>
+        <location filename="../processing/algorithms/detectraster.py" line="102"/>
         <source>{count} detections from {windows} windows ({skipped} outside the area asked for not read); {merged} found on a seam by two windows kept once.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -2657,6 +2642,24 @@ exact</source>
     </message>
 </context>
 <context>
+    <name>RasterBandsParametersMixin</name>
+    <message>
+        <location filename="../processing/parameters/raster_bands.py" line="20"/>
+        <source>Bands read as red, green, blue</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/parameters/raster_bands.py" line="22"/>
+        <source>Values mapped to 0–255 (not 8-bit)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/parameters/raster_bands.py" line="43"/>
+        <source>The raster is not 8-bit: values mapped to 0–255 from {ranges}.</source>
+        <translation type="unfinished"></translation>
+    </message>
+</context>
+<context>
     <name>RefinePoses</name>
     <message>
         <location filename="../processing/algorithms/refineposes.py" line="41"/>
@@ -2757,43 +2760,48 @@ exact</source>
 <context>
     <name>ReviewParametersMixin</name>
     <message>
-        <location filename="../processing/parameters/review.py" line="59"/>
+        <location filename="../processing/parameters/review.py" line="60"/>
         <source>REVIEW_DETECTIONS is given without REVIEW: give the review&apos;s verdict table too, or leave REVIEW_DETECTIONS empty.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/review.py" line="64"/>
+        <location filename="../processing/parameters/review.py" line="65"/>
         <source>REVIEW: give the detection layer(s) the review judged (REVIEW_DETECTIONS): the verdicts name spots, the clusters come from those detections.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/review.py" line="80"/>
+        <location filename="../processing/parameters/review.py" line="81"/>
         <source>{layer}: {n} detection(s) without a position or score left out</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/review.py" line="90"/>
+        <location filename="../processing/parameters/review.py" line="91"/>
         <source>Review ({review}): {n} cluster(s) in {layers} detection layer(s); {hit} match a geotag; of the others {confirmed} confirmed real, {hard} hard negative, {conflicting} with conflicting verdicts, {uncertain} uncertain, {unreviewed} unreviewed.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/review.py" line="106"/>
+        <location filename="../processing/parameters/review.py" line="119"/>
         <source>{layer}: its detections were placed on {recorded}; the review&apos;s in-view test stands on the level plane here (this algorithm has no DEM, or none was given).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/review.py" line="40"/>
+        <location filename="../processing/parameters/review.py" line="41"/>
         <source>Their frame layers (same order)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/review.py" line="33"/>
+        <location filename="../processing/parameters/review.py" line="34"/>
         <source>Review verdicts (birdseye_verdicts)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/review.py" line="36"/>
+        <location filename="../processing/parameters/review.py" line="37"/>
         <source>Detection layers the review judged</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/parameters/review.py" line="105"/>
+        <source>From the review: {targets} target(s) nobody surveyed are labelled (provenance review); {hard} hard negative(s) put their tiles first in the negative sample; no tile near one of the {unresolved} unresolved cluster(s) is written.</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
@@ -3238,6 +3246,24 @@ exact</source>
     </message>
 </context>
 <context>
+    <name>SurveyedAreaParametersMixin</name>
+    <message>
+        <location filename="../processing/parameters/surveyed_area.py" line="21"/>
+        <source>Surveyed area (polygons)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/parameters/surveyed_area.py" line="24"/>
+        <source>Margin around the geotags&apos; hull (m)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/parameters/surveyed_area.py" line="34"/>
+        <source>Surveyed area: {area}. Negative tiles only where it holds the tile&apos;s whole ground; positives anywhere.</source>
+        <translation type="unfinished"></translation>
+    </message>
+</context>
+<context>
     <name>SweepOperatingPoints</name>
     <message>
         <location filename="../processing/algorithms/sweepoperatingpoints.py" line="101"/>
@@ -3416,162 +3442,162 @@ exact</source>
 <context>
     <name>TrainDetector</name>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="52"/>
+        <location filename="../processing/algorithms/traindetector.py" line="53"/>
         <source>Train detector (heatmap model from training labels)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="97"/>
+        <location filename="../processing/algorithms/traindetector.py" line="98"/>
         <source>Training time budget (minutes)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="109"/>
+        <location filename="../processing/algorithms/traindetector.py" line="110"/>
         <source>Random seed</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="115"/>
+        <location filename="../processing/algorithms/traindetector.py" line="116"/>
         <source>CPU threads for training (0: all cores)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="124"/>
+        <location filename="../processing/algorithms/traindetector.py" line="125"/>
         <source>Trained model (ONNX)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="126"/>
+        <location filename="../processing/algorithms/traindetector.py" line="127"/>
         <source>Model card (Markdown)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="127"/>
+        <location filename="../processing/algorithms/traindetector.py" line="128"/>
         <source>Loss curves (PNG)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="128"/>
+        <location filename="../processing/algorithms/traindetector.py" line="129"/>
         <source>Weights to fine-tune from (.pt)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="197"/>
+        <location filename="../processing/algorithms/traindetector.py" line="203"/>
         <source>none set up</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="208"/>
+        <location filename="../processing/algorithms/traindetector.py" line="214"/>
         <source>Training in {python} ({origin}): torch {torch}.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="245"/>
+        <location filename="../processing/algorithms/traindetector.py" line="251"/>
         <source>Cancelled by the user; no model was written.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="254"/>
+        <location filename="../processing/algorithms/traindetector.py" line="260"/>
         <source>The last checkpoint is kept: {path}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="259"/>
+        <location filename="../processing/algorithms/traindetector.py" line="265"/>
         <source>Wrote {model} (default threshold {threshold:g}), its model card and loss plot; training {train:.1f} s on {device}, {tiles_per_s:.1f} tiles/s; {overhead:.1f} s outside training (process start, loading tiles, validation, export; the first line came after {first:.1f} s).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="77"/>
+        <location filename="../processing/algorithms/traindetector.py" line="78"/>
         <source>Write-labels folders (with tiles)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="82"/>
+        <location filename="../processing/algorithms/traindetector.py" line="83"/>
         <source>Or one GSD for every frame (cm/px)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="91"/>
+        <location filename="../processing/algorithms/traindetector.py" line="92"/>
         <source>ImageNet weights of the encoder (.pth)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="94"/>
+        <location filename="../processing/algorithms/traindetector.py" line="95"/>
         <source>Earlier model to fine-tune (.pt, .onnx)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="117"/>
+        <location filename="../processing/algorithms/traindetector.py" line="118"/>
         <source>Python with PyTorch</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="44"/>
+        <location filename="../processing/algorithms/traindetector.py" line="45"/>
         <source>Fast (default)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="85"/>
+        <location filename="../processing/algorithms/traindetector.py" line="86"/>
         <source>Training preset</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="44"/>
+        <location filename="../processing/algorithms/traindetector.py" line="45"/>
         <source>Method (EfficientNetV2, two stages, AdamW)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="88"/>
+        <location filename="../processing/algorithms/traindetector.py" line="89"/>
         <source>Network (the Method preset sets its own)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="99"/>
+        <location filename="../processing/algorithms/traindetector.py" line="100"/>
         <source>Model resolution (cm/px; empty: automatic)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="102"/>
+        <location filename="../processing/algorithms/traindetector.py" line="103"/>
         <source>Validation: hold out</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="102"/>
+        <location filename="../processing/algorithms/traindetector.py" line="103"/>
         <source>Spatial blocks (no target shared with training)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="102"/>
+        <location filename="../processing/algorithms/traindetector.py" line="103"/>
         <source>Whole flights (labels folders)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="102"/>
+        <location filename="../processing/algorithms/traindetector.py" line="103"/>
         <source>Nothing (threshold not validated)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="197"/>
+        <location filename="../processing/algorithms/traindetector.py" line="203"/>
         <source>Train detector needs PyTorch, which it runs in a separate Python process; no Python with torch, onnx and OpenCV was found ({tried}). In QGIS, choose {menu} and install the group '{group}' ({build} build); or install it yourself: {command}; or name a Python that has them (parameter {parameter}, or the environment variable {variable}) — for a virtual environment: &lt;venv&gt;/bin/python -m pip install &quot;torch=={torch}&quot; &quot;torchvision=={torchvision}&quot; onnx opencv-python-headless matplotlib onnxruntime scipy</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="266"/>
+        <location filename="../processing/algorithms/traindetector.py" line="272"/>
         <source>Default threshold: {rule}.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="79"/>
+        <location filename="../processing/algorithms/traindetector.py" line="80"/>
         <source>Frame layers (GSD and pose of each frame)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="106"/>
+        <location filename="../processing/algorithms/traindetector.py" line="107"/>
         <source>Share of the targets held out (0–0.5)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/traindetector.py" line="112"/>
+        <location filename="../processing/algorithms/traindetector.py" line="113"/>
         <source>Default threshold (empty: from validation)</source>
         <translation type="unfinished"></translation>
     </message>
@@ -3579,193 +3605,231 @@ exact</source>
 <context>
     <name>WriteLabels</name>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="102"/>
+        <location filename="../processing/algorithms/writelabels.py" line="99"/>
         <source>Geotags (surveyed targets)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="131"/>
+        <location filename="../processing/algorithms/writelabels.py" line="123"/>
         <source>Write one soft-label raster per frame</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="133"/>
+        <location filename="../processing/algorithms/writelabels.py" line="125"/>
         <source>Write a tiled training set (image and label tiles)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="135"/>
+        <location filename="../processing/algorithms/writelabels.py" line="127"/>
         <source>Tile size (px)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="138"/>
+        <location filename="../processing/algorithms/writelabels.py" line="130"/>
         <source>Negative tiles kept per positive tile</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="141"/>
+        <location filename="../processing/algorithms/writelabels.py" line="133"/>
         <source>Random seed for the negative-tile sample</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="144"/>
+        <location filename="../processing/algorithms/writelabels.py" line="136"/>
         <source>Write COCO-keypoints JSON</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="147"/>
+        <location filename="../processing/algorithms/writelabels.py" line="139"/>
         <source>Label folder</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="148"/>
+        <location filename="../processing/algorithms/writelabels.py" line="140"/>
         <source>Frames with label counts</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="151"/>
+        <location filename="../processing/algorithms/writelabels.py" line="143"/>
         <source>Geotags with frames seen</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="228"/>
+        <location filename="../processing/algorithms/writelabels.py" line="210"/>
         <source>GEOTAGS and FRAMES are both required.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="267"/>
+        <location filename="../processing/algorithms/writelabels.py" line="243"/>
         <source>{n_records} frames ({n_groups} camera(s)), {n_geotags} geotags, σ = {sigma:g} px, edge buffer {edge_buffer_px:g} px</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="284"/>
+        <location filename="../processing/algorithms/writelabels.py" line="260"/>
         <source>{n_steep} frame(s) lie on terrain steeper than the level plane's 10° envelope (flag steep_terrain; first: {items}): their labels drift off target — give the DEM (parameter DEM)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="290"/>
+        <location filename="../processing/algorithms/writelabels.py" line="266"/>
         <source>{n_no_ground} frame(s) have no ground height (no usable altimeter reading, flag no_ground_height) and get no labels; first: {items}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="79"/>
+        <location filename="../processing/algorithms/writelabels.py" line="78"/>
         <source>Write training labels</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="278"/>
+        <location filename="../processing/algorithms/writelabels.py" line="254"/>
         <source>{n} frame(s) could not be refined and keep their metadata pose (flag not_refined; first: {items}): their labels are only as good as the drone&apos;s metadata. Leave them out with a filter such as &quot;flags&quot; NOT LIKE &apos;%not_refined%&apos;</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="105"/>
+        <location filename="../processing/algorithms/writelabels.py" line="102"/>
         <source>Frames</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="106"/>
+        <location filename="../processing/algorithms/writelabels.py" line="103"/>
         <source>Soft-label σ (px)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="118"/>
+        <location filename="../processing/algorithms/writelabels.py" line="115"/>
         <source>Edge buffer at the image border (px)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="195"/>
+        <location filename="../processing/algorithms/writelabels.py" line="187"/>
         <source>σ = r / 3 = {value:g} px from {path} (SENSOR_BOUND_JSON; SIGMA_PX is not used)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="109"/>
+        <location filename="../processing/algorithms/writelabels.py" line="106"/>
         <source>…or σ = r/3 from a sensorbound JSON</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="112"/>
+        <location filename="../processing/algorithms/writelabels.py" line="109"/>
         <source>Where σ comes from</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="168"/>
+        <location filename="../processing/algorithms/writelabels.py" line="160"/>
         <source>SIGMA_SOURCE asks for σ measured on a label check: give MARK_CHECK (the label check Import camera solution writes from the pinned image marks).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="173"/>
+        <location filename="../processing/algorithms/writelabels.py" line="165"/>
         <source>σ = {value:.2f} px measured on {path}: the per-axis RMS of label − mark over {n} {kind} mark(s) (RMS u {u:.2f} px, v {v:.2f} px, largest error {max:.1f} px); SIGMA_PX and SENSOR_BOUND_JSON are not used</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="179"/>
+        <location filename="../processing/algorithms/writelabels.py" line="171"/>
         <source>{n} {kind} mark(s) have no label (the point falls outside its image) and are left out of σ: check them in the label check.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="183"/>
+        <location filename="../processing/algorithms/writelabels.py" line="175"/>
         <source>The label check has no check point with a label: σ comes from control points, which took part in the adjustment and flatter the labels.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="186"/>
+        <location filename="../processing/algorithms/writelabels.py" line="178"/>
         <source>σ from {n} mark(s) (fewer than {few}) is uncertain by about ±{pct:.0f} %.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="191"/>
+        <location filename="../processing/algorithms/writelabels.py" line="183"/>
         <source>MARK_CHECK is not used: SIGMA_SOURCE is the given σ.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="199"/>
+        <location filename="../processing/algorithms/writelabels.py" line="191"/>
         <source>σ = {value:g} px as given (SIGMA_PX)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="208"/>
-        <source>Surveyed area: {area}. Negative tiles only where it holds the tile&apos;s whole ground; positives anywhere.</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../processing/algorithms/writelabels.py" line="220"/>
+        <location filename="../processing/algorithms/writelabels.py" line="202"/>
         <source>Relief check skipped: give the targets&apos; relief (RELIEF_M) or a DEM.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="237"/>
+        <location filename="../processing/algorithms/writelabels.py" line="219"/>
         <source>{problem}: a target without a position may lie in any negative tile. Give it its position or remove it, then write the tiles.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="240"/>
+        <location filename="../processing/algorithms/writelabels.py" line="222"/>
         <source>{n} geotag(s) without a position are left out; first: {problem}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="251"/>
-        <source>From the review: {targets} target(s) nobody surveyed are labelled (provenance review); {hard} hard negative(s) put their tiles first in the negative sample; no tile near one of the {unresolved} unresolved cluster(s) is written.</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../processing/algorithms/writelabels.py" line="124"/>
-        <source>Margin around the geotags&apos; hull (m)</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../processing/algorithms/writelabels.py" line="127"/>
+        <location filename="../processing/algorithms/writelabels.py" line="119"/>
         <source>Target relief h (m; empty: from the DEM)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="121"/>
-        <source>Surveyed area (polygons)</source>
+        <location filename="../processing/algorithms/writelabels.py" line="112"/>
+        <source>Label check (pinned marks) for a measured σ</source>
+        <translation type="unfinished"></translation>
+    </message>
+</context>
+<context>
+    <name>WriteLabelsRaster</name>
+    <message>
+        <location filename="../processing/algorithms/writelabelsraster.py" line="32"/>
+        <source>Write training labels on a raster (orthomosaic)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabels.py" line="115"/>
-        <source>Label check (pinned marks) for a measured σ</source>
+        <location filename="../processing/algorithms/writelabelsraster.py" line="42"/>
+        <source>Raster (orthomosaic)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/writelabelsraster.py" line="43"/>
+        <source>Geotags (surveyed targets)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/writelabelsraster.py" line="45"/>
+        <source>Soft-label σ on the ground (cm)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/writelabelsraster.py" line="48"/>
+        <source>Tile size (px)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/writelabelsraster.py" line="50"/>
+        <source>Negative tiles kept per positive tile</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/writelabelsraster.py" line="53"/>
+        <source>Random seed for the negative-tile sample</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/writelabelsraster.py" line="58"/>
+        <source>Label folder</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/writelabelsraster.py" line="94"/>
+        <source>Raster {width} × {height} px at {gsd:.2f} cm/px, bands {bands} as red, green, blue; {n} geotag(s); σ = {cm:g} cm = {px:.2f} px (label radius 3σ = {radius:.1f} px), tiles of {tile} px.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/writelabelsraster.py" line="100"/>
+        <source>σ is {px:.2f} px, under one pixel of the raster: the labels are a dot or two. Give σ in cm large enough to cover the orthomosaic's error against the survey.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/writelabelsraster.py" line="113"/>
+        <source>{labels} label(s) of {in_view} of {n} geotag(s); tiles: {positive} with a target, {negative} negative written; skipped: {near} near a target not labelled, {outside} without a target not wholly inside the surveyed area, {empty} drawn without a pixel of data; {hard} negative(s) hold a hard negative. Each tile is one frame for Train detector, which reads the raster&apos;s GSD from summary.json.</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
@@ -3894,7 +3958,7 @@ exact</source>
     <message>
         <location filename="../resources/help/detect.md" line="9"/>
         <source>- **FRAMES** — a frame layer from Import flight log or Import drone images. Each frame&apos;s `image` must exist and have the size of its camera model; frames without a ground height (no altimeter reading) are skipped and listed in the log.
-- **MODEL** — an ONNX heatmap model with BirdsEye metadata (see `models/README.md` in the plugin folder: `resolution`, `tile_size`, `tiles_overlap`, normalisation, `output_kind`, `default_threshold`, …). Empty: the bundled demo model, which detects the *simulated* burrows of Simulate campaign only — train your own on your labels for real fields. A model with missing or contradictory metadata is refused with the list of what is wrong.
+- **MODEL** — an ONNX heatmap model with BirdsEye metadata (see `models/README.md` in the plugin folder: `resolution`, `tile_size`, `tiles_overlap`, normalisation, `output_kind`, `default_threshold`, …). Empty: the bundled demo model, which detects the *simulated* burrows of Simulate campaign only — train your own on your labels for real fields. A Deepness segmentation model runs too (Detect targets on a raster&apos;s help, &quot;Models from and for Deepness&quot;). A model with missing or contradictory metadata is refused with the list of what is wrong.
 - **THRESHOLD** — probability (0–1) a smoothed heatmap peak must exceed to become a detection. Empty: the model&apos;s `default_threshold`. Lower finds more targets and more false alarms.
 - **EDGE_BUFFER_PX** — pixels of the original frame (default 0). Detections closer than this to the image border are dropped (counted in the log), matching Write labels&apos; edge buffer, where targets that close are not trained as positives.
 - **OUTPUT_HEATMAPS** — optional folder: one 8-bit PNG per frame (`&lt;frame_id&gt;.png`, 255 × probability), the size of the original image, to lay over the frame or compare with the label rasters.</source>
@@ -3957,7 +4021,7 @@ exact</source>
     <message>
         <location filename="../resources/help/detectraster.md" line="7"/>
         <source>- **RASTER** — the raster, north up, in a projected CRS in metres or feet (a raster in degrees is refused: reproject it with Raster › Projections › Warp to the field&apos;s UTM zone). Pixels at the bands&apos; no-data value, or transparent in an alpha band (OpenDroneMap&apos;s RGBA orthophotos), count as no data: nothing is detected there.
-- **MODEL** — an ONNX heatmap model with BirdsEye metadata, as for Detect targets. Empty: the bundled demo model (simulated burrows only).
+- **MODEL** — an ONNX heatmap model with BirdsEye metadata, as for Detect targets, or a Deepness segmentation model (see &quot;Models from and for Deepness&quot;). Empty: the bundled demo model (simulated burrows only).
 - **THRESHOLD** — probability (0–1) a smoothed heatmap peak must exceed. Empty: the model&apos;s `default_threshold`.
 - **MASK** — optional polygons (any CRS): only windows that touch them are read, and only detections inside them are kept — the field, or the surveyed area.
 - **EXTENT** — optional rectangle, for instance the map canvas&apos;s extent: only inside it. With MASK, inside both.
@@ -3989,6 +4053,23 @@ exact</source>
     <message>
         <location filename="../resources/help/detectraster.md" line="24"/>
         <source>A warning is given when the raster is much coarser than the model&apos;s resolution (targets then look smaller than in training).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../resources/help/detectraster.md" line="26"/>
+        <source>## Models from and for Deepness</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../resources/help/detectraster.md" line="28"/>
+        <source>Deepness (github.com/PUTvision/qgis-plugin-deepness) is a QGIS plugin that runs ONNX models on rasters. It reads the same metadata keys for the same settings (`model_type`, `resolution`, `tile_size`, `tiles_overlap`, `standardization_mean`, `standardization_std`, `class_names`), so models cross, in part:</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../resources/help/detectraster.md" line="30"/>
+        <source>- **A model from Train detector, in Deepness.** It loads as a *Regressor*: Deepness takes its resolution, tile size, overlap and normalisation from the file and shows the heatmap — the probability of a target at each pixel — as a raster. Deepness finds no point detections in it; for those, run the model here. Deepness has no key for the input&apos;s channel order: a model trained from an INIT model that reads BGR gets red and blue swapped there. The bundled demo model, and models written by earlier versions, accept any tile size, which Deepness&apos;s dock refuses.
+- **A Deepness segmentation model, here** (and in Detect targets). A model with Deepness&apos;s keys only and `model_type` `Segmentor` runs as a heatmap: its one output channel is the target&apos;s probability, or of two channels (background, target) the second. The default threshold is its `seg_thresh` (0.5 without it, as in Deepness), the overlap 15 % when the file gives none, the tile size the input&apos;s; the log says what was used. It must give `resolution`, read three bands (red, green, blue) and output a mask of the input&apos;s size. Each blob above the threshold becomes one detection at its centre: this suits a model that segments small targets (burrows, nests), not one that outlines fields.
+- **What does not cross.** Segmentation models with more classes (which one is the target?), Deepness&apos;s detection models (YOLO-style boxes), regression models without BirdsEye&apos;s keys (a measured quantity, not a probability), super-resolution and recognition models, and models that read other than three bands are refused, with a message saying which.</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
@@ -5239,6 +5320,7 @@ exact</source>
         <source>- **LABELS** — Write training labels output folders written with a tile size (`tiles/images`, `tiles/labels`); pick the folder or any file in it (e.g. its `summary.json`); in a model or a script, a list of them, or text joining them with `;`. `labels.csv` decides which tiles hold a target (a label&apos;s u, v inside the tile); its `label` column names the model&apos;s class — the one class all labels share, or, since the heatmap has one output channel that cannot tell classes apart, every class joined by `+` (e.g. `burrow+nest`; the log says so). Its `provenance` column (survey, review), when present, is counted in the model card.
 - **FRAMES** — the frame layers the labels were written from: each frame&apos;s `gsd_cm` (ground sample distance, cm/px), and its pose and image, with which the held-out frames are run through the detector and scored on the ground. One per labels folder in the same order, or one for all. Tiles of frames without a GSD are left out (counted in the log).
 - **GSD_CM** — instead of frame layers: one ground sample distance (cm/px) for every frame. The frames&apos; poses are then unknown: the threshold is chosen on the held-out tiles, with a warning.
+- A folder of **Write training labels on a raster** needs neither: it carries the raster&apos;s GSD, which its tiles take whatever FRAMES or GSD_CM say for the other folders. Each of its tiles is a frame; spatial blocks hold out part of the raster, and its held-out tiles are scored as tiles (there are no frames to run the detector over).
 - **PRESET** — *Fast (default)*: the settings described first above, with the BACKBONE and RESOLUTION_CM you choose. *Method (EfficientNetV2, two stages, AdamW)*: the method&apos;s recipe; it sets the network (`efficientnet_v2_s`, so BACKBONE is not used) and trains at the frames&apos; own GSD (RESOLUTION_CM is not used: the model runs at the training frames&apos; median GSD). Its ImageNet weights come from WEIGHTS or torchvision&apos;s cache only; without them the encoder starts from random initialisation and the model card says plainly that it is not ImageNet-pretrained. At 1e-5, with 224 px crops through a larger network, it needs many more steps than Fast: give it a long budget and let early stopping end it.
 - **BACKBONE** — `small` (the default): the recipe&apos;s own small encoder–decoder, trained from scratch, works offline. Or an ImageNet-pretrained torchvision encoder (EfficientNet B0–B3, EfficientNetV2-S, ResNet-18/34/50) under a light decoder; slower per step, better features for few labels.
 - **WEIGHTS** — the pretrained encoder&apos;s ImageNet weights (.pth, a torchvision state dict). Empty: torchvision&apos;s cache (`~/.cache/torch/hub/checkpoints`, the file name torchvision uses). Nothing is downloaded; when the file is in neither place the run stops and says which file to put where.
@@ -5254,12 +5336,12 @@ exact</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../resources/help/traindetector.md" line="31"/>
+        <location filename="../resources/help/traindetector.md" line="32"/>
         <source>## Outputs</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../resources/help/traindetector.md" line="33"/>
+        <location filename="../resources/help/traindetector.md" line="34"/>
         <source>- **OUTPUT_MODEL** — the ONNX model (written under a temporary name and renamed at the end: a cancelled or failed run leaves none).
 - **MODEL_CARD** — `&lt;model&gt;.md`: the data (folders, tiles, positives, negatives, targets by provenance), the preset and its settings, how the encoder started (ImageNet weights, or random initialisation), what ended each stage (time budget, early stopping), training time and device, the validation split (method; targets, frames and tiles on each side; frames dropped; warnings), the ground figures per threshold (recall, GMCF, F1, clusters) and the held-out tiles&apos; figures (recall, precision, F1, false detections per tile; peaks and targets matched one to one). `&lt;model&gt;.training.json` holds the same in `split`, `ground_validation`, `validation`, `threshold_rule`, `validated_on` and `warnings`.
 - **PLOT** — `&lt;model&gt;_loss.png`: training and validation loss against training time (s).
@@ -5374,6 +5456,98 @@ exact</source>
 - **DEM heights are measured from**: ellipsoidal, mean sea level, or unknown. The frame layer says what its own heights are measured from (field `height_ref`: ellipsoidal for a pose log, EGM96 — above mean sea level — for DJI and other drone images) and where each frame&apos;s ground came from (`ground_src`); the DEM is converted into the frames&apos; heights before anything is compared. Between ellipsoidal and mean-sea-level heights that needs the geoid undulation N (ellipsoidal = MSL + N): **Geoid undulation N (m)** when you give it, else PROJ&apos;s EGM96 grid where the frames name EGM96 (installed with QGIS on most systems; if it is not, the run stops, naming the grid and how to install it). A mean-sea-level DEM with DJI frames needs no N.
 - **The DEM check.** The converted DEM must agree with the frames&apos; own ground: where it was measured under each frame (altimeter, tie points of Refine frame poses) the median difference must lie within a few per cent of the flight height (3 %, at least 0.2 m: ±0.3 m at 10 m, ±1.2 m at 40 m); where it is a take-off point (DJI&apos;s relative altitude, a flight height), that height must be one the DEM&apos;s terrain has within 500 m of the frames, within the same tolerance. The offset found is written to the log either way; a DEM beyond it is refused, naming the offset. A DEM of unknown reference is taken as the frames&apos; and accepted only when that check passes.
 - **Ground model without a DEM** (advanced, GROUND_MODEL): *Level ground at the tilt-corrected altimeter depth* (default; the better model of a level field) or *the method&apos;s plane*, normal to the optical axis at the raw altimeter reading, as the method placed its labels — choose it to reproduce the method&apos;s figures. Over level ground the two agree at the image centre and part where the camera is tilted: with the deployed camera (1920 × 1200 px, fx 4264 px) tilted 3° in roll, a label at the left or right edge moves by 14.1 or 8.6 px and at a corner by 11–16 px; tilted 3° in pitch, by 6.0 or 2.8 px at the top or bottom edge and 8–9 px at a corner (the same at any altitude). The method&apos;s plane needs every frame&apos;s radar reading: frames flagged `no_ground_height`, and DJI frames (no radar altimeter), are refused with their ids — leave them out of the frame layer (select `&quot;flags&quot; NOT LIKE &apos;%no_ground_height%&apos;` and use the selected features only). It cannot be combined with a DEM.</source>
+        <translation type="unfinished"></translation>
+    </message>
+</context>
+<context>
+    <name>help:writelabelsraster</name>
+    <message>
+        <location filename="../resources/help/writelabelsraster.md" line="1"/>
+        <source>Puts every surveyed geotag on a raster layer — an orthomosaic from OpenDroneMap/WebODM, DJI Terra, Pix4D or a service provider — and writes a training set of tiles cut from it: the same folder Write training labels writes, so Train detector trains on it as it is, or on it and frame folders together.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../resources/help/writelabelsraster.md" line="3"/>
+        <source>Each geotag lands at the pixel the raster&apos;s georeferencing gives its position (pixel (0, 0) is the centre of the top-left pixel; no camera, no ground model). The raster is read tile by tile through QGIS&apos;s raster provider, never whole: a 20,000 × 20,000 px orthomosaic needs the memory of one tile. The progress bar moves per tile written and Cancel stops between tiles.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../resources/help/writelabelsraster.md" line="5"/>
+        <source>The orthomosaic must agree with the survey: a target is labelled where the survey says it is, so a raster shifted against the survey (no ground control points, a different datum) teaches the detector the wrong place. Check a few targets on the map over the raster before you write labels, and give σ large enough to cover what remains.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../resources/help/writelabelsraster.md" line="7"/>
+        <source>## Parameters</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../resources/help/writelabelsraster.md" line="9"/>
+        <source>- **RASTER** — the raster, north up, in a projected CRS in metres or feet (a raster in degrees is refused: reproject it with Raster › Projections › Warp to the field&apos;s UTM zone). Pixels at the bands&apos; no-data value, or transparent in an alpha band (OpenDroneMap&apos;s RGBA orthophotos), count as no data.
+- **GEOTAGS** — any point layer, usually the output of Import geotags: an `id` field names each geotag (without it, the row number 1.. in feature order) and a `label` field its class (else &quot;target&quot;). A geotag without a position could lie in any tile: the run is refused, naming its row.
+- **Soft-label σ on the ground (cm)** (SIGMA_CM) — the Gaussian&apos;s standard deviation on the ground, default 5 cm (a label radius 3σ of 15 cm). It becomes σ px = σ cm / the raster&apos;s ground sample distance (cm/px, from its pixel size): 5 cm on a 1.25 cm/px orthomosaic is 4 px. The log gives σ in px; it warns under one pixel.
+- **Tile size (px)** — the side of the tiles, in the raster&apos;s pixels, default 224. Tiles lie on a regular grid from the top-left corner; the last row and column sit flush with the raster&apos;s border.
+- **Negative tiles kept per positive tile** — tiles without a target, drawn at random with the **seed**: this many per tile with a target (as many as for one such tile when there is none).
+- **Surveyed area** (SURVEYED_AREA, optional) — polygons you draw around the ground the survey searched (any polygon layer, any CRS; holes allowed). Without it, the convex hull of the geotags grown by **SURVEY_MARGIN_M** (m, default 1 m). A tile without a target is written only when its whole outline lies inside: outside, a target nobody surveyed may lie there. Tiles with a target are kept anywhere.
+- **BANDS** (advanced) — the bands read as red, green and blue, in that order (three bands, or one band for all three). Empty: bands 1, 2, 3, or band 1 three times for a single-band raster.
+- **VALUE_RANGE** (advanced) — for a raster that is not 8-bit (16-bit, floating point): the value written as 0 and the value written as 255, for every band. Empty: each band&apos;s 2 %–98 % cumulative cut, from a sample of the raster (QGIS&apos;s own default stretch); the log says the ranges used.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../resources/help/writelabelsraster.md" line="18"/>
+        <source>## Verdicts become labels (optional)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../resources/help/writelabelsraster.md" line="20"/>
+        <source>- **Review verdicts** (REVIEW): the review dock&apos;s verdict table (`birdseye_verdicts` of the review GeoPackage), as in Evaluate detections. **REVIEW_DETECTIONS** — the detection layer(s) the review judged (outputs of Detect targets on the frames of a flight over this field); **REVIEW_FRAMES** — their frame layers, one per detection layer, in the same order. The clusters are made and matched to the geotags exactly as Evaluate detections does, and each gets the outcome of all its judgements:
+  - **confirmed real** (every vote says so) **and matched by no geotag**: a target nobody surveyed, labelled at the cluster&apos;s centroid (the mean of its detections&apos; positions) on the raster; `provenance` review, the survey&apos;s class when it has one (else `target`); no height in `targets.csv`.
+  - **hard negative**: a negative tile holding it is drawn before the other negatives.
+  - **uncertain**, **unreviewed** and **conflicting** clusters are not labelled, and no tile within 3σ of one is written.
+- **DEDUP_CM** (cm, default 3), **EPS_M** (m, default 0.20), **MIN_SAMPLES** (default 2), **CORE_COUNT** (default detections), **EPS_PRED_M** (m, default 0.20), **EDGE_BUFFER_PX** (px, default 0) — advanced: the clustering and matching the review was scored with (the review dock&apos;s values).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../resources/help/writelabelsraster.md" line="26"/>
+        <source>## No tile teaches a target as background</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../resources/help/writelabelsraster.md" line="28"/>
+        <source>- A geotag outside the raster, or on a pixel without data (a hole in the orthomosaic), is not labelled; no tile within the label radius 3σ of it is written (its label disc may reach in, and the tile would show part of it as background). The log names these geotags.
+- A tile without a target is written only inside the surveyed area (above), and only when it holds a pixel with data; pixels without data are black in the tiles.
+- No tile within 3σ of a cluster the review left unresolved is written (above).
+- The labels of a tile show every labelled target whose label disc reaches into it, also one whose centre lies in the next tile.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../resources/help/writelabelsraster.md" line="33"/>
+        <source>## Outputs</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../resources/help/writelabelsraster.md" line="35"/>
+        <source>The label folder, laid out as Write training labels lays it out:</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../resources/help/writelabelsraster.md" line="37"/>
+        <source>- `tiles/images`, `tiles/labels` — image tiles (8-bit) and label tiles (8 bit: 255·exp(−r²/2σ²) out to r = 3σ, r in px, overlapping humps combined by max), named `&lt;frame_id&gt;_&lt;y0&gt;_&lt;x0&gt;.png`: **each tile is one frame**, `frame_id` its number on the tile grid (row by row) and (x0, y0) its top-left pixel in the raster.
+- `labels.csv` — frame_id, image (the raster&apos;s file), geotag_id, label, u, v (the target&apos;s column and row in the raster, px), sigma_px, margin_px (distance to the tile&apos;s nearest edge, px; negative for a target outside the tile whose label reaches in), provenance (`survey`: a geotag; `review`: a confirmed cluster no geotag matches) — one row per target per tile its label shows.
+- `labels.txt` — one line per tile with a target: `frame_id path u,v,cls …`, u, v in the tile&apos;s pixels.
+- `targets.csv` — the targets labelled: `geotag_id, label, provenance, lat, lon` (WGS84 degrees), `height_m, height_ref` (the geotag&apos;s own height, `ellipsoidal`; empty for a review target; the raster carries none).
+- `summary.json` — tiles written (with a target, negative) and skipped (`tiles.skipped`: near a target not labelled or an unresolved cluster, outside the surveyed area, drawn without data), hard-negative tiles, geotags outside the raster or on no data, `sigma_cm`, `sigma_px`, `label_radius_px`, `surveyed_area`, and `raster`: its file, CRS, size, pixel size and **`gsd_cm`**, the ground sample distance Train detector resamples the tiles from.
+- **LABEL_COUNT**, **POSITIVE_TILES**, **NEGATIVE_TILES**, **GEOTAGS_NOT_LABELLED**, **SIGMA_USED_PX** (px of the raster), **REVIEW_TARGETS**, **HARD_NEGATIVES** — for models and scripts.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../resources/help/writelabelsraster.md" line="44"/>
+        <source>## Training on it</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../resources/help/writelabelsraster.md" line="46"/>
+        <source>Give the folder to Train detector as any labels folder. It needs no frame layer and no GSD: it reads the raster&apos;s GSD from `summary.json` (whatever frame layer or GSD_CM is given for other folders). With spatial blocks (the default validation) the blocks are a tile&apos;s ground diagonal wide and the tiles are held out by the targets they show, so no target is on both sides; tiles without a target follow their neighbour in their row. The default threshold is then chosen on the held-out tiles (there are no frames to run the detector over as a flight), and the log says so: score the model on a flight it never saw with Evaluate detections before relying on it.</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
