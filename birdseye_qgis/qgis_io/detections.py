@@ -3,7 +3,13 @@ detections write, and the readers every scoring algorithm and the review dock sh
 from __future__ import annotations
 
 import numpy as np
-from qgis.core import QgsCoordinateReferenceSystem, QgsCoordinateTransform, QgsProject, QgsWkbTypes
+from qgis.core import (
+    QgsCoordinateReferenceSystem,
+    QgsCoordinateTransform,
+    QgsFeatureRequest,
+    QgsProject,
+    QgsWkbTypes,
+)
 
 from ..core.errors import InputError
 from ..core.field.frame_records import poses_from_records
@@ -11,7 +17,7 @@ from ..core.geometry.geodesy import LocalFrame, ProjectedCRS
 from ..core.geometry.ground_record import DEM, LEVEL_PLANE, RASTER, GroundRecord
 from ..core.scoring.evaluation import Detections
 from ..core.scoring.verdicts import VerdictLog
-from ..qgis_enums import GEOMETRY_POINT
+from ..qgis_enums import GEOMETRY_POINT, REQUEST_NO_GEOMETRY
 from . import layers
 
 #: (name, type, description) of the detection layer.
@@ -93,6 +99,16 @@ def read_detections(source, context, name: str | None = None) -> tuple[Detection
                      model=", ".join(models), model_digest=digests[0] if digests else "",
                      threshold=max(thresholds) if thresholds else None, ground=ground)
     return det, int((~ok).sum())
+
+
+def found_on_raster(layer) -> bool:
+    """Whether a detection layer's detections were found on a raster (Detect targets on a raster), from its first
+    feature's ``ground``: the review, which cuts its chips from frames, does not take those."""
+    if "ground" not in layer.fields().names():
+        return False
+    request = QgsFeatureRequest().setLimit(1).setSubsetOfAttributes(["ground"], layer.fields())
+    request.setFlags(REQUEST_NO_GEOMETRY)
+    return any(feature["ground"] == RASTER for feature in layer.getFeatures(request))
 
 
 def ground_attributes(record: GroundRecord) -> dict:

@@ -37,6 +37,7 @@ from ...core.review.navigation import Entries, display_verdict
 from ...core.review.units import ADDED_PREFIX, CONSENSUS_UNITS, ReviewParameters, ReviewUnits, build_units
 from ...core.scoring.evaluation import Flight
 from ...core.scoring.operating_point import RECORDED_WITHOUT_CORE_COUNT, OperatingPoint
+from ...qgis_io.detections import found_on_raster
 from ...qgis_io.layer_kinds import DETECTIONS, FRAMES, GEOTAGS, layers_of_kind, most_recent, other_layers
 from ...qgis_io.review_project import save_propagate, save_review, saved_review
 from ...qgis_io.review_store import ReviewSession, RowMeta, default_store_path, open_store, read_review_inputs
@@ -145,7 +146,8 @@ class ReviewDock(QgsDockWidget):
         self._filling_choices = True
         try:
             checked = set(self.detections_combo.checkedItemsData())
-            detection_layers = layers_of_kind(project, DETECTIONS)
+            # The review cuts its chips from frames: detections found on a raster are not offered.
+            detection_layers = [layer for layer in layers_of_kind(project, DETECTIONS) if not found_on_raster(layer)]
             if DETECTIONS not in self._chosen:
                 checked = {detection_layers[0].id()} if detection_layers else set()
             self.detections_combo.clear()
