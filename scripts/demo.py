@@ -230,9 +230,9 @@ def build_steps(size: DemoSize, model: Path | None) -> list[Step]:
         Step("mosaic_vs_frames", "comparedetectors", "Compare detection on the frames and on the mosaic", {
             "DETECTIONS_OLD": "{detect[OUTPUT]}", "DETECTIONS_NEW": "{detect_mosaic[OUTPUT]}",
             "FRAMES": f"{{flight_{h}[OUTPUT]}}", "GEOTAGS": f"{{geotags_{h}[OUTPUT]}}",
-            "OUTPUT": "{out}/detections/frames_vs_mosaic.gpkg", "OUTPUT_JSON": "{out}/frames_vs_mosaic.json",
+            "OUTPUT": "{out}/detections/mosaic_changes.gpkg", "OUTPUT_JSON": "{out}/frames_vs_mosaic.json",
             "OUTPUT_REPORT": "{out}/frames_vs_mosaic.html"}, group="detections", tag=held_out.tag,
-            kinds={"OUTPUT": "Frames/mosaic"}, hidden=("OUTPUT",)),
+            kinds={"OUTPUT": "Mosaic diff"}, hidden=("OUTPUT",)),
         Step("plan", "planflight", f"Plan the next flight over the {held_out.title}'s geotags", {
             "GEOTAGS": f"{{geotags_{h}[OUTPUT]}}", "CAMERA": f"{{campaign_{h}[CALIBRATION]}}",
             "ALTITUDE_M": ALTITUDE_M, "OUTPUT_WAYPOINTS": "{out}/plan/waypoints.gpkg",

@@ -35,14 +35,14 @@ EXPECTED_STYLE = {
     "frames_labelled_train1": "frames.qml", "frames_labelled_train2": "frames.qml",
     "geotags_seen_train1": "geotags.qml", "geotags_seen_train2": "geotags.qml",
     "detections": "detections.qml", "clusters": "clusters.qml", "cluster_points": "cluster_points.qml",
-    "detections_mosaic": "detections.qml", "frames_vs_mosaic": "changes.qml",
+    "detections_mosaic": "detections.qml", "mosaic_changes": "changes.qml",
     "waypoints": "waypoints.qml", "route": "route.qml",
 }
 EXPECTED_GROUP = {name: group for group, names in {
     "survey": ["geotags_train1", "geotags_train2", "geotags_heldout"],
     "flight": ["frames_train1", "frames_train2", "frames_heldout", "track_train1", "track_train2", "track_heldout"],
     "labels": ["frames_labelled_train1", "frames_labelled_train2", "geotags_seen_train1", "geotags_seen_train2"],
-    "detections": ["detections", "detections_mosaic", "frames_vs_mosaic"],
+    "detections": ["detections", "detections_mosaic", "mosaic_changes"],
     "clusters": ["clusters", "cluster_points"], "plan": ["waypoints", "route"],
 }.items() for name in names}
 
