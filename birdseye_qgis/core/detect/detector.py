@@ -235,17 +235,45 @@ def normalise(image_bgr: np.ndarray, meta: ModelMetadata) -> np.ndarray:
     return out
 
 
+def normalise_tiles(tiles_bgr: np.ndarray, meta: ModelMetadata) -> np.ndarray:
+    """BGR uint8 tiles (N, T, T, 3) as the model's input (N, 3, T, T) float32: :func:`normalise`'s arithmetic,
+    tile by tile."""
+    order = (2, 1, 0) if meta.input_channel_order == "RGB" else (0, 1, 2)
+    std = np.asarray(meta.standardization_std, dtype=np.float32)
+    gain = (1.0 / (255.0 * std)).astype(np.float32)
+    offset = (-np.asarray(meta.standardization_mean, dtype=np.float32) / std).astype(np.float32)
+    out = np.empty((len(tiles_bgr), 3) + tiles_bgr.shape[1:3], dtype=np.float32)
+    for c in range(3):
+        out[:, c] = tiles_bgr[..., order[c]]
+        out[:, c] *= gain[c]
+        out[:, c] += offset[c]
+    return out
+
+
 def frame_heatmap(model: HeatmapModel, image_model_res: np.ndarray, batch: int | None = None) -> np.ndarray:
-    """Probability heatmap (H, W) of a BGR frame already resampled to the model's resolution; its tiles run
-    ``batch`` at a time (None: all at once — a frame's few dozen)."""
+    """Probability heatmap (H, W) of a BGR frame already resampled to the model's resolution; its tiles are cut,
+    normalised and run ``batch`` at a time (None: all at once — a frame's few dozen), so only those are ever
+    held as floats. Exactly :func:`normalise` then :func:`cut_tiles` (beyond a frame smaller than a tile the
+    input is 0, as there)."""
     meta = model.metadata
-    frame = normalise(image_model_res, meta)
-    h, w = frame.shape[1:]
-    spans_y = tile_spans(h, meta.tile_size, meta.overlap_px)
-    spans_x = tile_spans(w, meta.tile_size, meta.overlap_px)
-    tiles = cut_tiles(frame, spans_y, spans_x, meta.tile_size)
-    step = len(tiles) if batch is None else max(1, int(batch))
-    outputs = np.concatenate([model.run(tiles[i:i + step]) for i in range(0, len(tiles), step)])
+    image = np.ascontiguousarray(image_model_res)
+    h, w = image.shape[:2]
+    t = meta.tile_size
+    spans_y = tile_spans(h, t, meta.overlap_px)
+    spans_x = tile_spans(w, t, meta.overlap_px)
+    origins = [(y0, x0) for y0, _, _ in spans_y for x0, _, _ in spans_x]
+    step = len(origins) if batch is None else max(1, int(batch))
+    outputs = np.empty((len(origins), t, t), dtype=np.float32)
+    for i in range(0, len(origins), step):
+        part = origins[i:i + step]
+        block = np.zeros((len(part), t, t, 3), dtype=np.uint8)
+        for k, (y0, x0) in enumerate(part):
+            piece = image[y0:y0 + t, x0:x0 + t]
+            block[k, :piece.shape[0], :piece.shape[1]] = piece
+        tiles = normalise_tiles(block, meta)
+        tiles[:, :, h:, :] = 0.0  # padding (a frame smaller than a tile): zero input, as cut_tiles pads
+        tiles[:, :, :, w:] = 0.0
+        outputs[i:i + len(part)] = model.run(tiles)
     heat = stitch(outputs, spans_y, spans_x, (h, w))
     if meta.output_kind == "logits":
         heat = _sigmoid(heat)

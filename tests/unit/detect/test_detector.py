@@ -22,6 +22,7 @@ from birdseye.birdseye_qgis.core.detect.detector import (
     find_peaks,
     frame_heatmap,
     model_size,
+    normalise,
     read_bgr,
     read_reduction,
     stitch,
@@ -120,6 +121,19 @@ def test_stitched_tiles_reproduce_a_whole_image_run(tmp_path):
         sy, sx = tile_spans(77, 32, overlap), tile_spans(100, 32, overlap)
         heat = stitch(model.run(cut_tiles(frame, sy, sx, 32)), sy, sx, (77, 100))
         assert np.allclose(heat, whole, atol=1e-5) == equal, overlap
+
+
+@pytest.mark.parametrize("order", ["RGB", "BGR"])
+@pytest.mark.parametrize("size", [(77, 100), (20, 45)])  # the second smaller than a tile: padded
+def test_tiles_cut_and_normalised_in_batches_equal_the_whole_frame_normalised_then_cut(tmp_path, order, size):
+    kernel = np.random.default_rng(5).normal(size=(5, 5))
+    model = HeatmapModel(conv_model(tmp_path / "m.onnx", kernel, tile=32, overlap_pct=25.0, input_channel_order=order,
+                                    standardization_mean=[0.4, 0.5, 0.6], standardization_std=[0.2, 0.25, 0.3]))
+    img = np.random.default_rng(6).integers(0, 256, size + (3,), dtype=np.uint8)
+    sy, sx = tile_spans(size[0], 32, 8), tile_spans(size[1], 32, 8)
+    expected = stitch(model.run(cut_tiles(normalise(img, model.metadata), sy, sx, 32)), sy, sx, size)
+    for batch in (None, 1, 3):
+        assert np.array_equal(frame_heatmap(model, img, batch), expected), batch
 
 
 def test_fixed_size_input_and_batch_run_match(tmp_path):
