@@ -39,7 +39,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="65"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="66"/>
         <source>Review clusters</source>
         <translation type="unfinished"></translation>
     </message>
@@ -230,22 +230,22 @@ review</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="206"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="208"/>
         <source>Choose at least one detection layer (an output of Detect targets).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="212"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="214"/>
         <source>Choose a GeoPackage for the verdict log (save the project first to get one next to it).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="273"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="275"/>
         <source>{n} units from {k} layer(s); verdict log {path}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="345"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="347"/>
         <source>A layer of the review was removed from the project; the review stopped. Every verdict is in the log; choose the layers again to resume.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -255,72 +255,72 @@ review</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="382"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="384"/>
         <source>&lt;b&gt;{pos}&lt;/b&gt; of {vis} shown · {done} of {n} units reviewed · {added} added</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="435"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="437"/>
         <source>An added target can only be withdrawn (0 or Backspace) or undone.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="446"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="448"/>
         <source>Saved: {key} → {verdict}{more} ({time} UTC)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="446"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="448"/>
         <source>, {} propagated vote(s)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="461"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="463"/>
         <source>Nothing to undo.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="465"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="467"/>
         <source>Undone: action {action} on {key} (rows appended; nothing deleted).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="483"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="485"/>
         <source>The verdict was NOT saved: {error}. Check that {path} is writable and not locked, then try again.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="498"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="500"/>
         <source>Click the map where the missed target is (Esc or right click cancels).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="519"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="521"/>
         <source>Added target {key} (Ctrl+Z undoes it).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="519"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="521"/>
         <source>A target is already recorded there.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="540"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="542"/>
         <source>No units: the detection layers have no clusters at these settings.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="541"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="543"/>
         <source>Nothing to show</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="553"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="555"/>
         <source>Loading frames…</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="560"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="562"/>
         <source>&lt;b&gt;Added target&lt;/b&gt; {key}&lt;br&gt;{lat:.7f}°, {lon:.7f}° · recorded as a target the detector missed (the &lt;i&gt;a&lt;/i&gt; term). 0 withdraws it.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -365,12 +365,12 @@ review</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="616"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="618"/>
         <source>updating…</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="625"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="627"/>
         <source>Scores could not be computed: {}</source>
         <translation type="unfinished"></translation>
     </message>
@@ -385,7 +385,7 @@ review</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="271"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="273"/>
         <source>Review verdicts</source>
         <translation type="unfinished"></translation>
     </message>
@@ -779,12 +779,12 @@ QGIS&apos;s own packages are not changed. pip downloads them from the Python Pac
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="246"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="248"/>
         <source>The detections were placed on {ground}, which cannot be used here ({reason}). Chips and geotags in view stand on the level plane instead: positions in the chips and the scores may differ from those of Evaluate detections given that DEM.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="251"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="253"/>
         <source>The review stands on the level plane, not on the detections&apos; DEM</source>
         <translation type="unfinished"></translation>
     </message>
@@ -4047,7 +4047,7 @@ exact</source>
     </message>
     <message>
         <location filename="../resources/help/detectraster.md" line="22"/>
-        <source>A frame shows each target at the drone&apos;s own resolution and from many viewpoints: Detect targets gives several detections per target, which Cluster detections merges. An orthomosaic shows each target once, resampled and blended from the frames (seams and smear where they disagree): one detection per target. Cluster detections, Evaluate detections, Compare detectors and the review stand on frames (which geotags each frame saw), and refuse raster detections for now, saying so.</source>
+        <source>A frame shows each target at the drone&apos;s own resolution and from many viewpoints: Detect targets gives several detections per target, which Cluster detections merges. An orthomosaic shows each target once, resampled and blended from the frames (seams and smear where they disagree): one detection per target. **Frames or mosaic, on your own flight:** give Compare detectors the frame detections of a flight (DETECTIONS_OLD) and the detections on its orthomosaic (DETECTIONS_NEW), with the flight&apos;s frames and the survey. Both are scored over the same geotags — those in view of the frames and on the mosaic&apos;s valid pixels — and the mosaic&apos;s detections only where the frames see; each mosaic detection can be a cluster by itself, since one image shows a target once. Cluster detections, Evaluate detections and the review dock stand on frames (which geotags each frame saw, chips cut from frames): they refuse raster detections for now, saying so, and the review dock does not list them.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
