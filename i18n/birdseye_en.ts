@@ -1451,125 +1451,130 @@ exact</source>
 <context>
     <name>ClusterDetections</name>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="51"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="53"/>
         <source>Detections (from Detect targets)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="63"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="65"/>
         <source>Clusters</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="65"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="67"/>
         <source>De-duplicated points</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="75"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="77"/>
         <source>DETECTIONS: the detection layer cannot be read.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="87"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="89"/>
         <source>The detection layer holds no detection with a position.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="153"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="165"/>
         <source>OUTPUT: the cluster layer cannot be created.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="176"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="188"/>
         <source>OUTPUT_POINTS: the point layer cannot be created.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="78"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="80"/>
         <source>{dropped} detection(s) without a position or score were left out</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="117"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="129"/>
         <source>No FRAMES given: every geotag is treated as in view.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="124"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="136"/>
         <source>{n_hit_clusters} of {n} clusters match an in-view geotag; {n_recovered} of {n_in_view} in-view geotags recovered.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="42"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="44"/>
         <source>Cluster detections</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="112"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="124"/>
         <source>{n} frame(s) without a ground height (flag no_ground_height; first: {items}) were not counted as processed: the geotags only they see are not in view.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="55"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="57"/>
         <source>Geotags (to mark the clusters hitting one)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="58"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="60"/>
         <source>Frames (only geotags in view match)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="136"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="148"/>
         <source>{n_det} detections → {n_points} de-duplicated points → {n} clusters ({NOISE_POINTS} points are noise; minimum points counted {counted}).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/clusterdetections.py" line="96"/>
+        <source>The detections were found on a raster, which shows each target once: each detection can be a cluster by itself (MIN_SAMPLES {used}, not {asked}), and the geotags in view are those on the raster&apos;s valid pixels.</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
 <context>
     <name>ClusteringParametersMixin</name>
     <message>
-        <location filename="../processing/parameters/clustering.py" line="36"/>
+        <location filename="../processing/parameters/clustering.py" line="40"/>
         <source>De-duplication grid cell (cm)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/clustering.py" line="39"/>
+        <location filename="../processing/parameters/clustering.py" line="43"/>
         <source>DBSCAN radius EPS (m)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/clustering.py" line="56"/>
+        <location filename="../processing/parameters/clustering.py" line="60"/>
         <source>Edge buffer of the in-view test (px)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/clustering.py" line="95"/>
+        <location filename="../processing/parameters/clustering.py" line="99"/>
         <source>{name}: give at least one detection layer.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/clustering.py" line="98"/>
+        <location filename="../processing/parameters/clustering.py" line="102"/>
         <source>{name}: give one frame layer per detection layer, in the same order (got {detections} detection layer(s) and {frames} frame layer(s)).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/clustering.py" line="106"/>
+        <location filename="../processing/parameters/clustering.py" line="110"/>
         <source>{layer}: {n} detection(s) without a position or score left out</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/clustering.py" line="42"/>
+        <location filename="../processing/parameters/clustering.py" line="46"/>
         <source>DBSCAN minimum points (itself included)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/clustering.py" line="52"/>
+        <location filename="../processing/parameters/clustering.py" line="56"/>
         <source>Geotag match radius EPS_PRED (m)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/clustering.py" line="63"/>
+        <location filename="../processing/parameters/clustering.py" line="67"/>
         <source>Minimum points count</source>
         <translation type="unfinished"></translation>
     </message>
@@ -3850,7 +3855,7 @@ exact</source>
         <source>- **De-duplication**: every occupied grid cell (DEDUP_CM) becomes one point at the mean position of its detections, and remembers how many detections it holds. This keeps DBSCAN fast on hundreds of thousands of detections.
 - **DBSCAN** on those points: a point is a *core* point when the detections within EPS_M of it (its own included) number at least MIN_SAMPLES — or, with **Minimum points count** set to *cells* (the method&apos;s), when at least MIN_SAMPLES occupied cells lie within EPS_M. Clusters are core points linked through EPS_M plus the points within EPS_M of them; everything else is noise. A border point reachable from two clusters joins the first one found.
 - **Cluster figures** are computed over each cluster&apos;s detections: centroid = their mean position; median extent = twice the median distance of the detections from the centroid (a robust diameter, m).
-- With geotags, a cluster is a **hit** when an in-view geotag lies within EPS_PRED_M of one of its core points (horizontal distance). With frames, a geotag is *in view* when it projects inside at least one frame of the layer (by EDGE_BUFFER_PX), placed on the ground the detections were placed on (the detection layer&apos;s `ground` field: level plane, method&apos;s plane or DEM), as in Evaluate detections; without frames every geotag counts as in view.</source>
+- With geotags, a cluster is a **hit** when an in-view geotag lies within EPS_PRED_M of one of its core points (horizontal distance). With frames, a geotag is *in view* when it projects inside at least one frame of the layer (by EDGE_BUFFER_PX), placed on the ground the detections were placed on (the detection layer&apos;s `ground` field: level plane, method&apos;s plane or DEM), as in Evaluate detections; without frames every geotag counts as in view. Detections found on a raster (Detect targets on a raster, `ground` = `raster`): the geotags in view are those on the raster&apos;s valid pixels, and MIN_SAMPLES is taken as 1 — one image shows a target once.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
@@ -4047,7 +4052,7 @@ exact</source>
     </message>
     <message>
         <location filename="../resources/help/detectraster.md" line="22"/>
-        <source>A frame shows each target at the drone&apos;s own resolution and from many viewpoints: Detect targets gives several detections per target, which Cluster detections merges. An orthomosaic shows each target once, resampled and blended from the frames (seams and smear where they disagree): one detection per target. **Frames or mosaic, on your own flight:** give Compare detectors the frame detections of a flight (DETECTIONS_OLD) and the detections on its orthomosaic (DETECTIONS_NEW), with the flight&apos;s frames and the survey. Both are scored over the same geotags — those in view of the frames and on the mosaic&apos;s valid pixels — and the mosaic&apos;s detections only where the frames see; each mosaic detection can be a cluster by itself, since one image shows a target once. Cluster detections, Evaluate detections and the review dock stand on frames (which geotags each frame saw, chips cut from frames): they refuse raster detections for now, saying so, and the review dock does not list them.</source>
+        <source>A frame shows each target at the drone&apos;s own resolution and from many viewpoints: Detect targets gives several detections per target, which Cluster detections merges. An orthomosaic shows each target once, resampled and blended from the frames (seams and smear where they disagree): one detection per target. **Frames or mosaic, on your own flight:** give Compare detectors the frame detections of a flight (DETECTIONS_OLD) and the detections on its orthomosaic (DETECTIONS_NEW), with the flight&apos;s frames and the survey. Both are scored over the same geotags — those in view of the frames and on the mosaic&apos;s valid pixels — and the mosaic&apos;s detections only where the frames see; each mosaic detection can be a cluster by itself, since one image shows a target once. **Cluster detections and Evaluate detections** take raster detections too: the geotags in view are those on the raster&apos;s valid pixels (the raster the layer records in `dem_source`, so keep it where it was), and each detection can be a cluster by itself (MIN_SAMPLES is taken as 1 for them, said in the log). Evaluate still asks for a frame layer per detection layer (it places the flight; give the flight&apos;s frames). The review dock cuts its chips from frames and does not list raster detections yet.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
@@ -4089,7 +4094,7 @@ exact</source>
         <location filename="../resources/help/evaluatedetections.md" line="5"/>
         <source>- Detections of all processed frames are de-duplicated on a DEDUP_CM grid and clustered with DBSCAN (EPS_M, MIN_SAMPLES, counting detections or — CORE_COUNT *cells*, the method&apos;s — occupied cells) in a local metric frame (see Cluster detections).
 - Processed frames = every frame of the frame layer given (Detect ran on all of them); frames without a ground height are left out when the detections stand on a plane, as Detect skips them; on a DEM every frame counts (Detect placed them).
-- A geotag is **in view** if it projects inside at least one processed frame (at least EDGE_BUFFER_PX inside the image), placed on the ground the detections were placed on — the level plane, the method&apos;s plane or the DEM, as the detection layer records it (field `ground`); on a DEM a geotag the terrain hides from a frame is not in view of it.
+- A geotag is **in view** if it projects inside at least one processed frame (at least EDGE_BUFFER_PX inside the image), placed on the ground the detections were placed on — the level plane, the method&apos;s plane or the DEM, as the detection layer records it (field `ground`); on a DEM a geotag the terrain hides from a frame is not in view of it. For detections found on a raster (Detect targets on a raster, `ground` = `raster`) a geotag is in view when it lies on the raster&apos;s valid pixels (the raster the layer records), and their clusters are counted with MIN_SAMPLES 1 (one image shows a target once).
 - An in-view geotag is **recovered** if it lies within EPS_PRED_M (horizontal distance) of a **core** point of some cluster — a border point is not enough.
 - A cluster is a **hit** if at least one in-view geotag lies within EPS_PRED_M of its core points. A geotag between two clusters makes both hits.
 - **recall_pre** = n_recovered / n_in_view.

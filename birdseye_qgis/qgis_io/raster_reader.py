@@ -7,7 +7,15 @@ window, clipped to the raster, and pads the rest as invalid.
 from __future__ import annotations
 
 import numpy as np
-from qgis.core import QgsRasterBandStats, QgsRectangle, QgsUnitTypes
+from qgis.core import (
+    QgsCoordinateReferenceSystem,
+    QgsCoordinateTransform,
+    QgsPointXY,
+    QgsRasterBandStats,
+    QgsRasterLayer,
+    QgsRectangle,
+    QgsUnitTypes,
+)
 
 from ..core.detect.raster_detect import RasterGrid
 from ..core.errors import InputError
@@ -138,8 +146,6 @@ def covered_geotags(source: str, lat, lon, transform_context) -> np.ndarray:
     """Which points (WGS84 ``lat``, ``lon``) lie on valid pixels of the raster at ``source`` (inside it, not at
     a band's no-data value, not transparent): the geotags a mosaic could show. The raster is the one raster
     detections record (``dem_source``); gone or unreadable, it is refused, naming it."""
-    from qgis.core import QgsCoordinateReferenceSystem, QgsCoordinateTransform, QgsPointXY, QgsRasterLayer
-
     layer = QgsRasterLayer(source, "raster")
     if not layer.isValid():
         raise InputError("the raster these detections were found on cannot be opened (moved or deleted?): "

@@ -13,7 +13,8 @@ from qgis.PyQt.QtCore import QT_TRANSLATE_NOOP
 
 from ...birdseye_qgis.core.detect.clustering import HULL_BUFFER_M, cluster_detections, cluster_hulls
 from ...birdseye_qgis.core.geometry.geodesy import LocalFrame
-from ...birdseye_qgis.core.scoring.evaluation import Detections, local_frame_for
+from ...birdseye_qgis.core.geometry.ground_record import RASTER
+from ...birdseye_qgis.core.scoring.evaluation import Detections, local_frame_for, min_samples_for
 from ...birdseye_qgis.core.scoring.matching import in_view
 from ...birdseye_qgis.core.scoring.pre_review import score_flight
 from ...birdseye_qgis.qgis_enums import (
@@ -31,6 +32,7 @@ from ...birdseye_qgis.qgis_io.detections import (
     read_pose_groups,
     to_layer_xy,
 )
+from ...birdseye_qgis.qgis_io.raster_reader import covered_geotags
 from ..parameters.clustering import ClusteringParametersMixin
 from ..parameters.dem import DemParametersMixin
 from ..parameters.layer_parameters import source_parameter
@@ -87,10 +89,17 @@ class ClusterDetections(ClusteringParametersMixin, DemParametersMixin, BirdsEyeA
             raise QgsProcessingException(self.tr("The detection layer holds no detection with a position."))
         local = self._local_frame(det, groups, geotags)
         positions = det.ground_positions(local)
+        on_raster = det.ground.model == RASTER
+        asked = self.parameterAsInt(parameters, self.MIN_SAMPLES, context)
+        min_samples = min_samples_for(det, asked)
+        if on_raster:
+            feedback.pushInfo(self.tr("The detections were found on a raster, which shows each target once: each "
+                                      "detection can be a cluster by itself (MIN_SAMPLES {used}, not {asked}), and "
+                                      "the geotags in view are those on the raster's valid pixels.").format(
+                                  used=min_samples, asked=asked))
         clustering = self.run_core(cluster_detections, positions, det.frame_id, det.score,
                                    self.parameterAsDouble(parameters, self.DEDUP_CM, context),
-                                   self.parameterAsDouble(parameters, self.EPS_M, context),
-                                   self.parameterAsInt(parameters, self.MIN_SAMPLES, context),
+                                   self.parameterAsDouble(parameters, self.EPS_M, context), min_samples,
                                    core_count=self.read_core_count(parameters, context))
         feedback.setProgress(55)
         n = clustering.n_clusters
@@ -99,7 +108,10 @@ class ClusterDetections(ClusteringParametersMixin, DemParametersMixin, BirdsEyeA
         if geotags is not None and len(geotags):
             h = np.where(np.isfinite(geotags.height), geotags.height, local.h0)
             g_local = local.from_geodetic(geotags.lat, geotags.lon, h)
-            if groups:
+            if on_raster:
+                visible = self.run_core(covered_geotags, det.ground.dem_source, geotags.lat, geotags.lon,
+                                        context.transformContext())
+            elif groups:
                 dem = self.read_dem(parameters, context, frame_source, feedback)
                 self.report_dem(feedback, dem)
                 view = self.run_core(in_view, groups, local, g_local,

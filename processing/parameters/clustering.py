@@ -2,6 +2,8 @@
 and the flights (detection layer + frame layer pairs) the scoring algorithms read."""
 from __future__ import annotations
 
+from functools import partial
+
 from qgis.core import QgsProcessingException, QgsProcessingParameterEnum, QgsProcessingParameterNumber
 
 from ...birdseye_qgis.core.detect.clustering import (
@@ -11,10 +13,12 @@ from ...birdseye_qgis.core.detect.clustering import (
     DEFAULT_EPS_M,
     DEFAULT_MIN_SAMPLES,
 )
+from ...birdseye_qgis.core.geometry.ground_record import RASTER
 from ...birdseye_qgis.core.scoring.evaluation import Flight
 from ...birdseye_qgis.core.scoring.operating_point import DEFAULT_EDGE_BUFFER_PX, DEFAULT_EPS_PRED_M, OperatingPoint
 from ...birdseye_qgis.qgis_enums import NUMBER_DOUBLE, NUMBER_INTEGER, PARAMETER_ADVANCED
 from ...birdseye_qgis.qgis_io.detections import read_detections, read_pose_groups
+from ...birdseye_qgis.qgis_io.raster_reader import covered_geotags
 
 #: The CORE_COUNT choices, in the order of core.detect.clustering.CORE_COUNTS (the enum's index).
 CORE_COUNT_LABELS = ("Detections in the cells within EPS", "Cells within EPS, one point each (the method's)")
@@ -106,5 +110,9 @@ class ClusteringParametersMixin:
                 feedback.pushWarning(self.tr("{layer}: {n} detection(s) without a position or score left out").format(
                     layer=det_layer.name(), n=dropped))
             groups = self.run_core(read_pose_groups, frame_layer, frame_layer.name())[0]
+            if det.ground.model == RASTER:  # found on a raster: the geotags in view are those it covers
+                covers = partial(covered_geotags, det.ground.dem_source, transform_context=context.transformContext())
+                flights.append(Flight(det, groups, det_layer.name(), covers=covers))
+                continue
             flights.append(Flight(det, groups, det_layer.name(), None if ground_for is None else ground_for(det)))
         return flights

@@ -19,9 +19,10 @@ from qgis.core import (
     QgsRasterLayer,
     QgsVectorLayer,
 )
+from test_cluster_algorithms import frame_layer, point_layer, utm_of
 from test_detect import identity_model
 
-ORIGIN = (500000.0, 6000000.0)  # top-left corner, EPSG:32756
+ORIGIN = tuple(float(np.floor(v[0])) for v in utm_of([(0.0, 0.0)])[:2])  # top-left corner at the site, EPSG:32756
 PIXEL_M = 0.01
 pytestmark = pytest.mark.usefixtures("birdseye_provider")
 
@@ -153,3 +154,27 @@ def test_two_bands_need_to_be_told_which_feed_the_model(tmp_path):
     with pytest.raises(QgsProcessingException, match="2 bands.*BANDS"):
         run({"RASTER": path, "MODEL": model, "OUTPUT": "memory:"})
     assert run({"RASTER": path, "MODEL": model, "BANDS": [2], "OUTPUT": "memory:"})["DETECTION_COUNT"] == 0
+
+
+def test_cluster_and_evaluate_count_the_geotags_the_raster_covers(rgba_ortho, tmp_path):
+    """Geotags on every painted target and one 40 m east, off the raster: the transparent target and the far one
+    are not in view; each of the 5 detections is a cluster by itself (a raster shows a target once) on a geotag."""
+    import processing
+    from qgis.core import QgsField
+    from qgis.PyQt.QtCore import QVariant
+
+    detections_path = run({"RASTER": rgba_ortho, "MODEL": identity_model(tmp_path / "m.onnx"),
+                           "OUTPUT": str(tmp_path / "det.gpkg")})["OUTPUT"]
+    xy = [map_of(rgba_ortho, u, v) for u, v in TARGETS] + [map_of(rgba_ortho, 600.0, 300.0)]
+    xy[-1] = (xy[-1][0] + 40.0, xy[-1][1])
+    site_x, site_y = (float(v[0]) for v in utm_of([(0.0, 0.0)])[:2])
+    en = [(x - site_x, y - site_y) for x, y in xy]  # near the site, the local offsets are the UTM ones to < 1 mm
+    geotags = point_layer("geotags", [QgsField("id", QVariant.Int), QgsField("label", QVariant.String)],
+                          [[k + 1, "burrow"] for k in range(len(en))], en)
+    clusters = processing.run("birdseye:clusterdetections", {"DETECTIONS": detections_path, "GEOTAGS": geotags,
+                                                             "OUTPUT": "memory:"})
+    assert (clusters["CLUSTER_COUNT"], clusters["HIT_COUNT"]) == (5, 5)
+    scores = processing.run("birdseye:evaluatedetections", {
+        "DETECTIONS": [detections_path], "GEOTAGS": geotags, "FRAMES": [frame_layer()],
+        "OUTPUT_JSON": str(tmp_path / "e.json")})
+    assert (scores["N_IN_VIEW"], scores["N_RECOVERED"], scores["N_CLUSTERS"], scores["N_HIT_CLUSTERS"]) == (5, 5, 5, 5)

@@ -67,8 +67,9 @@ class GroundRecord:
         """
         if self.model == RASTER:
             raise InputError(f"its detections were found on {self.describe()}, not in frames: frames cannot say "
-                             "which geotags they saw. Scoring raster detections against frames is not available "
-                             "yet; compare them with the survey on the map", source=source)
+                             "which geotags they saw. Cluster detections, Evaluate detections and Compare detectors "
+                             "score them against the raster they were found on; this tool takes frame detections "
+                             "only", source=source)
         if self.model == DEM:
             if dem is None:
                 raise InputError(f"its detections were placed on {self.describe()}: give that DEM ({dem_field}, "

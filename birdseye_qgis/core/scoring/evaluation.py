@@ -56,18 +56,27 @@ class Flight:
 
     ``view_mask`` (G,): for detections found on a raster (``ground`` RASTER, :func:`mosaic_flight`), the geotags
     in view (its valid pixels cover them) instead of the frames' test; for frame detections, the geotags the
-    frames' test may count (the others are left out: a comparison with a mosaic over the same targets)."""
+    frames' test may count (the others are left out: a comparison with a mosaic over the same targets).
+    ``covers(lat, lon) -> (G,) bool``: for raster detections without ``view_mask``, which geotags the raster
+    covers (the plugin reads the raster the layer records)."""
 
     detections: Detections
     pose_groups: Sequence[FramePoses]
     name: str = ""
     ground: object = None
     view_mask: np.ndarray | None = None
+    covers: object = None
 
     @property
     def seen_once(self) -> bool:
         """Whether each target can be detected once only (a raster: one image), not once per frame."""
         return self.detections.ground.model == RASTER
+
+
+def min_samples_for(detections: Detections, min_samples: int) -> int:
+    """DBSCAN's core test for ``detections``: ``min_samples``, or 1 for detections found on a raster — one image
+    shows a target once, so one detection is a whole target there."""
+    return 1 if detections.ground.model == RASTER else int(min_samples)
 
 
 def mosaic_flight(detections: Detections, pose_groups: Sequence[FramePoses], inside_raster, frames_in_view=None,
@@ -183,15 +192,16 @@ def evaluate_flights(flights: Sequence[Flight], geotags: Geotags, op: OperatingP
         det = flight.detections
         keep = np.ones(len(det), dtype=bool) if op.threshold is None else det.score >= op.threshold
         positions = det.ground_positions(local).subset(keep)
-        # A raster shows each target once: one detection is a whole cluster there (DBSCAN's core test at 1).
-        min_samples = 1 if flight.seen_once else op.min_samples
         clustering = cluster_detections(positions, det.frame_id[keep], det.score[keep], op.dedup_cm, op.eps_m,
-                                        min_samples, core_count=op.core_count)
+                                        min_samples_for(det, op.min_samples), core_count=op.core_count)
         if flight.seen_once:
-            if flight.view_mask is None:
+            if flight.view_mask is not None:
+                view = raster_view(flight.view_mask, len(geotag_local))
+            elif flight.covers is not None:
+                view = raster_view(flight.covers(geotags.lat, geotags.lon), len(geotag_local))
+            else:
                 raise InputError("detections found on a raster are scored over the geotags the raster covers: "
                                  "give the raster", source=det.name)
-            view = raster_view(flight.view_mask, len(geotag_local))
         else:
             view = in_view(flight.pose_groups, local, geotag_local, op.edge_buffer_px, flight.ground)
             if flight.view_mask is not None:
