@@ -148,16 +148,18 @@ def _resampled_window(read: ReadWindow, grid: RasterGrid, s: float, x0: int, y0:
     r0 = int(np.floor((y0 + 0.5) / s - 0.5)) - 1
     c1 = int(np.ceil((x0 + w - 0.5) / s - 0.5)) + 2
     r1 = int(np.ceil((y0 + h - 0.5) / s - 0.5)) + 2
+    # Reduce by whole factors k with area averaging first (no aliasing), then warp the rest bilinearly; the block
+    # is read a whole number of k wide and high, so the reduction drops none of it.
+    k = max(1, int(np.floor(1.0 / s)))
+    c1, r1 = c0 + -(-(c1 - c0) // k) * k, r0 + -(-(r1 - r0) // k) * k
     planes, valid = read(c0, r0, c1 - c0, r1 - r0)
     rgb = to_8bit(planes, value_range)
     bgr = np.ascontiguousarray(np.stack([rgb[2], rgb[1], rgb[0]], axis=-1))
     valid8 = valid.astype(np.uint8) * 255
-    # Reduce by whole factors with area averaging first (no aliasing), then warp the rest bilinearly.
-    k = max(1, int(np.floor(1.0 / s)))
     if k > 1:
-        hh, ww = bgr.shape[0] // k * k, bgr.shape[1] // k * k
-        bgr = cv2.resize(bgr[:hh, :ww], (ww // k, hh // k), interpolation=cv2.INTER_AREA)
-        valid8 = cv2.resize(valid8[:hh, :ww], (ww // k, hh // k), interpolation=cv2.INTER_AREA)
+        size = ((c1 - c0) // k, (r1 - r0) // k)
+        bgr = cv2.resize(bgr, size, interpolation=cv2.INTER_AREA)
+        valid8 = cv2.resize(valid8, size, interpolation=cv2.INTER_AREA)
     # dst pixel (u', v') of the window → raster pixel u = (u' + x0 + 0.5)/s − 0.5 → block pixel u − c0 →
     # reduced pixel (u − c0 + 0.5)/k − 0.5.
     a = 1.0 / (s * k)

@@ -187,3 +187,14 @@ def test_a_deepness_segmentor_whose_names_contradict_its_output_is_refused(tmp_p
     path = deepness_segmentor(tmp_path / "seg.onnx", class_names={"0": "a", "1": "b", "2": "c"})
     with pytest.raises(InputError, match=r"(?s)seg.onnx: .*names 3 classes for 2 output channel"):
         HeatmapModel(path)
+
+
+def test_a_target_at_the_far_edge_of_a_much_finer_raster_is_found(tmp_path):
+    """At 0.3 cm/px a model pixel is 3.3 raster pixels: the raster is reduced 3× first. Targets 3.5 cm from
+    the right and bottom edges (a model pixel or so inside the last window's reach) are found where they are."""
+    model = HeatmapModel(conv_model(tmp_path / "m.onnx", tile=32, threshold=0.3))
+    width, height = 1000, 700
+    targets = [(width - 12.0, 300.0), (400.0, height - 12.0), (width - 12.0, height - 12.0)]
+    raster = ArrayRaster(gaussian_image(width, height, targets, sigma=10.0))
+    found = detect_raster(model, grid_of(width, height, 0.3), raster, window_tiles=3)
+    found_once_each(found, targets, tol=1.0)
