@@ -106,8 +106,7 @@ class ClusterDetections(ClusteringParametersMixin, DemParametersMixin, BirdsEyeA
         matched = [""] * n
         hit = np.zeros(n, dtype=bool)
         if geotags is not None and len(geotags):
-            h = np.where(np.isfinite(geotags.height), geotags.height, local.h0)
-            g_local = local.from_geodetic(geotags.lat, geotags.lon, h)
+            g_local = geotags.in_local(local)
             if on_raster:
                 visible = self.run_core(covered_geotags, det.ground.dem_source, geotags.lat, geotags.lon,
                                         context.transformContext())

@@ -292,8 +292,7 @@ class ScreenCheckpoints(ClusteringParametersMixin, DemParametersMixin, BirdsEyeA
             images = [[records[i].get("image") or "" for i in idx] for _, idx in grouped]
             flights.append((layer.name(), groups, images, [r["frame_id"] for r in records]))
         local = self.run_core(local_frame_for, [p for _, groups, _, _ in flights for p in groups], geotags)
-        h = np.where(np.isfinite(geotags.height), geotags.height, local.h0)
-        g_local = local.from_geodetic(geotags.lat, geotags.lon, h)
+        g_local = geotags.in_local(local)
         blocks = {flight: self._blocks(flight, groups, order, block_frames, local, geotags, g_local, op, ground)
                   for flight, groups, _, order in flights}
         return _ScreenSet(name, flights, local, blocks)

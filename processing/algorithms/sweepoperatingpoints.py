@@ -4,7 +4,6 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-import numpy as np
 from qgis.core import (
     QgsProcessingException,
     QgsProcessingOutputNumber,
@@ -158,8 +157,7 @@ class SweepOperatingPoints(ClusteringParametersMixin, DemParametersMixin, BirdsE
         flight_names = {key: name if names.count(name) == 1 else f"{name} ({key})"
                         for key, (name, *_) in flights.items()}
         local = self.run_core(local_frame_for, [p for _, groups, _, _ in flights.values() for p in groups], geotags)
-        h = np.where(np.isfinite(geotags.height), geotags.height, local.h0)
-        g_local = local.from_geodetic(geotags.lat, geotags.lon, h) if len(geotags) else np.empty((0, 3))
+        g_local = geotags.in_local(local)
         edge = self.parameterAsDouble(parameters, self.EDGE_BUFFER_PX, context)
         dem = self.read_dem(parameters, context, feedback=feedback)
         self.report_dem(feedback, dem)

@@ -227,6 +227,13 @@ class Geotags:
     def __len__(self) -> int:
         return len(self.lat)
 
+    def in_local(self, local) -> np.ndarray:
+        """The geotags in ``local`` (a :class:`..geometry.geodesy.LocalFrame`) as (G, 3) east, north, up; a
+        geotag without a height stands at the frame's own height (``local.h0``)."""
+        if not len(self):
+            return np.empty((0, 3))
+        return local.from_geodetic(self.lat, self.lon, np.where(np.isfinite(self.height), self.height, local.h0))
+
     #: The per-geotag arrays, in the order of the constructor.
     _COLUMNS = ("ids", "lat", "lon", "height", "labels", "provenance", "h_msl", "fix_quality", "source_row",
                 "h_acc", "v_acc", "time_utc")

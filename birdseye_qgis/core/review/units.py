@@ -223,8 +223,7 @@ def _geotags_in_view(local: LocalFrame, geotags: Geotags, pose_groups: Sequence[
     """Geotags in the local frame (G, 3) and which of them are in view of the flight (G,) on ``ground``."""
     if not len(geotags):
         return np.empty((0, 3)), np.zeros(0, bool)
-    g_local = local.from_geodetic(geotags.lat, geotags.lon,
-                                  np.where(np.isfinite(geotags.height), geotags.height, local.h0))
+    g_local = geotags.in_local(local)
     return g_local, in_view(pose_groups, local, g_local, edge_buffer_px, ground).mask
 
 

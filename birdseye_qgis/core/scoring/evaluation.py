@@ -170,9 +170,7 @@ def evaluate_flights(flights: Sequence[Flight], geotags: Geotags, op: OperatingP
     if not flights:
         raise InputError("give at least one detection layer")
     local = local or local_frame_for([p for f in flights for p in f.pose_groups], geotags)
-    geotag_local = local.from_geodetic(geotags.lat, geotags.lon,
-                                       np.where(np.isfinite(geotags.height), geotags.height, local.h0)) \
-        if len(geotags) else np.empty((0, 3))
+    geotag_local = geotags.in_local(local)
     unit_keys, unit_xy, added_local, notes = [], np.empty((0, 2)), np.empty((0, 3)), []
     if log is not None:
         unit_keys, ulat, ulon, unplaced = log.unit_positions()

@@ -14,7 +14,6 @@ from __future__ import annotations
 
 import time
 
-import numpy as np
 from qgis.core import (
     Qgis,
     QgsCoordinateReferenceSystem,
@@ -235,8 +234,7 @@ class ReviewDock(QgsDockWidget):
         self.session = ReviewSession(store, units, reviewer, inputs.digests, params)
         self.frames = FrameIndex(inputs.pose_groups, inputs.images, inputs.local, inputs.ground)
         g = inputs.geotags
-        self.geotag_local = inputs.local.from_geodetic(g.lat, g.lon, np.where(np.isfinite(g.height), g.height,
-                                                                             inputs.local.h0)) if len(g) else None
+        self.geotag_local = g.in_local(inputs.local) if len(g) else None
         self.geotag_labels = [str(i) for i in g.ids]
         self._flights = [Flight(layer.detections, inputs.pose_groups, layer.name, inputs.ground)
                          for layer in inputs.layers]
