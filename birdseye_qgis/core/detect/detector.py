@@ -218,26 +218,13 @@ def to_frame_pixels(uv_model: np.ndarray, frame_size: tuple[int, int], model_siz
 
 
 def normalise(image_bgr: np.ndarray, meta: ModelMetadata) -> np.ndarray:
-    """A BGR uint8 image (H, W, 3) as the model's input (3, H, W) float32: order, /255, mean, std."""
-    import cv2
-
-    planes = cv2.split(image_bgr)
-    if meta.input_channel_order == "RGB":
-        planes = planes[::-1]
-    std = np.asarray(meta.standardization_std, dtype=np.float32)
-    gain = 1.0 / (255.0 * std)
-    offset = -np.asarray(meta.standardization_mean, dtype=np.float32) / std
-    out = np.empty((3,) + image_bgr.shape[:2], dtype=np.float32)
-    for c in range(3):
-        out[c] = planes[c]
-        out[c] *= gain[c]
-        out[c] += offset[c]
-    return out
+    """A BGR uint8 image (H, W, 3) as the model's input (3, H, W) float32 (:func:`normalise_tiles` of one)."""
+    return normalise_tiles(np.asarray(image_bgr)[None], meta)[0]
 
 
 def normalise_tiles(tiles_bgr: np.ndarray, meta: ModelMetadata) -> np.ndarray:
-    """BGR uint8 tiles (N, T, T, 3) as the model's input (N, 3, T, T) float32: :func:`normalise`'s arithmetic,
-    tile by tile."""
+    """BGR uint8 tiles (N, T, T, 3) as the model's input (N, 3, T, T) float32: channel order, /255, mean,
+    std."""
     order = (2, 1, 0) if meta.input_channel_order == "RGB" else (0, 1, 2)
     std = np.asarray(meta.standardization_std, dtype=np.float32)
     gain = (1.0 / (255.0 * std)).astype(np.float32)
