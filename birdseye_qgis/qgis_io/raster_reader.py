@@ -143,22 +143,20 @@ class ProviderWindows:
 
 
 def covered_geotags(source: str, lat, lon, transform_context) -> np.ndarray:
-    """Which points (WGS84 ``lat``, ``lon``) lie on valid pixels of the raster at ``source`` (inside it, not at
-    a band's no-data value, not transparent): the geotags a mosaic could show. The raster is the one raster
-    detections record (``dem_source``); gone or unreadable, it is refused, naming it."""
+    """Which points (WGS84 ``lat``, ``lon``) lie on valid pixels of the raster at ``source`` — inside it and
+    valid as :class:`ProviderWindows` reads them (band 1's no-data value, an alpha band): the geotags a mosaic
+    could show. The raster is the one raster detections record (``dem_source``); gone or unreadable, it is
+    refused, naming it."""
     layer = QgsRasterLayer(source, "raster")
     if not layer.isValid():
         raise InputError("the raster these detections were found on cannot be opened (moved or deleted?): "
                          "the geotags it covers are counted from it", source=source)
+    grid = raster_grid(layer)
+    read = ProviderWindows(layer, grid, [1])
     to_raster = QgsCoordinateTransform(QgsCoordinateReferenceSystem("EPSG:4326"), layer.crs(), transform_context)
-    provider = layer.dataProvider()
-    alpha = [b for b in range(1, provider.bandCount() + 1) if provider.colorInterpretationName(b) == "Alpha"]
-    extent = layer.extent()
     out = np.zeros(len(lat), dtype=bool)
     for k, (la, lo) in enumerate(zip(lat, lon)):
         point = to_raster.transform(QgsPointXY(float(lo), float(la)))
-        if not extent.contains(point):
-            continue
-        value, ok = provider.sample(point, 1)
-        out[k] = bool(ok) and all(provider.sample(point, b)[0] > 0 for b in alpha)
+        col, row = (int(np.floor(v + 0.5)) for v in grid.to_pixel(point.x(), point.y()))
+        out[k] = bool(read(col, row, 1, 1)[1][0, 0])  # outside the raster: invalid
     return out
