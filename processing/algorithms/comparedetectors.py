@@ -99,8 +99,8 @@ class CompareDetectors(ClusteringParametersMixin, DemParametersMixin, BirdsEyeAl
         # in-view test of both then uses — or one was found on the flight's orthomosaic (frames or mosaic).
         on_raster = [d for d in (old, new) if d.ground.model == RASTER]
         on_frames = [d for d in (old, new) if d.ground.model != RASTER]
-        self.run_core(common_ground, [d.ground for d in on_frames] or [on_raster[0].ground],
-                      [d.name for d in on_frames] or [on_raster[0].name])
+        one_ground = on_frames or on_raster  # two raster layers must come from one raster
+        self.run_core(common_ground, [d.ground for d in one_ground], [d.name for d in one_ground])
         dem = self.read_dem(parameters, context, sources[self.FRAMES], feedback)
         self.report_dem(feedback, dem)
         ground = self.recorded_ground(on_frames[0], dem, feedback) if on_frames else None

@@ -23,7 +23,7 @@ import numpy as np
 
 from ..errors import InputError
 from ..field.geotags import Geotags
-from ..geometry.ground_record import RASTER, GroundRecord, common_ground
+from ..geometry.ground_record import RASTER, common_ground
 from ..geometry.poses import FramePoses
 from .evaluation import Detections, Evaluation, Flight, evaluate_flights, local_frame_for, mosaic_flight
 from .matching import in_view, match_to_clusters
@@ -154,18 +154,6 @@ class Comparison:
                                              "the other"}}
 
 
-#: The ground of two raster layers compared with each other (two models on one mosaic): one ground.
-RASTER_RECORD = GroundRecord(RASTER)
-
-
-def _geotags_local(local, geotags: Geotags) -> np.ndarray:
-    """The geotags in ``local`` (G, 3), a missing height at the frame's origin height."""
-    if not len(geotags):
-        return np.empty((0, 3))
-    return local.from_geodetic(geotags.lat, geotags.lon, np.where(np.isfinite(geotags.height), geotags.height,
-                                                                  local.h0))
-
-
 def _seen_by_frames(mosaic: Detections, pose_groups, local, op: OperatingPoint, ground) -> Detections:
     """The mosaic's detections on ground the frames see: beyond it the frames could find nothing, and a
     cluster there would count against the mosaic as a false one (no geotag in view matches it)."""
@@ -196,10 +184,10 @@ def compare_detectors(old: Detections, new: Detections, pose_groups: Sequence[Fr
         if inside_raster is None:
             raise InputError("a layer of detections found on a raster is scored over the geotags the raster "
                              "covers: give that raster", source=(old, new)[on_raster.index(True)].name)
-        frames_layers = [d for d, r in zip((old, new), on_raster) if not r]
-        common_ground([d.ground for d in frames_layers] or [RASTER_RECORD], [d.name for d in frames_layers] or [""])
-        geotag_local = _geotags_local(local, geotags)
-        frames_view = in_view(pose_groups, local, geotag_local, op.edge_buffer_px, ground).mask
+        # The frames' layer's ground is the in-view test's; two raster layers must come from one raster.
+        one_ground = [d for d, r in zip((old, new), on_raster) if not r] or [old, new]
+        common_ground([d.ground for d in one_ground], [d.name for d in one_ground])
+        frames_view = in_view(pose_groups, local, geotags.in_local(local), op.edge_buffer_px, ground).mask
         flights = [mosaic_flight(_seen_by_frames(d, pose_groups, local, op, ground), pose_groups, inside_raster,
                                  frames_view) if r
                    else Flight(d, pose_groups, d.name, ground, np.asarray(inside_raster, dtype=bool))
@@ -212,7 +200,7 @@ def compare_detectors(old: Detections, new: Detections, pose_groups: Sequence[Fr
 
     before = evaluate_flights([flights[0]], geotags, op, log, local, half(0.0), is_canceled)
     after = evaluate_flights([flights[1]], geotags, op, log, local, half(0.5), is_canceled)
-    geotag_xy = _geotags_local(local, geotags)[:, :2]
+    geotag_xy = geotags.in_local(local)[:, :2]
     changes = classify_changes(before.flights[0], after.flights[0], before.flights[0].in_view.mask, geotag_xy,
                                op.eps_pred_m)
     return Comparison(before, after, changes, (old, new))
