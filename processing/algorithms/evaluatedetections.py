@@ -63,7 +63,7 @@ class EvaluateDetections(ClusteringParametersMixin, DemParametersMixin, BirdsEye
         self.addParameter(source_parameter(
             self.GEOTAGS, self.tr("Geotags"), layer_kinds.GEOTAGS, [SOURCE_VECTOR_POINT]))
         self.addParameter(QgsProcessingParameterMultipleLayers(
-            self.FRAMES, self.tr("Frame layers (one per flight, same order)"), SOURCE_VECTOR))
+            self.FRAMES, self.tr("Frame layers (one per flight, same order)"), SOURCE_VECTOR, optional=True))
         self.add_clustering_parameters()
         self.add_dem_parameters()
         self.addParameter(vector_parameter(

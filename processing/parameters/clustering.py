@@ -92,24 +92,36 @@ class ClusteringParametersMixin:
                      ground_for=None):
         """Detection layers paired in order with frame layers (one flight each) as core Flights, each on the
         ground ``ground_for(detections)`` gives (a ground-model factory; without ``ground_for``, the level
-        plane)."""
+        plane). A layer found on a raster needs no frame layer (its raster says which geotags are in view), so
+        the frame layers pair either with every detection layer or with those found on frames alone."""
         det_layers = self.parameterAsLayerList(parameters, detections_name, context)
         frame_layers = self.parameterAsLayerList(parameters, frames_name, context)
         if not det_layers:
             raise QgsProcessingException(self.tr("{name}: give at least one detection layer.").format(
                 name=detections_name))
-        if len(frame_layers) != len(det_layers):
-            raise QgsProcessingException(self.tr(
-                "{name}: give one frame layer per detection layer, in the same order (got {detections} "
-                "detection layer(s) and {frames} frame layer(s)).").format(
-                name=frames_name, detections=len(det_layers), frames=len(frame_layers)))
-        flights = []
-        for det_layer, frame_layer in zip(det_layers, frame_layers):
+        read = []
+        for det_layer in det_layers:
             det, dropped = self.run_core(read_detections, det_layer, context, det_layer.name())
             if dropped:
                 feedback.pushWarning(self.tr("{layer}: {n} detection(s) without a position or score left out").format(
                     layer=det_layer.name(), n=dropped))
-            groups = self.run_core(read_pose_groups, frame_layer, frame_layer.name())[0]
+            read.append((det_layer, det))
+        on_frames = [det.ground.model != RASTER for _, det in read]
+        if len(frame_layers) == len(det_layers):
+            paired = list(frame_layers)
+        elif len(frame_layers) == sum(on_frames):
+            remaining = iter(frame_layers)
+            paired = [next(remaining) if needed else None for needed in on_frames]
+        else:
+            raise QgsProcessingException(self.tr(
+                "{name}: give one frame layer per detection layer found on frames, in the same order (got "
+                "{detections} detection layer(s), {on_frames} of them found on frames, and {frames} frame "
+                "layer(s)); a layer found on a raster needs none.").format(
+                name=frames_name, detections=len(det_layers), on_frames=sum(on_frames), frames=len(frame_layers)))
+        flights = []
+        for (det_layer, det), frame_layer in zip(read, paired):
+            groups = [] if frame_layer is None else self.run_core(read_pose_groups, frame_layer,
+                                                                  frame_layer.name())[0]
             if det.ground.model == RASTER:  # found on a raster: the geotags in view are those it covers
                 covers = partial(covered_geotags, det.ground.dem_source, transform_context=context.transformContext())
                 flights.append(Flight(det, groups, det_layer.name(), covers=covers))

@@ -178,3 +178,8 @@ def test_cluster_and_evaluate_count_the_geotags_the_raster_covers(rgba_ortho, tm
         "DETECTIONS": [detections_path], "GEOTAGS": geotags, "FRAMES": [frame_layer()],
         "OUTPUT_JSON": str(tmp_path / "e.json")})
     assert (scores["N_IN_VIEW"], scores["N_RECOVERED"], scores["N_CLUSTERS"], scores["N_HIT_CLUSTERS"]) == (5, 5, 5, 5)
+    # An orthomosaic user has no frame layer: the raster alone says which geotags are in view.
+    mosaic_only = processing.run("birdseye:evaluatedetections", {
+        "DETECTIONS": [detections_path], "GEOTAGS": geotags, "OUTPUT_JSON": str(tmp_path / "m.json")})
+    assert {k: mosaic_only[k] for k in ("N_IN_VIEW", "N_RECOVERED", "N_CLUSTERS", "N_HIT_CLUSTERS")} == \
+        {k: scores[k] for k in ("N_IN_VIEW", "N_RECOVERED", "N_CLUSTERS", "N_HIT_CLUSTERS")}

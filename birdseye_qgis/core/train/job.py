@@ -15,6 +15,7 @@ figures). Every file is written under a temporary name and renamed.
 """
 from __future__ import annotations
 
+import copy
 import csv
 import json
 import os
@@ -232,6 +233,16 @@ def run_job(job: TrainJob, emit: Callable[[dict], None] = lambda event: None,
                 + (f"; {len(frozen)} batch norms keep their statistics frozen" if frozen else ""))
     net = net.to(dev)
     n_params = int(sum(p.numel() for p in net.parameters()))
+    start_ground = start_state = None
+    if job.init and flights:  # the model it starts from, on the same held-out ground: what fine-tuning must keep
+        emit({"type": "progress", "stage": "scoring the starting model on the ground", "fraction": 0.01})
+        try:
+            start_ground = score_on_ground(net, meta, job.producer, flights, should_stop, emit, 0.01, 0.01)
+            start_state = copy.deepcopy(net.state_dict())
+        except Cancelled:
+            return _stopped(job, emit, None)
+        except InputError:  # said once, after training, when the fine-tuned model cannot be scored either
+            start_ground = None
     checkpoints = {"n": 0}
 
     def checkpoint(stage: str, step: int) -> None:
@@ -269,6 +280,14 @@ def run_job(job: TrainJob, emit: Callable[[dict], None] = lambda event: None,
             text = f"the held-out frames could not be scored on the ground ({exc})"
             warnings.append(text)
             warn(emit, text)
+    text = start_kept_reason(job, ground, start_ground)
+    start_kept = text is not None
+    if start_kept:
+        net.load_state_dict(start_state)
+        ground = start_ground
+        figures = recipe.validation_figures(net, val, meta) if figures is not None else None
+        warnings.append(text)
+        warn(emit, text)
     threshold, threshold_rule, validated_on = choose_threshold(job, plan, figures, ground)
     text = threshold_warning(job, plan, figures, ground, flights, validated_on)
     if text:
@@ -286,7 +305,8 @@ def run_job(job: TrainJob, emit: Callable[[dict], None] = lambda event: None,
         "checkpoint": None, "card": str(job.card_path), "plot": None, "report": str(job.report_path),
         "device": str(dev), "torch": torch.__version__, "threads": threads, "parameters": n_params,
         "threshold": threshold, "threshold_rule": threshold_rule, "validated_on": validated_on,
-        "split": plan.info, "ground_validation": ground, "warnings": warnings, "data": data, "validation": figures,
+        "split": plan.info, "ground_validation": ground, "starting_model_kept": start_kept,
+        "starting_model_ground": start_ground, "warnings": warnings, "data": data, "validation": figures,
         "history": history, "settings": _settings(job, preset, encoder_start),
         "metadata": {k: json.loads(v) for k, v in meta.to_props().items()},
         "seconds": {"train": history["train_seconds"], "total": round(time.perf_counter() - t_start, 1)},
@@ -378,10 +398,11 @@ def split_job(job: TrainJob, tiles: recipe.TileSet):
     return plan, train, val, flights
 
 
-def score_on_ground(net, meta, producer: str, flights, should_stop, emit) -> dict:
+def score_on_ground(net, meta, producer: str, flights, should_stop, emit, start: float = 0.935,
+                    span: float = 0.02) -> dict:
     """:func:`.ground_validation.ground_figures` of the network exported as the model will be (a temporary
-    ONNX file through :func:`.recipe.export_onnx`). A training Python without what Detect needs raises
-    :class:`InputError` saying what to install."""
+    ONNX file through :func:`.recipe.export_onnx`), its progress reported from ``start`` over ``span`` of the
+    job. A training Python without what Detect needs raises :class:`InputError` saying what to install."""
     import importlib.util
 
     missing = [name for name in ("onnxruntime", "scipy") if importlib.util.find_spec(name) is None]
@@ -393,7 +414,31 @@ def score_on_ground(net, meta, producer: str, flights, should_stop, emit) -> dic
         return ground_validation.ground_figures(
             model, flights, is_canceled=should_stop,
             progress=lambda f: emit({"type": "progress", "stage": "validating on the ground",
-                                     "fraction": round(0.935 + 0.02 * f, 4)}))
+                                     "fraction": round(start + span * f, 4)}))
+
+
+def best_ground_f1(ground: dict | None) -> float | None:
+    """The best F1 of recall and GMCF over the thresholds of ground figures; None without held-out targets."""
+    if not ground or not ground.get("targets"):
+        return None
+    return max(row["f1"] for row in ground["by_threshold"].values())
+
+
+def start_kept_reason(job: TrainJob, ground: dict | None, start_ground: dict | None) -> str | None:
+    """Why the weights INIT started from are kept instead of the fine-tuned ones, or None to keep the
+    fine-tuned ones. Both models are scored on the same held-out frames against the same targets; the
+    fine-tuned model is kept unless its best F1 there is lower (a tie keeps it). So a round of the review loop
+    never hands on a model that finds fewer of the held-out targets, or buries them in more false clusters,
+    than the one before — provided the starting model never trained on these frames (its own model card lists
+    the folders it trained on)."""
+    new, old = best_ground_f1(ground), best_ground_f1(start_ground)
+    if new is None or old is None or new >= old:
+        return None
+    return (f"the fine-tuned model's best F1 on the held-out ground ({new:.3f}) is below that of the model it "
+            f"started from ({old:.3f}, {job.init}): the starting weights are kept, with their ground figures and "
+            "threshold. Fine-tuning did not pay on these held-out frames; review more clusters (hard negatives, "
+            "confirmed targets) before the next round. If the starting model was trained on these frames, its "
+            "figures flatter it: hold out other flights, or train without INIT.")
 
 
 #: The threshold rule: the same tie rule (:func:`.recipe.best_threshold`) on whichever figures were measured.

@@ -160,3 +160,38 @@ def test_a_tile_holds_the_centres_within_its_pixels_squares():
     assert recipe.tile_holds_centre("9_0_96.png", (96, 96), {"9": np.array([[150.0, 95.49]])})
     assert not recipe.tile_holds_centre("6_0_96.png", (96, 96), centres), "a frame without labels"
     assert recipe.tile_holds_centre("a_b_0_0.png", (10, 10), {"a_b": np.array([[3.0, 3.0]])}), "'_' in frame ids"
+
+
+def ground_with_best_f1(f1: float, targets: int = 10) -> dict:
+    """Ground figures (the shape ground_figures returns) whose best F1 over the thresholds is ``f1``."""
+    rows = {t: {"recall": f1 * s, "gmcf": f1 * s, "f1": round(f1 * s, 6), "clusters": 5, "detections": 9}
+            for t, s in ((0.2, 0.9), (0.35, 1.0), (0.5, 0.8))}
+    return {"frames": 4, "frames_skipped": 0, "targets": targets, "by_threshold": rows}
+
+
+@pytest.mark.parametrize("start_f1, tuned_f1, kept", [(0.8, 0.6, True), (0.6, 0.8, False), (0.7, 0.7, False)])
+def test_fine_tuning_that_scores_lower_on_the_held_out_ground_keeps_the_starting_weights(
+        tmp_path, monkeypatch, start_f1, tuned_f1, kept):
+    """Both models are scored on the same held-out ground (the first call scores INIT before training, the
+    second the fine-tuned network); the .pt and the ONNX model hold INIT's weights exactly when the fine-tuned
+    best F1 is lower, and the card says why."""
+    from birdseye.birdseye_qgis.core.train import job as job_module
+
+    first = make_label_folder(tmp_path / "first", n_frames=3, seed=0)
+    a = short_job(first, tmp_path / "a.onnx")
+    split = job_module.split_job
+    monkeypatch.setattr(job_module, "split_job", lambda job, tiles: (*split(job, tiles)[:3], ["held-out flight"]))
+    scores = iter([ground_with_best_f1(start_f1), ground_with_best_f1(tuned_f1)])
+    monkeypatch.setattr(job_module, "score_on_ground", lambda *args, **kw: next(scores))
+    events = []
+    job = TrainJob(sources=[Source(str(first), gsd_default=1.0)], out=str(tmp_path / "b.onnx"), steps=3, batch=4,
+                   val_fraction=0.0, threads=2, init=a["weights"])
+    b = run_job(job, events.append)
+
+    start, final = load_checkpoint(a["weights"])["state_dict"], load_checkpoint(b["weights"])["state_dict"]
+    same = all(torch.equal(start[k], final[k]) for k in start)
+    assert same is kept and b["starting_model_kept"] is kept
+    assert b["ground_validation"]["by_threshold"][0.35]["f1"] == (start_f1 if kept else tuned_f1)
+    warned = [e["text"] for e in events if e.get("level") == "warning" and "started from" in e["text"]]
+    card = Path(b["card"]).read_text(encoding="utf-8")
+    assert bool(warned) is kept and ("the starting weights are kept" in card) is kept
