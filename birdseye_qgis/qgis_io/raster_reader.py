@@ -6,6 +6,8 @@ window, clipped to the raster, and pads the rest as invalid.
 """
 from __future__ import annotations
 
+from contextlib import contextmanager
+
 import numpy as np
 from qgis.core import (
     QgsCoordinateReferenceSystem,
@@ -24,6 +26,27 @@ from ..qgis_enums import DISTANCE_METERS
 #: numpy types of QGIS's raster data types (``Qgis.DataType``'s values, the same in QGIS 3.22 to 3.44).
 _NUMPY_TYPES = {1: np.uint8, 2: np.uint16, 3: np.int16, 4: np.uint32, 5: np.int32, 6: np.float32, 7: np.float64,
                 14: np.int8}
+
+#: GDAL's block cache (MB) while a raster is read window by window: each block is read once, so a larger cache
+#: only grows (GDAL's default, 5 % of the RAM, made most of the peak memory on a 20,000 × 20,000 px raster).
+WINDOWED_READ_CACHE_MB = 256
+
+
+@contextmanager
+def bounded_block_cache(limit_mb: int = WINDOWED_READ_CACHE_MB):
+    """Hold GDAL's block cache (process-wide) to at most ``limit_mb`` while the block runs, then restore it; a
+    smaller cache is left as it is."""
+    from osgeo import gdal
+
+    before = gdal.GetCacheMax()
+    limit = int(limit_mb) * 1024 * 1024
+    if before > limit:
+        gdal.SetCacheMax(limit)
+    try:
+        yield
+    finally:
+        if before > limit:
+            gdal.SetCacheMax(before)
 
 
 def raster_grid(layer) -> RasterGrid:

@@ -27,7 +27,7 @@ from ...birdseye_qgis.qgis_enums import (
 )
 from ...birdseye_qgis.qgis_io import layer_kinds, layers
 from ...birdseye_qgis.qgis_io.detections import DETECTION_FIELDS
-from ...birdseye_qgis.qgis_io.raster_reader import ProviderWindows, raster_grid
+from ...birdseye_qgis.qgis_io.raster_reader import ProviderWindows, bounded_block_cache, raster_grid
 from ..parameters.layer_parameters import source_parameter
 from ..parameters.model import ModelParametersMixin
 from ..parameters.raster_bands import RasterBandsParametersMixin
@@ -82,9 +82,10 @@ class DetectRaster(ModelParametersMixin, RasterBandsParametersMixin, BirdsEyeAlg
                                          "fewer detections.").format(gsd=grid.gsd_cm, resolution=meta.resolution_cm))
         progress, is_canceled = self.progress_callbacks(feedback, 0.0, 95.0)
         window_needed, keep = (None, None) if area is None else self._area_tests(area)
-        found = self.run_core(detect_raster, model, grid, ProviderWindows(layer, grid, bands), threshold,
-                              value_range, window_needed=window_needed, keep=keep, progress=progress,
-                              is_canceled=is_canceled)
+        with bounded_block_cache():
+            found = self.run_core(detect_raster, model, grid, ProviderWindows(layer, grid, bands), threshold,
+                                  value_range, window_needed=window_needed, keep=keep, progress=progress,
+                                  is_canceled=is_canceled)
         fields = layers.qgs_fields(DETECTION_FIELDS)
         sink, dest_id = self.parameterAsSink(parameters, self.OUTPUT, context, fields, WKB_POINT_Z, layer.crs())
         if sink is None:

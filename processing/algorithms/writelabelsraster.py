@@ -15,7 +15,7 @@ from ...birdseye_qgis.core.geometry.geodesy import ProjectedCRS
 from ...birdseye_qgis.core.labels.raster_labels import RasterLabelRequest, write_raster_labels
 from ...birdseye_qgis.qgis_enums import NUMBER_DOUBLE, NUMBER_INTEGER, SOURCE_VECTOR_POINT
 from ...birdseye_qgis.qgis_io import layer_kinds, layers
-from ...birdseye_qgis.qgis_io.raster_reader import ProviderWindows, raster_grid
+from ...birdseye_qgis.qgis_io.raster_reader import ProviderWindows, bounded_block_cache, raster_grid
 from ..parameters.layer_parameters import source_parameter
 from ..parameters.raster_bands import RasterBandsParametersMixin
 from ..parameters.review import ReviewParametersMixin
@@ -102,12 +102,13 @@ class WriteLabelsRaster(ReviewParametersMixin, RasterBandsParametersMixin, Surve
                                          "the survey.").format(px=sigma_px))
         out_dir = self.parameterAsString(parameters, self.OUTPUT_FOLDER, context)
         progress, is_canceled = self.progress_callbacks(feedback, 20.0 if reviewed is not None else 0.0, 100.0)
-        summary = self.run_core(
-            write_raster_labels, out_dir, grid, ProviderWindows(layer, grid, bands), geotags, x, y, request,
-            value_range, area, crs.to_geodetic, {"source": layer.source(), "crs": layer.crs().authid()},
-            hard_negatives=crs.from_geodetic(hard.lat, hard.lon) if len(hard) else None,
-            unresolved=crs.from_geodetic(unresolved.lat, unresolved.lon) if len(unresolved) else None,
-            progress=progress, is_canceled=is_canceled)
+        with bounded_block_cache():
+            summary = self.run_core(
+                write_raster_labels, out_dir, grid, ProviderWindows(layer, grid, bands), geotags, x, y, request,
+                value_range, area, crs.to_geodetic, {"source": layer.source(), "crs": layer.crs().authid()},
+                hard_negatives=crs.from_geodetic(hard.lat, hard.lon) if len(hard) else None,
+                unresolved=crs.from_geodetic(unresolved.lat, unresolved.lon) if len(unresolved) else None,
+                progress=progress, is_canceled=is_canceled)
         tiles = summary["tiles"]
         not_labelled = summary["geotags_outside_raster"] + summary["geotags_on_nodata"]
         feedback.pushInfo(self.tr(

@@ -183,3 +183,26 @@ def test_cluster_and_evaluate_count_the_geotags_the_raster_covers(rgba_ortho, tm
         "DETECTIONS": [detections_path], "GEOTAGS": geotags, "OUTPUT_JSON": str(tmp_path / "m.json")})
     assert {k: mosaic_only[k] for k in ("N_IN_VIEW", "N_RECOVERED", "N_CLUSTERS", "N_HIT_CLUSTERS")} == \
         {k: scores[k] for k in ("N_IN_VIEW", "N_RECOVERED", "N_CLUSTERS", "N_HIT_CLUSTERS")}
+
+
+def test_a_windowed_read_holds_gdals_block_cache_and_gives_it_back():
+    """Each block is read once, so the cache is held small while reading (its default, 5 % of the RAM, was most
+    of the peak memory on a 20,000 × 20,000 px raster), and a smaller cache than the bound is left alone."""
+    from osgeo import gdal
+
+    from birdseye.birdseye_qgis.qgis_io.raster_reader import WINDOWED_READ_CACHE_MB, bounded_block_cache
+
+    before = gdal.GetCacheMax()
+    try:
+        gdal.SetCacheMax(4 * WINDOWED_READ_CACHE_MB * 1024 * 1024)
+        with bounded_block_cache():
+            assert gdal.GetCacheMax() == WINDOWED_READ_CACHE_MB * 1024 * 1024
+        assert gdal.GetCacheMax() == 4 * WINDOWED_READ_CACHE_MB * 1024 * 1024
+        gdal.SetCacheMax(64 * 1024 * 1024)
+        with bounded_block_cache():
+            assert gdal.GetCacheMax() == 64 * 1024 * 1024
+        with pytest.raises(RuntimeError), bounded_block_cache(1):
+            raise RuntimeError("a failed run gives the cache back too")
+        assert gdal.GetCacheMax() == 64 * 1024 * 1024
+    finally:
+        gdal.SetCacheMax(before)
