@@ -103,7 +103,7 @@ def read_detections(source, context, name: str | None = None) -> tuple[Detection
 
 def found_on_raster(layer) -> bool:
     """Whether a detection layer's detections were found on a raster (Detect targets on a raster), from its first
-    feature's ``ground``: the review, which cuts its chips from frames, does not take those."""
+    feature's ``ground``: the review dock needs no frame layer for those (it cuts their chips from the raster)."""
     if "ground" not in layer.fields().names():
         return False
     request = QgsFeatureRequest().setLimit(1).setSubsetOfAttributes(["ground"], layer.fields())

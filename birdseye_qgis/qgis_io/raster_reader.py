@@ -1,4 +1,4 @@
-"""A QGIS raster layer read window by window for :mod:`..core.detect.raster_detect`.
+"""A QGIS raster layer read window by window for :mod:`..core.detect.raster_detect` and the review's chips.
 
 Pixels are read through the layer's data provider (``QgsRasterDataProvider.block``) on the raster's own pixel
 grid — never resampled by the provider, never the whole band: each call reads the bands asked for over one
@@ -6,6 +6,7 @@ window, clipped to the raster, and pads the rest as invalid.
 """
 from __future__ import annotations
 
+import threading
 from contextlib import contextmanager
 
 import numpy as np
@@ -19,8 +20,9 @@ from qgis.core import (
     QgsUnitTypes,
 )
 
-from ..core.detect.raster_detect import RasterGrid
+from ..core.detect.raster_detect import RasterGrid, to_8bit
 from ..core.errors import InputError
+from ..core.review.chips import RasterIndex
 from ..qgis_enums import DISTANCE_METERS
 
 #: numpy types of QGIS's raster data types (``Qgis.DataType``'s values, the same in QGIS 3.22 to 3.44).
@@ -165,21 +167,76 @@ class ProviderWindows:
         return planes, valid
 
 
+def _found_on(source: str, why: str):
+    """The raster layer raster detections record (``dem_source``); gone or unreadable, it is refused, naming it."""
+    layer = QgsRasterLayer(source, "raster")
+    if not layer.isValid():
+        raise InputError(f"the raster these detections were found on cannot be opened (moved or deleted?): {why}",
+                         source=source)
+    return layer
+
+
+def _pixels_of(layer, grid: RasterGrid, lat, lon, transform_context) -> tuple[np.ndarray, np.ndarray]:
+    """Raster pixels (col, row; pixel-centre convention, fractional) of WGS84 points ``lat``, ``lon``."""
+    to_raster = QgsCoordinateTransform(QgsCoordinateReferenceSystem("EPSG:4326"), layer.crs(), transform_context)
+    points = [to_raster.transform(QgsPointXY(float(lo), float(la))) for la, lo in zip(lat, lon)]
+    return grid.to_pixel([p.x() for p in points], [p.y() for p in points])
+
+
 def covered_geotags(source: str, lat, lon, transform_context) -> np.ndarray:
     """Which points (WGS84 ``lat``, ``lon``) lie on valid pixels of the raster at ``source`` — inside it and
     valid as :class:`ProviderWindows` reads them (band 1's no-data value, an alpha band): the geotags a mosaic
     could show. The raster is the one raster detections record (``dem_source``); gone or unreadable, it is
     refused, naming it."""
-    layer = QgsRasterLayer(source, "raster")
-    if not layer.isValid():
-        raise InputError("the raster these detections were found on cannot be opened (moved or deleted?): "
-                         "the geotags it covers are counted from it", source=source)
+    layer = _found_on(source, "the geotags it covers are counted from it")
     grid = raster_grid(layer)
     read = ProviderWindows(layer, grid, [1])
-    to_raster = QgsCoordinateTransform(QgsCoordinateReferenceSystem("EPSG:4326"), layer.crs(), transform_context)
-    out = np.zeros(len(lat), dtype=bool)
-    for k, (la, lo) in enumerate(zip(lat, lon)):
-        point = to_raster.transform(QgsPointXY(float(lo), float(la)))
-        col, row = (int(np.floor(v + 0.5)) for v in grid.to_pixel(point.x(), point.y()))
-        out[k] = bool(read(col, row, 1, 1)[1][0, 0])  # outside the raster: invalid
+    cols, rows = _pixels_of(layer, grid, lat, lon, transform_context)
+    out = np.zeros(len(cols), dtype=bool)
+    for k, (c, r) in enumerate(zip(cols.tolist(), rows.tolist())):
+        out[k] = bool(read(int(np.floor(c + 0.5)), int(np.floor(r + 0.5)), 1, 1)[1][0, 0])  # outside: invalid
     return out
+
+
+#: What a chip shows where the raster has no valid pixel (no data, transparent, off the raster): the grey of
+#: an "image missing" chip, so it is not mistaken for dark ground.
+NO_DATA_BGR = (90, 90, 90)
+
+
+class RasterPixels:
+    """The raster detections were found on, as the review's chips read it: :meth:`to_pixel` places WGS84 points on
+    its pixels (main thread: it transforms coordinates), :meth:`index` is the chip planning's
+    :class:`..core.review.chips.RasterIndex`, and :meth:`window` reads one chip plan's window — that window alone,
+    through :class:`ProviderWindows` — as 8-bit BGR, the bands Detect targets on a raster reads by default (1, 2,
+    3, or band 1 for all three) mapped to 0..255 as it maps them (16-bit: the bands' 2–98 % cut)."""
+
+    def __init__(self, source: str, transform_context):
+        layer = _found_on(source, "the review's chips are cut from it")
+        self.source, self.grid = source, raster_grid(layer)
+        self._layer, self._context = layer, transform_context
+        bands = band_choice(layer, None)
+        self.value_range = statistics_value_range(layer, bands) if needs_value_range(layer, bands) else None
+        self._read = ProviderWindows(layer, self.grid, bands)
+        # The chip loader's two worker threads share this reader's provider, which reads one block at a time.
+        self._lock = threading.Lock()
+
+    def to_pixel(self, lat, lon) -> tuple[np.ndarray, np.ndarray]:
+        """The raster pixels (col, row) of WGS84 points (main thread only)."""
+        return _pixels_of(self._layer, self.grid, lat, lon, self._context)
+
+    def index(self, geotags) -> RasterIndex:
+        """The chip planning's view of the raster with ``geotags`` placed on its pixels (main thread only)."""
+        cols, rows = self.to_pixel(geotags.lat, geotags.lon)
+        return RasterIndex(self.source, self.grid.width, self.grid.height, np.column_stack([cols, rows]),
+                           [str(i) for i in geotags.ids])
+
+    def window(self, plan) -> np.ndarray:
+        """The pixels of ``plan.window`` (x0, y0, x1, y1 in raster pixels) as OpenCV reads an image: (h, w, 3)
+        uint8 BGR; invalid pixels :data:`NO_DATA_BGR`. Safe to call from worker threads."""
+        x0, y0, x1, y1 = plan.window
+        with self._lock:
+            planes, valid = self._read(x0, y0, x1 - x0, y1 - y0)
+        rgb = to_8bit(planes, self.value_range)
+        bgr = np.ascontiguousarray(np.transpose(rgb[::-1], (1, 2, 0)))
+        bgr[~valid] = NO_DATA_BGR
+        return bgr

@@ -21,8 +21,9 @@ class SavedReview:
 
 def save_review(project, detection_layers, frame_layer, geotag_layer, store_path: str, parameters: dict,
                 propagate: bool) -> None:
+    """Keep the review in ``project``; ``frame_layer`` None for detections found on a raster (they need none)."""
     project.writeEntry(PROJECT_SCOPE, "review/detections", [layer.id() for layer in detection_layers])
-    project.writeEntry(PROJECT_SCOPE, "review/frames", frame_layer.id())
+    project.writeEntry(PROJECT_SCOPE, "review/frames", frame_layer.id() if frame_layer is not None else "")
     project.writeEntry(PROJECT_SCOPE, "review/geotags", geotag_layer.id())
     project.writeEntry(PROJECT_SCOPE, "review/store", store_path)
     project.writeEntry(PROJECT_SCOPE, "review/parameters", json.dumps(parameters))
@@ -34,15 +35,17 @@ def save_propagate(project, propagate: bool) -> None:
 
 
 def saved_review(project) -> SavedReview | None:
-    """The review ``project`` was saved with, or None when it has none or one of its layers is gone."""
+    """The review ``project`` was saved with, or None when it has none or one of its layers is gone (a review of
+    detections found on a raster was saved without a frame layer: ``frame_layer`` None)."""
     ids, ok = project.readListEntry(PROJECT_SCOPE, "review/detections")
     if not ok or not ids:
         return None
     layers = [project.mapLayer(i) for i in ids]
-    frame_layer = project.mapLayer(project.readEntry(PROJECT_SCOPE, "review/frames")[0])
+    frame_id = project.readEntry(PROJECT_SCOPE, "review/frames")[0]
+    frame_layer = project.mapLayer(frame_id) if frame_id else None
     geotag_layer = project.mapLayer(project.readEntry(PROJECT_SCOPE, "review/geotags")[0])
     store = project.readEntry(PROJECT_SCOPE, "review/store")[0]
-    if None in layers or frame_layer is None or geotag_layer is None or not store:
+    if None in layers or (frame_id and frame_layer is None) or geotag_layer is None or not store:
         return None
     parameters = json.loads(project.readEntry(PROJECT_SCOPE, "review/parameters", "{}")[0] or "{}")
     propagate = project.readBoolEntry(PROJECT_SCOPE, "review/propagate", False)[0]

@@ -411,7 +411,11 @@ class ReviewInputs:
     """The layers of a review, read once: detection layers, frames (pose groups and image paths),
     geotags, the local frame of the scores, the content digests, and the ground-model factory the
     detections were placed with (None = the level plane). ``ground_fallback`` says why the review stands
-    on the level plane instead of the recorded DEM (empty when it stands on the recorded ground)."""
+    on the level plane instead of the recorded DEM (empty when it stands on the recorded ground).
+
+    A review of detections found on a raster has no frames (``pose_groups`` and ``images`` empty):
+    ``raster`` is the raster's file (empty for frame detections) and ``view_mask`` (G,) the geotags in view,
+    those the raster covers (:func:`.raster_reader.covered_geotags`, as Evaluate detections counts them)."""
 
     layers: list
     pose_groups: list
@@ -421,24 +425,35 @@ class ReviewInputs:
     digests: dict
     ground: object = None
     ground_fallback: str = ""
+    raster: str = ""
+    view_mask: object = None
+
+    def flights(self) -> list:
+        """Each reviewed layer as the :class:`..core.scoring.evaluation.Flight` Evaluate detections scores on the
+        same layers (the raster's in-view mask, or the frames on the review's ground)."""
+        from ..core.scoring.evaluation import Flight
+
+        return [Flight(layer.detections, self.pose_groups, layer.name, self.ground, self.view_mask)
+                for layer in self.layers]
 
 
 def read_review_inputs(detection_layers, frame_layer, geotag_layer) -> ReviewInputs:
     """Read the review's layers with the readers ``evaluatedetections`` uses, plus each detection's
-    (u, v). Raises :class:`InputError` naming the layer and what is wrong."""
+    (u, v). Frame detections need ``frame_layer``; detections found on one raster need none (it is not
+    read). Raises :class:`InputError` naming the layer and what is wrong — also for a review mixing
+    detections found on a raster with frame detections, or found on two rasters."""
     import numpy as np
     from qgis.core import QgsProcessingContext, QgsProject
 
+    from ..core.geometry.ground_record import RASTER
     from ..core.review.chips import review_local_frame
     from ..core.review.units import ReviewLayer
     from . import layers as layer_io
     from .detections import read_detections, read_pose_groups
+    from .raster_reader import covered_geotags
 
     if not detection_layers:
         raise InputError("choose at least one detection layer to review")
-    if frame_layer is None:
-        raise InputError("choose the frame layer of the flight (Import flight log, Import drone images or Import "
-                         "camera solution)")
     if geotag_layer is None:
         raise InputError("choose the geotag layer (the survey points)")
     names = [layer.name() for layer in detection_layers]
@@ -447,9 +462,19 @@ def read_review_inputs(detection_layers, frame_layer, geotag_layer) -> ReviewInp
                          "the verdict log can tell them apart")
     context = QgsProcessingContext()
     context.setProject(QgsProject.instance())
+    read = [read_detections(layer, context, layer.name())[0] for layer in detection_layers]
+    on_raster = [det.ground.model == RASTER for det in read]
+    if any(on_raster) and not all(on_raster):
+        raise InputError("a review is of frame detections (with their frame layer) or of detections found on one "
+                         "raster, not both: {raster} found on a raster, {frames} in frames. Review them "
+                         "separately".format(raster=", ".join(n for n, r in zip(names, on_raster) if r),
+                                             frames=", ".join(n for n, r in zip(names, on_raster) if not r)))
+    on_raster = all(on_raster)
+    if frame_layer is None and not on_raster:
+        raise InputError("choose the frame layer of the flight (Import flight log, Import drone images or Import "
+                         "camera solution)")
     review_layers = []
-    for layer in detection_layers:
-        det, _ = read_detections(layer, context, layer.name())
+    for layer, det in zip(detection_layers, read):
         if "u" not in layer.fields().names() or "v" not in layer.fields().names():
             raise InputError("has no fields u, v (the detection's pixel); make it with Detect targets",
                              source=layer.name())
@@ -460,14 +485,20 @@ def read_review_inputs(detection_layers, frame_layer, geotag_layer) -> ReviewInp
         u = np.array([np.nan if v is None else float(v) for v in values["u"]], dtype=float)[ok]
         v = np.array([np.nan if v is None else float(v) for v in values["v"]], dtype=float)[ok]
         review_layers.append(ReviewLayer(det, u, v))
+    record = common_ground([layer.detections.ground for layer in review_layers], names)   # also: one raster
+    geotags = layer_io.read_geotag_layer(geotag_layer, context.transformContext())
+    digests = {input_id("detections", layer.name()): layer_digest(layer, "detections") for layer in detection_layers}
+    digests[input_id("geotags", geotag_layer.name())] = layer_digest(geotag_layer, "geotags")
+    if on_raster:
+        # No frames: the local frame stands on the geotags (as Evaluate detections' does without frames) and the
+        # geotags in view are those the raster covers.
+        view_mask = covered_geotags(record.dem_source, geotags.lat, geotags.lon, context.transformContext())
+        return ReviewInputs(review_layers, [], [], geotags, review_local_frame([], geotags), digests,
+                            raster=record.dem_source, view_mask=view_mask)
     groups, records, with_index = read_pose_groups(frame_layer, frame_layer.name())
     images = [[records[i].get("image") or "" for i in idx] for _, idx in with_index]
-    geotags = layer_io.read_geotag_layer(geotag_layer, context.transformContext())
     local = review_local_frame(groups, geotags)
-    digests = {input_id("detections", layer.name()): layer_digest(layer, "detections") for layer in detection_layers}
     digests[input_id("frames", frame_layer.name())] = layer_digest(frame_layer, "frames")
-    digests[input_id("geotags", geotag_layer.name())] = layer_digest(geotag_layer, "geotags")
-    record = common_ground([layer.detections.ground for layer in review_layers], names)
     ground, fallback = review_ground(record, groups)
     return ReviewInputs(review_layers, groups, images, geotags, local, digests, ground, fallback)
 

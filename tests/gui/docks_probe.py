@@ -1,8 +1,9 @@
 """Run inside the QGIS desktop by tests/gui/test_docks_desktop.py (``qgis --code docks_probe.py``).
 
 Looks at every BirdsEye dock and dialog as a person meets them, on the demo project and a screen the size
-of the X server's (1366 × 768 or 1920 × 1080): the review dock as it opens (its settings unfolded too) and
-after Start — pressed with the layers it chose itself —, the sensor-bound calculator on its default
+of the X server's (1366 × 768 or 1920 × 1080): the review dock as it opens (its settings unfolded too), after
+Start — pressed with the layers it chose itself: the detections found on the held-out field's orthomosaic —
+and after Start on the flight's own detections, the sensor-bound calculator on its default
 platform and on the demo's calibration, and Install dependencies. For each it saves a screenshot to
 ``BIRDSEYE_DOCKS_SCREENSHOTS`` and records the cut-off widgets (``docks_layout.layout_problems``), the kind
 of every layer each layer choice stands on, and what QGIS's log said; the JSON report
@@ -18,6 +19,7 @@ import sys
 from functools import partial
 
 from qgis.core import QgsApplication, QgsProject
+from qgis.PyQt.QtCore import Qt
 from qgis.PyQt.QtGui import QGuiApplication
 from qgis.PyQt.QtWidgets import QApplication
 from qgis.utils import iface, plugins
@@ -31,7 +33,7 @@ PROJECT = os.environ["BIRDSEYE_DOCKS_PROJECT"]
 SCREENSHOTS = os.environ["BIRDSEYE_DOCKS_SCREENSHOTS"]
 RESULT_PATH = os.environ["BIRDSEYE_PROBE_RESULT"]
 result = {"errors": [], "timeouts": [], "screenshots": {}, "contents": {}, "problems": {}, "widths": {},
-          "choices": {}, "log": []}
+          "choices": {}, "log": [], "review_started": {}, "review_banner": {}, "review_chips": {}}
 QgsApplication.messageLog().messageReceived.connect(
     lambda message, tag, level: result["log"].append([tag, int(level), message]))
 # Every wait here is followed by a screenshot: 600 ms of painting after each, unless it says otherwise.
@@ -69,6 +71,32 @@ def review_choices(dock) -> dict:
             "files": [file_stem(layer) for layer in detections + [frames, geotags]]}
 
 
+def start_review(dock, name: str):
+    """Press Start and wait for the first unit's chips and the scores; records whether it started, what the
+    banner said and the layer choices it stood on (under ``name``)."""
+    dock.start_button.click()
+    started = dock.session is not None
+    result["review_started"][name] = started
+    result["review_banner"][name] = dock.banner.text() if dock.banner.isVisible() else ""
+    if started:
+        yield Wait(lambda: dock.current_key is not None and dock.chips_shown_for == dock.current_key, 30,
+                   f"review chips shown ({name})")
+        yield Wait(lambda: not dock._score_timer.isActive()
+                   and dock._shown_score_generation == dock._score_generation, 30, f"review scores ({name})")
+    yield canvas_idle()
+    result["choices"][f"review_{name}"] = review_choices(dock)
+
+
+def review_chip_report(dock) -> dict:
+    """What the current unit's chips are: how many, cut from which files, their windows, the error if any."""
+    if dock.session is None or dock.current_key not in dock.chip_loader.chips:
+        return {}
+    plans, images, n_frames, error = dock.chip_loader.chips[dock.current_key]
+    return {"n": len(plans), "images": [os.path.basename(p.image) for p in plans], "error": error,
+            "windows": [list(p.window) for p in plans], "shown": len(dock.chips.pixmaps),
+            "frames_enabled": dock.frames_combo.isEnabled()}
+
+
 # ------------------------------------------------------------------------------------------ the session
 def session():
     main_window = iface.mainWindow()
@@ -96,17 +124,22 @@ def session():
     for box in settings:
         box.setCollapsed(True)
 
-    # Start, as the user presses it, with the layers the dock chose.
-    review.start_button.click()
-    result["review_started"] = review.session is not None
-    result["review_banner"] = review.banner.text() if review.banner.isVisible() else ""
-    if result["review_started"]:
-        yield Wait(lambda: review.current_key is not None and review.chips_shown_for == review.current_key, 30,
-                   "review chips shown")
-        yield Wait(lambda: not review._score_timer.isActive()
-                   and review._shown_score_generation == review._score_generation, 30, "review scores")
-    yield canvas_idle()
-    result["choices"]["review_dock_started"] = review_choices(review)
+    # Start, as the user presses it, with the layers the dock chose: the most recent detections, the demo's found
+    # on the held-out field's orthomosaic, reviewed with chips cut from it.
+    yield from start_review(review, "raster")
+    result["review_chips"]["raster"] = review_chip_report(review)
+    look_at("review_dock_raster", review)
+    look_at("desktop_review_raster", main_window, check=False)
+
+    # The flight's own detections instead, ticked and unticked as clicks do (toggleItemCheckState: the combo's
+    # setItemCheckState tells no one): chips cut from its frames.
+    project, combo = QgsProject.instance(), review.detections_combo
+    for i in range(combo.count()):
+        wanted = file_stem(project.mapLayer(combo.itemData(i))) == "detections"
+        if (combo.itemCheckState(i) == Qt.CheckState.Checked) != wanted:
+            combo.toggleItemCheckState(i)
+    yield from start_review(review, "frames")
+    result["review_chips"]["frames"] = review_chip_report(review)
     look_at("review_dock_started", review)
     look_at("desktop_review", main_window, check=False)
     actions["ReviewDock"].trigger()

@@ -2,7 +2,8 @@
 
 QGIS runs under its own Xvfb at 1366 × 768 and at 1920 × 1080 with the small demo project open (a copy of the
 session's demo, conftest.py: Start writes the review's log into the demo's detections); ``docks_probe.py`` opens the
-review dock (as it opens, its settings unfolded, after Start with the layers it chose itself), the sensor-bound
+review dock (as it opens, its settings unfolded, after Start with the layers it chose itself — the detections found
+on the orthomosaic — and after Start on the flight's detections), the sensor-bound
 calculator (default platform, the demo's camera) and Install dependencies, and saves each to
 build/screenshots/docks/<size>/<name>.png. The tests fail on a horizontal scroll bar, a widget whose text is cut off
 (``docks_layout.py``), a layer choice standing on a layer of the wrong kind, or an error in QGIS's log. Set
@@ -21,8 +22,9 @@ PROBE = Path(__file__).with_name("docks_probe.py")
 SCREENSHOTS = REPO_ROOT / "build" / "screenshots" / "docks"
 SIZES = ("1366x768", "1920x1080")
 TIMEOUT_S = 150
-SHOTS = ("review_dock", "review_dock_settings", "review_dock_started", "desktop_review", "sensor_bound_dock",
-         "sensor_bound_dock_calibration", "desktop_sensor_bound", "dependencies_dialog")
+SHOTS = ("review_dock", "review_dock_settings", "review_dock_raster", "desktop_review_raster", "review_dock_started",
+         "desktop_review", "sensor_bound_dock", "sensor_bound_dock_calibration", "desktop_sensor_bound",
+         "dependencies_dialog")
 
 pytestmark = test_desktop.pytestmark  # slow, and skipped without Debian's qgis or Xvfb
 
@@ -60,15 +62,28 @@ def test_nothing_is_cut_off_and_nothing_scrolls_sideways(seen):
 
 def test_every_layer_choice_stands_on_a_layer_of_its_kind(seen):
     report = seen["report"]
-    for moment in ("review_dock", "review_dock_started"):
+    for moment in ("review_dock", "review_raster", "review_frames"):
         choices = report["choices"][moment]
         assert choices["detections"] == ["detections"], choices
         assert (choices["frames"], choices["geotags"]) == ("frames", "geotags"), choices
-    assert report["review_started"], report["review_banner"]
-    # On the demo: the held-out flight's layers, under its detections (newer frames of training flights exist).
-    assert report["choices"]["review_dock"]["files"] == ["detections", "frames_heldout", "geotags_heldout"]
+    assert report["review_started"] == {"raster": True, "frames": True}, report["review_banner"]
+    # On the demo: the most recent detections, those found on the held-out field's orthomosaic, with the held-out
+    # flight's layers (newer frames of training flights exist); the frames are not needed for them.
+    assert report["choices"]["review_dock"]["files"] == ["detections_mosaic", "frames_heldout", "geotags_heldout"]
     # The setup keeps showing the layers under review (the verdict layer Start adds changes nothing).
-    assert report["choices"]["review_dock_started"]["files"] == report["choices"]["review_dock"]["files"]
+    assert report["choices"]["review_raster"]["files"] == report["choices"]["review_dock"]["files"]
+    assert report["choices"]["review_frames"]["files"] == ["detections", "frames_heldout", "geotags_heldout"]
+
+
+def test_the_review_cuts_its_chips_from_the_raster_or_from_the_frames(seen):
+    """Detections found on a raster: one chip, a window of the orthomosaic, the frame choice disabled; the flight's
+    detections: chips from its frames."""
+    chips = seen["report"]["review_chips"]
+    raster, frames = chips["raster"], chips["frames"]
+    assert raster["error"] is None and raster["n"] == raster["shown"] == 1, raster
+    assert raster["images"][0].lower().endswith((".tif", ".tiff")) and not raster["frames_enabled"], raster
+    assert frames["error"] is None and frames["n"] == frames["shown"] >= 1 and frames["frames_enabled"], frames
+    assert not any(image.lower().endswith((".tif", ".tiff")) for image in frames["images"]), frames
 
 
 def test_the_review_starts_without_errors_in_the_log(seen):

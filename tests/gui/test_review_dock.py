@@ -431,7 +431,7 @@ def test_chips_show_the_frames_that_detected_the_unit(campaign, clean_project, m
     # Cold (no prefetch, empty image cache): the chips still come; the time printed is the benchmark's
     # baseline (benchmarks/bench_review_chips.py).
     dock.chip_loader.chips.clear()
-    dock.chip_loader.image_cache = type(dock.chip_loader.image_cache)(24)
+    dock.chip_loader.pixels = dock.chip_loader.frame_images = type(dock.chip_loader.frame_images)(24)
     t0 = time.perf_counter()
     dock.go_to(dock._neighbour(key, +1))
     wait_chips(qtbot, dock)
@@ -633,3 +633,171 @@ def test_the_worker_threads_never_call_pyproj(campaign, clean_project, make_dock
     assert all(dock.chip_loader.chips[k][3] is None for k in dock.chip_loader.chips)
     assert dock.chip_loader.chips[added][0], "the added target's chips were planned"
     assert foreign == []
+
+
+# ---------------------------------------------------------------------------------------------- a raster
+@pytest.fixture
+def mosaic(birdseye_provider, clean_project, tmp_path):
+    """The test orthomosaic (tests/raster_scene.py: a hump on each of six targets, the last one transparent)
+    searched by Detect targets on a raster with the identity model: five detections, one per visible target.
+    Geotags on the first four targets (hits), on a bare spot of the raster (in view, missed), on the transparent
+    target and 40 m east of the raster (neither in view); the fifth target has none (an unmatched unit)."""
+    from raster_scene import TARGETS, identity_model, map_of, rgba_orthomosaic
+
+    ortho = rgba_orthomosaic(tmp_path / "ortho.tif")
+    found = run("detectraster", {"RASTER": ortho, "MODEL": identity_model(tmp_path / "m.onnx"),
+                                 "OUTPUT": str(tmp_path / "on_mosaic.gpkg")})
+    assert found["DETECTION_COUNT"] == 5
+    xy = [map_of(ortho, u, v) for u, v in TARGETS[:4] + [(600.0, 300.0), TARGETS[5]]]
+    x, y = map_of(ortho, 600.0, 300.0)
+    xy.append((x + 40.0, y))
+    geotags = QgsVectorLayer(f"Point?crs=EPSG:{UTM}", "survey", "memory")
+    geotags.dataProvider().addAttributes([QgsField("id", QVariant.Int), QgsField("label", QVariant.String)])
+    geotags.updateFields()
+    features = []
+    for k, (gx, gy) in enumerate(xy):
+        feature = QgsFeature(geotags.fields())
+        feature.setAttributes([k + 1, "burrow"])
+        feature.setGeometry(QgsGeometry.fromPointXY(QgsPointXY(gx, gy)))
+        features.append(feature)
+    geotags.dataProvider().addFeatures(features)
+    options = QgsVectorFileWriter.SaveVectorOptions()
+    options.driverName = "GPKG"
+    error = QgsVectorFileWriter.writeAsVectorFormatV3(geotags, str(tmp_path / "survey.gpkg"),
+                                                      QgsProject.instance().transformContext(), options)
+    assert error[0] == QgsVectorFileWriter.NoError, error
+    geotags = QgsVectorLayer(str(tmp_path / "survey.gpkg"), "survey", "ogr")
+    detections = QgsVectorLayer(found["OUTPUT"], "on_mosaic", "ogr")
+    assert detections.isValid() and geotags.featureCount() == 7
+    QgsProject.instance().addMapLayers([detections, geotags])
+    return SimpleNamespace(ortho=ortho, detections=detections, geotags=geotags, targets=TARGETS)
+
+
+def gdal_window(path, window):
+    """The raster's red, green and blue over ``window`` (x0, y0, x1, y1) as GDAL reads them, in BGR order."""
+    from osgeo import gdal
+
+    x0, y0, x1, y1 = window
+    ds = gdal.Open(str(path))
+    rgb = [ds.GetRasterBand(b).ReadAsArray(x0, y0, x1 - x0, y1 - y0) for b in (1, 2, 3)]
+    return np.dstack(rgb[::-1])
+
+
+def test_detections_found_on_a_raster_are_reviewed_with_chips_cut_from_it(mosaic, clean_project, make_dock, qtbot,
+                                                                          tmp_path):
+    from raster_scene import map_of
+
+    from birdseye.birdseye_qgis.core.review.chips import render_chip
+
+    dock = make_dock()
+    # Offered, and chosen by itself (the most recent detection layer); no frame layer needed, and the dock says so.
+    assert dock.detections_combo.itemData(0) == mosaic.detections.id()
+    assert dock.detections_combo.checkedItemsData() == [mosaic.detections.id()]
+    assert not dock.frames_combo.isEnabled() and "Not needed" in dock.frames_combo.toolTip()
+    assert dock.frames_combo.currentLayer() is None
+    dock.set_inputs([mosaic.detections], None, mosaic.geotags)
+    assert dock.start_review(), dock.banner.text()
+    dock.panel.setFocus()
+    units = dock.units
+    # One unit per detection (one image shows a target once); four on geotags, the fifth target's unmatched first.
+    assert len(units) == 5 and int(units.matched.sum()) == 4 and not units.matched[units.index[dock.current_key]]
+    assert dock.inputs.view_mask.tolist() == [True] * 5 + [False, False]
+
+    # The scores are Evaluate detections' on the same layers (no frame layer: the raster says what is in view).
+    wait_scores(qtbot, dock)
+    out = tmp_path / "scores.json"
+    evaluated = run("evaluatedetections", {"DETECTIONS": [mosaic.detections], "GEOTAGS": mosaic.geotags,
+                                           "OUTPUT_JSON": str(out), "OUTPUT_REPORT": None})
+    shown = dock.scores["on_mosaic"]
+    assert (evaluated["N_IN_VIEW"], evaluated["N_RECOVERED"], evaluated["N_CLUSTERS"],
+            evaluated["N_HIT_CLUSTERS"]) == (5, 4, 5, 4)
+    assert (shown["n_in_view"], shown["n_recovered"], shown["n_clusters"], shown["n_hit_clusters"]) == (5, 4, 5, 4)
+    assert shown["recall_pre"] == json.loads(out.read_text())["recall_pre"]
+
+    # A unit's chip: one window of the raster around it, its pixels those GDAL reads there, the marks on them.
+    wait_chips(qtbot, dock)
+    for key in [dock.current_key, next(k for k in units.keys if units.matched[units.index[k]])]:
+        dock.go_to(key)
+        wait_chips(qtbot, dock, key)
+        plans, images, n_frames, error = dock.chip_loader.chips[key]
+        assert error is None and n_frames == 1 and len(plans) == 1 and len(dock.chips.pixmaps) == 1
+        plan, i = plans[0], units.index[key]
+        assert plan.image == mosaic.ortho and plan.frame_id == 0
+        (d,) = np.flatnonzero(units.detection_unit == i)
+        u, v = units.detection_uv[d]
+        x0, y0, x1, y1 = plan.window
+        assert (x1 - x0, y1 - y0) == (dock.window_spin.value(),) * 2 and x0 <= u < x1 and y0 <= v < y1
+        assert plan.detections == [(pytest.approx(u - x0), pytest.approx(v - y0), 0)]
+        expected = gdal_window(mosaic.ortho, plan.window)
+        assert np.array_equal(dock.chip_loader.pixels.window(plan), expected)
+        assert np.array_equal(images[0], render_chip(expected, plan, widgets_module.CHIP_DISPLAY_PX))
+        # The painted hump is under the detection: the brightest pixel of the window.
+        assert expected[round(v) - y0, round(u) - x0, 0] == expected.max() > 200
+        if units.matched[i]:   # the geotag on the target is drawn where the detection is
+            (gu, gv, label), = plan.geotags
+            assert (gu, gv) == (pytest.approx(u - x0, abs=0.5), pytest.approx(v - y0, abs=0.5)) and label != ""
+        else:
+            assert plan.geotags == []
+    # Near the raster's edge the window moves inside it (the first target is 60 px from the left, 70 from the top).
+    first = next(k for k in units.keys if np.allclose(units.detection_uv[units.detection_unit == units.index[k]][0],
+                                                      mosaic.targets[0], atol=0.5))
+    dock.go_to(first)
+    wait_chips(qtbot, dock, first)
+    assert dock.chip_loader.chips[first][0][0].window[:2] == (0, 6)
+
+    # An added target's chip: the raster around the point clicked, the point marked where GDAL puts it.
+    x, y = map_of(mosaic.ortho, 700.0, 300.0)
+    dock.add_target_at(QgsPointXY(x, y), QgsCoordinateReferenceSystem(f"EPSG:{UTM}"))
+    added = dock.session.ledger.added_targets()[0].key
+    dock.go_to(added)
+    wait_chips(qtbot, dock, added)
+    (plan,), images, n_frames, error = dock.chip_loader.chips[added]
+    assert error is None and n_frames == 1
+    (u, v, layer), = plan.detections
+    assert layer == -1 and (u + plan.window[0], v + plan.window[1]) == (pytest.approx(700.0, abs=0.05),
+                                                                        pytest.approx(300.0, abs=0.05))
+    assert np.array_equal(dock.chip_loader.pixels.window(plan), gdal_window(mosaic.ortho, plan.window))
+    dock.go_to(first)
+    dock.run_command("undo")
+
+    # A verdict is recorded in the log as for frames, and counts in the scores as in Evaluate detections'.
+    key = dock.current_key
+    qtbot.keyClick(dock.panel, Qt.Key_1)
+    rows = [r for r in dock.session.store.rows() if r["action"] == "verdict"]
+    assert [(r["unit_key"], r["verdict"], json.loads(r["layers_fired"])) for r in rows] == \
+        [(key, "confirmed_real", ["on_mosaic"])]
+    assert "detections:on_mosaic" in json.loads(rows[0]["input_digests"])
+    wait_scores(qtbot, dock)
+    review = QgsVectorLayer(f"{dock.session.store.path}|layername={VERDICT_TABLE}", "verdicts", "ogr")
+    run("evaluatedetections", {"DETECTIONS": [mosaic.detections], "GEOTAGS": mosaic.geotags, "REVIEW": review,
+                               "OUTPUT_JSON": str(out), "OUTPUT_REPORT": None})
+    assert dock.scores["on_mosaic"]["post"] == json.loads(out.read_text())["flights"][0]["post"]
+
+    # Saved without a frame layer, the review comes back with the project.
+    project_file = tmp_path / "mosaic.qgz"
+    assert QgsProject.instance().write(str(project_file))
+    QgsProject.instance().clear()
+    assert QgsProject.instance().read(str(project_file))
+    qtbot.waitUntil(lambda: dock.session is not None, timeout=10000)
+    assert dock.raster is not None and dock.session.ledger.direct(key) == "confirmed_real"
+
+
+def test_a_review_of_raster_and_frame_detections_together_is_refused(mosaic, clean_project, make_dock, tmp_path):
+    frame_detections = QgsVectorLayer(f"Point?crs=EPSG:{UTM}", "on_frames", "memory")
+    frame_detections.dataProvider().addAttributes([QgsField(n, QVariant.Double) for n in ("frame_id", "u", "v",
+                                                                                          "score")])
+    frame_detections.updateFields()
+    feature = QgsFeature(frame_detections.fields())
+    feature.setAttributes([1, 10.0, 20.0, 0.9])
+    feature.setGeometry(next(mosaic.detections.getFeatures()).geometry())
+    frame_detections.dataProvider().addFeatures([feature])
+    QgsProject.instance().addMapLayer(frame_detections)
+    dock = make_dock()
+    dock.set_inputs([mosaic.detections], None, mosaic.geotags, str(tmp_path / "log.gpkg"))
+    assert not dock.frames_combo.isEnabled()
+    # The user ticks the frame detections too: they need their frames, so the frame choice comes back.
+    dock.detections_combo.toggleItemCheckState(dock.detections_combo.findData(frame_detections.id()))   # a click
+    assert dock.frames_combo.isEnabled() and "Not needed" not in dock.frames_combo.toolTip()
+    assert not dock.start_review()
+    assert "not both" in dock.banner.text() and "on_mosaic found on a raster" in dock.banner.text()
+    assert dock.session is None

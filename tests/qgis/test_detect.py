@@ -12,7 +12,6 @@ import cv2
 import numpy as np
 import onnx
 import pytest
-from onnx import TensorProto, helper
 from qgis.core import (
     QgsFeature,
     QgsGeometry,
@@ -21,9 +20,9 @@ from qgis.core import (
     QgsRasterLayer,
     QgsVectorLayer,
 )
+from raster_scene import identity_model
 from registry import Recorder
 
-from birdseye.birdseye_qgis.core.detect.model_metadata import ModelMetadata, embed_metadata
 from birdseye.birdseye_qgis.core.field.frame_records import FRAME_FIELDS, euler_degrees
 from birdseye.birdseye_qgis.core.geometry.camera import CameraModel
 from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame, ProjectedCRS
@@ -41,21 +40,6 @@ def run(params):
     import processing
 
     return processing.run("birdseye:detect", params)
-
-
-def identity_model(path, threshold=0.3, **changes):
-    """Heatmap = mean of the channels / 255 (a 1×1 convolution), 1 cm/px, 64 px tiles."""
-    x = helper.make_tensor_value_info("image", TensorProto.FLOAT, ["n", 3, "h", "w"])
-    y = helper.make_tensor_value_info("heat", TensorProto.FLOAT, ["n", 1, "h", "w"])
-    w = helper.make_tensor("k", TensorProto.FLOAT, [1, 3, 1, 1], [1 / 3] * 3)
-    graph = helper.make_graph([helper.make_node("Conv", ["image", "k"], ["heat"])], "g", [x], [y], [w])
-    # IR 8 is opset 17's: left to itself, a newer onnx stamps its own IR version, which onnxruntime
-    # releases older than it refuse (onnx 1.20 writes 13, onnxruntime 1.20 reads up to 10).
-    model = helper.make_model(graph, opset_imports=[helper.make_opsetid("", 17)], ir_version=8)
-    embed_metadata(model, ModelMetadata(**{**dict(resolution_cm=1.0, tile_size=64, tiles_overlap_pct=12.5,
-                                                  output_kind="probability", default_threshold=threshold), **changes}))
-    onnx.save(model, str(path))
-    return str(path)
 
 
 @pytest.fixture(scope="module")

@@ -1,13 +1,13 @@
 """birdseye:detectraster through the registry: GeoTIFFs written by GDAL in, detections on the map out.
 
-The model's heatmap is the image itself (``test_detect.identity_model``), so every detection is where a hump
+The model's heatmap is the image itself (``raster_scene.identity_model``), so every detection is where a hump
 was painted: its map position is checked with the GeoTIFF's own geotransform (GDAL's, not ours).
 """
 from __future__ import annotations
 
 import numpy as np
 import pytest
-from osgeo import gdal, osr
+from osgeo import gdal
 from qgis.core import (
     QgsCoordinateReferenceSystem,
     QgsCoordinateTransform,
@@ -19,11 +19,9 @@ from qgis.core import (
     QgsRasterLayer,
     QgsVectorLayer,
 )
+from raster_scene import ORIGIN, PIXEL_M, TARGETS, humps, identity_model, map_of, rgba_orthomosaic, write_geotiff
 from test_cluster_algorithms import frame_layer, point_layer, utm_of
-from test_detect import identity_model
 
-ORIGIN = tuple(float(np.floor(v[0])) for v in utm_of([(0.0, 0.0)])[:2])  # top-left corner at the site, EPSG:32756
-PIXEL_M = 0.01
 pytestmark = pytest.mark.usefixtures("birdseye_provider")
 
 
@@ -31,39 +29,6 @@ def run(params):
     import processing
 
     return processing.run("birdseye:detectraster", params)
-
-
-def humps(width, height, centres, sigma=2.5, amplitude=0.9):
-    yy, xx = np.mgrid[0:height, 0:width]
-    img = np.zeros((height, width))
-    for u, v in centres:
-        img = np.maximum(img, amplitude * np.exp(-((xx - u) ** 2 + (yy - v) ** 2) / (2 * sigma ** 2)))
-    return img
-
-
-def write_geotiff(path, bands, epsg=32756, dtype=gdal.GDT_Byte, alpha=None, pixel=PIXEL_M, origin=ORIGIN):
-    """A GeoTIFF (tiled, as orthomosaics are) with ``bands`` (list of 2-D arrays), an optional alpha band."""
-    height, width = bands[0].shape
-    count = len(bands) + (alpha is not None)
-    ds = gdal.GetDriverByName("GTiff").Create(str(path), width, height, count, dtype, ["TILED=YES"])
-    ds.SetGeoTransform((origin[0], pixel, 0.0, origin[1], 0.0, -pixel))
-    srs = osr.SpatialReference()
-    srs.ImportFromEPSG(epsg)
-    ds.SetProjection(srs.ExportToWkt())
-    for k, band in enumerate(bands):
-        ds.GetRasterBand(k + 1).WriteArray(band)
-    if alpha is not None:
-        ds.GetRasterBand(count).WriteArray(alpha)
-        ds.GetRasterBand(count).SetColorInterpretation(gdal.GCI_AlphaBand)
-    ds.FlushCache()
-    ds = None
-    return str(path)
-
-
-def map_of(path, col, row):
-    """GDAL's geotransform applied to pixel centres."""
-    gt = gdal.Open(str(path)).GetGeoTransform()
-    return gt[0] + (col + 0.5) * gt[1], gt[3] + (row + 0.5) * gt[5]
 
 
 def targets_found(result):
@@ -79,17 +44,10 @@ def detections(result):
     return [f for f in layer.getFeatures()]
 
 
-# Window seams of the default windows (8 tiles of 64 px, a tile of overlap) lie near 544 and 1024 px.
-TARGETS = [(60.0, 70.0), (543.5, 200.0), (1023.5, 120.0), (300.0, 543.5), (800.0, 400.0), (1100.0, 560.0)]
-
-
 @pytest.fixture
 def rgba_ortho(tmp_path):
     """An 8-bit RGBA orthomosaic, 1200 × 640 px at 1 cm, transparent over the last target."""
-    img = np.rint(255 * humps(1200, 640, TARGETS)).astype(np.uint8)
-    alpha = np.full(img.shape, 255, np.uint8)
-    alpha[540:640, 1040:1200] = 0
-    return write_geotiff(tmp_path / "ortho.tif", [img, img, img], alpha=alpha)
+    return rgba_orthomosaic(tmp_path / "ortho.tif")
 
 
 def test_an_orthomosaic_gives_one_detection_per_target_where_gdal_puts_it(rgba_ortho, tmp_path):

@@ -24,7 +24,7 @@ from qgis.core import (
     QgsVectorLayer,
 )
 from qgis.PyQt.QtCore import QVariant
-from test_detect_raster import map_of, write_geotiff
+from raster_scene import map_of, write_geotiff
 
 from birdseye.birdseye_qgis.core.labels.training_set import read_targets
 from birdseye.birdseye_qgis.core.train.job import Source

@@ -69,4 +69,10 @@ Chips
 the geotags nearby projected into it (:func:`.projection.project_pairs` on the level ground);
 :func:`render_chip` draws them (detections as circles, geotags as crosses). Pixels follow the OpenCV
 convention (docs/design.md#camera): (0, 0) is the centre of the top-left pixel.
+
+Detections found on a raster (an orthomosaic: frame 0, ``u``, ``v`` its pixels) are reviewed without frames:
+the units take the geotags the raster covers as in view (``build_units(view_mask=…)``, the mask Evaluate
+detections uses), one detection is a target (:func:`.scoring.evaluation.min_samples_for`), and each unit has
+one chip, a window of raster pixels around its best detection (:func:`plan_raster_unit_chips` over a
+:class:`RasterIndex`); the pixels are read by ``qgis_io.raster_reader.RasterPixels``, window by window.
 """

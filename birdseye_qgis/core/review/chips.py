@@ -1,4 +1,5 @@
-"""Image chips: which frames show a unit, the crop window, and the chip drawn with detections and geotags."""
+"""Image chips: which frames (or which window of the raster) show a unit, the crop window, and the chip drawn
+with detections and geotags."""
 from __future__ import annotations
 
 import threading
@@ -49,7 +50,9 @@ class FrameIndex:
 @dataclass
 class ChipPlan:
     """One chip: a crop ``window`` (x0, y0, x1, y1; x1, y1 exclusive, px of the original image) of a
-    frame, with the detections (u, v, layer index) and geotags (u, v, label) inside, in window pixels."""
+    frame — or of the raster detections were found on (``image`` its file, ``frame_id`` 0, the window in
+    raster pixels) — with the detections (u, v, layer index) and geotags (u, v, label) inside, in window
+    pixels."""
 
     key: str
     frame_id: object
@@ -147,25 +150,77 @@ def plan_point_chips(key: str, lat: float, lon: float, frames: FrameIndex, geota
     return plans, len(candidates)
 
 
+@dataclass
+class RasterIndex:
+    """The raster a review's detections were found on, as its chips need it: its file (``image``, as the
+    detections record it in ``dem_source``), its size in pixels, and each geotag's pixel (``geotag_px`` (G, 2):
+    column, row, pixel-centre convention; NaN where it lies off the raster) with its label. Made on the main
+    thread (qgis_io.raster_reader.RasterPixels): the planning below needs no coordinate transform, so it runs
+    in a worker."""
+
+    image: str
+    width: int
+    height: int
+    geotag_px: np.ndarray
+    geotag_labels: Sequence[str] = ()
+
+    def geotag_marks(self, window) -> list:
+        """The geotags inside ``window`` (x0, y0, x1, y1), as (u, v, label) in window pixels."""
+        x0, y0, x1, y1 = window
+        px = np.asarray(self.geotag_px, dtype=float).reshape(-1, 2)
+        inside = np.flatnonzero((px[:, 0] >= x0 - 0.5) & (px[:, 0] <= x1 - 0.5) &
+                                (px[:, 1] >= y0 - 0.5) & (px[:, 1] <= y1 - 0.5))   # NaN: never inside
+        return [(float(px[k, 0] - x0), float(px[k, 1] - y0), str(self.geotag_labels[k])) for k in inside.tolist()]
+
+    def contains(self, col: float, row: float) -> bool:
+        """Whether pixel (col, row) lies on the raster."""
+        return bool(-0.5 <= col <= self.width - 0.5 and -0.5 <= row <= self.height - 0.5)
+
+
+def plan_raster_unit_chips(units: ReviewUnits, unit: int, raster: RasterIndex,
+                           window_px: int = DEFAULT_WINDOW_PX) -> tuple[list, int]:
+    """The one chip of a unit found on a raster: a ``window_px`` square of raster pixels around its best
+    detection (moved inside the raster), with the unit's detections and the geotags inside; and 1, the one
+    image that shows it."""
+    mine = np.flatnonzero(units.detection_unit == unit)
+    best = max(mine.tolist(), key=lambda d: units.detection_score[d])
+    window = crop_window(*units.detection_uv[best], window_px, raster.width, raster.height)
+    marks = [(float(units.detection_uv[d, 0] - window[0]), float(units.detection_uv[d, 1] - window[1]),
+              int(units.detection_layer[d])) for d in mine.tolist()]
+    return [ChipPlan(units.keys[unit], units.detection_frame[best], raster.image, window, marks,
+                     raster.geotag_marks(window), float(units.detection_score[best]))], 1
+
+
+def plan_raster_point_chips(key: str, col: float, row: float, raster: RasterIndex,
+                            window_px: int = DEFAULT_WINDOW_PX) -> tuple[list, int]:
+    """The chip of a ground point (an added target) at raster pixel (``col``, ``row``): a ``window_px`` square
+    of the raster around it, or none when it lies off the raster; and how many images show it (1 or 0)."""
+    if not raster.contains(col, row):
+        return [], 0
+    window = crop_window(col, row, window_px, raster.width, raster.height)
+    return [ChipPlan(key, 0, raster.image, window, [(col - window[0], row - window[1], -1)],
+                     raster.geotag_marks(window))], 1
+
+
 #: Colours (RGB) of detections by layer index; −1 = an added target.
 LAYER_COLOURS = [(255, 196, 0), (0, 200, 255), (255, 80, 200), (120, 255, 80), (255, 120, 40)]
 ADDED_COLOUR = (80, 255, 120)
 GEOTAG_COLOUR = (255, 40, 40)
 
 
-def render_chip(image, plan: ChipPlan, out_px: int) -> np.ndarray:
+def render_chip(crop, plan: ChipPlan, out_px: int) -> np.ndarray:
     """The chip as an RGB array (out_px, out_px, 3): the window scaled to ``out_px`` (nearest pixel
     when enlarging, so single pixels stay sharp), detections as circles, geotags as crosses.
-    ``image`` is the frame as read by OpenCV (BGR or grey); None draws a grey "image missing" chip."""
+    ``crop`` is the pixels of ``plan.window`` as OpenCV reads an image (BGR or grey); None draws a grey
+    "image missing" chip."""
     import cv2
 
     x0, y0, x1, y1 = plan.window
-    if image is None:
+    if crop is None:
         chip = np.full((out_px, out_px, 3), 90, np.uint8)
         cv2.putText(chip, "image missing", (8, out_px // 2), cv2.FONT_HERSHEY_SIMPLEX, 0.45, (230, 230, 230), 1,
                     cv2.LINE_AA)
         return chip
-    crop = image[y0:y1, x0:x1]
     if crop.ndim == 2:
         crop = cv2.cvtColor(crop, cv2.COLOR_GRAY2RGB)
     else:
@@ -224,10 +279,18 @@ class ImageCache:
                 self._images.popitem(last=False)
         return image
 
+    def window(self, plan: ChipPlan):
+        """The pixels of ``plan``'s window of its frame (as :meth:`get` reads it), None when the frame is missing."""
+        image = self.get(plan.image)
+        x0, y0, x1, y1 = plan.window
+        return None if image is None else image[y0:y1, x0:x1]
 
-def load_chips(plans: Sequence[ChipPlan], out_px: int, cache: ImageCache) -> list[np.ndarray]:
-    """Rendered chips (RGB arrays) for ``plans``, reading frames through ``cache``."""
-    return [render_chip(cache.get(p.image), p, out_px) for p in plans]
+
+def load_chips(plans: Sequence[ChipPlan], out_px: int, pixels) -> list[np.ndarray]:
+    """Rendered chips (RGB arrays) for ``plans``, their pixels from ``pixels.window(plan)`` (BGR or grey, None
+    when missing): an :class:`ImageCache` of the frames, or a raster's reader
+    (qgis_io.raster_reader.RasterPixels), which reads the window alone."""
+    return [render_chip(pixels.window(p), p, out_px) for p in plans]
 
 
 def review_local_frame(pose_groups: Sequence[FramePoses], geotags: Geotags) -> LocalFrame:

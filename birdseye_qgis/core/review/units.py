@@ -24,7 +24,7 @@ from ..errors import InputError
 from ..field.geotags import Geotags
 from ..geometry.geodesy import LocalFrame
 from ..geometry.poses import FramePoses
-from ..scoring.evaluation import Detections
+from ..scoring.evaluation import Detections, min_samples_for, raster_view
 from ..scoring.matching import in_view, match_to_clusters
 from ..scoring.operating_point import DEFAULT_EDGE_BUFFER_PX, DEFAULT_EPS_PRED_M, OperatingPoint
 from ..scoring.pre_review import score_flight
@@ -219,11 +219,15 @@ class PooledDetections:
 
 
 def _geotags_in_view(local: LocalFrame, geotags: Geotags, pose_groups: Sequence[FramePoses],
-                     edge_buffer_px: float, ground=None) -> tuple[np.ndarray, np.ndarray]:
-    """Geotags in the local frame (G, 3) and which of them are in view of the flight (G,) on ``ground``."""
+                     edge_buffer_px: float, ground=None, view_mask=None) -> tuple[np.ndarray, np.ndarray]:
+    """Geotags in the local frame (G, 3) and which of them are in view (G,): ``view_mask`` when given (detections
+    found on a raster: the geotags it covers, as :func:`..scoring.evaluate_flights` counts them), else those in
+    view of the flight's frames on ``ground``."""
     if not len(geotags):
         return np.empty((0, 3)), np.zeros(0, bool)
     g_local = geotags.in_local(local)
+    if view_mask is not None:
+        return g_local, raster_view(view_mask, len(g_local)).mask
     return g_local, in_view(pose_groups, local, g_local, edge_buffer_px, ground).mask
 
 
@@ -235,22 +239,30 @@ def _review_order(matched, n_frames, max_score, keys) -> np.ndarray:
 
 
 def build_units(layers: Sequence[ReviewLayer], local: LocalFrame, geotags: Geotags, pose_groups: Sequence[FramePoses],
-                params: ReviewParameters = ReviewParameters(), ground=None) -> ReviewUnits:
+                params: ReviewParameters = ReviewParameters(), ground=None, view_mask=None) -> ReviewUnits:
     """The review units of ``layers`` as ``params.units`` says: consensus clusters (the default) or
     the method's per-frame groups (see the package docstring). ``ground``: the ground-model factory the
-    layers' detections were placed with (None = the level plane), which the in-view test stands on."""
+    layers' detections were placed with (None = the level plane), which the in-view test stands on.
+
+    Detections found on a raster (all layers on one raster; no ``pose_groups``) are matched against the
+    geotags in ``view_mask`` (G,), those the raster covers, instead of the frames' test; their "frame" is the
+    raster (frame_id 0, ``u``, ``v`` its pixels)."""
     if params.units == METHOD_UNITS:
-        return build_method_units(layers, local, geotags, pose_groups, params, ground)
-    return build_consensus_units(layers, local, geotags, pose_groups, params, ground)
+        return build_method_units(layers, local, geotags, pose_groups, params, ground, view_mask)
+    return build_consensus_units(layers, local, geotags, pose_groups, params, ground, view_mask)
 
 
 def build_consensus_units(layers: Sequence[ReviewLayer], local: LocalFrame, geotags: Geotags,
                           pose_groups: Sequence[FramePoses],
-                          params: ReviewParameters = ReviewParameters(), ground=None) -> ReviewUnits:
-    """Consensus units over the union of ``layers`` (see the package docstring)."""
+                          params: ReviewParameters = ReviewParameters(), ground=None, view_mask=None) -> ReviewUnits:
+    """Consensus units over the union of ``layers`` (see the package docstring); ``view_mask`` as
+    :func:`build_units` takes it."""
     det = PooledDetections.of(layers, local)
+    # DBSCAN's core test as each layer's scores count it (one detection is a target on a raster); the layers of
+    # a review stand on one ground (review_store.read_review_inputs), so the first layer's rule is every layer's.
+    min_samples = min_samples_for(layers[0].detections, params.min_samples)
     clustering = cluster_detections(det.positions, det.frame, det.score, params.dedup_cm, params.eps_m,
-                                    params.min_samples, core_count=params.core_count)
+                                    min_samples, core_count=params.core_count)
     n = clustering.n_clusters
     det_unit = clustering.detection_cluster
     # Position: the core cell nearest each cluster's mean detection position.
@@ -265,7 +277,7 @@ def build_consensus_units(layers: Sequence[ReviewLayer], local: LocalFrame, geot
     if len(set(keys)) != len(keys):   # two units within a centimetre: cannot happen with eps ≥ 2 cm
         raise InputError("two review units share a position to the centimetre; increase EPS_M")
     # Matching: the hit test of the scores, on the union's clusters.
-    g_local, visible = _geotags_in_view(local, geotags, pose_groups, params.edge_buffer_px, ground)
+    g_local, visible = _geotags_in_view(local, geotags, pose_groups, params.edge_buffer_px, ground, view_mask)
     fs = score_flight(clustering, g_local[:, :2], visible, params.eps_pred_m)
     matched_ids = [[geotags.ids[g] for g in idx] for idx in fs.cluster_geotags] if n else []
     s = clustering.summary
@@ -307,11 +319,12 @@ def complete_linkage_groups(uv, frame, group_px: float = METHOD_GROUP_PX) -> np.
 def build_method_units(layers: Sequence[ReviewLayer], local: LocalFrame, geotags: Geotags,
                        pose_groups: Sequence[FramePoses],
                        params: ReviewParameters = ReviewParameters(units=METHOD_UNITS),
-                       ground=None) -> ReviewUnits:
+                       ground=None, view_mask=None) -> ReviewUnits:
     """The method's review units (see the package docstring): detections matched to an in-view geotag
-    are set aside one by one; per frame, the rest are grouped by complete linkage at ``group_px``."""
+    are set aside one by one; per frame, the rest are grouped by complete linkage at ``group_px``;
+    ``view_mask`` as :func:`build_units` takes it."""
     det = PooledDetections.of(layers, local)
-    g_local, visible = _geotags_in_view(local, geotags, pose_groups, params.edge_buffer_px, ground)
+    g_local, visible = _geotags_in_view(local, geotags, pose_groups, params.edge_buffer_px, ground, view_mask)
     seen = np.flatnonzero(visible)
     near = match_to_clusters(g_local[seen, :2], np.arange(len(seen)), det.xy, params.eps_pred_m).point
     unmatched = np.ones(len(det.xy), dtype=bool)

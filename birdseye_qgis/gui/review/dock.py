@@ -30,14 +30,21 @@ from qgis.PyQt.QtWidgets import QApplication, QFrame, QLabel, QScrollArea, QVBox
 from ...__about__ import LOG_TAG, tr
 from ...core.errors import InputError
 from ...core.review.actions import REVIEW_VERDICTS, UnitStatus, resume_key, unit_status
-from ...core.review.chips import FrameIndex, plan_point_chips, plan_unit_chips
+from ...core.review.chips import (
+    FrameIndex,
+    RasterIndex,
+    plan_point_chips,
+    plan_raster_point_chips,
+    plan_raster_unit_chips,
+    plan_unit_chips,
+)
 from ...core.review.digests import InputCheck, check_inputs
 from ...core.review.navigation import Entries, display_verdict
 from ...core.review.units import ADDED_PREFIX, CONSENSUS_UNITS, ReviewParameters, ReviewUnits, build_units
-from ...core.scoring.evaluation import Flight
 from ...core.scoring.operating_point import RECORDED_WITHOUT_CORE_COUNT, OperatingPoint
 from ...qgis_io.detections import found_on_raster
 from ...qgis_io.layer_kinds import DETECTIONS, FRAMES, GEOTAGS, layers_of_kind, most_recent, other_layers
+from ...qgis_io.raster_reader import RasterPixels
 from ...qgis_io.review_project import save_propagate, save_review, saved_review
 from ...qgis_io.review_store import ReviewSession, RowMeta, default_store_path, open_store, read_review_inputs
 from ..add_target_tool import AddTargetTool
@@ -51,6 +58,7 @@ from .widgets import (
     build_review_area,
     build_setup_box,
     default_reviewer,
+    frames_tip,
     show_banner,
     show_chips,
 )
@@ -70,6 +78,9 @@ class ReviewDock(QgsDockWidget):
         self.inputs = None
         self.units: ReviewUnits | None = None
         self.frames: FrameIndex | None = None
+        # A review of detections found on a raster: its pixels (chip windows, map → pixel) and the chips' view.
+        self.raster_pixels: RasterPixels | None = None
+        self.raster: RasterIndex | None = None
         self.geotag_local = None
         self.geotag_labels: list[str] = []
         self.params = ReviewParameters()
@@ -145,8 +156,7 @@ class ReviewDock(QgsDockWidget):
         self._filling_choices = True
         try:
             checked = set(self.detections_combo.checkedItemsData())
-            # The review cuts its chips from frames: detections found on a raster are not offered.
-            detection_layers = [layer for layer in layers_of_kind(project, DETECTIONS) if not found_on_raster(layer)]
+            detection_layers = layers_of_kind(project, DETECTIONS)
             if DETECTIONS not in self._chosen:
                 checked = {detection_layers[0].id()} if detection_layers else set()
             self.detections_combo.clear()
@@ -164,6 +174,18 @@ class ReviewDock(QgsDockWidget):
                                                         or (chosen[0] if chosen else None)))
         finally:
             self._filling_choices = False
+        self._show_frames_needed()
+
+    def _show_frames_needed(self):
+        """Detections found on a raster need no frame layer: the frame choice is disabled then, saying why."""
+        on_raster = self._reviews_a_raster()
+        self.frames_combo.setEnabled(not on_raster)
+        self.frames_combo.setToolTip(frames_tip(on_raster))
+
+    def _reviews_a_raster(self) -> bool:
+        """Whether every detection layer chosen was found on a raster (a mix is refused at Start)."""
+        chosen = self._chosen_detection_layers()
+        return bool(chosen) and all(found_on_raster(layer) for layer in chosen)
 
     def _on_layer_chosen(self, kind: str):
         """The user picked a layer (or ticked a detection layer): that choice stays; the others follow it."""
@@ -186,6 +208,7 @@ class ReviewDock(QgsDockWidget):
             self.geotags_combo.setLayer(geotag_layer)
         finally:
             self._filling_choices = False
+        self._show_frames_needed()
         if store_path is not None:
             self.store_widget.setFilePath(store_path)
 
@@ -203,6 +226,9 @@ class ReviewDock(QgsDockWidget):
         """Read the inputs, build the units, open the log and go to where the review stopped."""
         detection_layers = self._chosen_detection_layers()
         frame_layer, geotag_layer = self.frames_combo.currentLayer(), self.geotags_combo.currentLayer()
+        if self._reviews_a_raster():
+            # Not part of the review: not read, not saved with it, and removing it does not stop it.
+            frame_layer = None
         if not detection_layers:
             show_banner(self.banner, [tr("Choose at least one detection layer (an output of Detect targets).")],
                         error=True)
@@ -219,7 +245,10 @@ class ReviewDock(QgsDockWidget):
         try:
             params = self._read_params()
             inputs = read_review_inputs(detection_layers, frame_layer, geotag_layer)
-            units = build_units(inputs.layers, inputs.local, inputs.geotags, inputs.pose_groups, params, inputs.ground)
+            units = build_units(inputs.layers, inputs.local, inputs.geotags, inputs.pose_groups, params, inputs.ground,
+                                inputs.view_mask)
+            raster_pixels = RasterPixels(inputs.raster, QgsProject.instance().transformContext()) \
+                if inputs.raster else None
             store = open_store(store_path, QgsProject.instance())
         except (InputError, OSError, ValueError) as exc:   # a message naming the layer, field or file
             show_banner(self.banner, [str(exc)], error=True)
@@ -236,8 +265,10 @@ class ReviewDock(QgsDockWidget):
         g = inputs.geotags
         self.geotag_local = g.in_local(inputs.local) if len(g) else None
         self.geotag_labels = [str(i) for i in g.ids]
-        self._flights = [Flight(layer.detections, inputs.pose_groups, layer.name, inputs.ground)
-                         for layer in inputs.layers]
+        self.raster_pixels = raster_pixels
+        self.raster = raster_pixels.index(g) if raster_pixels is not None else None
+        self._flights = inputs.flights()
+        self.chip_loader.pixels = raster_pixels or self.chip_loader.frame_images
         self.chip_loader.reset()
         self.input_check = check_inputs(self.session.ledger.rows, inputs.digests,
                                            {**params.postprocessing(), **params.matching()}, units.keys)
@@ -264,7 +295,7 @@ class ReviewDock(QgsDockWidget):
         self._rebuild_entries()
         self.panel.setEnabled(True)
         self.setup_box.setCollapsed(True)
-        self._input_layer_ids = {layer.id() for layer in detection_layers + [frame_layer, geotag_layer]}
+        self._input_layer_ids = {layer.id() for layer in detection_layers + [frame_layer, geotag_layer] if layer}
         self._chosen |= {DETECTIONS, FRAMES, GEOTAGS}   # the setup keeps showing the layers under review
         self._save_to_project(detection_layers, frame_layer, geotag_layer, store_path)
         self.map.show_survey(geotag_layer)
@@ -550,7 +581,8 @@ class ReviewDock(QgsDockWidget):
             self._display_chips(key)
         else:
             if self._shown_chips_for != key:
-                self.chips.show_message(tr("Loading frames…"))
+                self.chips.show_message(tr("Loading the raster…") if self.raster is not None
+                                        else tr("Loading frames…"))
             self.chip_loader.request(key, self._planner(key), priority=10)
         self.chip_loader.prefetch(self.visible, key, self._planner)
 
@@ -562,16 +594,22 @@ class ReviewDock(QgsDockWidget):
                 key=key, lat=ref.lat, lon=ref.lon))
             return
         self.unit_label.setText(unit_summary_html(key, self.units, self.entries, self.status(key),
-                                                  self.params.eps_pred_m))
+                                                  self.params.eps_pred_m, self.raster is not None))
 
     # ------------------------------------------------------------------ chips
     def _planner(self, key):
         """A chip-planning call for a worker thread, with everything it reads captured now."""
         units, frames, window = self.units, self.frames, self.window_spin.value()
         geotags, labels = self.geotag_local, self.geotag_labels
+        raster = self.raster
         if key.startswith(ADDED_PREFIX):
             ref = self.session.ref(key)
+            if raster is not None:   # placed on the raster here: the worker has no coordinate transform
+                (col,), (row,) = self.raster_pixels.to_pixel([ref.lat], [ref.lon])
+                return lambda k: plan_raster_point_chips(k, float(col), float(row), raster, window)
             return lambda k: plan_point_chips(k, ref.lat, ref.lon, frames, geotags, labels, window)
+        if raster is not None:
+            return lambda k: plan_raster_unit_chips(units, units.index[k], raster, window)
         return lambda k: plan_unit_chips(units, units.index[k], frames, geotags, labels, window)
 
     def _on_chips(self, key):
@@ -580,7 +618,8 @@ class ReviewDock(QgsDockWidget):
 
     def _display_chips(self, key):
         plans, images, n_frames, error = self.chip_loader.get(key)
-        show_chips(self.chips, self.chip_legend, plans, images, n_frames, error, self.units.layer_names)
+        show_chips(self.chips, self.chip_legend, plans, images, n_frames, error, self.units.layer_names,
+                   self.raster is not None)
         self._shown_chips_for = key
         if self._nav_started is not None:
             self.chip_latencies_ms.append((time.perf_counter() - self._nav_started) * 1000.0)

@@ -19,15 +19,15 @@ class JobSignals(QObject):
 class ChipJob(QRunnable):
     """Plans and renders one unit's chips off the UI thread; the result carries the dock's generation."""
 
-    def __init__(self, signals, generation, key, plan_fn, out_px, cache):
+    def __init__(self, signals, generation, key, plan_fn, out_px, pixels):
         super().__init__()
         self.signals, self.generation, self.key = signals, generation, key
-        self.plan_fn, self.out_px, self.cache = plan_fn, out_px, cache
+        self.plan_fn, self.out_px, self.pixels = plan_fn, out_px, pixels
 
     def run(self):
         try:
             plans, n_frames = self.plan_fn(self.key)
-            images = load_chips(plans, self.out_px, self.cache)
+            images = load_chips(plans, self.out_px, self.pixels)
             payload = (plans, images, n_frames, None)
         except Exception as exc:  # noqa: BLE001 — report in the dock, never kill the worker thread
             payload = ([], [], 0, str(exc))
@@ -53,7 +53,9 @@ class ScoreJob(QRunnable):
 class ChipLoader(QObject):
     """Chips of the units: loaded in the thread pool, the current unit first and its neighbours ahead of
     the reviewer, kept for the last :data:`CACHE_UNITS` units. ``loaded(key)`` says a unit's chips arrived;
-    :meth:`reset` drops what was loaded or is in flight (new inputs, another window size)."""
+    :meth:`reset` drops what was loaded or is in flight (new inputs, another window size). ``pixels`` is where
+    the chips' pixels come from (``window(plan)``, see :func:`..core.review.chips.load_chips`): the frames'
+    image cache (``frame_images``), or the reader of the raster the detections were found on."""
 
     CACHE_UNITS = 64
     PREFETCH_AHEAD = 3
@@ -64,7 +66,8 @@ class ChipLoader(QObject):
         self.pool, self.out_px = pool, out_px
         self.chips: OrderedDict = OrderedDict()
         self.pending: set = set()
-        self.image_cache = ImageCache(24)
+        self.frame_images = ImageCache(24)
+        self.pixels = self.frame_images
         self.generation = 0
         self._signals = JobSignals()
         self._signals.chips_ready.connect(self._on_chips)
@@ -84,7 +87,7 @@ class ChipLoader(QObject):
         if key in self.chips or key in self.pending:
             return
         self.pending.add(key)
-        self.pool.start(ChipJob(self._signals, self.generation, key, planner, self.out_px, self.image_cache),
+        self.pool.start(ChipJob(self._signals, self.generation, key, planner, self.out_px, self.pixels),
                         priority)
 
     def prefetch(self, shown, key, planner_for) -> None:

@@ -119,9 +119,11 @@ def fill_scores_table(t, result) -> None:
         title.setBackground(QColor("#eef1f5"))
         t.setItem(3 * k, 0, title)
         t.setSpan(3 * k, 0, 1, 5)
-        recall = [names[0], f"{format_number(d['recall_pre'])}  ({d['n_recovered']}/{d['n_in_view']})"] + \
+        # The counts under the value: on one line, counts of two digits or more widen the column past what the
+        # narrowest dock leaves the conventions' headers.
+        recall = [names[0], f"{format_number(d['recall_pre'])}\n({d['n_recovered']}/{d['n_in_view']})"] + \
             [post.get(c, {}).get("recall_post") or "–" for c in CONVENTIONS]
-        gmcf = [names[1], f"{format_number(d['gmcf_pre'])}  ({d['n_hit_clusters']}/{d['n_clusters']})"] + \
+        gmcf = [names[1], f"{format_number(d['gmcf_pre'])}\n({d['n_hit_clusters']}/{d['n_clusters']})"] + \
             [format_number(post.get(c, {}).get("gmcf_post")) for c in CONVENTIONS]
         tips = [f"c = {post[c]['c']} (confirmed, not hit), a = {post[c]['a']} (added)" if c in post else ""
                 for c in CONVENTIONS]
@@ -144,8 +146,9 @@ def fit_scores_height(t) -> None:
                      sum(t.rowHeight(i) for i in range(t.rowCount())) + 2 * t.frameWidth())
 
 
-def unit_summary_html(key, units, entries, status, eps_pred_m) -> str:
-    """What the dock says about a unit: its geotag match, the layers that fired, votes and resolutions."""
+def unit_summary_html(key, units, entries, status, eps_pred_m, on_raster: bool = False) -> str:
+    """What the dock says about a unit: its geotag match, the layers that fired (and where: in how many frames,
+    or on the raster for detections found on one), votes and resolutions."""
     i = units.index[key]
     s = status
     ids = units.matched_geotags[i]
@@ -158,10 +161,11 @@ def unit_summary_html(key, units, entries, status, eps_pred_m) -> str:
     votes = ", ".join(f"{v} ({'direct' if p == 'direct' else 'from ' + p.rsplit('/', 1)[-1]})"
                       for p, v in sorted(s.votes.items())) or tr("none yet")
     warn = " <b style='color:#ef8f00'>⚠ " + tr("the conventions disagree") + "</b>" if s.conflict else ""
+    where = tr("on the raster") if on_raster else f"{tr('in')} {int(units.n_frames[i])} {tr('frames')}"
     return (
         f"<b>{tr('Unit')} {entries.position[key] + 1}</b> · {match}<br>"
-        f"{tr('fired by')} <b>{fired}</b> · {int(units.n_detections[i])} {tr('detections in')} "
-        f"{int(units.n_frames[i])} {tr('frames')} · {tr('best score')} "
+        f"{tr('fired by')} <b>{fired}</b> · {int(units.n_detections[i])} {tr('detections')} {where} · "
+        f"{tr('best score')} "
         f"{format_number(float(units.max_score[i]), 2)}"
         f"<br>{tr('Votes')}: {votes}{warn}<br><span style='font-size:11px;color:#555'>{resolved}</span>"
         f"<br><span style='font-size:10px;color:#888'>{key}</span>")

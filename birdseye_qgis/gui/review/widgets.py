@@ -195,6 +195,16 @@ def tool_button(text, slot, tip):
     return b
 
 
+def frames_tip(on_raster: bool) -> str:
+    """The frame choice's tooltip: what it is for, or (detections found on a raster) why it is not needed."""
+    if on_raster:
+        return tr("Not needed: the detections chosen were found on a raster (Detect targets on a raster). Their "
+                  "chips are cut from that raster, and the geotags in view are those it covers.")
+    return tr("The flight's frame layer (Import flight log, Import drone images or Import camera solution): poses, "
+              "camera and image of every frame. Only frame layers are listed. Detections found on a raster need "
+              "none.")
+
+
 def build_setup_box(dock):
     box = QgsCollapsibleGroupBox(tr("Review setup"))
     form = QFormLayout(box)
@@ -207,9 +217,7 @@ def build_setup_box(dock):
     dock.frames_combo = QgsMapLayerComboBox()
     dock.frames_combo.setFilters(FILTER_VECTOR_LAYER)
     dock.frames_combo.setAllowEmptyLayer(True)
-    dock.frames_combo.setToolTip(tr("The flight's frame layer (Import flight log, Import drone images or Import "
-                                    "camera solution): poses, camera and image of every frame. Only frame "
-                                    "layers are listed."))
+    dock.frames_combo.setToolTip(frames_tip(False))
     form.addRow(tr("Frames"), dock.frames_combo)
     dock.geotags_combo = QgsMapLayerComboBox()
     dock.geotags_combo.setFilters(FILTER_POINT_LAYER)
@@ -449,25 +457,31 @@ def build_review_area(dock, panel):
     v.addStretch(1)
 
 
-def show_chips(strip: ChipStrip, legend_label: QLabel, plans, images, n_frames: int, error, layer_names) -> None:
-    """A unit's chips (or why there are none) and the legend: one colour per layer, the geotag cross."""
+def show_chips(strip: ChipStrip, legend_label: QLabel, plans, images, n_frames: int, error, layer_names,
+               on_raster: bool = False) -> None:
+    """A unit's chips (or why there are none) and the legend: one colour per layer, the geotag cross.
+    ``on_raster``: the chips are windows of the raster the detections were found on, not frames."""
     if error:
-        strip.show_message(tr("The frames could not be read: {}").format(error))
+        strip.show_message((tr("The raster could not be read: {}") if on_raster
+                            else tr("The frames could not be read: {}")).format(error))
     elif not plans:
-        strip.show_message(tr("No frame of the frame layer shows this spot."))
+        strip.show_message(tr("This spot is off the raster.") if on_raster
+                           else tr("No frame of the frame layer shows this spot."))
     else:
         items = []
         for plan, rgb in zip(plans, images):
             h, w = rgb.shape[:2]
             pixmap = QPixmap.fromImage(QImage(rgb.tobytes(), w, h, 3 * w, QImage.Format.Format_RGB888).copy())
-            caption = tr("frame {f}").format(f=plan.frame_id) + (
+            caption = (tr("raster") if on_raster else tr("frame {f}").format(f=plan.frame_id)) + (
                 f" · {plan.score:.2f}" if plan.score is not None else "")
             items.append((pixmap, caption, plan.image))
         strip.set_chips(items)
     legend = " ".join(f"<span style='color:rgb{LAYER_COLOURS[k % len(LAYER_COLOURS)]}'>◯</span> {n}"
                       for k, n in enumerate(layer_names))
+    shown = tr("cut from the raster") if on_raster else tr("{shown} of {n} frames").format(shown=len(plans),
+                                                                                          n=n_frames)
     legend_label.setText(f"{legend} &nbsp; <span style='color:rgb{GEOTAG_COLOUR}'>✕</span> {tr('geotag')} &nbsp; "
-                         + tr("{shown} of {n} frames").format(shown=len(plans), n=n_frames))
+                         + shown)
 
 
 def show_banner(label: QLabel, messages, error: bool = False, title: str | None = None) -> None:

@@ -17,6 +17,7 @@ from birdseye.birdseye_qgis.core.field.geotags import Geotags
 from birdseye.birdseye_qgis.core.geometry.camera import CameraModel
 from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame
 from birdseye.birdseye_qgis.core.geometry.ground import LevelPlaneGround
+from birdseye.birdseye_qgis.core.geometry.ground_record import RASTER, GroundRecord
 from birdseye.birdseye_qgis.core.geometry.poses import FrameGeometry, FramePoses
 from birdseye.birdseye_qgis.core.geometry.projection import project_all
 from birdseye.birdseye_qgis.core.geometry.rotations import euler_zyx_to_rotmat, rotmat_to_quat
@@ -26,9 +27,12 @@ from birdseye.birdseye_qgis.core.review.chips import (
     LAYER_COLOURS,
     FrameIndex,
     ImageCache,
+    RasterIndex,
     crop_window,
     load_chips,
     plan_point_chips,
+    plan_raster_point_chips,
+    plan_raster_unit_chips,
     plan_unit_chips,
     render_chip,
 )
@@ -455,3 +459,47 @@ def test_an_added_target_gets_chips_from_the_frames_that_see_it(tmp_path):
     x0, y0, _, _ = plans[0].window
     # 0.1 m west and 0.1 m north of that frame's centre, at 2 cm/px
     assert layer == -1 and (u + x0, v + y0) == pytest.approx((239.5 - 5.0, 149.5 - 5.0), abs=0.01)
+
+
+# ---------------------------------------------------------------------------------------------- a raster
+def raster_layer(spots, px_of, name="on mosaic", score=0.7):
+    """One detection per spot (m east, north), found on a raster: frame 0, (u, v) its pixel ``px_of(spot)``."""
+    lat, lon, _ = ground_points(spots)
+    det = Detections(lat, lon, np.full(len(lat), np.nan), np.zeros(len(lat), dtype=int),
+                     np.full(len(lat), score), name=name, ground=GroundRecord(RASTER, "/data/ortho.tif"))
+    uv = np.array([px_of(s) for s in spots], dtype=float)
+    return ReviewLayer(det, uv[:, 0], uv[:, 1])
+
+
+def test_raster_units_take_the_rasters_in_view_mask_and_one_detection_is_a_unit():
+    """No frames: a geotag is in view when the mask says so (the raster covers it); one detection is a target, so each
+    spot is a unit at the default minimum points (2)."""
+    layer = raster_layer([S1, S2, S3], lambda s: (100 + 100 * s[0], 100 - 100 * s[1]))
+    g = geotags_at([S1, S2])
+    for units_kind in ("consensus", "method"):
+        covered = build_units([layer], SITE, g, [], ReviewParameters(units=units_kind), view_mask=[True, False])
+        if units_kind == "consensus":
+            assert len(covered) == 3 and covered.matched.sum() == 1
+            assert covered.matched_geotags[int(np.flatnonzero(covered.matched)[0])] == [1]
+        else:   # the method sets aside detections on an in-view geotag: S1's
+            assert len(covered) == 2 and set(covered.n_frames.tolist()) == {1}
+    with pytest.raises(InputError, match="in-view mask has 1 entries for 2 geotags"):
+        build_units([layer], SITE, g, [], ReviewParameters(), view_mask=[True])
+
+
+def test_a_raster_units_chip_is_a_window_of_raster_pixels_around_it_with_the_geotags_inside():
+    layer = raster_layer([S1, S2], lambda s: (30.0, 40.0) if s == S1 else (500.0, 200.0))
+    units = build_units([layer], SITE, geotags_at([S1]), [], ReviewParameters(), view_mask=[True])
+    raster = RasterIndex("/data/ortho.tif", 600, 300, np.array([[31.0, 38.5], [np.nan, np.nan]]), ["7", "8"])
+    k = units.index[next(key for key in units.keys if units.matched[units.index[key]])]
+    (plan,), n = plan_raster_unit_chips(units, k, raster, window_px=64)
+    assert n == 1 and plan.image == "/data/ortho.tif" and plan.frame_id == 0
+    assert plan.window == (0, 8, 64, 72)                      # moved inside the raster at its top-left corner
+    assert plan.detections == [(30.0, 32.0, 0)] and plan.geotags == [(31.0, 30.5, "7")]
+    other = 1 - k
+    (plan,), _ = plan_raster_unit_chips(units, other, raster, window_px=64)
+    assert plan.window == (468, 168, 532, 232) and plan.geotags == []
+    # An added target: on the raster, a chip around its pixel; off it, none.
+    (plan,), n = plan_raster_point_chips("a", 590.0, 10.0, raster, window_px=64)
+    assert n == 1 and plan.window == (536, 0, 600, 64) and plan.detections == [(54.0, 10.0, -1)]
+    assert plan_raster_point_chips("a", 650.0, 10.0, raster) == ([], 0)
