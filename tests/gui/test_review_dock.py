@@ -736,6 +736,8 @@ def test_detections_found_on_a_raster_are_reviewed_with_chips_cut_from_it(mosaic
         if units.matched[i]:   # the geotag on the target is drawn where the detection is
             (gu, gv, label), = plan.geotags
             assert (gu, gv) == (pytest.approx(u - x0, abs=0.5), pytest.approx(v - y0, abs=0.5)) and label != ""
+            qtbot.wait(50)
+            assert dock.grab().save(str(SCREENSHOT.with_name("review_dock_raster.png")))
         else:
             assert plan.geotags == []
     # Near the raster's edge the window moves inside it (the first target is 60 px from the left, 70 from the top).
