@@ -167,7 +167,7 @@ class ProviderWindows:
         return planes, valid
 
 
-def _found_on(source: str, why: str):
+def _recorded_raster(source: str, why: str):
     """The raster layer raster detections record (``dem_source``); gone or unreadable, it is refused, naming it."""
     layer = QgsRasterLayer(source, "raster")
     if not layer.isValid():
@@ -188,7 +188,7 @@ def covered_geotags(source: str, lat, lon, transform_context) -> np.ndarray:
     valid as :class:`ProviderWindows` reads them (band 1's no-data value, an alpha band): the geotags a mosaic
     could show. The raster is the one raster detections record (``dem_source``); gone or unreadable, it is
     refused, naming it."""
-    layer = _found_on(source, "the geotags it covers are counted from it")
+    layer = _recorded_raster(source, "the geotags it covers are counted from it")
     grid = raster_grid(layer)
     read = ProviderWindows(layer, grid, [1])
     cols, rows = _pixels_of(layer, grid, lat, lon, transform_context)
@@ -211,7 +211,7 @@ class RasterPixels:
     3, or band 1 for all three) mapped to 0..255 as it maps them (16-bit: the bands' 2–98 % cut)."""
 
     def __init__(self, source: str, transform_context):
-        layer = _found_on(source, "the review's chips are cut from it")
+        layer = _recorded_raster(source, "the review's chips are cut from it")
         self.source, self.grid = source, raster_grid(layer)
         self._layer, self._context = layer, transform_context
         bands = band_choice(layer, None)
