@@ -107,7 +107,7 @@ def probe_scores_table() -> None:
                                            "n_hit_clusters": 2, "n_clusters": 8, "post": post}})
     check("scores rows", table.rowCount() == 3)
     check("flight title spans the table", table.item(0, 0).text() == "flight A" and table.columnSpan(0, 0) == 5)
-    check("recall before review", table.item(1, 1).text() == "0.500  (3/6)")
+    check("recall before review", table.item(1, 1).text() == "0.500\n(3/6)")
     check("GMCF after review", [table.item(2, c).text() for c in (2, 3, 4)] == ["0.500", "0.600", "0.700"])
     check("centred cells", table.item(1, 2).textAlignment() == Qt.AlignmentFlag.AlignCenter.value)
 
@@ -137,6 +137,9 @@ def probe_chip_strip() -> None:
     check("chips from numpy images", [p.size().width() for p in strip.pixmaps] == [80, 80]
           and strip.pixmaps[0].toImage().pixelColor(5, 5).red() == 200)
     check("chip legend", "2 of 5 frames" in legend.text() and "ckpt_a" in legend.text())
+    show_chips(strip, legend, plans[:1], images[:1], 1, None, ["ckpt_a"], on_raster=True)
+    check("a raster's chip", "cut from the raster" in legend.text() and "frames" not in legend.text()
+          and any(label.text() == "raster · 0.80" for label in strip.findChildren(QLabel)))
     banner = QLabel()
     show_banner(banner, ["detections changed"], error=True)
     check("error banner", "Cannot start the review" in banner.text() and "<li>detections changed</li>" in banner.text())
