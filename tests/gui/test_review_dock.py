@@ -399,6 +399,24 @@ def test_a_log_beside_the_detections_shows_on_the_map_and_the_detections_stay_re
     assert not [m for m in messages if VERDICT_TABLE in m], messages
 
 
+def test_the_default_log_follows_the_layers_and_a_chosen_one_stays(campaign, clean_project, make_dock, tmp_path):
+    """The log path the dock filled in for one review's layers is a default, not a choice: a review of layers in
+    another GeoPackage writes into that one, not into the first review's file. A path the user chose stays."""
+    layers = copy_campaign(campaign, tmp_path)
+    shutil.copy(tmp_path / "detections.gpkg", tmp_path / "other.gpkg")
+    other = QgsVectorLayer(f"{tmp_path / 'other.gpkg'}|layername=model_b", "model_b_other", "ogr")
+    assert other.isValid()
+    QgsProject.instance().addMapLayer(other)
+    dock = make_dock()
+    start(dock, layers, [layers.a])
+    assert Path(dock.session.store.path) == tmp_path / "detections.gpkg"
+    start(dock, layers, [other])
+    assert Path(dock.session.store.path) == tmp_path / "other.gpkg"
+    start(dock, layers, [other], store=str(tmp_path / "mine.gpkg"))
+    start(dock, layers, [layers.a])
+    assert Path(dock.session.store.path) == tmp_path / "mine.gpkg"
+
+
 def test_nothing_is_cut_off_at_the_narrowest_width(campaign, clean_project, make_dock, qtbot, tmp_path):
     """At its minimum width, in QGIS's 9 pt interface font, before and after Start, every label, field, header and
     cell shows whole (tests/gui/docks_layout.py; the real desktop: tests/gui/test_docks_desktop.py)."""
@@ -759,8 +777,11 @@ def test_detections_found_on_a_raster_are_reviewed_with_chips_cut_from_it(mosaic
     assert layer == -1 and (u + plan.window[0], v + plan.window[1]) == (pytest.approx(700.0, abs=0.05),
                                                                         pytest.approx(300.0, abs=0.05))
     assert np.array_equal(dock.chip_loader.pixels.window(plan), gdal_window(mosaic.ortho, plan.window))
-    dock.go_to(first)
+    # Undo while the added target is on screen: it goes, and the dock shows a unit that is left.
     dock.run_command("undo")
+    assert dock.session.ledger.added_targets() == [] and dock.current_key in dock.entries
+    assert added not in dock.entries
+    dock.go_to(first)
 
     # A verdict is recorded in the log as for frames, and counts in the scores as in Evaluate detections'.
     key = dock.current_key

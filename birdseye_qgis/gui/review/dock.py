@@ -110,6 +110,9 @@ class ReviewDock(QgsDockWidget):
         self._tool: AddTargetTool | None = None
         # The layer choices the user made; the others follow the project (see _refresh_layer_choices).
         self._chosen: set[str] = set()
+        # The verdict log path the dock filled in as the default of the layers then chosen (None: the user's own
+        # choice): it follows the layers, so a review of other layers does not write into that layer's file.
+        self._default_store_path: str | None = None
         self._filling_choices = False
         self.map = ReviewMap(self.canvas, self)
         self._build_ui()
@@ -233,8 +236,10 @@ class ReviewDock(QgsDockWidget):
             show_banner(self.banner, [tr("Choose at least one detection layer (an output of Detect targets).")],
                         error=True)
             return False
-        store_path = self.store_widget.filePath().strip() or default_store_path(
-            detection_layers, QgsProject.instance().fileName())
+        chosen_path = self.store_widget.filePath().strip()
+        if chosen_path and chosen_path == self._default_store_path:
+            chosen_path = ""
+        store_path = chosen_path or default_store_path(detection_layers, QgsProject.instance().fileName())
         if not store_path:
             show_banner(self.banner, [tr("Choose a GeoPackage for the verdict log (save the project first to get "
                                          "one next to it).")], error=True)
@@ -257,6 +262,7 @@ class ReviewDock(QgsDockWidget):
             QApplication.restoreOverrideCursor()
         self._stop_session()
         self.store_widget.setFilePath(store_path)
+        self._default_store_path = None if chosen_path else store_path
         self.params, self.inputs, self.units = params, inputs, units
         reviewer = self.reviewer_edit.text().strip() or default_reviewer()
         QgsSettings().setValue(SETTINGS_REVIEWER, reviewer)
@@ -497,8 +503,14 @@ class ReviewDock(QgsDockWidget):
             action=action, key=about))
         if about in self.entries:
             self.go_to(about, save=False)
-        else:
+        elif self.current_key in self.entries:
             self._show_current()
+        else:  # the undone action added the target on screen, which is gone: show the first unit left
+            self.current_key = self.visible[0] if self.visible else None
+            if self.current_key is not None:
+                self.go_to(self.current_key, save=False)
+            else:
+                self._show_current()
 
     def _after_append(self, rows):
         self._status_cache.clear()

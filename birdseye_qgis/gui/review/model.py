@@ -164,7 +164,7 @@ def unit_summary_html(key, units, entries, status, eps_pred_m, on_raster: bool =
     where = tr("on the raster") if on_raster else f"{tr('in')} {int(units.n_frames[i])} {tr('frames')}"
     return (
         f"<b>{tr('Unit')} {entries.position[key] + 1}</b> · {match}<br>"
-        f"{tr('fired by')} <b>{fired}</b> · {int(units.n_detections[i])} {tr('detections')} {where} · "
+        f"{tr('fired by')} <b>{fired}</b> · {int(units.n_detections[i])} {tr('detection(s)')} {where} · "
         f"{tr('best score')} "
         f"{format_number(float(units.max_score[i]), 2)}"
         f"<br>{tr('Votes')}: {votes}{warn}<br><span style='font-size:11px;color:#555'>{resolved}</span>"
