@@ -110,7 +110,7 @@ class SurveyReport(BirdsEyeAlgorithm):
             raise QgsProcessingException(self.tr("GEOTAGS: layer '{}' has no geotags: there is nothing to report.")
                                          .format(name))
         worker_field = self.parameterAsString(parameters, self.WORKER_FIELD, context)
-        if worker_field not in fields:
+        if worker_field and worker_field not in fields:
             feedback.pushInfo(self.tr("Layer '{layer}' has no field '{field}': its geotags are one unnamed worker's.")
                               .format(layer=name, field=worker_field))
             worker_field = ""

@@ -99,6 +99,10 @@ def test_a_layer_without_workers_is_one_unnamed_worker(birdseye_provider, tmp_pa
     result = run("surveyreport", {"GEOTAGS": layer, "OUTPUT_JSON": str(tmp_path / "r.json")})
     report = json.loads((tmp_path / "r.json").read_text(encoding="utf-8"))
     assert result["PEOPLE"] == 1 and [w["name"] for w in report["workers"]] == [""]
+    # An empty WORKER_FIELD reads every geotag as the unnamed worker's too, the worker field there or not.
+    result = run("surveyreport", {"GEOTAGS": morning_layer(), "WORKER_FIELD": "",
+                                  "OUTPUT_JSON": str(tmp_path / "r.json")})
+    assert result["PEOPLE"] == 1
 
 
 def test_bad_geotag_layers_are_refused_saying_why(birdseye_provider, tmp_path):
