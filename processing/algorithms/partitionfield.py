@@ -20,6 +20,7 @@ from ...birdseye_qgis.core.errors import InputError
 from ...birdseye_qgis.core.field.survey_report import (
     DEFAULT_GEOTAGS_PER_HOUR,
     DEFAULT_TARGETS_PER_HA,
+    M2_PER_HA,
     PARTITION_FIELDS,
     partition_field,
     partition_records,
@@ -84,6 +85,9 @@ class PartitionField(BirdsEyeAlgorithm):
         if report:
             rate = self.run_core(report_geotags_per_hour, report)
             feedback.pushInfo(self.tr("Rate from the survey report: {r:.1f} geotags per worker-hour.").format(r=rate))
+        people = self.parameterAsInt(parameters, self.N_PEOPLE, context)
+        hours_per_piece = self.parameterAsDouble(parameters, self.HOURS_PER_PIECE, context)
+        targets = self.parameterAsDouble(parameters, self.TARGETS_PER_HA, context)
         crs = self._metric_crs(area, context)
         to_metric = QgsCoordinateTransform(area.sourceCrs(), crs, context.transformContext())
         fields_cut, plans = [], []
@@ -95,11 +99,8 @@ class PartitionField(BirdsEyeAlgorithm):
             geometry.convertToStraightSegment()
             geometry.transform(to_metric)
             fields_cut.append(geometry)
-            plans.append(self.run_core(
-                partition_field, polygon_rings(geometry),
-                self.parameterAsInt(parameters, self.N_PEOPLE, context),
-                self.parameterAsDouble(parameters, self.HOURS_PER_PIECE, context), rate,
-                self.parameterAsDouble(parameters, self.TARGETS_PER_HA, context)))
+            plans.append(self.run_core(partition_field, polygon_rings(geometry), people, hours_per_piece, rate,
+                                       targets))
         if not plans:
             raise QgsProcessingException(self.tr("AREA: layer '{}' has no polygon to partition.")
                                          .format(area.sourceName()))
@@ -110,14 +111,13 @@ class PartitionField(BirdsEyeAlgorithm):
         geometries = (self._piece(fields_cut[record["field"] - 1], plan, piece) for plan, piece, record in records)
         self.run_core(layers.write_records, sink, fields, [r for _, _, r in records], geometries, feedback)
         layers.style_on_load(context, dest_id, "partitions.qml")
-        total_ha = sum(plan.area_m2 for plan in plans) / 1e4
+        total_ha = sum(plan.area_m2 for plan in plans) / M2_PER_HA
         hours = sum(piece.expected_hours for _, piece, _ in records)
         feedback.pushInfo(self.tr(
             "{n} field(s), {ha:.2f} ha → {k} piece(s) of about {h:.2f} h each for {p} people ({r:g} geotags per "
             "worker-hour, {t:g} targets per ha): {hours:.1f} worker-hours in all.").format(
             n=len(plans), ha=total_ha, k=len(records), h=hours / len(records),
-            p=self.parameterAsInt(parameters, self.N_PEOPLE, context), r=rate,
-            t=self.parameterAsDouble(parameters, self.TARGETS_PER_HA, context), hours=hours))
+            p=people, r=rate, t=targets, hours=hours))
         return {self.OUTPUT: dest_id, "PIECES": len(records), "AREA_HA": total_ha, "EXPECTED_HOURS": hours,
                 "GEOTAGS_PER_HOUR_USED": rate}
 
