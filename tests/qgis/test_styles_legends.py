@@ -22,6 +22,7 @@ from qgis.PyQt.QtCore import QSize, Qt
 from birdseye.birdseye_qgis.core.field.flight_track import TRACK_FIELDS
 from birdseye.birdseye_qgis.core.field.frames import FRAME_LAYER_FIELDS
 from birdseye.birdseye_qgis.core.field.geotags import GEOTAG_FIELDS
+from birdseye.birdseye_qgis.core.field.survey_report import PARTITION_FIELDS
 from birdseye.birdseye_qgis.core.labels.mark_check import MARK_CHECK_FIELDS
 from birdseye.birdseye_qgis.core.plan.flight_plan import ROUTE_FIELDS, WAYPOINT_FIELDS
 from birdseye.birdseye_qgis.core.scoring.compare import CHANGE_FIELDS, CHANGES
@@ -41,6 +42,7 @@ SCHEMAS = {
     "route.qml": ("LineString", ROUTE_FIELDS, "RuleRenderer"),
     "mark_check.qml": ("PointZ", MARK_CHECK_FIELDS, "RuleRenderer"),
     "changes.qml": ("Point", CHANGE_FIELDS, "categorizedSymbol"),
+    "partitions.qml": ("MultiPolygon", PARTITION_FIELDS, "RuleRenderer"),
 }
 # A legend entry the Layers panel shows whole at its default width (one group deep, DejaVu Sans 9 pt).
 MAX_LEGEND_CHARS = 24
@@ -156,6 +158,8 @@ def test_each_geotag_is_drawn_by_its_class(qgis_app, values, label):
     ("mark_check.qml", {"error_px": 7.3}, "3 to 10 px from the mark"),
     ("mark_check.qml", {"error_px": 12.0}, "Over 10 px from the mark"),
     ("mark_check.qml", {"error_px": None}, "No label in that image"),
+    ("partitions.qml", {"worker": 2}, "Worker 2's pieces"),
+    ("partitions.qml", {"worker": 9}, "Other workers' pieces"),
 ])
 def test_each_feature_is_drawn_by_one_class(qgis_app, style, values, label):
     assert drawn_as(styled(style), values) == [label]
