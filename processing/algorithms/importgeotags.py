@@ -225,13 +225,12 @@ class ImportGeotags(BirdsEyeAlgorithm):
         for problem in problems:
             feedback.pushWarning(self.tr("Point to visit left out: {problem}").format(problem=problem))
         log = review_log or survey.review_log
-        if not review_log and log is not None and not log.is_file():
-            feedback.pushWarning(self.tr("The review the package came from, {log}, is not there (moved?): give it as "
-                                         "REVIEW_LOG to append the field decisions to it.").format(log=log))
-            log = None
         plan = plan_field_decisions(visits, ())
         stored = []
-        if log is not None and plan.verdicts:
+        if plan.verdicts and not review_log and log is not None and not log.is_file():
+            feedback.pushWarning(self.tr("The review the package came from, {log}, is not there (moved?): give it as "
+                                         "REVIEW_LOG to append the field decisions to it.").format(log=log))
+        elif plan.verdicts and log is not None:
             plan, stored = self.run_core(collected_survey.append_field_decisions, log, visits)
         elif plan.verdicts:
             feedback.pushWarning(self.tr("{n} review unit(s) have a field decision, but the package names no review "

@@ -264,3 +264,7 @@ def test_review_log_parameter_wins_and_a_missing_package_log_is_a_warning(birdse
     uri = review_log(tmp_path / "elsewhere.gpkg", ["u1"])
     assert run({"INPUT": str(gpkg), "REVIEW_LOG": str(tmp_path / "elsewhere.gpkg")})["DECISIONS_IMPORTED"] == 1
     assert latest_direct(uri)[0]["u1"] == (HARD_NEGATIVE, "field:Ann")
+    unnamed = collected_package(tmp_path / "unnamed", visits)
+    feedback = Recorder()
+    assert run({"INPUT": str(unnamed)}, feedback)["DECISIONS_IMPORTED"] == 0
+    assert any("the package names no review and REVIEW_LOG is empty" in w for w in feedback.warnings)
