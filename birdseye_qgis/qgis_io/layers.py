@@ -36,6 +36,7 @@ from qgis.core import (
     QgsVectorLayer,
     QgsWkbTypes,
 )
+from qgis.PyQt.QtCore import QDate, QDateTime, Qt
 
 from ..__about__ import STYLE_DIR, tr
 from ..core.errors import InputError
@@ -229,7 +230,8 @@ def output_crs(chosen: ProjectedCRS | None, lat, lon) -> tuple[ProjectedCRS, Qgs
 # ------------------------------------------------------------------------------------------ readers
 def read_point_layer(source, transform_context=None, attributes=(), source_name: str | None = None):
     """Columns of a point layer/feature source: lat, lon (WGS84, deg), z (the geometry's Z, NaN if
-    none — taken as an ellipsoidal height), the feature numbers (1..) and the named attributes.
+    none), the feature numbers (1..) and the named attributes (NULL as None; a date and time as ISO 8601 UTC
+    text, a date as ISO 8601 text: :func:`plain_value`).
 
     Any CRS is transformed to EPSG:4326; a source without a valid CRS is refused.
     """
@@ -263,10 +265,29 @@ def read_point_layer(source, transform_context=None, attributes=(), source_name:
             z.append(vertex.z() if vertex.is3D() else np.nan)
         rows.append(number)
         for a in values:
-            v = feature[a]
-            values[a].append(None if v is None or (hasattr(v, "isNull") and v.isNull()) else v)
+            values[a].append(plain_value(feature[a]))
     return {"lat": np.asarray(lat, dtype=float), "lon": np.asarray(lon, dtype=float),
             "z": np.asarray(z, dtype=float), "row": np.asarray(rows, dtype=np.int64), "attributes": values}
+
+
+def plain_value(value):
+    """An attribute as core reads it: NULL → None; a QDateTime with a zone → ISO 8601 UTC text to the millisecond
+    (``2026-05-20T15:27:09.400Z``, converted from its zone), one without (Qt's local time) → the same text without
+    a zone (``2026-05-20T15:27:09.400``); a QDate → ``2026-05-20``; anything else as it is. So the core stays free
+    of Qt types and judges the times (``core.field.geotags.utc_text``)."""
+    if value is None or (hasattr(value, "isNull") and value.isNull()):
+        return None
+    if isinstance(value, QDateTime):
+        if not value.isValid():
+            return None
+        # OGR hands a time stored without a zone over as local time: the file never said so, and converting it
+        # with this computer's zone would invent an offset. It stays zone-less (a field named time_utc is UTC).
+        if value.timeSpec() == Qt.TimeSpec.LocalTime:
+            return value.toString(Qt.DateFormat.ISODateWithMs)
+        return value.toUTC().toString(Qt.DateFormat.ISODateWithMs)
+    if isinstance(value, QDate):
+        return value.toString(Qt.DateFormat.ISODate) if value.isValid() else None
+    return value
 
 
 def read_geotag_layer(source, transform_context=None, id_field: str = "id", selected_only: bool = False,

@@ -181,13 +181,17 @@ class VerdictStore:
         return self._Txn(self.connection)
 
     # ------------------------------------------------------------------ writing
-    def append(self, rows: Sequence[PlannedRow], action: str, meta: RowMeta, undoes: int | None = None,
-               state: dict | None = None) -> list[dict]:
+    def append(self, rows: Sequence[PlannedRow], action: str, meta: RowMeta | Sequence[RowMeta],
+               undoes: int | None = None, state: dict | None = None) -> list[dict]:
         """Append one action's rows (and optionally state entries) in one committed transaction.
 
-        Returns the rows as stored (with fid, action_id and time)."""
+        ``meta``: one for every row, or one per row (an action whose rows have different reviewers or inputs:
+        a field survey's decisions). Returns the rows as stored (with fid, action_id and time)."""
         if not rows:
             return []
+        metas = [meta] * len(rows) if isinstance(meta, RowMeta) else list(meta)
+        if len(metas) != len(rows):
+            raise ValueError(f"{len(metas)} row metadata for {len(rows)} rows")
         c = self.connection
         with self._transaction():
             action_id = c.execute(f'SELECT COALESCE(MAX(action_id), 0) + 1 FROM "{VERDICT_TABLE}"').fetchone()[0]
@@ -195,7 +199,7 @@ class VerdictStore:
             now = utc_now()
             time = max(now, last) if last else now   # never earlier than the row before: time order = fid order
             stored = []
-            for r in rows:
+            for r, meta in zip(rows, metas):
                 values = {"unit_key": r.unit_key, "verdict": r.verdict, "provenance": r.provenance,
                           "action_id": action_id, "action": action, "undoes": undoes, "time": time,
                           "reviewer": meta.reviewer, "lat": float(r.lat), "lon": float(r.lon),

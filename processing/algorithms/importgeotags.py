@@ -1,4 +1,5 @@
-"""birdseye:importgeotags — rover survey (file or point layer) → styled PointZ geotag layer."""
+"""birdseye:importgeotags — rover survey (file, point layer or a field survey package QField filled) → styled
+PointZ geotag layer; a field package's decisions at the points it visited → the review's verdict log."""
 from __future__ import annotations
 
 import numpy as np
@@ -14,18 +15,21 @@ from qgis.core import (
 )
 from qgis.PyQt.QtCore import QT_TRANSLATE_NOOP
 
+from ...birdseye_qgis.core.field.field_survey import GEOTAG_TABLE
 from ...birdseye_qgis.core.field.geotags import (
+    FIX_RTK_FIXED,
     FORMATS,
     GEOTAG_FIELDS,
     ColumnMapping,
-    accuracy_fields,
-    geotags_from_columns,
+    geotags_from_layer,
+    layer_fields,
     prepare_geotags,
     read_geotags,
 )
 from ...birdseye_qgis.core.geometry.heights import MAX_UNDULATION_M, metres_per_unit
+from ...birdseye_qgis.core.review.field_decisions import plan_field_decisions
 from ...birdseye_qgis.qgis_enums import NUMBER_DOUBLE, SOURCE_VECTOR_POINT, WKB_POINT_Z
-from ...birdseye_qgis.qgis_io import layer_kinds, layers
+from ...birdseye_qgis.qgis_io import collected_survey, layer_kinds, layers
 from ..parameters.layer_parameters import source_parameter
 from .base import BirdsEyeAlgorithm
 
@@ -43,6 +47,7 @@ class ImportGeotags(BirdsEyeAlgorithm):
     MAX_H_ACCURACY_M = "MAX_H_ACCURACY_M"
     POLE_HEIGHT_M = "POLE_HEIGHT_M"
     OUTPUT_CRS = "OUTPUT_CRS"
+    REVIEW_LOG = "REVIEW_LOG"
     OUTPUT = "OUTPUT"
 
     FORMAT_NAMES = ["Automatic (from the content)", "BirdsEye rover CSV (no header)", "CSV with a header",
@@ -63,8 +68,8 @@ class ImportGeotags(BirdsEyeAlgorithm):
 
     def initAlgorithm(self, config=None):
         self.addParameter(QgsProcessingParameterFile(
-            self.INPUT, self.tr("Geotag file (CSV or NMEA)"), optional=True,
-            fileFilter="Geotags (*.csv *.txt *.nmea *.log *.gga);;All files (*)"))
+            self.INPUT, self.tr("Geotag file (CSV, NMEA or field GeoPackage)"), optional=True,
+            fileFilter="Geotags (*.csv *.txt *.nmea *.log *.gga *.gpkg *.qgz);;All files (*)"))
         self.addParameter(source_parameter(
             self.INPUT_LAYER, self.tr("…or a point layer"), layer_kinds.GEOTAGS, [SOURCE_VECTOR_POINT], optional=True))
         self.addParameter(QgsProcessingParameterEnum(
@@ -87,12 +92,17 @@ class ImportGeotags(BirdsEyeAlgorithm):
             NUMBER_DOUBLE, 0.0, minValue=0.0, maxValue=10.0))
         self.addParameter(QgsProcessingParameterCrs(
             self.OUTPUT_CRS, self.tr("Output CRS (empty: UTM zone of the site)"), optional=True))
+        self.addParameter(QgsProcessingParameterFile(
+            self.REVIEW_LOG, self.tr("Append field decisions to review (.gpkg)"), extension="gpkg",
+            optional=True))
         self.addParameter(QgsProcessingParameterFeatureSink(
             self.OUTPUT, self.tr("Geotags"), SOURCE_VECTOR_POINT))
         for name, text in (("GEOTAG_COUNT", "Geotags written"), ("BAD_ROWS", "Bad rows left out"),
                            ("NOT_FIXED_DROPPED", "Geotags dropped by the fix filter"),
                            ("ACCURACY_DROPPED", "Geotags dropped by the accuracy filter"),
-                           ("DUPLICATES", "Geotags flagged duplicate_2cm")):
+                           ("DUPLICATES", "Geotags flagged duplicate_2cm"),
+                           ("DECISIONS_IMPORTED", "Field decisions appended to the review"),
+                           ("VISITS_UNDECIDED", "Points to visit without a decision")):
             self.addOutput(QgsProcessingOutputNumber(name, self.tr(text)))
 
     def processAlgorithm(self, parameters, context, feedback):
@@ -107,17 +117,34 @@ class ImportGeotags(BirdsEyeAlgorithm):
         units = self.UNIT_CHOICES[self.parameterAsEnum(parameters, self.UNITS, context)][1]
         undulation = self._optional_number(parameters, self.GEOID_UNDULATION_M, context)
         max_accuracy = self._optional_number(parameters, self.MAX_H_ACCURACY_M, context)
-        if path:
+        gpkg = collected_survey.package_geopackage(path) if path else None
+        decisions = {"DECISIONS_IMPORTED": 0, "VISITS_UNDECIDED": 0}
+        review_log = self.parameterAsFile(parameters, self.REVIEW_LOG, context)
+        if gpkg is not None:
+            survey = self.run_core(collected_survey.open_collected_survey, gpkg)
+            feedback.pushInfo(self.tr("Reading: read as a BirdsEye field survey GeoPackage (QField): {path}, table "
+                                      "'{table}'").format(path=survey.gpkg, table=GEOTAG_TABLE))
+            # The decisions first: a package whose worker only visited points has no geotag to write.
+            decisions = self._append_decisions(survey, review_log, context, feedback)
+            layer = self.run_core(survey.layer, GEOTAG_TABLE)
+            tags = self.run_core(self._from_layer, layer, layer.name(), context, mapping, units, undulation)
+            self._report_survey(tags, feedback)
+        elif path:
             fmt = FORMATS[self.parameterAsEnum(parameters, self.FORMAT, context)]
             tags = self.run_core(read_geotags, path, fmt, ColumnMapping(**mapping), units, undulation)
         else:
-            tags = self.run_core(self._from_layer, source, context, mapping, units)
+            tags = self.run_core(self._from_layer, source, source.sourceName(), context, mapping, units, undulation)
+        if review_log and gpkg is None:
+            feedback.pushWarning(self.tr("REVIEW_LOG is not used: only a field survey package (its GeoPackage) has "
+                                         "decisions to append to a review."))
         feedback.setProgress(40)
         for note in tags.notes:
             feedback.pushInfo(self.tr("Reading: {note}").format(note=note))
         if len(tags) == 0:
             first = f" The first: {tags.problems[0]}" if tags.problems else ""
-            raise QgsProcessingException(self.tr("The input holds no usable geotag.") + first)
+            appended = self.tr(" Its {n} field decision(s) were appended to the review all the same.").format(
+                n=decisions["DECISIONS_IMPORTED"]) if decisions["DECISIONS_IMPORTED"] else ""
+            raise QgsProcessingException(self.tr("The input holds no usable geotag.") + first + appended)
         if tags.problems:  # a warning: the run goes on with the good rows and its output loads
             examples = "; ".join(str(e) for e in tags.problems[:5])
             feedback.pushWarning(self.tr("{n_problems} bad row(s) left out; first: {examples}").format(
@@ -163,26 +190,66 @@ class ImportGeotags(BirdsEyeAlgorithm):
         layers.style_on_load(context, dest_id, "geotags.qml")
         return {"OUTPUT": dest_id, "GEOTAG_COUNT": n, "BAD_ROWS": len(tags.problems),
                 "NOT_FIXED_DROPPED": prepared.dropped_not_fixed, "ACCURACY_DROPPED": prepared.dropped_accuracy,
-                "DUPLICATES": prepared.duplicates}
+                "DUPLICATES": prepared.duplicates, **decisions}
 
     def _optional_number(self, parameters, name, context):
         """An optional number parameter's value, None when left empty."""
         return None if parameters.get(name) in (None, "") else self.parameterAsDouble(parameters, name, context)
 
     @staticmethod
-    def _from_layer(source, context, mapping, units):
-        """Geotags from a point layer: heights from the mapped fields or Z, accuracies from fields with common
-        names (h_acc_m, hrms, …), all in ``units`` (None: metres)."""
-        h_acc_field, v_acc_field = accuracy_fields(source.fields().names())
-        named = {**{k: mapping[k] for k in ("height", "msl", "fix", "label")}, "h_acc": h_acc_field,
-                 "v_acc": v_acc_field}
-        name = source.sourceName()
-        cols = layers.read_point_layer(source, context.transformContext(), list(named.values()), name)
-        values = cols["attributes"]
-        height = values[mapping["height"]] if mapping["height"] else cols["z"].tolist()
-        return geotags_from_columns(
-            cols["lat"], cols["lon"], height, values.get(mapping["msl"]), values.get(mapping["fix"]),
-            values.get(mapping["label"]), cols["row"], source=name,
-            field_names={k: v for k, v in named.items() if v and k != "label"},
-            h_acc=values.get(h_acc_field), v_acc=values.get(v_acc_field),
-            unit_m=metres_per_unit(units or "m"))
+    def _from_layer(source, name, context, mapping, units, undulation):
+        """Geotags from a point layer (or feature source) named ``name``: its fields by meaning
+        (``core.field.geotags.layer_fields``: the mapped ones, else heights, accuracies, fix, label, capture time
+        and worker by name), read by ``geotags_from_layer``; heights and accuracies in ``units`` (None: metres),
+        an orthometric-only height converted with N = ``undulation`` (None: EGM96)."""
+        fields = layer_fields(source.fields().names(), ColumnMapping(**mapping))
+        cols = layers.read_point_layer(source, context.transformContext(), list(fields.values()), name)
+        return geotags_from_layer(cols, fields, name, metres_per_unit(units or "m"), undulation)
+
+    def _report_survey(self, tags, feedback):
+        """What a field package's geotags hold, for the log: fixes, accuracies, capture times and workers."""
+        workers = sorted({w for w in tags.worker.tolist() if w})
+        feedback.pushInfo(self.tr(
+            "Field survey: {n_tags} geotag(s), {n_fixed} RTK fixed, {n_accuracy} with a horizontal accuracy, {n_time} "
+            "with a capture time; recorded by {workers}").format(
+                n_tags=len(tags), n_fixed=int(np.count_nonzero(tags.fix_quality == FIX_RTK_FIXED)),
+                n_accuracy=int(np.count_nonzero(np.isfinite(tags.h_acc))),
+                n_time=sum(1 for t in tags.time_utc.tolist() if t),
+                workers=", ".join(workers) if workers else self.tr("no named worker")))
+
+    def _append_decisions(self, survey, review_log, context, feedback) -> dict:
+        """Append the package's decided visits to the review's verdict log (``review_log``, else the one the
+        package names when that file exists), report them, and return the outputs DECISIONS_IMPORTED and
+        VISITS_UNDECIDED."""
+        visits, problems = self.run_core(collected_survey.read_package_visits, survey, context.transformContext())
+        for problem in problems:
+            feedback.pushWarning(self.tr("Point to visit left out: {problem}").format(problem=problem))
+        log = review_log or survey.review_log
+        plan = plan_field_decisions(visits, ())
+        stored = []
+        if plan.verdicts and not review_log and log is not None and not log.is_file():
+            feedback.pushWarning(self.tr("The review the package came from, {log}, is not there (moved?): give it as "
+                                         "REVIEW_LOG to append the field decisions to it.").format(log=log))
+        elif plan.verdicts and log is not None:
+            plan, stored = self.run_core(collected_survey.append_field_decisions, log, visits)
+        elif plan.verdicts:
+            feedback.pushWarning(self.tr("{n} review unit(s) have a field decision, but the package names no review "
+                                         "and REVIEW_LOG is empty: the decisions are not written.").format(
+                                     n=len(plan.verdicts)))
+        if plan.plain:
+            feedback.pushInfo(self.tr("{n} decided point(s) to visit are not review units (no unit keys), so "
+                                      "their decisions are not written to a review: {visits}").format(
+                n=len(plan.plain), visits=", ".join(f"{v.visit_id} ({v.decision})" for v in plan.plain)))
+        if plan.undecided:
+            feedback.pushInfo(self.tr("{n} point(s) to visit have no decision (not visited)").format(
+                n=plan.undecided))
+        for note in plan.notes:
+            feedback.pushWarning(self.tr("Field decisions: {note}").format(note=note))
+        if plan.already:
+            feedback.pushInfo(self.tr("{n} review unit(s) already hold the field's decision from the same worker "
+                                      "(imported before): not appended again").format(n=len(plan.already)))
+        if stored:
+            feedback.pushInfo(self.tr("Field decisions: {n} verdict(s) appended to the review {log} as "
+                                      "{reviewers}").format(
+                n=len(stored), log=log, reviewers=", ".join(sorted({row["reviewer"] for row in stored}))))
+        return {"DECISIONS_IMPORTED": len(stored), "VISITS_UNDECIDED": plan.undecided}

@@ -10,7 +10,12 @@ Formats (docs/design.md#geotags):
   (:data:`_COLUMN_NAMES`) or a column mapping (:class:`ColumnMapping`), by the rules below.
 * **NMEA GGA** logs (any talker: ``$GPGGA``, ``$GNGGA``…): every GGA sentence with a position is one
   geotag; ellipsoidal height = MSL altitude + geoid separation (fields 9 and 11).
-* Any QGIS point layer, read by ``qgis_io/layers.py`` and handed over as columns (:func:`geotags_from_columns`).
+* Any QGIS point layer, read by ``qgis_io/layers.py`` and handed over as columns: its fields by meaning
+  (:func:`layer_fields`: heights and accuracies by the names below, fix, label, capture time and worker by the
+  geotag layer's and a field package's names), read by :func:`geotags_from_layer`. A field package's geotags
+  (``field_survey.GEOTAG_TABLE``, QField's records) are such a layer: QField's quality description
+  ("Fixed RTK", "Unknown (4)") is a fix word (:func:`.field_survey.fix_from_description`), ``h_msl`` an
+  orthometric height converted like a CSV's, ``time_utc`` a UTC time.
 
 Rules of a CSV with a header, so a height always says what it is measured from (docs/design.md#heights):
 
@@ -60,6 +65,7 @@ import numpy as np
 
 from ..errors import InputError, detached
 from ..geometry import heights
+from .field_survey import fix_from_description
 
 #: NMEA GGA fix quality codes (field 6) and what users call them.
 FIX_NAMES = {0: "unknown", 1: "autonomous", 2: "DGPS", 3: "PPS", 4: "RTK fixed", 5: "RTK float",
@@ -84,6 +90,7 @@ GEOTAG_FIELDS = [
     ("time_utc", "string", "capture time, ISO 8601 UTC (Emlid: Averaging start); NULL when unknown"),
     ("source_row", "int", "line of the input file (or feature number of the input layer)"),
     ("flags", "string", "comma-separated warnings: rtk_float, no_rtk, fix_unknown, duplicate_2cm, no_height"),
+    ("worker", "string", "who recorded the geotag (a field package's worker); NULL when unknown"),
 ]
 GEOTAG_FIELD_NAMES = [f[0] for f in GEOTAG_FIELDS]
 
@@ -184,9 +191,10 @@ class Geotags:
     ``source_row``: line of the file or row (1..) of the layer each came from; ``flags``: warnings per
     geotag; ``problems``: the bad rows left out when reading (one :class:`InputError` each).
     ``h_acc``, ``v_acc``: the rover's horizontal and vertical accuracy (m), NaN where unknown; ``time_utc``:
-    capture time as ISO 8601 UTC text, "" where unknown; ``notes``: what reading decided (height column and
-    why, units, conversions), for the log; ``ground_heights``: the heights are of the ground point already
-    (the file records an antenna height the rover removed), so no pole height may be removed again.
+    capture time as ISO 8601 UTC text, "" where unknown; ``worker``: who recorded each geotag, "" where
+    unknown; ``notes``: what reading decided (height column and why, units, conversions), for the log;
+    ``ground_heights``: the heights are of the ground point already (the file records an antenna height the
+    rover removed), so no pole height may be removed again.
     """
 
     ids: np.ndarray
@@ -206,6 +214,7 @@ class Geotags:
     time_utc: np.ndarray | None = None
     notes: list = field(default_factory=list)
     ground_heights: bool = False
+    worker: np.ndarray | None = None
 
     def __post_init__(self):
         for name in ("lat", "lon", "height"):
@@ -222,6 +231,7 @@ class Geotags:
         self.source_row = np.asarray(np.arange(1, n + 1) if self.source_row is None else self.source_row,
                                      dtype=np.int64).reshape(-1)
         self.time_utc = _objects([""] * n if self.time_utc is None else [str(v or "") for v in self.time_utc])
+        self.worker = _objects([""] * n if self.worker is None else [str(v or "") for v in self.worker])
         self.flags = [[] for _ in range(n)] if self.flags is None else [list(f) for f in self.flags]
 
     def __len__(self) -> int:
@@ -236,7 +246,7 @@ class Geotags:
 
     #: The per-geotag arrays, in the order of the constructor.
     _COLUMNS = ("ids", "lat", "lon", "height", "labels", "provenance", "h_msl", "fix_quality", "source_row",
-                "h_acc", "v_acc", "time_utc")
+                "h_acc", "v_acc", "time_utc", "worker")
 
     def subset(self, index) -> "Geotags":
         """The geotags at ``index`` (integer positions or a boolean mask), ids and rows kept."""
@@ -262,7 +272,8 @@ class Geotags:
                    "h_ellipsoid": _none_if_nan(self.height[i]), "h_msl": _none_if_nan(self.h_msl[i]),
                    "h_acc_m": _none_if_nan(self.h_acc[i]), "v_acc_m": _none_if_nan(self.v_acc[i]),
                    "time_utc": self.time_utc[i] or None,
-                   "source_row": int(self.source_row[i]), "flags": ",".join(self.flags[i])}
+                   "source_row": int(self.source_row[i]), "flags": ",".join(self.flags[i]),
+                   "worker": self.worker[i] or None}
 
 
 def geotag_ids(values, rows, source: str = "", field_name: str = "id") -> np.ndarray:
@@ -483,7 +494,10 @@ _FIX_WORDS = {
 
 
 def _fix_code(text: str, source: str, row: int, field_name: str) -> int:
-    """A fix quality from a GGA code ("4") or a rover's word ("FIX", "RTK Fixed", "float", "single", "dgps")."""
+    """A fix quality from a GGA code ("4"), a rover's word ("FIX", "RTK Fixed", "float", "single", "dgps") or
+    QField's quality description ("Fixed RTK", "Unknown (4)", "Float RTK - IMU active"), read as
+    :func:`.field_survey.fix_from_description` reads it; anything else is an :class:`InputError` naming
+    ``source``, ``row`` and ``field_name``."""
     text = text.strip()
     if text == "":
         return 0
@@ -493,9 +507,13 @@ def _fix_code(text: str, source: str, row: int, field_name: str) -> int:
         word = " ".join(re.split(r"[\s_\-]+", text.lower())).strip()
         if word in _FIX_WORDS:
             return _FIX_WORDS[word]
+        qfield = fix_from_description(text)
+        if qfield is not None:
+            return qfield
         raise InputError(f"{text!r} is not a fix quality; expected an NMEA GGA code (4 RTK fixed, "
-                         "5 RTK float, 1 autonomous) or a rover's word such as FIX/FLOAT/SINGLE, 'RTK Fixed', "
-                         "'Float', 'DGPS', 'Autonomous'", source=source, row=row, field=field_name) from None
+                         "5 RTK float, 1 autonomous), a rover's word such as FIX/FLOAT/SINGLE, 'RTK Fixed', "
+                         "'Float', 'DGPS', 'Autonomous', or QField's 'Fixed RTK', 'Float RTK'",
+                         source=source, row=row, field=field_name) from None
     if value != int(value) or not 0 <= value <= 9:
         raise InputError(f"{text!r} is not a fix quality; expected an NMEA GGA code 0–9 "
                          "(4 RTK fixed, 5 RTK float, 1 autonomous)", source=source, row=row, field=field_name)
@@ -526,6 +544,19 @@ def utc_text(text: str, zone_less_is_utc: bool = False) -> str | None:
     return moment.strftime("%Y-%m-%dT%H:%M:%S") + f".{moment.microsecond // 1000:03d}Z"
 
 
+def _capture_time(out: "_Collector", text, name: str) -> str:
+    """The capture time ``text`` of the column or field ``name`` as ISO 8601 UTC (:func:`utc_text`; a time
+    without a zone is UTC when ``name`` says UTC or GMT); "" when empty, or when it is no date and time with
+    its zone, which ``out``'s notes count."""
+    if not str(text or "").strip():
+        return ""
+    time_utc = utc_text(text, zone_less_is_utc=bool(re.search(r"utc|gmt", name, re.IGNORECASE)))
+    if time_utc is None:
+        out.note(f"capture time: '{name}' not kept where it is not a date and time with its zone "
+                 "(expected e.g. 2026-05-20 10:27:09.4 UTC-05:00 or 2026-05-20T15:27:09Z)")
+    return time_utc or ""
+
+
 class _Collector:
     """Accumulates good rows, bad-row errors and notes of one file."""
 
@@ -536,8 +567,8 @@ class _Collector:
         self.remarks: list[str] = []
         self.notes: dict[str, int] = {}
 
-    def add(self, lat, lon, h, msl, fix, label, row, h_acc=math.nan, v_acc=math.nan, time_utc=""):
-        self.rows.append((lat, lon, h, msl, fix, label, row, h_acc, v_acc, time_utc))
+    def add(self, lat, lon, h, msl, fix, label, row, h_acc=math.nan, v_acc=math.nan, time_utc="", worker=""):
+        self.rows.append((lat, lon, h, msl, fix, label, row, h_acc, v_acc, time_utc, worker))
 
     def problem(self, error: InputError) -> None:
         """A bad row, left out (:func:`..errors.detached`)."""
@@ -554,13 +585,13 @@ class _Collector:
     def geotags(self, ground_heights: bool = False) -> Geotags:
         """The good rows, numbered 1.. in file order (the ids Import geotags writes); a note taken for only some
         of the rows says for how many."""
-        lat, lon, h, msl, fix, label, row, h_acc, v_acc, time_utc = zip(*self.rows) if self.rows else ([],) * 10
+        lat, lon, h, msl, fix, label, row, h_acc, v_acc, time_utc, worker = zip(*self.rows) if self.rows else ([],) * 11
         total = len(self.rows) + len(self.problems)
         notes = self.remarks + [text if count >= len(self.rows) else f"{text} ({count} of {total} rows)"
                                 for text, count in self.notes.items()]
         return Geotags(np.arange(1, len(lat) + 1), lat, lon, h, label, None, msl, fix, row, source=self.source,
                        problems=self.problems, h_acc=h_acc, v_acc=v_acc, time_utc=time_utc, notes=notes,
-                       ground_heights=ground_heights)
+                       ground_heights=ground_heights, worker=worker)
 
 
 def _parse_rover(lines, source: str) -> Geotags:
@@ -745,7 +776,6 @@ def _parse_header(lines, source: str, mapping: ColumnMapping | None = None, unit
     col = _header_columns(header, mapping, source)
     out = _Collector(source)
     needed = max(c.index for c in col.values())
-    says_utc = "time" in col and bool(re.search(r"utc|gmt", col["time"].name, re.IGNORECASE))
     ortho_rows, datums = [], set()
     for row, line in rows:
         cells = _split_csv(line)
@@ -765,12 +795,7 @@ def _parse_header(lines, source: str, mapping: ColumnMapping | None = None, unit
         except InputError as exc:
             out.problem(exc)
             continue
-        time_utc = ""
-        if "time" in col and cells[col["time"].index].strip():
-            time_utc = utc_text(cells[col["time"].index], zone_less_is_utc=says_utc) or ""
-            if not time_utc:
-                out.note(f"capture time: '{col['time'].name}' not kept where it is not a date and time with its zone "
-                         "(expected e.g. 2026-05-20 10:27:09.4 UTC-05:00 or 2026-05-20T15:27:09Z)")
+        time_utc = _capture_time(out, cells[col["time"].index], col["time"].name) if "time" in col else ""
         label = cells[col["label"].index].strip() if "label" in col else ""
         out.add(lat, lon, h, msl, fix, label, row, h_acc, v_acc, time_utc)
         for text in (h_note, msl_note, acc_note):
@@ -973,26 +998,101 @@ def accuracy_fields(names) -> tuple[str | None, str | None]:
     return found[0], found[1]
 
 
+#: A point layer's fix, label, capture time and worker fields, as :func:`_normal_name` writes them: the names the
+#: geotag layer (:data:`GEOTAG_FIELDS`) and a field package (``field_survey.GNSS_FIELDS``) give them. A CSV's
+#: common names are not used for these: a layer's ``status``, ``name`` or ``time`` may mean anything.
+_LAYER_FIELD_NAMES = {"fix": ("fix quality", "fix"), "label": ("label",), "time": ("time utc",),
+                      "worker": ("worker",)}
+
+
+def layer_fields(names, mapping: ColumnMapping | None = None) -> dict[str, str]:
+    """The fields of a point layer (field ``names``) by meaning, keyed as :func:`geotags_from_layer` reads them:
+    ``height`` (ellipsoidal), ``msl`` (orthometric), ``fix``, ``label``, ``h_acc``, ``v_acc``, ``time``,
+    ``worker``; a meaning without a field is left out.
+
+    The mapping's fields come first (its ``height`` states an ellipsoidal height, ``msl`` an orthometric one);
+    then heights by the common names a CSV's columns are found by (``h_ellipsoid``, ``altWGS84``, ``HAE`` …;
+    ``h_msl``, ``altMSL``, ``ortho_ht`` …), accuracies as :func:`accuracy_fields` finds them, and the rest by
+    :data:`_LAYER_FIELD_NAMES`. A field is taken for one meaning only."""
+    mapping = mapping or ColumnMapping()
+    found = {key: name for key, name in (("height", mapping.height), ("msl", mapping.msl), ("fix", mapping.fix),
+                                         ("label", mapping.label)) if name}
+    normal: dict[str, str] = {}
+    for name in names:
+        normal.setdefault(_normal_name(name)[0], name)
+
+    def free(name):
+        return name is not None and name not in found.values()
+
+    for key, wanted in (("height", _COLUMN_NAMES["ellipsoidal"]), ("msl", _COLUMN_NAMES["orthometric"]),
+                        *_LAYER_FIELD_NAMES.items()):
+        name = next((normal[c] for c in wanted if c in normal and free(normal[c])), None)
+        if key not in found and name is not None:
+            found[key] = name
+    for key, name in zip(("h_acc", "v_acc"), accuracy_fields(names)):
+        if free(name):
+            found[key] = name
+    return found
+
+
+def geotags_from_layer(columns: dict, fields: dict, source: str = "point layer", unit_m: float = 1.0,
+                       geoid_undulation_m: float | None = None) -> Geotags:
+    """Geotags from a point layer read into columns: ``columns`` as ``qgis_io.layers.read_point_layer`` returns
+    them (``lat``, ``lon``, ``z``, ``row`` and ``attributes`` by field name; times as ISO 8601 text), ``fields``
+    the layer's fields by meaning (:func:`layer_fields`).
+
+    The height is the ``height`` field (ellipsoidal); without one, the ``msl`` field converted with the geoid as
+    a CSV's orthometric heights are (:func:`geotags_from_columns`), the geometry's Z being of unknown reference
+    then; without either, the geometry's Z taken as ellipsoidal. The notes say which."""
+    values = columns["attributes"]
+
+    def column(key):
+        return values[fields[key]] if key in fields else None
+
+    if "height" in fields:
+        height, note = column("height"), f"height: '{fields['height']}', ellipsoidal"
+    elif "msl" in fields:
+        height, note = None, f"height: from '{fields['msl']}' (above mean sea level); the geometry's Z is not used"
+    else:
+        height, note = columns["z"].tolist(), "height: the geometry's Z, taken as ellipsoidal"
+    tags = geotags_from_columns(
+        columns["lat"], columns["lon"], height, column("msl"), column("fix"), column("label"), columns["row"],
+        source=source, field_names={k: v for k, v in fields.items() if k != "label"}, h_acc=column("h_acc"),
+        v_acc=column("v_acc"), unit_m=unit_m, time_utc=column("time"), worker=column("worker"),
+        geoid_undulation_m=geoid_undulation_m)
+    tags.notes.insert(0, note)
+    return tags
+
+
 def geotags_from_columns(lat, lon, h_ellipsoid=None, h_msl=None, fix_quality=None, label=None,
                          source_row=None, source: str = "point layer", field_names=None, h_acc=None, v_acc=None,
-                         unit_m: float = 1.0) -> Geotags:
+                         unit_m: float = 1.0, time_utc=None, worker=None,
+                         geoid_undulation_m: float | None = None) -> Geotags:
     """Geotags from columns of raw values (a point layer already transformed to WGS84).
 
     Heights, accuracies and fix qualities may be numbers, numeric text or None (unknown); a row with a value
     that is none of these is reported in ``problems`` (naming ``field_names[column]``: keys ``height``, ``msl``,
-    ``fix``, ``h_acc``, ``v_acc``) and left out. Heights and accuracies are in units of ``unit_m`` metres.
+    ``fix``, ``h_acc``, ``v_acc``) and left out. Heights and accuracies are in units of ``unit_m`` metres. Without
+    ``h_ellipsoid`` the ``h_msl`` heights are converted to ellipsoidal ones as a CSV's orthometric-only heights
+    are: h = H + N, N = ``geoid_undulation_m``, else EGM96 from PROJ's grid, else unknown (the notes say which).
+    ``time_utc``: capture times as text with their zone, or None; read as a CSV's (a time without a zone is UTC
+    when ``field_names["time"]`` says UTC, e.g. ``time_utc``; another is not kept, and the notes count it).
+    ``worker``: who recorded each geotag, or None.
     """
     lat = np.asarray(lat, dtype=float)
     n = len(lat)
     lon = np.asarray(lon, dtype=float)
     rows = np.arange(1, n + 1) if source_row is None else np.asarray(source_row, dtype=np.int64)
-    names = {**{k: k for k in ("height", "msl", "fix", "h_acc", "v_acc")}, **(field_names or {})}
+    names = {**{k: k for k in ("height", "msl", "fix", "h_acc", "v_acc", "time")}, **(field_names or {})}
     out = _Collector(source)
 
     def length(column, i, row, key, what, limits_m):
         raw = None if column is None else column[i]
         return _raw_number(raw, source, row, names[key], f"{what} in {_unit_words(unit_m)}",
                            limits_m[0] / unit_m, limits_m[1] / unit_m) * unit_m
+
+    def text(column, i):
+        return "" if column is None or column[i] is None else str(column[i])
 
     for i in range(n):
         row = int(rows[i])
@@ -1009,8 +1109,12 @@ def geotags_from_columns(lat, lon, h_ellipsoid=None, h_msl=None, fix_quality=Non
         except InputError as exc:
             out.problem(exc)
             continue
-        text = "" if label is None or label[i] is None else str(label[i])
-        out.add(float(lat[i]), float(lon[i]), h, msl, fix, text, row, horizontal, vertical)
+        out.add(float(lat[i]), float(lon[i]), h, msl, fix, text(label, i), row, horizontal, vertical,
+                _capture_time(out, text(time_utc, i), names["time"]), text(worker, i).strip())
+    if h_ellipsoid is None and h_msl is not None:
+        orthometric = [i for i, r in enumerate(out.rows) if np.isfinite(r[3])]
+        if orthometric:
+            _convert_orthometric(out, orthometric, geoid_undulation_m, set())
     return out.geotags()
 
 
