@@ -1085,6 +1085,7 @@ def geotags_from_columns(lat, lon, h_ellipsoid=None, h_msl=None, fix_quality=Non
     rows = np.arange(1, n + 1) if source_row is None else np.asarray(source_row, dtype=np.int64)
     names = {**{k: k for k in ("height", "msl", "fix", "h_acc", "v_acc", "time")}, **(field_names or {})}
     out = _Collector(source)
+    unknown_words: dict[str, int] = {}
 
     def length(column, i, row, key, what, limits_m):
         raw = None if column is None else column[i]
@@ -1105,17 +1106,36 @@ def geotags_from_columns(lat, lon, h_ellipsoid=None, h_msl=None, fix_quality=Non
             horizontal = length(h_acc, i, row, "h_acc", "horizontal accuracy", _ACCURACY_RANGE_M)
             vertical = length(v_acc, i, row, "v_acc", "vertical accuracy", _ACCURACY_RANGE_M)
             raw_fix = None if fix_quality is None else fix_quality[i]
-            fix = 0 if raw_fix is None else _fix_code(str(raw_fix), source, row, names["fix"])
+            fix = 0 if raw_fix is None else _layer_fix(str(raw_fix), source, row, names["fix"], unknown_words)
         except InputError as exc:
             out.problem(exc)
             continue
         out.add(float(lat[i]), float(lon[i]), h, msl, fix, text(label, i), row, horizontal, vertical,
                 _capture_time(out, text(time_utc, i), names["time"]), text(worker, i).strip())
+    if unknown_words:
+        listed = ", ".join(f"{word!r} ×{n}" for word, n in sorted(unknown_words.items()))
+        out.remark(f"the field '{names['fix']}' describes the fix of {sum(unknown_words.values())} geotag(s) in "
+                   f"words BirdsEye does not read ({listed}; QField translates its descriptions into the phone's "
+                   "language): they are kept with the fix unknown (flag fix_unknown), and the fix filter "
+                   "'RTK fixed only' leaves them out")
     if h_ellipsoid is None and h_msl is not None:
         orthometric = [i for i, r in enumerate(out.rows) if np.isfinite(r[3])]
         if orthometric:
             _convert_orthometric(out, orthometric, geoid_undulation_m, set())
     return out.geotags()
+
+
+def _layer_fix(text: str, source: str, row: int, field_name: str, unknown_words: dict) -> int:
+    """A layer's fix as :func:`_fix_code` reads it, except that words it does not know (QField's descriptions in
+    another language) give 0, the fix unknown, counted in ``unknown_words``: the point a worker recorded is
+    kept. A number that is no GGA code is still an error."""
+    try:
+        return _fix_code(text, source, row, field_name)
+    except InputError:
+        if _is_number(text.strip()):
+            raise
+        unknown_words[text.strip()] = unknown_words.get(text.strip(), 0) + 1
+        return 0
 
 
 def _raw_number(value, source, row, field_name, what, lo, hi) -> float:

@@ -182,3 +182,19 @@ def test_importing_again_appends_nothing_and_a_later_visit_decides_a_unit():
     assert [(v.row.verdict, v.reviewer) for v in twice.verdicts] == [(HARD_NEGATIVE, "field:Bob")]
     assert twice.notes == ["unit u1: visit v1 decided confirmed_real, the later visit v2 hard_negative; the later "
                            "one is recorded"]
+
+
+def test_a_layers_fix_in_words_no_table_knows_keeps_the_point_with_the_fix_unknown():
+    """QField translates its descriptions into the phone's language: a German worker's "Festes RTK" is no reason
+    to lose the point. It is kept with fix 0 (flag fix_unknown) and the notes name the words; a number that is
+    no GGA code is still a bad row."""
+    from birdseye.birdseye_qgis.core.field.geotags import geotags_from_columns, prepare_geotags
+
+    tags = geotags_from_columns([10.0, 10.0001, 10.0002, 10.0003], [20.0] * 4, h_ellipsoid=[500.0] * 4,
+                                fix_quality=["Fixed RTK", "Festes RTK", "Festes RTK", "12"], source="survey.gpkg",
+                                field_names={"fix": "fix"})
+    assert tags.fix_quality.tolist() == [4, 0, 0] and [(e.row, e.field) for e in tags.problems] == [(4, "fix")]
+    assert any("'Festes RTK' ×2" in note and "fix unknown" in note for note in tags.notes)
+    prepared = prepare_geotags(tags)
+    assert ["fix_unknown" in f for f in prepared.geotags.flags] == [False, True, True]
+    assert len(prepare_geotags(tags, fixed_only=True).geotags) == 1
