@@ -64,6 +64,8 @@ if Qgis.QGIS_VERSION_INT >= 33000:
     WKB_LINE_STRING_Z = Qgis.WkbType.LineStringZ
     WKB_POLYGON = Qgis.WkbType.Polygon
     WKB_POLYGON_Z = Qgis.WkbType.PolygonZ
+    WKB_MULTI_POLYGON = Qgis.WkbType.MultiPolygon
+    WKB_NO_GEOMETRY = Qgis.WkbType.NoGeometry
     GEOMETRY_POINT = Qgis.GeometryType.Point
     GEOMETRY_LINE = Qgis.GeometryType.Line
     GEOMETRY_POLYGON = Qgis.GeometryType.Polygon
@@ -78,6 +80,8 @@ else:
     WKB_LINE_STRING_Z = QgsWkbTypes.LineStringZ
     WKB_POLYGON = QgsWkbTypes.Polygon
     WKB_POLYGON_Z = QgsWkbTypes.PolygonZ
+    WKB_MULTI_POLYGON = QgsWkbTypes.MultiPolygon
+    WKB_NO_GEOMETRY = QgsWkbTypes.NoGeometry
     GEOMETRY_POINT = QgsWkbTypes.PointGeometry
     GEOMETRY_LINE = QgsWkbTypes.LineGeometry
     GEOMETRY_POLYGON = QgsWkbTypes.PolygonGeometry

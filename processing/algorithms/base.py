@@ -43,7 +43,8 @@ GROUPS = {
 #: Each group's algorithms in workflow order. The toolbox sorts a group's algorithms by display name, so each
 #: is shown as "<group>.<step> · <name>" ("1.2 · Import flight log"); the ids stay as they are (they are public).
 WORKFLOW = {
-    "field": ("importgeotags", "importflightlog", "importdjiimages", "importcameras", "refineposes", "processodm"),
+    "field": ("importgeotags", "importflightlog", "importdjiimages", "importcameras", "refineposes", "processodm",
+              "preparefieldsurvey"),
     "plan": ("planflight",),
     "labels": ("writelabels", "writelabelsraster", "traindetector"),
     "detect": ("detect", "detectraster", "clusterdetections", "evaluatedetections", "comparedetectors",
