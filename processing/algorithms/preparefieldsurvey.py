@@ -112,8 +112,8 @@ class PrepareFieldSurvey(ReviewParametersMixin, BirdsEyeAlgorithm):
         if geotag_layer is not None:
             surveyed = self.run_core(layers.read_geotag_layer, geotag_layer, context.transformContext())
             self._warn_left_out(feedback, surveyed.problems)
-        reviewed = (self.read_reviewed_clusters(parameters, context, feedback, geotag_layer, None, 0.0, 40.0)
-                    if geotag_layer is not None else None)
+        # Without REVIEW this reads no geotags: it returns None, or refuses REVIEW_DETECTIONS given alone.
+        reviewed = self.read_reviewed_clusters(parameters, context, feedback, geotag_layer, None, 0.0, 40.0)
         visits = [field_package.Visit(
             c.key, f"review:{c.outcome}",
             self.tr("Is there a target here? (review: {outcome})").format(outcome=c.outcome), c.lat, c.lon,

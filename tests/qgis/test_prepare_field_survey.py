@@ -15,6 +15,7 @@ from pathlib import Path
 
 import pytest
 from qgis.core import (
+    NULL,
     QgsCoordinateReferenceSystem,
     QgsCoordinateTransform,
     QgsExpression,
@@ -22,7 +23,6 @@ from qgis.core import (
     QgsExpressionContextScope,
     QgsExpressionContextUtils,
     QgsFeature,
-    QgsField,
     QgsFieldConstraints,
     QgsGeometry,
     QgsPoint,
@@ -33,7 +33,7 @@ from qgis.core import (
     QgsVectorLayer,
     QgsVectorLayerUtils,
 )
-from qgis.PyQt.QtCore import QDateTime, Qt, QVariant
+from qgis.PyQt.QtCore import QDateTime, Qt
 from registry import run
 
 from birdseye.birdseye_qgis.core.field import field_survey as fs
@@ -57,9 +57,7 @@ def campaign(birdseye_provider, tmp_path_factory):
 
 def area_layer(geotags):
     """Two partitions covering the geotags' extent (WGS84), with a ``partition`` field."""
-    layer = QgsVectorLayer("Polygon?crs=EPSG:4326", "partitions", "memory")
-    layer.dataProvider().addAttributes([QgsField("partition", QVariant.String)])
-    layer.updateFields()
+    layer = QgsVectorLayer("Polygon?crs=EPSG:4326&field=partition:string", "partitions", "memory")
     extent = QgsCoordinateTransform(geotags.crs(), QgsCoordinateReferenceSystem("EPSG:4326"),
                                     QgsProject.instance()).transformBoundingBox(geotags.extent()).buffered(1e-4)
     middle = extent.center().x()
@@ -76,10 +74,7 @@ def area_layer(geotags):
 
 
 def visit_points(points, with_id=False):
-    layer = QgsVectorLayer("Point?crs=EPSG:4326", "to check", "memory")
-    if with_id:
-        layer.dataProvider().addAttributes([QgsField("id", QVariant.String)])
-        layer.updateFields()
+    layer = QgsVectorLayer("Point?crs=EPSG:4326" + ("&field=id:string" if with_id else ""), "to check", "memory")
     feats = []
     for k, (lon, lat) in enumerate(points):
         f = QgsFeature(layer.fields())
@@ -162,7 +157,7 @@ def test_package_opens_in_a_fresh_project_with_relative_paths_and_the_orthomosai
     assert "frame_id" in layers["Frame footprints"].fields().names()
     visit = next(layers["Points to visit"].getFeatures())
     assert (visit["visit_id"], visit["origin"], visit["unit_keys"]) == ("p1", "layer:to check", "[]")
-    assert visit["decision"] is None or visit["decision"] == QVariant()  # NULL: not visited
+    assert visit["decision"] in (None, NULL)  # not visited
 
     assert project.crs().authid() == "EPSG:32756"  # the site's UTM zone
     assert project.viewSettings().defaultViewExtent().contains(
@@ -268,6 +263,8 @@ def test_bad_input_is_refused_with_a_reason(birdseye_provider, tmp_path):
     det, verdicts = scene()
     with pytest.raises(QgsProcessingException, match="REVIEW needs GEOTAGS"):
         package(tmp_path / "a", REVIEW=verdicts, REVIEW_DETECTIONS=[det])
+    with pytest.raises(QgsProcessingException, match="REVIEW_DETECTIONS is given without REVIEW"):
+        package(tmp_path / "a", REVIEW_DETECTIONS=[det])
     with pytest.raises(QgsProcessingException, match="CLASSES: give at least one class"):
         package(tmp_path / "b", CLASSES=" , ")
     with pytest.raises(QgsProcessingException, match="PROJECT_NAME"):
