@@ -437,9 +437,10 @@ def _index(layer, name: str) -> int:
     return layer.fields().indexOf(name)
 
 
-def _default(layer, name: str, expression: str) -> None:
-    """``expression`` as ``name``'s default value, applied when a feature is added (not on every edit)."""
-    layer.setDefaultValueDefinition(_index(layer, name), QgsDefaultValue(expression, False))
+def _default(layer, name: str, expression: str, on_update: bool = False) -> None:
+    """``expression`` as ``name``'s default value, applied when a feature is added, and with ``on_update`` on
+    every edit too."""
+    layer.setDefaultValueDefinition(_index(layer, name), QgsDefaultValue(expression, on_update))
 
 
 def _value_map(layer, name: str, pairs) -> None:
@@ -454,14 +455,20 @@ def _read_only(layer, name: str) -> None:
     layer.setEditFormConfig(config)
 
 
-def _common_fields(layer) -> None:
-    """The worker and GNSS fields of the geotag and visit tables: filled at capture, shown read-only (the record
-    is what the receiver said)."""
-    _default(layer, "worker", WORKER_EXPRESSION)
-    for field in fs.GNSS_FIELDS:
-        _default(layer, field.name, field.expression)
-        layer.setFieldAlias(_index(layer, field.name), field.alias)
-        _read_only(layer, field.name)
+def _common_fields(layer, recorded_when=None) -> None:
+    """The worker and GNSS fields of the geotag and visit tables, shown read-only (the record is what the
+    receiver said). Without ``recorded_when`` they are filled when a feature is added (a geotag); with it (an
+    expression) on every edit while it holds and NULL otherwise: a visit exists before the worker gets there, so
+    its fields record the edit that decided it."""
+    for name, expression, alias in [("worker", WORKER_EXPRESSION, None),
+                                    *((f.name, f.expression, f.alias) for f in fs.GNSS_FIELDS)]:
+        if recorded_when is None:
+            _default(layer, name, expression)
+        else:
+            _default(layer, name, f"if({recorded_when}, {expression}, NULL)", on_update=True)
+        if alias is not None:
+            layer.setFieldAlias(_index(layer, name), alias)
+            _read_only(layer, name)
 
 
 def _geotag_layer(layer: QgsVectorLayer, settings: SurveySettings) -> QgsVectorLayer:
@@ -492,7 +499,7 @@ def _visit_layer(layer: QgsVectorLayer) -> QgsVectorLayer:
     _value_map(layer, "decision", [(None, tr("Not visited")), *fs.DECISIONS.items()])
     for name in ("visit_id", "origin", "unit_keys", "question"):
         _read_only(layer, name)
-    _common_fields(layer)
+    _common_fields(layer, recorded_when='"decision" IS NOT NULL')
     rules = [(tr("Not visited"), '"decision" IS NULL', _ORANGE)]
     rules += [(shown, f'"decision" = {_quoted(value)}', _DECISION_COLOURS[value])
               for value, shown in fs.DECISIONS.items()]

@@ -184,14 +184,27 @@ def test_default_values_fill_from_qfields_position_variables(birdseye_provider, 
     assert project.crs().authid() == "EPSG:32756"
     expected = {"fix": "Fixed RTK", "h_acc_m": 0.012, "v_acc_m": 0.021, "pdop": 1.4, "hdop": 0.8, "vdop": 1.1,
                 "n_sats": 23, "averaged": 5, "source": "Reach RX", "worker": "Ann Field"}
-    for name in ("Geotags", "Points to visit"):
-        layer = layer_named(project, name)
-        feature = new_feature(layer)
-        assert {field: feature[field] for field in expected} == pytest.approx(expected)
-        assert feature["time_utc"] == FIX_TIME
-        assert all(layer.attributeDisplayName(layer.fields().indexOf(g.name)) == g.alias for g in fs.GNSS_FIELDS)
     geotags = layer_named(project, "Geotags")
     feature = new_feature(geotags)
+    assert {field: feature[field] for field in expected} == pytest.approx(expected)
+    assert feature["time_utc"] == FIX_TIME
+    # A visit exists before the worker gets there: its fields fill on the edit that decides it (QField applies
+    # apply-on-update defaults when the form is saved, in the same position context).
+    visits = layer_named(project, "Points to visit")
+    visit = next(visits.getFeatures())
+    context = position_context(visits)
+
+    def recorded():
+        return {name: visits.defaultValue(visits.fields().indexOf(name), visit, context)
+                for name in [*expected, "time_utc"]}
+
+    assert all(value in (None, NULL) for value in recorded().values())  # not decided: nothing recorded
+    visit["decision"] = "uncertain"
+    assert recorded() == pytest.approx({**expected, "time_utc": FIX_TIME})
+    for layer in (geotags, visits):
+        assert all(layer.attributeDisplayName(layer.fields().indexOf(g.name)) == g.alias for g in fs.GNSS_FIELDS)
+        assert all(layer.defaultValueDefinition(layer.fields().indexOf(g.name)).applyOnUpdate() == (layer is visits)
+                   for g in fs.GNSS_FIELDS)
     assert feature[height_field] == pytest.approx(ALT)
     (other_height,) = set(fs.HEIGHT_FIELDS.values()) - {height_field}
     assert other_height not in geotags.fields().names()
