@@ -98,13 +98,13 @@ class SurveySettings:
         return fs.HEIGHT_FIELDS[self.height_reference]
 
     def requirement_description(self) -> str:
-        """The requirement in the worker's words ("Needs RTK fixed and ≤ 5 cm horizontal accuracy")."""
-        parts = []
-        if self.require_fixed:
-            parts.append(tr("RTK fixed"))
-        if self.max_h_accuracy_m is not None:
-            parts.append(tr("≤ {cm:g} cm horizontal accuracy").format(cm=100.0 * self.max_h_accuracy_m))
-        return tr("Needs {parts}").format(parts=tr(" and ").join(parts))
+        """The requirement in the worker's words ("Needs RTK fixed and ≤ 5 cm horizontal accuracy"); only for a
+        package with a requirement (:attr:`requirement` not empty)."""
+        if self.max_h_accuracy_m is None:
+            return tr("Needs RTK fixed")
+        text = (tr("Needs RTK fixed and ≤ {cm:g} cm horizontal accuracy") if self.require_fixed
+                else tr("Needs ≤ {cm:g} cm horizontal accuracy"))
+        return text.format(cm=100.0 * self.max_h_accuracy_m)
 
     def meta_rows(self) -> dict:
         return {fs.META_CLASSES: json.dumps(list(self.classes)),

@@ -305,3 +305,23 @@ def test_a_cancelled_run_leaves_no_half_package(birdseye_provider, tmp_path):
     assert [p.name for p in tmp_path.iterdir()] == ["notes.txt"]
     assert field_package.write_package(tmp_path, "survey", settings, [], field_package.PackageSources(),
                                        QgsProject.instance().transformContext()).is_file()
+
+
+@pytest.mark.parametrize("require_fixed, max_h_acc, float_close, fixed_far, description", [
+    (False, 0.05, True, False, "Needs ≤ 5 cm horizontal accuracy"),
+    (True, 0, False, True, "Needs RTK fixed"),
+    (False, 0, True, True, None)])   # no requirement: no constraint, every point green
+def test_each_part_of_the_requirement_can_be_left_out(birdseye_provider, tmp_path, require_fixed, max_h_acc,
+                                                      float_close, fixed_far, description):
+    result = package(tmp_path / "pkg", REQUIRE_RTK_FIXED=require_fixed, MAX_H_ACCURACY_M=max_h_acc)
+    project = opened(result["PROJECT"])
+    geotags = layer_named(project, "Geotags")
+    index = geotags.fields().indexOf("h_acc_m")
+
+    def valid(fix, h_acc):
+        return QgsVectorLayerUtils.validateAttribute(geotags, new_feature(geotags, fix=fix, h_acc=h_acc), index)[0]
+
+    assert (valid("Float RTK", 0.012), valid("Fixed RTK", 0.5)) == (float_close, fixed_far)
+    constraints = geotags.fields().at(index).constraints()
+    assert (constraints.constraintDescription() or None) == description
+    assert len(geotags.renderer().rootRule().children()) == (1 if description is None else 2)
