@@ -344,7 +344,7 @@ def _is_geotiff(path: str) -> bool:
 # ------------------------------------------------------------------------------------------ project
 def _project(files: dict, settings: SurveySettings, sources: PackageSources, transform_context) -> QgsProject:
     """The project over the written tables: layers top to bottom geotags, visits, surveyed before, area,
-    footprints, orthomosaic; relative paths; CRS, extent, title and instructions."""
+    footprints, orthomosaic; relative paths; CRS and extent (of what the worker works on), title, instructions."""
     project = QgsProject()
     project.setFileName(str(files["project"]))
     project.setTransformContext(transform_context)
@@ -357,25 +357,29 @@ def _project(files: dict, settings: SurveySettings, sources: PackageSources, tra
             raise InputError(f"table {name} does not open as a layer", source=str(gpkg))
         return layer
 
-    stack = [_geotag_layer(table(fs.GEOTAG_TABLE, tr("Geotags")), settings),
-             _visit_layer(table(fs.VISIT_TABLE, tr("Points to visit")))]
+    # What the worker works on, then the background; each list top to bottom.
+    work = [_geotag_layer(table(fs.GEOTAG_TABLE, tr("Geotags")), settings),
+            _visit_layer(table(fs.VISIT_TABLE, tr("Points to visit")))]
     if sources.surveyed is not None:
-        stack.append(_surveyed_layer(table(fs.SURVEYED_TABLE, tr("Surveyed before"))))
+        work.append(_surveyed_layer(table(fs.SURVEYED_TABLE, tr("Surveyed before"))))
     if sources.area is not None:
-        stack.append(_outline_layer(table(fs.AREA_TABLE, tr("Survey area")), "#ffff00", 0.8, "partition"))
+        work.append(_outline_layer(table(fs.AREA_TABLE, tr("Survey area")), "#ffff00", 0.8, "partition"))
+    background = []
     if sources.frames is not None:
-        stack.append(_outline_layer(table(fs.FOOTPRINT_TABLE, tr("Frame footprints")), "#a6cee3", 0.3, None))
+        background.append(_outline_layer(table(fs.FOOTPRINT_TABLE, tr("Frame footprints")), "#a6cee3", 0.3, None))
     if sources.background is not None:
         raster = QgsRasterLayer(str(files["background"]), tr("Orthomosaic"), "gdal")
         if not raster.isValid():
             raise InputError("the orthomosaic copy does not open as a raster", source=str(files["background"]))
         _set_qfieldsync_action(raster, editable=False)
-        stack.append(raster)
-    for layer in stack:
+        background.append(raster)
+    for layer in work + background:
         project.addMapLayer(layer, False)
         project.layerTreeRoot().addLayer(layer)
 
-    crs, extent = _crs_and_extent(stack, transform_context)
+    crs, extent = _crs_and_extent(work, transform_context)
+    if extent is None:  # nothing to work on yet: open on the background
+        crs, extent = _crs_and_extent(background, transform_context)
     project.setCrs(crs)
     if extent is not None:
         project.viewSettings().setDefaultViewExtent(QgsReferencedRectangle(extent, crs))
@@ -392,22 +396,22 @@ def instructions(settings: SurveySettings) -> str:
     """What the worker does, in three lines, and the QField height setting the package assumes."""
     fix = settings.requirement_description() if settings.requirement else tr("Use the best fix you can get")
     if settings.height_reference == fs.HEIGHT_ORTHOMETRIC:
-        height = tr("QField settings › Positioning: “Use orthometric altitude from device” ON (heights go to "
-                    "{field}).").format(field=settings.height_field)
+        height = tr("3. QField settings › Positioning: “Use orthometric altitude from device” ON (heights go to "
+                    "{field}).")
     else:
-        height = tr("QField settings › Positioning: “Use orthometric altitude from device” OFF and no vertical "
-                    "grid shift (heights go to {field}).").format(field=settings.height_field)
+        height = tr("3. QField settings › Positioning: “Use orthometric altitude from device” OFF and no vertical "
+                    "grid shift (heights go to {field}).")
     return "\n".join([
         tr("1. Connect the RTK receiver; add each geotag with the crosshair snapped to your position (the GNSS "
            "button), never by tapping the map."),
         tr("2. {fix}: wait for it before saving; hold the pole on the target's centre (label radius {r:g} "
            "m).").format(fix=fix, r=settings.label_radius_m),
-        tr("3. {height}").format(height=height)])
+        height.format(field=settings.height_field)])
 
 
 def _crs_and_extent(stack, transform_context):
-    """The project CRS: the site's UTM zone (the centre of every layer's extent), else EPSG:3857 for a package
-    with nothing to show yet; and the extent to open on (None then), with a margin around single points."""
+    """The project CRS: the site's UTM zone (the centre of the extent of ``stack``'s layers that hold something),
+    else EPSG:3857; and that extent with a margin (a single point gets 20 m around it), else None."""
     wgs84 = QgsCoordinateReferenceSystem(layers.WGS84)
     union = None
     for layer in stack:

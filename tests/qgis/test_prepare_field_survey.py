@@ -160,8 +160,11 @@ def test_package_opens_in_a_fresh_project_with_relative_paths_and_the_orthomosai
     assert visit["decision"] in (None, NULL)  # not visited
 
     assert project.crs().authid() == "EPSG:32756"  # the site's UTM zone
-    assert project.viewSettings().defaultViewExtent().contains(
-        project.viewSettings().defaultViewExtent().center())
+    # It opens on what the worker works on (the area, visits, geotags), not on the whole flight.
+    opening = project.viewSettings().defaultViewExtent()
+    work = QgsCoordinateTransform(layers["Survey area"].crs(), project.crs(), project).transformBoundingBox(
+        layers["Survey area"].extent())
+    assert opening.contains(work) and opening.width() <= work.width() + 2 * max(20.0, 0.1 * work.width()) + 1e-6
     assert "orthometric altitude from device" in project.metadata().abstract()
     scope = QgsExpressionContextUtils.projectScope(project)
     assert float(scope.variable("birdseye_label_radius_m")) == 0.05
@@ -325,3 +328,11 @@ def test_each_part_of_the_requirement_can_be_left_out(birdseye_provider, tmp_pat
     constraints = geotags.fields().at(index).constraints()
     assert (constraints.constraintDescription() or None) == description
     assert len(geotags.renderer().rootRule().children()) == (1 if description is None else 2)
+
+
+def test_a_package_with_only_an_orthomosaic_opens_on_it(campaign, tmp_path):
+    project = opened(package(tmp_path / "pkg", BACKGROUND=campaign["ortho"])["PROJECT"])
+    ortho = layer_named(project, "Orthomosaic")
+    assert project.crs().authid() == "EPSG:32756"
+    assert project.viewSettings().defaultViewExtent().contains(
+        QgsCoordinateTransform(ortho.crs(), project.crs(), project).transformBoundingBox(ortho.extent()))
