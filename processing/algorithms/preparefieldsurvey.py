@@ -46,7 +46,7 @@ class PrepareFieldSurvey(ReviewParametersMixin, BirdsEyeAlgorithm):
                     QT_TRANSLATE_NOOP("PrepareFieldSurvey", "Block saving"))
     #: HEIGHT_REFERENCE choices: what the user declares QField's altitude to be.
     HEIGHT_CHOICES = (
-        (QT_TRANSLATE_NOOP("PrepareFieldSurvey", "Orthometric (QField: orthometric altitude from device)"),
+        (QT_TRANSLATE_NOOP("PrepareFieldSurvey", "Orthometric (QField: orthometric altitude on)"),
          HEIGHT_ORTHOMETRIC),
         (QT_TRANSLATE_NOOP("PrepareFieldSurvey", "Ellipsoidal (that setting off, no grid shift)"),
          HEIGHT_ELLIPSOIDAL))
