@@ -65,6 +65,7 @@ if Qgis.QGIS_VERSION_INT >= 33000:
     WKB_POLYGON = Qgis.WkbType.Polygon
     WKB_POLYGON_Z = Qgis.WkbType.PolygonZ
     WKB_MULTI_POLYGON = Qgis.WkbType.MultiPolygon
+    WKB_NO_GEOMETRY = Qgis.WkbType.NoGeometry
     GEOMETRY_POINT = Qgis.GeometryType.Point
     GEOMETRY_LINE = Qgis.GeometryType.Line
     GEOMETRY_POLYGON = Qgis.GeometryType.Polygon
@@ -80,6 +81,7 @@ else:
     WKB_POLYGON = QgsWkbTypes.Polygon
     WKB_POLYGON_Z = QgsWkbTypes.PolygonZ
     WKB_MULTI_POLYGON = QgsWkbTypes.MultiPolygon
+    WKB_NO_GEOMETRY = QgsWkbTypes.NoGeometry
     GEOMETRY_POINT = QgsWkbTypes.PointGeometry
     GEOMETRY_LINE = QgsWkbTypes.LineGeometry
     GEOMETRY_POLYGON = QgsWkbTypes.PolygonGeometry

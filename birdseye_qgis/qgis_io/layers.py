@@ -70,17 +70,17 @@ if Qgis.QGIS_VERSION_INT >= 33800:
     from qgis.PyQt.QtCore import QMetaType
 
     FIELD_TYPES = {"int": QMetaType.Type.Int, "double": QMetaType.Type.Double, "string": QMetaType.Type.QString,
-                   "bool": QMetaType.Type.Bool}
+                   "bool": QMetaType.Type.Bool, "datetime": QMetaType.Type.QDateTime}
 else:
     from qgis.PyQt.QtCore import QVariant
 
     FIELD_TYPES = {"int": QVariant.Int, "double": QVariant.Double, "string": QVariant.String,  # noqa: QGS402
-                   "bool": QVariant.Bool}  # noqa: QGS402
+                   "bool": QVariant.Bool, "datetime": QVariant.DateTime}  # noqa: QGS402
 
 
 # ------------------------------------------------------------------------------------------ fields
 def qgs_fields(spec) -> QgsFields:
-    """QgsFields from a core schema: (name, type, description) with type "int"/"double"/"string"/"bool"."""
+    """QgsFields from a core schema: (name, type, description) with type "int"/"double"/"string"/"bool"/"datetime"."""
     fields = QgsFields()
     for name, kind, description in spec:
         fields.append(qgs_field(name, kind, description))
@@ -88,7 +88,7 @@ def qgs_fields(spec) -> QgsFields:
 
 
 def qgs_field(name: str, kind: str, description: str = "") -> QgsField:
-    """One field of type "int", "double" or "string", on QGIS 3.22 and QGIS 4 alike."""
+    """One field of type "int", "double", "string", "bool" or "datetime", on QGIS 3.22 and QGIS 4 alike."""
     field = QgsField(name, FIELD_TYPES[kind])
     field.setComment(description)
     return field

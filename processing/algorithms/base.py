@@ -44,7 +44,7 @@ GROUPS = {
 #: is shown as "<group>.<step> · <name>" ("1.2 · Import flight log"); the ids stay as they are (they are public).
 WORKFLOW = {
     "field": ("importgeotags", "importflightlog", "importdjiimages", "importcameras", "refineposes", "processodm",
-              "surveyreport", "partitionfield"),
+              "preparefieldsurvey", "surveyreport", "partitionfield"),
     "plan": ("planflight",),
     "labels": ("writelabels", "writelabelsraster", "traindetector"),
     "detect": ("detect", "detectraster", "clusterdetections", "evaluatedetections", "comparedetectors",

@@ -1,6 +1,6 @@
 """A review's verdicts and the clusters they judged (REVIEW, REVIEW_DETECTIONS, REVIEW_FRAMES and the
 clustering parameters), read the way ``evaluatedetections`` reads them, for the algorithms that act on
-what the review decided (Write labels, Plan the survey flight)."""
+what the review decided (Write labels, Plan the survey flight, Prepare field survey)."""
 from __future__ import annotations
 
 from qgis.core import (

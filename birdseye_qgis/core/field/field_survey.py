@@ -9,6 +9,8 @@ GeoPackage, :data:`PACKAGE_GPKG`, holding
   the accuracy requirement is a constraint on them (:func:`accuracy_requirement_expression`).
 * :data:`VISIT_TABLE` — points to visit (a review's unresolved clusters, or any point layer): what the
   worker decides there (:data:`DECISIONS`), with the same GNSS fields, and the review units it settles.
+* :data:`SURVEYED_TABLE` — geotags surveyed before, read-only, so the worker sees what is already recorded
+  without their records mixing with the new ones Import geotags reads from :data:`GEOTAG_TABLE`.
 * :data:`AREA_TABLE` — the field's boundary or its partitions; :data:`FOOTPRINT_TABLE` — frame footprints
   as an offline background when there is no orthomosaic (an orthomosaic is copied into the folder).
 * :data:`META_TABLE` — key/value text: the package's classes, label radius, accuracy requirement, height
@@ -35,6 +37,7 @@ GEOTAG_TABLE = "geotags"
 VISIT_TABLE = "visits"
 AREA_TABLE = "survey_area"
 FOOTPRINT_TABLE = "frame_footprints"
+SURVEYED_TABLE = "surveyed_before"
 META_TABLE = "birdseye_package"
 
 #: Package metadata keys (META_TABLE rows).

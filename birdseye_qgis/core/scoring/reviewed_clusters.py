@@ -15,7 +15,7 @@ A cluster's **outcome** is read over all direct and propagated judgements of its
 Clusters that match an in-view geotag (``hit``) are settled by the survey whatever the review says.
 Of the others, confirmed clusters become training targets (provenance ``review``), hard negatives
 become hard-negative tiles (``birdseye:writelabels``), and the rest are **unresolved**: the next
-flight or walk should visit them (``birdseye:planflight``).
+flight or walk should visit them (``birdseye:planflight``, ``birdseye:preparefieldsurvey``).
 """
 from __future__ import annotations
 
@@ -41,7 +41,8 @@ def cluster_outcome(log: VerdictLog, unit_keys) -> str:
 @dataclass(frozen=True)
 class ReviewedCluster:
     """One scored cluster: where it is (its centroid, WGS84 degrees), whether a geotag matches it and
-    what the review made of it."""
+    what the review made of it; ``unit_keys``: the review units its verdicts attach to
+    (``Evaluation``'s ``cluster_units``), which a verdict on the cluster from the field is written against."""
 
     flight: str
     cluster_id: int
@@ -50,6 +51,7 @@ class ReviewedCluster:
     hit: bool
     outcome: str
     n_detections: int
+    unit_keys: tuple = ()
 
     @property
     def key(self) -> str:
@@ -85,7 +87,7 @@ def reviewed_clusters(evaluation: Evaluation, log: VerdictLog) -> list[ReviewedC
         for k in range(n):
             out.append(ReviewedCluster(flight.name, k, float(lat[k]), float(lon[k]),
                                        bool(flight.score.cluster_hit[k]), cluster_outcome(log, units[k]),
-                                       int(flight.clustering.summary.n_detections[k])))
+                                       int(flight.clustering.summary.n_detections[k]), tuple(units[k])))
     return out
 
 
