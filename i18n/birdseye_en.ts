@@ -39,213 +39,213 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="66"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="73"/>
         <source>Review clusters</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="199"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="209"/>
         <source>Review setup</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="203"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="213"/>
         <source>choose one or more detection layers</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="204"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="214"/>
         <source>Outputs of Detect targets over one flight (several checkpoints or thresholds are reviewed together: one verdict per spot).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="262"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="270"/>
         <source>Detections</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="213"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="221"/>
         <source>Frames</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="220"/>
+        <location filename="../birdseye_qgis/qgis_io/field_package.py" line="361"/>
         <source>Geotags</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="225"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="233"/>
         <source>GeoPackage holding the append-only verdict log (table birdseye_verdicts). Default: the first detection layer&apos;s GeoPackage, else one next to the project.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="229"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="237"/>
         <source>Verdict log</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="231"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="239"/>
         <source>Recorded with every verdict.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="233"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="241"/>
         <source>Reviewer</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="235"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="243"/>
         <source>Clustering and matching</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="260"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="268"/>
         <source>DBSCAN minimum points per neighbourhood (itself included).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="279"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="287"/>
         <source>Size of the image window cut around a detection.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="286"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="294"/>
         <source>Map scale the canvas zooms to around each unit.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="287"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="295"/>
         <source>Grid cell</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="287"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="295"/>
         <source>EPS</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="287"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="295"/>
         <source>Min. points</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="287"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="295"/>
         <source>EPS_PRED</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="287"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="295"/>
         <source>Edge buffer</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="287"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="295"/>
         <source>Chip window</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="287"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="295"/>
         <source>Map scale</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="295"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="303"/>
         <source>Start / resume review</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="309"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="317"/>
         <source>No review started</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="320"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="328"/>
         <source>All layers</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="330"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="338"/>
         <source>Fired by</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="332"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="340"/>
         <source>Show</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="363"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="371"/>
         <source>Previous (P)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="365"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="373"/>
         <source>Next (N)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="382"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="390"/>
         <source>Undo (Ctrl+Z)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="400"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="408"/>
         <source>Propagate to units within {:.2f} m</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="401"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="409"/>
         <source>Off by default. When on, a verdict also votes (provenance propagated:{rule}) on the units chained to this one by gaps of at most {eps:.2f} m; conflicting votes are resolved under the three conventions, all shown.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="406"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="414"/>
         <source>Next unit after a verdict</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="413"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="421"/>
         <source>&lt;b&gt;Scores per detection layer&lt;/b&gt; — after review under each tie-break convention</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="415"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="423"/>
         <source>Recall and the geotag-matched cluster fraction (GMCF), computed as Evaluate detections computes them from this verdict log.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="419"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="427"/>
         <source>before
 review</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="423"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="431"/>
         <source>After review, {}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="440"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="448"/>
         <source>GMCF is a lower bound on precision, not precision; recall after review is an upper bound (≥). The spread between the conventions is part of the result.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="208"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="236"/>
         <source>Choose at least one detection layer (an output of Detect targets).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="214"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="244"/>
         <source>Choose a GeoPackage for the verdict log (save the project first to get one next to it).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="275"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="310"/>
         <source>{n} units from {k} layer(s); verdict log {path}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="347"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="382"/>
         <source>A layer of the review was removed from the project; the review stopped. Every verdict is in the log; choose the layers again to resume.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -255,122 +255,122 @@ review</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="384"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="419"/>
         <source>&lt;b&gt;{pos}&lt;/b&gt; of {vis} shown · {done} of {n} units reviewed · {added} added</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="437"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="472"/>
         <source>An added target can only be withdrawn (0 or Backspace) or undone.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="448"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="483"/>
         <source>Saved: {key} → {verdict}{more} ({time} UTC)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="448"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="483"/>
         <source>, {} propagated vote(s)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="463"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="498"/>
         <source>Nothing to undo.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="467"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="502"/>
         <source>Undone: action {action} on {key} (rows appended; nothing deleted).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="485"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="526"/>
         <source>The verdict was NOT saved: {error}. Check that {path} is writable and not locked, then try again.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="500"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="541"/>
         <source>Click the map where the missed target is (Esc or right click cancels).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="521"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="562"/>
         <source>Added target {key} (Ctrl+Z undoes it).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="521"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="562"/>
         <source>A target is already recorded there.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="542"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="583"/>
         <source>No units: the detection layers have no clusters at these settings.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="543"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="584"/>
         <source>Nothing to show</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="555"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="596"/>
         <source>Loading frames…</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="562"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="604"/>
         <source>&lt;b&gt;Added target&lt;/b&gt; {key}&lt;br&gt;{lat:.7f}°, {lon:.7f}° · recorded as a target the detector missed (the &lt;i&gt;a&lt;/i&gt; term). 0 withdraws it.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/model.py" line="152"/>
+        <location filename="../birdseye_qgis/gui/review/model.py" line="155"/>
         <source>geotag {ids} within {eps:.2f} m</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/model.py" line="152"/>
+        <location filename="../birdseye_qgis/gui/review/model.py" line="155"/>
         <source>no geotag within {eps:.2f} m</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/model.py" line="159"/>
+        <location filename="../birdseye_qgis/gui/review/model.py" line="162"/>
         <source>none yet</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/model.py" line="160"/>
+        <location filename="../birdseye_qgis/gui/review/model.py" line="163"/>
         <source>the conventions disagree</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="455"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="465"/>
         <source>The frames could not be read: {}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="457"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="468"/>
         <source>No frame of the frame layer shows this spot.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="463"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="475"/>
         <source>frame {f}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="469"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="481"/>
         <source>{shown} of {n} frames</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="618"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="667"/>
         <source>updating…</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="627"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="676"/>
         <source>Scores could not be computed: {}</source>
         <translation type="unfinished"></translation>
     </message>
@@ -385,17 +385,17 @@ review</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="273"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="308"/>
         <source>Review verdicts</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="479"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="493"/>
         <source>Cannot start the review</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="479"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="493"/>
         <source>Inputs changed since verdicts were recorded</source>
         <translation type="unfinished"></translation>
     </message>
@@ -707,12 +707,12 @@ pip&apos;s log is below; the packages already there are unchanged.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="247"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="255"/>
         <source>How detections become review units. Consensus clusters (the default) pool the layers and judge each spot once. The method&apos;s: detections within EPS_PRED of an in-view geotag are set aside one by one; per frame, the rest are grouped so that every two detections of a group are at most {px:.0f} px apart; each group is a unit, so a spot is judged once per frame.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="287"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="295"/>
         <source>Review units</source>
         <translation type="unfinished"></translation>
     </message>
@@ -779,27 +779,27 @@ QGIS&apos;s own packages are not changed. pip downloads them from the Python Pac
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="248"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="283"/>
         <source>The detections were placed on {ground}, which cannot be used here ({reason}). Chips and geotags in view stand on the level plane instead: positions in the chips and the scores may differ from those of Evaluate detections given that DEM.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/dock.py" line="253"/>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="288"/>
         <source>The review stands on the level plane, not on the detections&apos; DEM</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/qgis_io/layers.py" line="468"/>
+        <location filename="../birdseye_qgis/qgis_io/layers.py" line="489"/>
         <source>the camera model of frame {frame} was cut at {length} characters: {format} keeps at most {length} characters in a text field and a camera model needs about 500: the layer was probably saved to it after the import (Save Features As…). Save the original frame layer as a GeoPackage (.gpkg) instead, or run the import again with its output written to a GeoPackage (or to this format: the import then splits the camera over fields camera, camera_2, …).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/qgis_io/layers.py" line="468"/>
+        <location filename="../birdseye_qgis/qgis_io/layers.py" line="489"/>
         <source>the layer&apos;s file format (e.g. ESRI Shapefile)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/qgis_io/layers.py" line="515"/>
+        <location filename="../birdseye_qgis/qgis_io/layers.py" line="536"/>
         <source>The output&apos;s format keeps at most {n} characters in a text field: each frame&apos;s camera model goes on in fields {fields}; keep them with the layer.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -834,42 +834,37 @@ QGIS&apos;s own packages are not changed. pip downloads them from the Python Pac
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="210"/>
-        <source>The flight&apos;s frame layer (Import flight log, Import drone images or Import camera solution): poses, camera and image of every frame. Only frame layers are listed.</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="217"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="225"/>
         <source>The survey points (Import geotags). Point layers that BirdsEye made for something else (detections, clusters, waypoints, verdicts) are not listed.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="228"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="236"/>
         <source>the detections&apos; GeoPackage</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="239"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="247"/>
         <source>One per spot</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="240"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="248"/>
         <source>One per spot and frame (the method&apos;s)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="241"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="249"/>
         <source>Consensus clusters: one unit per spot, pooling all layers</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="243"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="251"/>
         <source>The method&apos;s units: per frame, complete linkage at {px:.0f} px</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="384"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="392"/>
         <source>Missed target (A)</source>
         <translation type="unfinished"></translation>
     </message>
@@ -909,12 +904,12 @@ QGIS&apos;s own packages are not changed. pip downloads them from the Python Pac
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="354"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="362"/>
         <source>Choose the layers above and press Start: each unit to judge shows here.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="392"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="400"/>
         <source>The frames that show the unit</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1300,17 +1295,17 @@ exact</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="263"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="271"/>
         <source>Cells (the method&apos;s)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="265"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="273"/>
         <source>What the minimum points count, as in Cluster detections: the detections in the grid cells within EPS (the default), or the occupied cells, one point each (the method&apos;s: a spot whose detections all fall in one cell never forms a unit).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/gui/review/widgets.py" line="287"/>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="295"/>
         <source>Points count</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1364,11 +1359,146 @@ exact</source>
         <source> (summary.json lists them all): {shown}</source>
         <translation type="unfinished"></translation>
     </message>
+    <message>
+        <location filename="../birdseye_qgis/gui/review/dock.py" line="596"/>
+        <source>Loading the raster…</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/gui/review/model.py" line="164"/>
+        <source>on the raster</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="201"/>
+        <source>Not needed: the detections chosen were found on a raster (Detect targets on a raster). Their chips are cut from that raster, and the geotags in view are those it covers.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="203"/>
+        <source>The flight&apos;s frame layer (Import flight log, Import drone images or Import camera solution): poses, camera and image of every frame. Only frame layers are listed. Detections found on a raster need none.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="465"/>
+        <source>The raster could not be read: {}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="468"/>
+        <source>This spot is off the raster.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="475"/>
+        <source>raster</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/gui/review/widgets.py" line="481"/>
+        <source>cut from the raster</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/qgis_io/field_package.py" line="104"/>
+        <source>Needs RTK fixed</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/qgis_io/field_package.py" line="105"/>
+        <source>Needs RTK fixed and ≤ {cm:g} cm horizontal accuracy</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/qgis_io/field_package.py" line="105"/>
+        <source>Needs ≤ {cm:g} cm horizontal accuracy</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/qgis_io/field_package.py" line="362"/>
+        <source>Points to visit</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/qgis_io/field_package.py" line="518"/>
+        <source>Surveyed before</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/qgis_io/field_package.py" line="366"/>
+        <source>Survey area</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/qgis_io/field_package.py" line="369"/>
+        <source>Frame footprints</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/qgis_io/field_package.py" line="371"/>
+        <source>Orthomosaic</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/qgis_io/field_package.py" line="388"/>
+        <source>BirdsEye field survey: {name}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/qgis_io/field_package.py" line="397"/>
+        <source>Use the best fix you can get</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/qgis_io/field_package.py" line="399"/>
+        <source>3. QField settings › Positioning: “Use orthometric altitude from device” ON (heights go to {field}).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/qgis_io/field_package.py" line="402"/>
+        <source>3. QField settings › Positioning: “Use orthometric altitude from device” OFF and no vertical grid shift (heights go to {field}).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/qgis_io/field_package.py" line="404"/>
+        <source>1. Connect the RTK receiver; add each geotag with the crosshair snapped to your position (the GNSS button), never by tapping the map.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/qgis_io/field_package.py" line="404"/>
+        <source>2. {fix}: wait for it before saving; hold the pole on the target&apos;s centre (label radius {r:g} m).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/qgis_io/field_package.py" line="483"/>
+        <source>Label radius (m)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/qgis_io/field_package.py" line="485"/>
+        <source>Geotag</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/qgis_io/field_package.py" line="493"/>
+        <source>Fails: {what}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/qgis_io/field_package.py" line="495"/>
+        <source>Meets the accuracy requirement</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/qgis_io/field_package.py" line="507"/>
+        <source>Not visited</source>
+        <translation type="unfinished"></translation>
+    </message>
 </context>
 <context>
     <name>BirdsEyeAlgorithm</name>
     <message>
-        <location filename="../processing/algorithms/base.py" line="229"/>
+        <location filename="../processing/algorithms/base.py" line="230"/>
         <source>Cancelled by the user.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1403,47 +1533,47 @@ exact</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/base.py" line="268"/>
+        <location filename="../processing/algorithms/base.py" line="269"/>
         <source>This algorithm needs the Python package(s) {names}, which the Python QGIS runs does not have. In QGIS, choose BirdsEye › Install dependencies… to install them; or install them yourself: python -m pip install {pins}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/base.py" line="275"/>
+        <location filename="../processing/algorithms/base.py" line="276"/>
         <source>This algorithm needs the Python package(s) {names}, which have no release for the Python QGIS runs (Python {version}); it runs in a QGIS with a newer Python.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/base.py" line="162"/>
+        <location filename="../processing/algorithms/base.py" line="163"/>
         <source>{name} must be between {lo:g} and {hi:g}{unit}, got {value:g}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/base.py" line="165"/>
+        <location filename="../processing/algorithms/base.py" line="166"/>
         <source>{name} must be at least {lo:g}{unit}, got {value:g}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/base.py" line="168"/>
+        <location filename="../processing/algorithms/base.py" line="169"/>
         <source>{name} must be at most {hi:g}{unit}, got {value:g}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/base.py" line="184"/>
+        <location filename="../processing/algorithms/base.py" line="185"/>
         <source>{name}: {path} is a file; give a folder (a new one is made where none is).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/base.py" line="191"/>
+        <location filename="../processing/algorithms/base.py" line="192"/>
         <source>{name}: {path} is a folder; give a file name.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/base.py" line="198"/>
+        <location filename="../processing/algorithms/base.py" line="199"/>
         <source>{name}: {path} cannot be written ({folder} is read-only for you); choose another place.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/base.py" line="257"/>
+        <location filename="../processing/algorithms/base.py" line="258"/>
         <source>{paths}: {reason}. Check that the path is right, that its folder can be written, and that no file has the name a folder needs (or the other way round).</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1476,12 +1606,12 @@ exact</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="165"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="164"/>
         <source>OUTPUT: the cluster layer cannot be created.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="188"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="187"/>
         <source>OUTPUT_POINTS: the point layer cannot be created.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1491,12 +1621,12 @@ exact</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="129"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="128"/>
         <source>No FRAMES given: every geotag is treated as in view.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="136"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="135"/>
         <source>{n_hit_clusters} of {n} clusters match an in-view geotag; {n_recovered} of {n_in_view} in-view geotags recovered.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1506,7 +1636,7 @@ exact</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="124"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="123"/>
         <source>{n} frame(s) without a ground height (flag no_ground_height; first: {items}) were not counted as processed: the geotags only they see are not in view.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1521,7 +1651,7 @@ exact</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/clusterdetections.py" line="148"/>
+        <location filename="../processing/algorithms/clusterdetections.py" line="147"/>
         <source>{n_det} detections → {n_points} de-duplicated points → {n} clusters ({NOISE_POINTS} points are noise; minimum points counted {counted}).</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1549,17 +1679,12 @@ exact</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/clustering.py" line="99"/>
+        <location filename="../processing/parameters/clustering.py" line="100"/>
         <source>{name}: give at least one detection layer.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/parameters/clustering.py" line="102"/>
-        <source>{name}: give one frame layer per detection layer, in the same order (got {detections} detection layer(s) and {frames} frame layer(s)).</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../processing/parameters/clustering.py" line="110"/>
+        <location filename="../processing/parameters/clustering.py" line="106"/>
         <source>{layer}: {n} detection(s) without a position or score left out</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1576,6 +1701,11 @@ exact</source>
     <message>
         <location filename="../processing/parameters/clustering.py" line="67"/>
         <source>Minimum points count</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/parameters/clustering.py" line="116"/>
+        <source>{name}: give one frame layer per detection layer found on frames, in the same order (got {detections} detection layer(s), {on_frames} of them found on frames, and {frames} frame layer(s)); a layer found on a raster needs none.</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
@@ -1864,7 +1994,7 @@ exact</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/detectraster.py" line="102"/>
+        <location filename="../processing/algorithms/detectraster.py" line="103"/>
         <source>{count} detections from {windows} windows ({skipped} outside the area asked for not read); {merged} found on a seam by two windows kept once.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -2204,138 +2334,208 @@ exact</source>
 <context>
     <name>ImportGeotags</name>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="68"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="73"/>
         <source>…or a point layer</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="70"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="75"/>
         <source>File format</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="80"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="85"/>
         <source>Fix filter</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="85"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="90"/>
         <source>Antenna pole height (m), subtracted from heights</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="88"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="93"/>
         <source>Output CRS (empty: UTM zone of the site)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="90"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="98"/>
         <source>Geotags</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="102"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="112"/>
         <source>Give either a geotag file (INPUT) or a point layer (INPUT_LAYER), not both and not neither.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="120"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="147"/>
         <source>The input holds no usable geotag.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="153"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="180"/>
         <source>No geotag is left to write (all were filtered out).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="123"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="150"/>
         <source>{n_problems} bad row(s) left out; first: {examples}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="138"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="165"/>
         <source>{dropped_not_fixed} geotag(s) without an RTK fixed solution were left out (fix filter: RTK fixed only)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="150"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="177"/>
         <source>{duplicates} geotag(s) lie within 2 cm of an earlier one (flag duplicate_2cm)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="155"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="182"/>
         <source>Output CRS: {value}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="35"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="39"/>
         <source>Import geotags</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="52"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="57"/>
         <source>Metres</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="52"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="57"/>
         <source>International feet (0.3048 m)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="52"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="57"/>
         <source>US survey feet (1200/3937 m)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="74"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="79"/>
         <source>Unit of heights and accuracies</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="117"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="142"/>
         <source>Reading: {note}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="130"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="157"/>
         <source>Fix quality of the input: {counts}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="134"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="161"/>
         <source>Horizontal accuracy of the input: median {median:.3f} m, worst {worst:.3f} m ({n_known} of {n_tags} geotags give one)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="142"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="169"/>
         <source>{dropped} geotag(s) with a horizontal accuracy worse than {limit:g} m were left out (MAX_H_ACCURACY_M)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="146"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="173"/>
         <source>{unknown} geotag(s) have no horizontal accuracy in the input and were kept (MAX_H_ACCURACY_M cannot judge them)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="52"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="57"/>
         <source>From the file (else metres)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="65"/>
-        <source>Geotag file (CSV or NMEA)</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="77"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="82"/>
         <source>Geoid undulation N (m; empty: EGM96)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/importgeotags.py" line="82"/>
+        <location filename="../processing/algorithms/importgeotags.py" line="87"/>
         <source>Largest horizontal accuracy kept (m)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/importgeotags.py" line="70"/>
+        <source>Geotag file (CSV, NMEA or field GeoPackage)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/importgeotags.py" line="95"/>
+        <source>Append field decisions to review (.gpkg)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/importgeotags.py" line="125"/>
+        <source>Reading: read as a BirdsEye field survey GeoPackage (QField): {path}, table &apos;{table}&apos;</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/importgeotags.py" line="138"/>
+        <source>REVIEW_LOG is not used: only a field survey package (its GeoPackage) has decisions to append to a review.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/importgeotags.py" line="145"/>
+        <source> Its {n} field decision(s) were appended to the review all the same.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/importgeotags.py" line="212"/>
+        <source>Field survey: {n_tags} geotag(s), {n_fixed} RTK fixed, {n_accuracy} with a horizontal accuracy, {n_time} with a capture time; recorded by {workers}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/importgeotags.py" line="212"/>
+        <source>no named worker</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/importgeotags.py" line="226"/>
+        <source>Point to visit left out: {problem}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/importgeotags.py" line="231"/>
+        <source>The review the package came from, {log}, is not there (moved?): give it as REVIEW_LOG to append the field decisions to it.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/importgeotags.py" line="236"/>
+        <source>{n} review unit(s) have a field decision, but the package names no review and REVIEW_LOG is empty: the decisions are not written.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/importgeotags.py" line="240"/>
+        <source>{n} decided point(s) to visit are not review units (no unit keys), so their decisions are not written to a review: {visits}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/importgeotags.py" line="244"/>
+        <source>{n} point(s) to visit have no decision (not visited)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/importgeotags.py" line="247"/>
+        <source>Field decisions: {note}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/importgeotags.py" line="249"/>
+        <source>{n} review unit(s) already hold the field&apos;s decision from the same worker (imported before): not appended again</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/importgeotags.py" line="252"/>
+        <source>Field decisions: {n} verdict(s) appended to the review {log} as {reviewers}</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
@@ -2452,6 +2652,79 @@ exact</source>
     <message>
         <location filename="../processing/algorithms/montecarlobound.py" line="58"/>
         <source>sKLD cut-offs (nats, comma-separated)</source>
+        <translation type="unfinished"></translation>
+    </message>
+</context>
+<context>
+    <name>PartitionField</name>
+    <message>
+        <location filename="../processing/algorithms/partitionfield.py" line="44"/>
+        <source>Partition field</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/partitionfield.py" line="56"/>
+        <source>Field(s) to partition (polygons)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/partitionfield.py" line="58"/>
+        <source>People surveying</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/partitionfield.py" line="60"/>
+        <source>Surveying time per piece [h]</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/partitionfield.py" line="63"/>
+        <source>Geotags per worker-hour</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/partitionfield.py" line="66"/>
+        <source>Rate from a Survey report (JSON)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/partitionfield.py" line="69"/>
+        <source>Targets per hectare</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/partitionfield.py" line="72"/>
+        <source>Partitions</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/partitionfield.py" line="82"/>
+        <source>AREA: the polygon layer could not be opened.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/partitionfield.py" line="87"/>
+        <source>Rate from the survey report: {r:.1f} geotags per worker-hour.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/partitionfield.py" line="97"/>
+        <source>AREA: row {row} of layer &apos;{layer}&apos; has no polygon; remove it or draw the field.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/partitionfield.py" line="105"/>
+        <source>AREA: layer &apos;{}&apos; has no polygon to partition.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/partitionfield.py" line="116"/>
+        <source>{n} field(s), {ha:.2f} ha → {k} piece(s) of about {h:.2f} h each for {p} people ({r:g} geotags per worker-hour, {t:g} targets per ha): {hours:.1f} worker-hours in all.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/partitionfield.py" line="129"/>
+        <source>AREA: layer '{}' has no valid CRS; set it (Layer Properties › Source) and run again.</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
@@ -2590,6 +2863,139 @@ exact</source>
     <message>
         <location filename="../processing/algorithms/planflight.py" line="121"/>
         <source>Surveyed area (polygons)</source>
+        <translation type="unfinished"></translation>
+    </message>
+</context>
+<context>
+    <name>PrepareFieldSurvey</name>
+    <message>
+        <location filename="../processing/algorithms/preparefieldsurvey.py" line="28"/>
+        <source>Prepare field survey</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/preparefieldsurvey.py" line="45"/>
+        <source>Warn and flag the point</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/preparefieldsurvey.py" line="45"/>
+        <source>Block saving</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/preparefieldsurvey.py" line="48"/>
+        <source>Orthometric (QField: orthometric altitude on)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/preparefieldsurvey.py" line="48"/>
+        <source>Ellipsoidal (that setting off, no grid shift)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/preparefieldsurvey.py" line="55"/>
+        <source>Package folder (copy it to the device)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/preparefieldsurvey.py" line="57"/>
+        <source>Project name</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/preparefieldsurvey.py" line="59"/>
+        <source>Classes (comma-separated; the first is the default)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/preparefieldsurvey.py" line="61"/>
+        <source>Label radius (m)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/preparefieldsurvey.py" line="63"/>
+        <source>Require an RTK fixed solution</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/preparefieldsurvey.py" line="66"/>
+        <source>Largest horizontal accuracy accepted (m; 0: any)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/preparefieldsurvey.py" line="69"/>
+        <source>A point that fails the requirement</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/preparefieldsurvey.py" line="72"/>
+        <source>Height the receiver gives QField</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/preparefieldsurvey.py" line="75"/>
+        <source>Geotags surveyed before</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/preparefieldsurvey.py" line="79"/>
+        <source>Points to visit</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/preparefieldsurvey.py" line="81"/>
+        <source>Survey area or partitions (polygons)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/preparefieldsurvey.py" line="84"/>
+        <source>Orthomosaic (copied as GeoTIFF)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/preparefieldsurvey.py" line="86"/>
+        <source>Frame layer (footprints as background)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/preparefieldsurvey.py" line="90"/>
+        <source>QField project (.qgz)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/preparefieldsurvey.py" line="99"/>
+        <source>PROJECT_NAME: give a file name without a folder or any of / \ : * ? &quot; &lt; &gt; | (got &apos;{name}&apos;).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/preparefieldsurvey.py" line="108"/>
+        <source>REVIEW needs GEOTAGS: the survey&apos;s geotags settle the clusters they match, so only the others are visited. Give the geotag layer the review was scored against.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/preparefieldsurvey.py" line="117"/>
+        <source>Is there a target here? (review: {outcome})</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/preparefieldsurvey.py" line="131"/>
+        <source>Wrote {project}: {visits} point(s) to visit, {geotags} geotag(s) surveyed before. Copy the folder to the device and open the project in QField.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/preparefieldsurvey.py" line="142"/>
+        <source>CLASSES: give at least one class name the worker picks for a geotag, comma-separated (for example &apos;burrow, nest&apos;).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/preparefieldsurvey.py" line="163"/>
+        <source>Is there a target here? (from {layer})</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/preparefieldsurvey.py" line="169"/>
+        <source>{n} point(s) without a position left out; first: {first}</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
@@ -3251,6 +3657,114 @@ exact</source>
     </message>
 </context>
 <context>
+    <name>SurveyReport</name>
+    <message>
+        <location filename="../processing/algorithms/surveyreport.py" line="42"/>
+        <source>Survey report</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/surveyreport.py" line="65"/>
+        <source>Geotags (with time_utc)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/surveyreport.py" line="67"/>
+        <source>Worker field</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/surveyreport.py" line="70"/>
+        <source>A gap longer than this starts a session [min]</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/surveyreport.py" line="73"/>
+        <source>Partitions (polygons)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/surveyreport.py" line="76"/>
+        <source>Partition id field (empty: the row)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/surveyreport.py" line="79"/>
+        <source>Frame layers (one flight each)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/surveyreport.py" line="81"/>
+        <source>Write labels summary.json</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/surveyreport.py" line="84"/>
+        <source>Labels (empty: summary.json)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/surveyreport.py" line="87"/>
+        <source>Frames with labels (empty: summary.json)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/surveyreport.py" line="90"/>
+        <source>Survey report (JSON)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/surveyreport.py" line="92"/>
+        <source>Survey report (HTML)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/surveyreport.py" line="101"/>
+        <source>GEOTAGS: the geotag layer could not be opened.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/surveyreport.py" line="105"/>
+        <source>GEOTAGS: layer &apos;{layer}&apos; has no {time} field, so the report has no capture times (fields: {fields}). Import geotags writes it from the rover&apos;s time column; the field package&apos;s geotags have it.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/surveyreport.py" line="110"/>
+        <source>GEOTAGS: layer &apos;{}&apos; has no geotags: there is nothing to report.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/surveyreport.py" line="114"/>
+        <source>Layer &apos;{layer}&apos; has no field &apos;{field}&apos;: its geotags are one unnamed worker&apos;s.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/surveyreport.py" line="155"/>
+        <source>PARTITION_FIELD: field &apos;{}&apos; gives two partitions one id; choose a field that names each once, or leave it empty.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/surveyreport.py" line="170"/>
+        <source>{g} geotag(s), {t} with a capture time, by {p} people in {s} session(s): {h:.2f} worker-hours, {rate} geotags per worker-hour; elapsed field time {e:.2f} h ({first} to {last}).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/surveyreport.py" line="178"/>
+        <source>{n} geotag(s) have no capture time: counted, but left out of the rates.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/surveyreport.py" line="181"/>
+        <source>{n} labels / {h:.2f} worker-hours = {r:.0f} labels per worker-hour.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/algorithms/surveyreport.py" line="185"/>
+        <source>{k} of {n} partition(s) hold a geotag; {out} geotag(s) lie outside every partition.</source>
+        <translation type="unfinished"></translation>
+    </message>
+</context>
+<context>
     <name>SurveyedAreaParametersMixin</name>
     <message>
         <location filename="../processing/parameters/surveyed_area.py" line="21"/>
@@ -3271,117 +3785,117 @@ exact</source>
 <context>
     <name>SweepOperatingPoints</name>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="101"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="100"/>
         <source>Geotags</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="107"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="106"/>
         <source>De-duplication grid cell (cm)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="115"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="114"/>
         <source>Credible: mean geotags per hit cluster at most</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="118"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="117"/>
         <source>Credible: mean median cluster extent at most (m)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="121"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="120"/>
         <source>Configurations (CSV)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="126"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="125"/>
         <source>Frontier plot (PNG)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="151"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="150"/>
         <source>GEOTAGS: the geotag layer cannot be read.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="245"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="243"/>
         <source>No configuration passed the credibility filter.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="77"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="76"/>
         <source>Sweep operating points</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="139"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="138"/>
         <source>CHECKPOINTS, DETECTIONS: give ONNX checkpoints (the sweep runs them over the frames) or detection layers made by Detect, not both and not neither.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="143"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="142"/>
         <source>FRAMES: give at least one frame layer.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="145"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="144"/>
         <source>FRAMES: give one frame layer per detection layer, in the same order (got {detections} detection layer(s) and {frames} frame layer(s)).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="174"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="172"/>
         <source>{name}: {n_frames} frames, {value} geotags in view</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="183"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="181"/>
         <source>{layer}: {n} detection(s) without a position or score left out</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="188"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="186"/>
         <source>Threshold axis: the thresholds the layers were detected at, {values} (THRESHOLDS is used with CHECKPOINTS only).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="238"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="236"/>
         <source>Pareto: {checkpoint}, threshold {threshold}, eps {eps_m} m, min_samples {min_samples}, eps_pred {eps_pred_m} m → recall_pre {recall_pre:.3f}, gmcf_pre {gmcf_pre:.3f}, F1 {f1_geo:.3f}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="280"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="278"/>
         <source>{checkpoint} on {flight}: {n} frame(s) skipped, e.g. {frame_id}: {reason}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="95"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="94"/>
         <source>ONNX checkpoints (run over FRAMES)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="98"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="97"/>
         <source>Or detection layers (from Detect)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="103"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="102"/>
         <source>Frame layers (one per flight or detection layer)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="111"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="110"/>
         <source>Edge buffer at the image border (px)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="123"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="122"/>
         <source>Configurations and Pareto front (JSON)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="199"/>
+        <location filename="../processing/algorithms/sweepoperatingpoints.py" line="197"/>
         <source>Sweeping {n_checkpoints} checkpoint(s) × {size} configurations ({items}: threshold × eps × min_samples × eps_pred; minimum points count {counted})</source>
         <translation type="unfinished"></translation>
     </message>
@@ -3833,7 +4347,7 @@ exact</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/writelabelsraster.py" line="113"/>
+        <location filename="../processing/algorithms/writelabelsraster.py" line="114"/>
         <source>{labels} label(s) of {in_view} of {n} geotag(s); tiles: {positive} with a target, {negative} negative written; skipped: {near} near a target not labelled, {outside} without a target not wholly inside the surveyed area, {empty} drawn without a pixel of data; {hard} negative(s) hold a hard negative. Each tile is one frame for Train detector, which reads the raster&apos;s GSD from summary.json.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -4052,7 +4566,7 @@ exact</source>
     </message>
     <message>
         <location filename="../resources/help/detectraster.md" line="22"/>
-        <source>A frame shows each target at the drone&apos;s own resolution and from many viewpoints: Detect targets gives several detections per target, which Cluster detections merges. An orthomosaic shows each target once, resampled and blended from the frames (seams and smear where they disagree): one detection per target. **Frames or mosaic, on your own flight:** give Compare detectors the frame detections of a flight (DETECTIONS_OLD) and the detections on its orthomosaic (DETECTIONS_NEW), with the flight&apos;s frames and the survey. Both are scored over the same geotags — those in view of the frames and on the mosaic&apos;s valid pixels — and the mosaic&apos;s detections only where the frames see; each mosaic detection can be a cluster by itself, since one image shows a target once. **Cluster detections and Evaluate detections** take raster detections too: the geotags in view are those on the raster&apos;s valid pixels (the raster the layer records in `dem_source`, so keep it where it was), and each detection can be a cluster by itself (MIN_SAMPLES is taken as 1 for them, said in the log). Evaluate still asks for a frame layer per detection layer (it places the flight; give the flight&apos;s frames). The review dock cuts its chips from frames and does not list raster detections yet.</source>
+        <source>A frame shows each target at the drone&apos;s own resolution and from many viewpoints: Detect targets gives several detections per target, which Cluster detections merges. An orthomosaic shows each target once, resampled and blended from the frames (seams and smear where they disagree): one detection per target. **Frames or mosaic, on your own flight:** give Compare detectors the frame detections of a flight (DETECTIONS_OLD) and the detections on its orthomosaic (DETECTIONS_NEW), with the flight&apos;s frames and the survey. Both are scored over the same geotags — those in view of the frames and on the mosaic&apos;s valid pixels — and the mosaic&apos;s detections only where the frames see; each mosaic detection can be a cluster by itself, since one image shows a target once. **Cluster detections and Evaluate detections** take raster detections too: the geotags in view are those on the raster&apos;s valid pixels (the raster the layer records in `dem_source`, so keep it where it was), and each detection can be a cluster by itself (MIN_SAMPLES is taken as 1 for them, said in the log). Evaluate needs no frame layer for them. The Review clusters dock reviews them too, with chips cut from the raster (no frame layer needed).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
@@ -4094,7 +4608,7 @@ exact</source>
         <location filename="../resources/help/evaluatedetections.md" line="5"/>
         <source>- Detections of all processed frames are de-duplicated on a DEDUP_CM grid and clustered with DBSCAN (EPS_M, MIN_SAMPLES, counting detections or — CORE_COUNT *cells*, the method&apos;s — occupied cells) in a local metric frame (see Cluster detections).
 - Processed frames = every frame of the frame layer given (Detect ran on all of them); frames without a ground height are left out when the detections stand on a plane, as Detect skips them; on a DEM every frame counts (Detect placed them).
-- A geotag is **in view** if it projects inside at least one processed frame (at least EDGE_BUFFER_PX inside the image), placed on the ground the detections were placed on — the level plane, the method&apos;s plane or the DEM, as the detection layer records it (field `ground`); on a DEM a geotag the terrain hides from a frame is not in view of it. For detections found on a raster (Detect targets on a raster, `ground` = `raster`) a geotag is in view when it lies on the raster&apos;s valid pixels (the raster the layer records), and their clusters are counted with MIN_SAMPLES 1 (one image shows a target once).
+- A geotag is **in view** if it projects inside at least one processed frame (at least EDGE_BUFFER_PX inside the image), placed on the ground the detections were placed on — the level plane, the method&apos;s plane or the DEM, as the detection layer records it (field `ground`); on a DEM a geotag the terrain hides from a frame is not in view of it. For detections found on a raster (Detect targets on a raster, `ground` = `raster`) a geotag is in view when it lies on the raster&apos;s valid pixels (the raster the layer records), and their clusters are counted with MIN_SAMPLES 1 (one image shows a target once). Such a layer needs no frame layer: give FRAMES for the layers found on frames alone, in their order (or one per detection layer, as before).
 - An in-view geotag is **recovered** if it lies within EPS_PRED_M (horizontal distance) of a **core** point of some cluster — a border point is not enough.
 - A cluster is a **hit** if at least one in-view geotag lies within EPS_PRED_M of its core points. A geotag between two clusters makes both hits.
 - **recall_pre** = n_recovered / n_in_view.
@@ -4375,7 +4889,7 @@ exact</source>
     <name>help:importgeotags</name>
     <message>
         <location filename="../resources/help/importgeotags.md" line="1"/>
-        <source>Turns the rover survey into a point layer on the map: one point per target, in file order, drawn as rings coloured by fix quality, the legend saying which (RTK fixed, RTK float, no RTK fix; control and check points as triangles). Give either a file or a point layer. The log says how the file was read: which column is the height and why, the units, any conversion, and the datum of the positions.</source>
+        <source>Turns the rover survey into a point layer on the map: one point per target, in file order, drawn as rings coloured by fix quality, the legend saying which (RTK fixed, RTK float, no RTK fix; control and check points as triangles). Give either a file or a point layer; the file may be a field survey package QField filled (its GeoPackage), whose decisions at the points to visit are added to the review they came from. The log says how the file was read: which column is the height and why, the units, any conversion, and the datum of the positions.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
@@ -4388,16 +4902,39 @@ exact</source>
         <source>- **BirdsEye rover CSV** (no header): `lat, lon, altWGS84, altMSL, gpsStatus, label`; degrees, metres, NMEA fix code.
 - **NMEA log**: every `$..GGA` sentence with a position is one geotag; ellipsoidal height = MSL altitude + geoid separation; metres.
 - **Emlid Flow export** (42 columns, Reach RS2/RS3/RS4) and the older **ReachView 3 export** (27 columns): read as they are, with no column mapping (details below).
-- **Any other CSV with a header**: columns found by their names (below), or named with the column mapping.</source>
+- **Any other CSV with a header**: columns found by their names (below), or named with the column mapping.
+- **Field survey package** (QField): its GeoPackage `birdseye_survey.gpkg`, or the package&apos;s `.qgz` beside it (below).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../resources/help/importgeotags.md" line="10"/>
+        <location filename="../resources/help/importgeotags.md" line="11"/>
+        <source>## Field survey package (QField)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../resources/help/importgeotags.md" line="13"/>
+        <source>The package BirdsEye prepares for QField, brought back from the field. Its `geotags` table is read as a point layer (below), QField&apos;s records as they are:</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../resources/help/importgeotags.md" line="15"/>
+        <source>- `fix` (QField&apos;s position quality): `Fixed RTK` → 4, `Float RTK` → 5 (flagged `rtk_float`), `DGPS` → 2, `Autonomous` → 1. `Unknown (4)`, written by some QField releases, is the code in brackets. A trailing ` - IMU active` is ignored.
+- `h_acc_m`, `v_acc_m` → the accuracies; `time_utc` → `time_utc` (UTC; a time stored without a zone is UTC); `label` → `label`; `worker` → `worker`.
+- Height: `h_ellipsoid` is ellipsoidal; `h_msl` is above mean sea level and converted with **GEOID_UNDULATION_M** (else EGM96), as for a CSV. The package names the field by the height reference declared for the receiver. The geometry&apos;s Z is not used then.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../resources/help/importgeotags.md" line="19"/>
+        <source>**Decisions.** A point to visit in its `visits` table with a decision (Real target, Not a target, Cannot tell) settles the review units it came from. Each unit gets the decision as a verdict in the review&apos;s verdict log: **REVIEW_LOG**, else the review the package was made from. The reviewer is `field:&lt;worker&gt;`. All verdicts are added in one step. A unit that already holds the same decision from the same field worker is skipped, so importing a package twice adds nothing. Decided points that are not review units (from a point layer) are listed in the log, not written. A decision that is not one of the three is a warning naming its row.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../resources/help/importgeotags.md" line="21"/>
         <source>## Emlid Flow and ReachView 3 exports</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../resources/help/importgeotags.md" line="12"/>
+        <location filename="../resources/help/importgeotags.md" line="23"/>
         <source>- `Longitude`, `Latitude` → `lon`, `lat`, exactly as written. They are in the datum of the export&apos;s coordinate system (`CS name`): in North America usually NAD83(2011), about a metre from WGS 84. BirdsEye keeps them and the log names the datum: the drone&apos;s positions must come from the same datum.
 - `Ellipsoidal height` → `h_ellipsoid` (and the layer&apos;s Z).
 - `Elevation` → `h_msl` when the coordinate system has a vertical part (`… + NAVD88(GEOID18) height (ftUS)`): it is then an orthometric height and never taken as the ellipsoidal one. Without a vertical part (`WGS 84 / UTM zone 15N`) Emlid writes the ellipsoidal height there too, and `h_msl` stays empty.
@@ -4411,17 +4948,17 @@ exact</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../resources/help/importgeotags.md" line="23"/>
+        <location filename="../resources/help/importgeotags.md" line="34"/>
         <source>## Other CSVs with a header: columns by name</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../resources/help/importgeotags.md" line="25"/>
+        <location filename="../resources/help/importgeotags.md" line="36"/>
         <source>Case, spaces, `_`, `-` and `.` are ignored; a unit at the end of a name — `alt (ft)`, `z [m]`, `ELLIPSOIDAL_M`, `[EllipsoidHeight:Meter:3]` — is that column&apos;s unit. The first name found of each kind is used.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../resources/help/importgeotags.md" line="27"/>
+        <location filename="../resources/help/importgeotags.md" line="38"/>
         <source>- Latitude: `lat`, `latitude`, `wgs84 latitude`; longitude: `lon`, `lng`, `long`, `longitude`, `wgs84 longitude` (decimal degrees; degrees-minutes-seconds are refused row by row).
 - Ellipsoidal height: `Ellipsoidal height`, `ellipsoidal`, `Ellipsoid height`, `EllipsoidHeight`, `altWGS84`, `h_ellipsoid`, `HAE`, `final ellipsoidal`, …
 - Height above mean sea level (kept as `h_msl`): `altMSL`, `h_msl`, `MSL`, `Ortho Height`, `ortho_ht`, `orthometric height`, `elevation msl`, …
@@ -4435,54 +4972,56 @@ exact</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../resources/help/importgeotags.md" line="38"/>
+        <location filename="../resources/help/importgeotags.md" line="49"/>
         <source>## How other rovers&apos; files map</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../resources/help/importgeotags.md" line="40"/>
+        <location filename="../resources/help/importgeotags.md" line="51"/>
         <source>- **Emlid Flow, ReachView 3**: no mapping (above).
 - **SW Maps**, a CSV or spreadsheet export with `Latitude`, `Longitude`, `Elevation`, `Ortho Height`, `Fix ID`, `Horizontal Accuracy`, `Vertical Accuracy`, `Remarks`: no mapping. `Elevation` is SW Maps&apos; ellipsoidal height, `Ortho Height` goes to `h_msl`, `Fix ID` is an NMEA code, `Remarks` the label. Its time (`08/29/2023 13:31:48.000 EDT`) is not read. Its GeoPackage or Shapefile export is a point layer: give it as **INPUT_LAYER** and name its fields, for example HEIGHT_FIELD `elevation`, MSL_FIELD `ortho_ht`, FIX_FIELD `fix_id` as its GeoPackage names them.
 - **Trimble, Leica, Topcon, Carlson** and other surveying apps: a custom export with a header holding latitude and longitude in decimal degrees reads by the names above, for example `Point, Lat, Long, Ellipsoid height, HRMS, VRMS, Solution`, or Trimble Penmap&apos;s user-defined CSV with its format line as the header (`[PointId],[Latitude:Degree:9],[Longitude:Degree:9],[EllipsoidHeight:Meter:3],[Rms2D:Meter:3],[SatQuality],[UtcDateTime]`, the unit in the brackets taken). A plain PNEZD file (point, northing, easting, elevation, description: grid coordinates only) has no latitude column and is refused. Export latitude, longitude and the ellipsoidal height as well, or load it in QGIS as a point layer in its own CRS and give it as **INPUT_LAYER**. Its Z is then taken as ellipsoidal, so give HEIGHT_FIELD only for an ellipsoidal height.
-- **QField**: the survey is a point layer (GeoPackage) of the QField project. Give it as **INPUT_LAYER**. Z (or HEIGHT_FIELD) is the height, taken as ellipsoidal: that is what QField records unless its positioning settings apply a vertical grid or the device&apos;s orthometric altitude. A field named `h_acc_m`, `horizontal_accuracy`, `hrms`, … holds the horizontal accuracy (for example one filled with `@position_horizontal_accuracy`). A FIX_FIELD filled with `@position_quality_description` reads its English words (`Fixed RTK`, `Float RTK`, `DGPS`, `Autonomous`).
+- **QField**: a BirdsEye field survey package is read as above. Another QField project&apos;s survey is a point layer (GeoPackage): give it as **INPUT_LAYER**. Its height is a field named as ellipsoidal or above mean sea level (as for a CSV), else Z, taken as ellipsoidal: that is what QField records unless its positioning settings apply a vertical grid or the device&apos;s orthometric altitude. A field named `h_acc_m`, `horizontal_accuracy`, `hrms`, … holds the horizontal accuracy (for example one filled with `@position_horizontal_accuracy`). A `fix` field (or FIX_FIELD) filled with `@position_quality_description` reads its English words (`Fixed RTK`, `Float RTK`, `DGPS`, `Autonomous`).
 - **NMEA logs** of any receiver: as they are.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../resources/help/importgeotags.md" line="46"/>
+        <location filename="../resources/help/importgeotags.md" line="57"/>
         <source>## Parameters</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../resources/help/importgeotags.md" line="48"/>
-        <source>- **INPUT** — geotag file (rover CSV, CSV with a header, NMEA log).
-- **INPUT_LAYER** — …or any point layer, in any CRS (transformed to WGS84). Its Z is taken as the ellipsoidal height unless HEIGHT_FIELD names a field. Fields with the accuracy names above are read as accuracies.
+        <location filename="../resources/help/importgeotags.md" line="59"/>
+        <source>- **INPUT** — geotag file (rover CSV, CSV with a header, NMEA log), or a field survey package&apos;s GeoPackage (`.gpkg`) or project (`.qgz`). Another GeoPackage is refused, naming its tables: load the table as a layer and give it as INPUT_LAYER.
+- **INPUT_LAYER** — …or any point layer, in any CRS (transformed to WGS84). Its height: HEIGHT_FIELD, else a field named as ellipsoidal (`h_ellipsoid`, `altWGS84`, …), else MSL_FIELD or a field named as above mean sea level (`h_msl`, `altMSL`, …) converted with GEOID_UNDULATION_M, else Z taken as ellipsoidal. Fields with the accuracy names above are read as accuracies; `fix_quality` or `fix`, `label`, `time_utc` and `worker` by those names.
 - **FORMAT** — Automatic (NMEA if the file holds GGA sentences, header CSV if the first row is not numbers, else rover CSV), or force one.
 - **LAT_FIELD, LON_FIELD** — column names of a header CSV (decimal degrees); empty: found by name.
 - **HEIGHT_FIELD** — column (CSV) or field (layer) of the ellipsoidal height; naming it states that it is ellipsoidal.
 - **MSL_FIELD** — column or field of the height above mean sea level (orthometric); naming it states that.
-- **FIX_FIELD, LABEL_FIELD** — column or field of the fix quality (NMEA code or a rover&apos;s word) and of the label; empty: found by name (CSV) or not used (layer).
+- **FIX_FIELD, LABEL_FIELD** — column or field of the fix quality (NMEA code, a rover&apos;s word or QField&apos;s) and of the label; empty: found by name (for a layer only `fix_quality` or `fix`, and `label`).
 - **UNITS** — unit of the heights and accuracies: from the file (default: a unit in the column&apos;s name, else the coordinate-system name, else a units column, else metres), or metres, international feet (0.3048 m) or US survey feet (1200/3937 m) for everything. The BirdsEye rover CSV and NMEA logs are in metres whatever is chosen.
-- **GEOID_UNDULATION_M** — geoid undulation N at the site (metres; ellipsoidal = MSL + N). Used only for a CSV that has heights above mean sea level and no ellipsoidal height. Empty: N from PROJ&apos;s EGM96 grid at each geotag; where that grid is not installed, the heights stay unknown (flag `no_height`) and the log says how to install it. EGM96 stands in for the file&apos;s own height system (NAVD88, a national geoid), which may differ from it by a metre or more. Give that system&apos;s N for better heights.
+- **GEOID_UNDULATION_M** — geoid undulation N at the site (metres; ellipsoidal = MSL + N). Used only for a CSV or layer that has heights above mean sea level and no ellipsoidal height. Empty: N from PROJ&apos;s EGM96 grid at each geotag; where that grid is not installed, the heights stay unknown (flag `no_height`) and the log says how to install it. EGM96 stands in for the file&apos;s own height system (NAVD88, a national geoid), which may differ from it by a metre or more. Give that system&apos;s N for better heights.
 - **FIX_FILTER** — All geotags (float and no-RTK ones kept and flagged), or RTK fixed only (the others are dropped and counted).
 - **MAX_H_ACCURACY_M** — optional, metres: geotags whose horizontal accuracy (`h_acc_m`) is worse are dropped and counted (**ACCURACY_DROPPED**). Geotags without an accuracy are kept, and the log counts them. A geotag the fix filter dropped is counted there only.
 - **POLE_HEIGHT_M** — antenna pole height in metres, subtracted from both heights so they describe the ground (0–10 m, default 0). Refused for an Emlid export, whose heights are already of the ground.
-- **OUTPUT_CRS** — projected CRS in metres for the output; empty: the UTM zone of the site.</source>
+- **OUTPUT_CRS** — projected CRS in metres for the output; empty: the UTM zone of the site.
+- **REVIEW_LOG** — optional: the review GeoPackage (its verdict log) to add a field package&apos;s decisions to. Empty: the review the package was made from, when that file is still there.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../resources/help/importgeotags.md" line="62"/>
+        <location filename="../resources/help/importgeotags.md" line="74"/>
         <source>## Output</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../resources/help/importgeotags.md" line="64"/>
-        <source>- **OUTPUT** — PointZ layer (Z = ellipsoidal ground height, 0 when unknown) with `id` (1.. in file order, counted before the filters, so a target keeps its id whichever geotags the filters drop), `label`, `fix_quality`, `lat`, `lon` (deg, as the file gives them), `h_ellipsoid`, `h_msl` (m), `h_acc_m`, `v_acc_m` (m, the rover&apos;s own figures; empty when unknown), `time_utc` (ISO 8601 UTC; empty when unknown), `source_row` (line of the file, or feature number of the layer) and `flags`: `rtk_float`, `no_rtk`, `fix_unknown`, `no_height`, `duplicate_2cm` (within 2 cm horizontally of an earlier geotag; the earlier one is the original).
-- **GEOTAG_COUNT**, **BAD_ROWS**, **NOT_FIXED_DROPPED**, **ACCURACY_DROPPED**, **DUPLICATES** — counts.</source>
+        <location filename="../resources/help/importgeotags.md" line="76"/>
+        <source>- **OUTPUT** — PointZ layer (Z = ellipsoidal ground height, 0 when unknown) with `id` (1.. in file order, counted before the filters, so a target keeps its id whichever geotags the filters drop), `label`, `fix_quality`, `lat`, `lon` (deg, as the file gives them), `h_ellipsoid`, `h_msl` (m), `h_acc_m`, `v_acc_m` (m, the rover&apos;s own figures; empty when unknown), `time_utc` (ISO 8601 UTC; empty when unknown), `source_row` (line of the file, or feature number of the layer), `flags`: `rtk_float`, `no_rtk`, `fix_unknown`, `no_height`, `duplicate_2cm` (within 2 cm horizontally of an earlier geotag; the earlier one is the original), and `worker` (who recorded it, from a field package; empty when unknown).
+- **GEOTAG_COUNT**, **BAD_ROWS**, **NOT_FIXED_DROPPED**, **ACCURACY_DROPPED**, **DUPLICATES** — counts.
+- **DECISIONS_IMPORTED** — verdicts a field package&apos;s decisions added to the review; **VISITS_UNDECIDED** — its points to visit without a decision.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../resources/help/importgeotags.md" line="67"/>
+        <location filename="../resources/help/importgeotags.md" line="80"/>
         <source>Bad rows are left out and listed in the log (count and the first ones, each with file, row as an editor numbers lines, field and what was expected, in the file&apos;s unit); the good rows are imported.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -4533,6 +5072,45 @@ exact</source>
         <source>- **Log**: per altitude, the number of ground points, the largest and median major axis [px] against r, the largest and median anisotropy, the largest sKLD with the verdict, and the share of points over each cut-off.
 - **Results (JSON)**: per altitude `max_skld` at the budget, `linearisation_holds` (max sKLD &lt; `skld_threshold`), `kappa_exact`, the check and the scaling study. The check holds the grid (`spacing_m`, `grid_shape` as rows × columns, `footprint_m` as x and y ranges in metres from the point under the camera), a `summary` (`major_axis_px_max`, `major_axis_px_median`, `anisotropy_max`, `anisotropy_median`, `max_skld`, `fraction_over_skld` per cut-off) and one row per ground point in `points`: its ground position `x_m`, `y_m` (along the photo&apos;s width and height), its pixel `u`, `v`, `major_axis_px`, `anisotropy`, `skld` and the sampled and model covariances in px². An unbounded anisotropy or infinite sKLD is written as null. The scaling study holds `scales`, `skld_max` (the largest over the grid) and `per_axis`.
 - **Plot (PNG)**: the largest sKLD over the grid against the variance factor, log–log, with a line at each cut-off, one panel per altitude (top to bottom in the order given).</source>
+        <translation type="unfinished"></translation>
+    </message>
+</context>
+<context>
+    <name>help:partitionfield</name>
+    <message>
+        <location filename="../resources/help/partitionfield.md" line="1"/>
+        <source>Cuts a field into pieces of about one hour of one person&apos;s surveying and shares them out, so everyone gets the same number of pieces and walks from one of their pieces straight into the next. The method splits its fields this way, into partitions of roughly one hour per person.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../resources/help/partitionfield.md" line="3"/>
+        <source>**The rule.** One person surveys GEOTAGS_PER_HOUR / TARGETS_PER_HA hectares an hour; a piece may hold that much times HOURS_PER_PIECE. The number of pieces is the field&apos;s area divided by that, rounded up, then rounded up to a multiple of N_PEOPLE, so no piece takes longer than HOURS_PER_PIECE. The pieces are strips of equal area cut across the field&apos;s long axis (the long side of the smallest rectangle around it), so they run the field&apos;s short way. Worker 1 gets the first block of neighbouring strips, worker 2 the next, and so on: a worker&apos;s pieces touch, and nobody crosses another&apos;s ground between pieces. In a concave field a strip may fall in two parts; its area is still its share.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../resources/help/partitionfield.md" line="5"/>
+        <source>## Parameters</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../resources/help/partitionfield.md" line="7"/>
+        <source>- **AREA** — the field(s), a polygon layer in any CRS; holes allowed. Each feature is one field, partitioned by itself; partitions are numbered on from one field to the next. A CRS in degrees is cut in the UTM zone of the field.
+- **N_PEOPLE** — people surveying (default 2).
+- **HOURS_PER_PIECE** — one person&apos;s surveying time for a piece [h] (default 1).
+- **GEOTAGS_PER_HOUR** — geotags one person takes in a worker-hour (default 120: one every 30 s, walking to the target, setting the pole and a few seconds of RTK averaging). A placeholder: measure yours with Survey report.
+- **REPORT** — a Survey report JSON (optional): its geotags per worker-hour replace GEOTAGS_PER_HOUR.
+- **TARGETS_PER_HA** — targets expected per hectare (default 100, a placeholder: count a sample of your field).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../resources/help/partitionfield.md" line="14"/>
+        <source>## Outputs</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../resources/help/partitionfield.md" line="16"/>
+        <source>- **Partitions** — one polygon per piece, in the field&apos;s CRS (or its UTM zone), styled by worker: `field` (the AREA feature, 1..), `partition` (1..), `worker` (1..N_PEOPLE), `order` (the worker&apos;s walking order, 1..), `area_ha`, `expected_hours` (one person&apos;s time for the piece), `expected_geotags` (area × TARGETS_PER_HA). Give it to Survey report&apos;s AREA (PARTITION_FIELD `partition`) afterwards to compare the plan with the survey.
+- **PIECES**, **AREA_HA**, **EXPECTED_HOURS** (all pieces&apos; hours together), **GEOTAGS_PER_HOUR_USED** — numbers for models and scripts.</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
@@ -4609,6 +5187,80 @@ exact</source>
     <message>
         <location filename="../resources/help/planflight.md" line="45"/>
         <source>**A single geotag** (or geotags that all merge into one waypoint) is a valid one-waypoint mission: the layers, the QGroundControl plan and the KML are written. DJI Pilot 2 and Litchi need at least two waypoints, so asking for those files is refused with a message; missions are otherwise split so that each holds at least two waypoints whenever the limits allow.</source>
+        <translation type="unfinished"></translation>
+    </message>
+</context>
+<context>
+    <name>help:preparefieldsurvey</name>
+    <message>
+        <location filename="../resources/help/preparefieldsurvey.md" line="1"/>
+        <source>Writes a folder QField opens as it is (the layout QFieldSync&apos;s &quot;package for QField&quot; makes): a project `&lt;name&gt;.qgz`, one GeoPackage `birdseye_survey.gpkg` beside it and, when given, a copy of the orthomosaic. In the field the worker records each target with an RTK receiver: QField fills the position, the fix, the accuracies and the capture time from the receiver, checks the accuracy requirement, and Import geotags reads the records back. Points to visit (a review&apos;s unresolved clusters, or any point layer) come with a question; the worker records the decision there.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../resources/help/preparefieldsurvey.md" line="3"/>
+        <source>## Parameters</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../resources/help/preparefieldsurvey.md" line="5"/>
+        <source>- **OUTPUT_FOLDER** — the package folder; copy it whole to the device. A folder that already holds a package (the project, the GeoPackage or the orthomosaic copy of this name) is refused: a package that went to the field holds the worker&apos;s records, so it is never overwritten.
+- **PROJECT_NAME** — the project&apos;s file name, without `.qgz` (default `birdseye_survey`).
+- **CLASSES** — the classes the worker picks from for each geotag, comma-separated (default `target`); the first is preselected. At least one is needed.
+- **LABEL_RADIUS_M** — the label radius in metres written with each geotag (`radius_m`; default 0.05 m, at least 0.005 m): how far from the recorded point the target&apos;s edge may lie.
+- **REQUIRE_RTK_FIXED** — a geotag needs an RTK fixed solution (default on). QField&apos;s &quot;Fixed RTK&quot; counts, and so does &quot;Unknown (4)&quot;, which some QField releases write for a fixed solution.
+- **MAX_H_ACCURACY_M** — the largest horizontal accuracy accepted, in metres (default 0.05 m; 0: no limit). A point without an accuracy fails the limit.
+- **ACCURACY_ENFORCEMENT** — what QField does with a point that fails the requirement: *Warn and flag the point* (default: QField warns, the point is saved and drawn red) or *Block saving* (QField does not save it until the receiver does better).
+- **HEIGHT_REFERENCE** — what height the receiver gives QField, which decides the height field: *Orthometric* (default; field `h_msl`: QField&apos;s &quot;Use orthometric altitude from device&quot; is on) or *Ellipsoidal* (field `h_ellipsoid`: that setting off and no vertical grid shift).
+- **GEOTAGS** — geotags surveyed before (optional; any point layer, read as every algorithm reads geotags). They are shown read-only as &quot;Surveyed before&quot;, so the worker sees what is recorded already, and they are kept out of the new records Import geotags reads. Needed with REVIEW.
+- **VISIT_POINTS** — any point layer of points to visit (optional), each named by its `id` field, else its row.
+- **AREA** — the survey area or its partitions (optional polygons, any CRS), drawn as outlines with their attributes (a `partition` field labels them).
+- **BACKGROUND** — the orthomosaic (optional raster), copied into the folder as `&lt;name&gt;_orthomosaic.tif` (a GeoTIFF is copied as it is; another raster file is written out as GeoTIFF; a web or tile service is refused: QField would need the network).
+- **FRAMES** — a frame layer (optional); its footprints, with `frame_id`, are the background when there is no orthomosaic.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../resources/help/preparefieldsurvey.md" line="19"/>
+        <source>## Points a review left open (optional)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../resources/help/preparefieldsurvey.md" line="21"/>
+        <source>- **REVIEW** — the review dock&apos;s verdict table (`birdseye_verdicts`). Every cluster the review left **unresolved** (uncertain, unreviewed, conflicting) becomes a point to visit at its centroid, with the review units its verdicts attach to; clusters a geotag of GEOTAGS matches are settled by the survey. Refused without GEOTAGS.
+- **REVIEW_DETECTIONS** — the detection layer(s) the review judged; **REVIEW_FRAMES** — their frame layers, in the same order.
+- **DEDUP_CM** (cm, default 3), **EPS_M** (m, default 0.20), **MIN_SAMPLES** (default 2), **CORE_COUNT**, **EPS_PRED_M** (m, default 0.20), **EDGE_BUFFER_PX** (px, default 0) — advanced: the clustering and matching the review was scored with, as in Plan the survey flight.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../resources/help/preparefieldsurvey.md" line="25"/>
+        <source>## What it writes</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../resources/help/preparefieldsurvey.md" line="27"/>
+        <source>- **geotags** — the worker&apos;s records (points with height, WGS84): `label`, the height field (`h_msl` or `h_ellipsoid`, from QField&apos;s altitude), `radius_m`, `note`, `worker` (the QFieldCloud user, else the device&apos;s user name) and the receiver&apos;s `fix`, `h_acc_m`, `v_acc_m` (m), `pdop`, `hdop`, `vdop`, `n_sats`, `averaged`, `source` and `time_utc` (UTC), filled when the point is added and read-only in the form. Points that fail the requirement are red, the others green.
+- **visits** — the points to visit: `visit_id` (a cluster&apos;s `&lt;detection layer&gt;#&lt;cluster id&gt;`, or the layer&apos;s id), `origin` (`review:&lt;outcome&gt;` or `layer:&lt;name&gt;`), `unit_keys` (the review units, a JSON list), `question`, and what the worker fills in: `decision` (Real target, Not a target, Cannot tell; empty = not visited), `note`, and the same GNSS fields, filled each time a decision is saved (with the crosshair snapped to your position, as for a geotag). Orange until decided. The points cannot be moved.
+- **surveyed_before**, **survey_area**, **frame_footprints** and the orthomosaic — read-only background.
+- **birdseye_package** — the package&apos;s settings (classes, label radius, accuracy requirement, height reference, the review log).
+- **PROJECT** — the project&apos;s path; **VISIT_COUNT** — points to visit; **GEOTAG_COUNT** — geotags surveyed before.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../resources/help/preparefieldsurvey.md" line="33"/>
+        <source>The project opens in the site&apos;s UTM zone on the area, visits and geotags, with paths relative to its folder; its description tells the worker what to do.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../resources/help/preparefieldsurvey.md" line="35"/>
+        <source>## In QField</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../resources/help/preparefieldsurvey.md" line="37"/>
+        <source>1. Connect the receiver (QField settings › Positioning: the external RTK receiver over Bluetooth, or the device&apos;s own with its NTRIP corrections).
+2. Set the height as HEIGHT_REFERENCE says: for *Orthometric*, &quot;Use orthometric altitude from device&quot; on; for *Ellipsoidal*, off, and no vertical grid shift.
+3. Add each geotag with the crosshair snapped to your position (the GNSS button), not by tapping the map: only then are the position variables (`@position_*`) filled, and with them the GNSS fields. Wait for the fix the requirement asks for before saving.
+4. At a point to visit, open it, pick the decision and save, still snapped to your position: the visit records who decided, when, and with what fix.</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
@@ -4728,7 +5380,7 @@ exact</source>
     <message>
         <location filename="../resources/help/review.md" line="5"/>
         <source>- **Detections**: one or more outputs of Detect targets over one flight (for instance two checkpoints, or two thresholds). They are reviewed together: detections of all the layers are pooled, de-duplicated on the grid cell and clustered with DBSCAN exactly as Cluster detections does, so each spot on the ground is one **review unit**, judged once, whichever model fired there. The list and the log keep which layers fired at each unit.
-- **Frames**: the flight&apos;s frame layer (Import flight log or Import drone images); the image chips are cut from its images.
+- **Frames**: the flight&apos;s frame layer (Import flight log or Import drone images); the image chips are cut from its images. Detections found on a raster (Detect targets on a raster) need none: the choice is then greyed out.
 - **Geotags**: the survey points.
 - **Verdict log**: a GeoPackage; by default the first detection layer&apos;s GeoPackage, else `&lt;project&gt;_review.gpkg` next to the project. The log is the table `birdseye_verdicts` (a point layer, added to the map as &quot;Review verdicts&quot;, showing each unit&apos;s current verdict and the targets you added).
 - **Reviewer**: your name, recorded with every verdict (default: your login name).
@@ -4748,21 +5400,26 @@ exact</source>
     </message>
     <message>
         <location filename="../resources/help/review.md" line="17"/>
-        <source>Keys (click the review area first): **1** or **C** confirmed real · **2** or **H** hard negative · **3** or **U** uncertain · **0** or **Backspace** unreviewed (withdraws your verdict) · **N** or **→** next · **P** or **←** previous · **Home** / **End** first / last · **Ctrl+Z** undo · **A** add a missed target (click the map; Esc cancels). After a verdict the dock moves to the next unit (untick &quot;Next unit after a verdict&quot; to stay). Filters show the units one layer fired at, or by verdict (to review, each verdict, propagated only, conflicting, no geotag nearby, added targets).</source>
+        <source>**Detections found on a raster** are reviewed the same way, one raster at a time (frame and raster detections are not reviewed together): each unit shows one chip, a window of the raster around the detection (the raster the layer records, so keep it where it was); the geotags in view are those on the raster&apos;s valid pixels, and one detection can be a unit, as in Cluster and Evaluate detections. The chip window is then in the raster&apos;s pixels.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
         <location filename="../resources/help/review.md" line="19"/>
-        <source>**Propagation** (off by default): when on, a verdict also votes on the units chained to this one by gaps of at most 0.20 m (DBSCAN over the unit positions), with provenance `propagated:dbscan_0.20m/&lt;unit&gt;`. Every source keeps its own vote; where votes disagree the unit is resolved under three conventions — positive-wins, majority-wins (a tie between confirmed real and hard negative is uncertain), hard-negative-wins — all kept and shown side by side. **Uncertain and unreviewed are abstentions, not votes**: confirmed real + uncertain resolves to confirmed real under every convention; only uncertain judgements leave a unit uncertain.</source>
+        <source>Keys (click the review area first): **1** or **C** confirmed real · **2** or **H** hard negative · **3** or **U** uncertain · **0** or **Backspace** unreviewed (withdraws your verdict) · **N** or **→** next · **P** or **←** previous · **Home** / **End** first / last · **Ctrl+Z** undo · **A** add a missed target (click the map; Esc cancels). After a verdict the dock moves to the next unit (untick &quot;Next unit after a verdict&quot; to stay). Filters show the units one layer fired at, or by verdict (to review, each verdict, propagated only, conflicting, no geotag nearby, added targets).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
         <location filename="../resources/help/review.md" line="21"/>
-        <source>**Scores**: per detection layer, recall and GMCF before review and after it under each convention, computed by the same code as Evaluate detections from this log (running Evaluate detections with the log as REVIEW gives the same numbers). GMCF is a lower bound on precision, not precision. Recall after review is printed &quot;≥ x&quot; only when no added target counts (a = 0); with added targets (in view, where no cluster fired and no geotag lies within EPS_PRED) it is a point value under the assumptions Evaluate detections states in its help.</source>
+        <source>**Propagation** (off by default): when on, a verdict also votes on the units chained to this one by gaps of at most 0.20 m (DBSCAN over the unit positions), with provenance `propagated:dbscan_0.20m/&lt;unit&gt;`. Every source keeps its own vote; where votes disagree the unit is resolved under three conventions — positive-wins, majority-wins (a tie between confirmed real and hard negative is uncertain), hard-negative-wins — all kept and shown side by side. **Uncertain and unreviewed are abstentions, not votes**: confirmed real + uncertain resolves to confirmed real under every convention; only uncertain judgements leave a unit uncertain.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
         <location filename="../resources/help/review.md" line="23"/>
+        <source>**Scores**: per detection layer, recall and GMCF before review and after it under each convention, computed by the same code as Evaluate detections from this log (running Evaluate detections with the log as REVIEW gives the same numbers). GMCF is a lower bound on precision, not precision. Recall after review is printed &quot;≥ x&quot; only when no added target counts (a = 0); with added targets (in view, where no cluster fired and no geotag lies within EPS_PRED) it is a point value under the assumptions Evaluate detections states in its help.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../resources/help/review.md" line="25"/>
         <source>**Nothing is lost**: every verdict is committed to the GeoPackage in its own transaction before the dock moves on; the log is append-only (undo appends rows restoring the previous verdicts; the table refuses edits and deletions). Each row records the unit, verdict, provenance, reviewer, UTC time, position, the layers that fired, the clustering and matching parameters and a SHA-256 digest of each input layer. Reopening the project, or the dock with the same layers, resumes at the unit and filters where you stopped. If an input layer changed since verdicts were recorded (its digest differs), or the parameters did, a warning says so. A review saved before the points count was recorded was built counting cells, and reopens that way.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -5165,6 +5822,51 @@ exact</source>
     </message>
 </context>
 <context>
+    <name>help:surveyreport</name>
+    <message>
+        <location filename="../resources/help/surveyreport.md" line="1"/>
+        <source>What the field survey cost in people&apos;s time: geotags per worker-hour overall, per worker, per partition and per flight, from the capture time of every geotag. These are the figures the method reports for its field work (geotags per worker-hour; field time per flight), and the rate Partition field sizes the next field&apos;s pieces with.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../resources/help/surveyreport.md" line="3"/>
+        <source>**The rule.** A worker&apos;s captures, in time order, split into sessions wherever two are more than SESSION_GAP_MIN apart (a break, a walk back to the car). A session counts from its first to its last capture plus one typical interval (the worker&apos;s median time between captures within sessions), so a session of n captures counts n intervals and a single capture counts one. Worker-hours add up every worker&apos;s sessions: two people working 6 h each are 12 worker-hours, whatever the elapsed time. Geotags without a capture time are counted and left out of the rates.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../resources/help/surveyreport.md" line="5"/>
+        <source>## Parameters</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../resources/help/surveyreport.md" line="7"/>
+        <source>- **GEOTAGS** — the geotag point layer, with a `time_utc` field: ISO 8601 text (what Import geotags writes) or a date-and-time field (the field package&apos;s); a time without a zone is taken as UTC. A layer without the field, or without geotags, is refused.
+- **WORKER_FIELD** — the field naming who took each geotag (default `worker`). A layer without it is one unnamed worker&apos;s.
+- **SESSION_GAP_MIN** — a gap between two captures of one worker longer than this starts a new session [min] (default 20).
+- **AREA** — the partitions, a polygon layer (optional; for example the output of Partition field). Each geotag belongs to the first partition holding it. **PARTITION_FIELD** names the partitions (empty: their row, 1.. in the layer&apos;s order).
+- **FRAMES** — frame layers, one flight each (optional). A flight&apos;s geotags are those inside any of its footprints; its field time is the working time of their captures, by the same rule.
+- **LABELS_SUMMARY** — the summary.json of a Write labels folder (optional): its labels and frames with labels are reported per worker-hour. **LABEL_COUNT** and **FRAME_COUNT** give the numbers directly and win over the file.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../resources/help/surveyreport.md" line="14"/>
+        <source>## Outputs</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../resources/help/surveyreport.md" line="16"/>
+        <source>- **Survey report (JSON)** — `overall` (geotags, geotags with a time, people, sessions, `worker_hours`, `geotags_per_worker_hour`, `elapsed_hours` from the first to the last capture of anyone, labels and frames per worker-hour), `workers` (each with its typical interval in seconds), `partitions`, `coverage` (partitions holding a geotag, geotags outside every partition) and `flights`.
+- **Survey report (HTML)** — the same as short tables with units in the headers.
+- **GEOTAGS_PER_WORKER_HOUR**, **WORKER_HOURS** [h], **PEOPLE**, **ELAPSED_HOURS** [h], **LABELS_PER_WORKER_HOUR**, **FRAMES_PER_WORKER_HOUR** — numbers for models and scripts (empty where there is nothing to divide).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../resources/help/surveyreport.md" line="20"/>
+        <source>For example, the method labelled 12,524 frames with 55,600 labels in about 12 worker-hours (two people for about 6 hours each): 55,600 / 12 = 4,633 labels and 1,044 frames per worker-hour. Read as 12 hours of elapsed time with both people at work, it would be 24 worker-hours and half those rates; the report counts worker-hours from the captures, so it never depends on such a reading.</source>
+        <translation type="unfinished"></translation>
+    </message>
+</context>
+<context>
     <name>help:sweepoperatingpoints</name>
     <message>
         <location filename="../resources/help/sweepoperatingpoints.md" line="1"/>
@@ -5329,7 +6031,7 @@ exact</source>
 - **PRESET** — *Fast (default)*: the settings described first above, with the BACKBONE and RESOLUTION_CM you choose. *Method (EfficientNetV2, two stages, AdamW)*: the method&apos;s recipe; it sets the network (`efficientnet_v2_s`, so BACKBONE is not used) and trains at the frames&apos; own GSD (RESOLUTION_CM is not used: the model runs at the training frames&apos; median GSD). Its ImageNet weights come from WEIGHTS or torchvision&apos;s cache only; without them the encoder starts from random initialisation and the model card says plainly that it is not ImageNet-pretrained. At 1e-5, with 224 px crops through a larger network, it needs many more steps than Fast: give it a long budget and let early stopping end it.
 - **BACKBONE** — `small` (the default): the recipe&apos;s own small encoder–decoder, trained from scratch, works offline. Or an ImageNet-pretrained torchvision encoder (EfficientNet B0–B3, EfficientNetV2-S, ResNet-18/34/50) under a light decoder; slower per step, better features for few labels.
 - **WEIGHTS** — the pretrained encoder&apos;s ImageNet weights (.pth, a torchvision state dict). Empty: torchvision&apos;s cache (`~/.cache/torch/hub/checkpoints`, the file name torchvision uses). Nothing is downloaded; when the file is in neither place the run stops and says which file to put where.
-- **INIT** — fine-tune from the weights (`&lt;model&gt;.pt`) of an earlier training with the same backbone, e.g. a model trained on simulated campaigns adapted to real labels. No ImageNet weights are needed then. A BirdsEye ONNX model of the small network (the bundled `birdseye_demo_heatmap.onnx`, or any model this algorithm wrote) serves too: its weights are read back from the ONNX graph and checked against onnxruntime&apos;s output; the batch norms the export folded into convolutions keep their statistics frozen while their scale and shift still learn, and stay frozen when you fine-tune again from the `.pt` that run wrote. The new model keeps the earlier model&apos;s resolution and normalisation (mean, std, channel order); a `.pt` written by an older BirdsEye records neither, and the run then trains at RESOLUTION_CM normalised as a new model (the log says so).
+- **INIT** — fine-tune from the weights (`&lt;model&gt;.pt`) of an earlier training with the same backbone, e.g. a model trained on simulated campaigns adapted to real labels. No ImageNet weights are needed then. A BirdsEye ONNX model of the small network (the bundled `birdseye_demo_heatmap.onnx`, or any model this algorithm wrote) serves too: its weights are read back from the ONNX graph and checked against onnxruntime&apos;s output; the batch norms the export folded into convolutions keep their statistics frozen while their scale and shift still learn, and stay frozen when you fine-tune again from the `.pt` that run wrote. The new model keeps the earlier model&apos;s resolution and normalisation (mean, std, channel order); a `.pt` written by an older BirdsEye records neither, and the run then trains at RESOLUTION_CM normalised as a new model (the log says so). When part of the frames is held out and scored on the ground, the starting model is scored on them too: if the fine-tuned model&apos;s best F1 there is lower, the starting weights are kept (written as the new model, with their figures and threshold) and the log and the model card say so — a round of fine-tuning never hands on a model that does worse on the held-out ground than the one it started from.
 - **MINUTES** — training time budget in minutes (default 20); loading tiles, validation and export come on top.
 - **RESOLUTION_CM** — the model&apos;s resolution in cm/px. Empty (the default): the INIT model&apos;s, else 1.0. A value other than the INIT model&apos;s resolution is refused: its filters learnt targets of a size in pixels. Not used by the Method preset, which trains at the frames&apos; own GSD.
 - **VALIDATION** — what is held out. *Spatial blocks* (default): the targets (`targets.csv` of each labels folder) are grouped into square ground blocks one frame footprint diagonal wide and whole blocks are held out; frames that see only held-out targets validate, frames that see only training targets train, frames that see both are dropped (counted in the model card); frames that see no target follow the block of their footprint&apos;s centre. A block is held out in every labels folder, so two flights over one site keep each target on one side. *Whole flights*: whole labels folders held out (needs two or more). *Nothing*: every frame trains; the threshold is not validated. A labels folder written before `targets.csv` existed is split by random frames instead, with a warning.
