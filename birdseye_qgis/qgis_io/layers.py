@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import functools
 import json
+import os
 import tempfile
 from pathlib import Path
 
@@ -159,6 +160,15 @@ class _StyleOnLoad(QgsProcessingLayerPostProcessorInterface):
 
 # QGIS does not take ownership of Python post-processors: keep them alive until the run's layers load.
 _POST_PROCESSORS: dict[str, _StyleOnLoad] = {}
+
+
+def data_file(layer) -> str:
+    """The file a layer's data lives in (a GeoPackage, Shapefile, GeoTIFF …, without ``|layername=``), "" for a
+    layer without one (memory, a database)."""
+    from qgis.core import QgsProviderRegistry
+
+    path = QgsProviderRegistry.instance().decodeUri(layer.providerType(), layer.source()).get("path") or ""
+    return path if path and os.path.isfile(path) else ""
 
 
 def style_on_load(context, dest_id: str, style: str, layer_name: str | None = None) -> None:

@@ -16,6 +16,7 @@ from qgis.core import (
 from qgis.PyQt.QtCore import QT_TRANSLATE_NOOP
 
 from ...birdseye_qgis.core.field.field_survey import HEIGHT_ELLIPSOIDAL, HEIGHT_ORTHOMETRIC
+from ...birdseye_qgis.core.review.units import UNIT_PREFIX, position_key
 from ...birdseye_qgis.qgis_enums import NUMBER_DOUBLE, SOURCE_VECTOR_POINT, SOURCE_VECTOR_POLYGON
 from ...birdseye_qgis.qgis_io import field_package, layer_kinds, layers
 from ..parameters.layer_parameters import source_parameter, vector_parameter
@@ -114,10 +115,12 @@ class PrepareFieldSurvey(ReviewParametersMixin, BirdsEyeAlgorithm):
             self._warn_left_out(feedback, surveyed.problems)
         # Without REVIEW this reads no geotags: it returns None, or refuses REVIEW_DETECTIONS given alone.
         reviewed = self.read_reviewed_clusters(parameters, context, feedback, geotag_layer, None, 0.0, 40.0)
+        # A cluster nobody judged has no unit in the log yet: the field's decision is written as a unit at its
+        # centroid, which the scoring attaches to the cluster as it attaches the dock's units (within EPS_PRED_M).
         visits = [field_package.Visit(
             c.key, f"review:{c.outcome}",
             self.tr("Is there a target here? (review: {outcome})").format(outcome=c.outcome), c.lat, c.lon,
-            c.unit_keys) for c in reviewed or [] if c.is_unresolved]
+            c.unit_keys or (position_key(UNIT_PREFIX, c.lat, c.lon),)) for c in reviewed or [] if c.is_unresolved]
         visits += self._layer_visits(parameters, context, feedback)
 
         sources = field_package.PackageSources(
@@ -151,7 +154,7 @@ class PrepareFieldSurvey(ReviewParametersMixin, BirdsEyeAlgorithm):
             max_h_accuracy_m=max_h_acc if max_h_acc > 0 else None,
             block_inaccurate=self.parameterAsEnum(parameters, self.ACCURACY_ENFORCEMENT, context) == 1,
             height_reference=self.HEIGHT_CHOICES[self.parameterAsEnum(parameters, self.HEIGHT_REFERENCE, context)][1],
-            review_log="" if review is None else review.source())
+            review_log="" if review is None else layers.data_file(review))
 
     def _layer_visits(self, parameters, context, feedback) -> list:
         """VISIT_POINTS as visits, each named by the geotag id rule (its ``id`` field, else its row)."""

@@ -267,10 +267,14 @@ def test_review_unresolved_clusters_become_visits_with_their_unit_keys(birdseye_
         found[spot] = (f["origin"], json.loads(f["unit_keys"]), f["question"])
         assert f["visit_id"].startswith("detections#")
     assert {k: v[0] for k, v in found.items()} == {k: f"review:{o}" for k, o in UNRESOLVED.items()}
-    assert found["D"][1] == ["uD"] and found["E"][1] == ["uE"] and found["F"][1] == []
+    assert found["D"][1] == ["uD"] and found["E"][1] == ["uE"]
+    # F was never judged: its decision goes to a unit at the visit point, the cluster's centroid.
+    (f_key,) = found["F"][1]
+    f_visit = next(f for f in visits.getFeatures() if json.loads(f["unit_keys"]) == [f_key]).geometry().asPoint()
+    assert f_key == f"u{f_visit.y():+.7f}{f_visit.x():+.7f}"
     assert "uncertain" in found["D"][2]
     meta = QgsVectorLayer(f"{tmp_path / 'pkg' / fs.PACKAGE_GPKG}|layername={fs.META_TABLE}", "meta", "ogr")
-    assert {f["key"]: f["value"] for f in meta.getFeatures()}[fs.META_REVIEW_LOG] == verdicts.source()
+    assert {f["key"]: f["value"] for f in meta.getFeatures()}[fs.META_REVIEW_LOG] == "", "a memory layer has no file"
 
 
 def test_bad_input_is_refused_with_a_reason(birdseye_provider, tmp_path):
