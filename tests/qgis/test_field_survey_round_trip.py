@@ -12,6 +12,7 @@ from __future__ import annotations
 import csv
 import json
 
+import cv2
 import numpy as np
 import pytest
 from qgis.core import (
@@ -46,16 +47,6 @@ RECORDS = [("Fixed RTK", 0.011, 0.019, "2026-11-28T08:30:15.250Z", (1.0, 2.0)),
            ("Float RTK", 0.094, 0.161, "2026-11-28T08:41:02.500Z", (-2.0, -1.0))]
 ORTHOMETRIC_M = 371.5        # the receiver's altitude (orthometric, QField's default setting)
 N_M = 41.25                  # the geoid undulation given to Import geotags
-
-
-@pytest.fixture
-def frame_image(tmp_path):
-    """The scene's one frame as a grey image (Write labels reads it to cut tiles)."""
-    import cv2
-
-    path = tmp_path / "frame0.png"
-    cv2.imwrite(str(path), np.full((1200, 1920, 3), 80, np.uint8))
-    return str(path)
 
 
 def geodetic(east, north):
@@ -143,7 +134,9 @@ def collect(project_path):
 
 
 def test_unresolved_clusters_go_out_to_the_field_and_come_back_as_verdicts_write_labels_takes(
-        birdseye_provider, tmp_path, frame_image):
+        birdseye_provider, tmp_path):
+    frame_image = str(tmp_path / "frame0.png")      # the scene's one frame, grey: Write labels cuts tiles from it
+    assert cv2.imwrite(frame_image, np.full((1200, 1920, 3), 80, np.uint8))
     det, _ = scene()
     log_uri = review_log(tmp_path / "review.gpkg")
     verdicts = QgsVectorLayer(log_uri, "verdicts", "ogr")
