@@ -789,17 +789,17 @@ QGIS&apos;s own packages are not changed. pip downloads them from the Python Pac
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/qgis_io/layers.py" line="489"/>
+        <location filename="../birdseye_qgis/qgis_io/layers.py" line="499"/>
         <source>the camera model of frame {frame} was cut at {length} characters: {format} keeps at most {length} characters in a text field and a camera model needs about 500: the layer was probably saved to it after the import (Save Features As…). Save the original frame layer as a GeoPackage (.gpkg) instead, or run the import again with its output written to a GeoPackage (or to this format: the import then splits the camera over fields camera, camera_2, …).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/qgis_io/layers.py" line="489"/>
+        <location filename="../birdseye_qgis/qgis_io/layers.py" line="499"/>
         <source>the layer&apos;s file format (e.g. ESRI Shapefile)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/qgis_io/layers.py" line="536"/>
+        <location filename="../birdseye_qgis/qgis_io/layers.py" line="546"/>
         <source>The output&apos;s format keeps at most {n} characters in a text field: each frame&apos;s camera model goes on in fields {fields}; keep them with the layer.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1420,7 +1420,7 @@ exact</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/qgis_io/field_package.py" line="518"/>
+        <location filename="../birdseye_qgis/qgis_io/field_package.py" line="531"/>
         <source>Surveyed before</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1470,28 +1470,73 @@ exact</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/qgis_io/field_package.py" line="483"/>
+        <location filename="../birdseye_qgis/qgis_io/field_package.py" line="492"/>
         <source>Label radius (m)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/qgis_io/field_package.py" line="485"/>
+        <location filename="../birdseye_qgis/qgis_io/field_package.py" line="494"/>
         <source>Geotag</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/qgis_io/field_package.py" line="493"/>
+        <location filename="../birdseye_qgis/qgis_io/field_package.py" line="502"/>
         <source>Fails: {what}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/qgis_io/field_package.py" line="495"/>
+        <location filename="../birdseye_qgis/qgis_io/field_package.py" line="504"/>
         <source>Meets the accuracy requirement</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../birdseye_qgis/qgis_io/field_package.py" line="507"/>
+        <location filename="../birdseye_qgis/qgis_io/field_package.py" line="520"/>
         <source>Not visited</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/qgis_io/field_package.py" line="476"/>
+        <source>Worker</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/qgis_io/field_package.py" line="477"/>
+        <source>Note</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/qgis_io/field_package.py" line="485"/>
+        <source>Class</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/qgis_io/field_package.py" line="487"/>
+        <source>Height above MSL (m, receiver)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/qgis_io/field_package.py" line="487"/>
+        <source>Ellipsoidal height (m, receiver)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/qgis_io/field_package.py" line="513"/>
+        <source>Visit</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/qgis_io/field_package.py" line="513"/>
+        <source>Why it is visited</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/qgis_io/field_package.py" line="513"/>
+        <source>Question</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../birdseye_qgis/qgis_io/field_package.py" line="513"/>
+        <source>Decision</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
@@ -2869,132 +2914,132 @@ exact</source>
 <context>
     <name>PrepareFieldSurvey</name>
     <message>
-        <location filename="../processing/algorithms/preparefieldsurvey.py" line="28"/>
+        <location filename="../processing/algorithms/preparefieldsurvey.py" line="29"/>
         <source>Prepare field survey</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/preparefieldsurvey.py" line="45"/>
+        <location filename="../processing/algorithms/preparefieldsurvey.py" line="46"/>
         <source>Warn and flag the point</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/preparefieldsurvey.py" line="45"/>
+        <location filename="../processing/algorithms/preparefieldsurvey.py" line="46"/>
         <source>Block saving</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/preparefieldsurvey.py" line="48"/>
+        <location filename="../processing/algorithms/preparefieldsurvey.py" line="49"/>
         <source>Orthometric (QField: orthometric altitude on)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/preparefieldsurvey.py" line="48"/>
+        <location filename="../processing/algorithms/preparefieldsurvey.py" line="49"/>
         <source>Ellipsoidal (that setting off, no grid shift)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/preparefieldsurvey.py" line="55"/>
+        <location filename="../processing/algorithms/preparefieldsurvey.py" line="56"/>
         <source>Package folder (copy it to the device)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/preparefieldsurvey.py" line="57"/>
+        <location filename="../processing/algorithms/preparefieldsurvey.py" line="58"/>
         <source>Project name</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/preparefieldsurvey.py" line="59"/>
+        <location filename="../processing/algorithms/preparefieldsurvey.py" line="60"/>
         <source>Classes (comma-separated; the first is the default)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/preparefieldsurvey.py" line="61"/>
+        <location filename="../processing/algorithms/preparefieldsurvey.py" line="62"/>
         <source>Label radius (m)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/preparefieldsurvey.py" line="63"/>
+        <location filename="../processing/algorithms/preparefieldsurvey.py" line="64"/>
         <source>Require an RTK fixed solution</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/preparefieldsurvey.py" line="66"/>
+        <location filename="../processing/algorithms/preparefieldsurvey.py" line="67"/>
         <source>Largest horizontal accuracy accepted (m; 0: any)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/preparefieldsurvey.py" line="69"/>
+        <location filename="../processing/algorithms/preparefieldsurvey.py" line="70"/>
         <source>A point that fails the requirement</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/preparefieldsurvey.py" line="72"/>
+        <location filename="../processing/algorithms/preparefieldsurvey.py" line="73"/>
         <source>Height the receiver gives QField</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/preparefieldsurvey.py" line="75"/>
+        <location filename="../processing/algorithms/preparefieldsurvey.py" line="76"/>
         <source>Geotags surveyed before</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/preparefieldsurvey.py" line="79"/>
+        <location filename="../processing/algorithms/preparefieldsurvey.py" line="80"/>
         <source>Points to visit</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/preparefieldsurvey.py" line="81"/>
+        <location filename="../processing/algorithms/preparefieldsurvey.py" line="82"/>
         <source>Survey area or partitions (polygons)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/preparefieldsurvey.py" line="84"/>
+        <location filename="../processing/algorithms/preparefieldsurvey.py" line="85"/>
         <source>Orthomosaic (copied as GeoTIFF)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/preparefieldsurvey.py" line="86"/>
+        <location filename="../processing/algorithms/preparefieldsurvey.py" line="87"/>
         <source>Frame layer (footprints as background)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/preparefieldsurvey.py" line="90"/>
+        <location filename="../processing/algorithms/preparefieldsurvey.py" line="91"/>
         <source>QField project (.qgz)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/preparefieldsurvey.py" line="99"/>
+        <location filename="../processing/algorithms/preparefieldsurvey.py" line="100"/>
         <source>PROJECT_NAME: give a file name without a folder or any of / \ : * ? &quot; &lt; &gt; | (got &apos;{name}&apos;).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/preparefieldsurvey.py" line="108"/>
+        <location filename="../processing/algorithms/preparefieldsurvey.py" line="109"/>
         <source>REVIEW needs GEOTAGS: the survey&apos;s geotags settle the clusters they match, so only the others are visited. Give the geotag layer the review was scored against.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/preparefieldsurvey.py" line="117"/>
+        <location filename="../processing/algorithms/preparefieldsurvey.py" line="120"/>
         <source>Is there a target here? (review: {outcome})</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/preparefieldsurvey.py" line="131"/>
+        <location filename="../processing/algorithms/preparefieldsurvey.py" line="134"/>
         <source>Wrote {project}: {visits} point(s) to visit, {geotags} geotag(s) surveyed before. Copy the folder to the device and open the project in QField.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/preparefieldsurvey.py" line="142"/>
+        <location filename="../processing/algorithms/preparefieldsurvey.py" line="145"/>
         <source>CLASSES: give at least one class name the worker picks for a geotag, comma-separated (for example &apos;burrow, nest&apos;).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/preparefieldsurvey.py" line="163"/>
+        <location filename="../processing/algorithms/preparefieldsurvey.py" line="166"/>
         <source>Is there a target here? (from {layer})</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/preparefieldsurvey.py" line="169"/>
+        <location filename="../processing/algorithms/preparefieldsurvey.py" line="172"/>
         <source>{n} point(s) without a position left out; first: {first}</source>
         <translation type="unfinished"></translation>
     </message>

@@ -411,7 +411,7 @@ def instructions(settings: SurveySettings) -> str:
 
 def _crs_and_extent(stack, transform_context):
     """The project CRS: the site's UTM zone (the centre of the extent of ``stack``'s layers that hold something),
-    else EPSG:3857; and that extent with a margin (a single point gets 20 m around it), else None."""
+    else EPSG:3857; and that extent with a margin (10 %, at least 2 m: a single point gets 2 m around it), else None."""
     wgs84 = QgsCoordinateReferenceSystem(layers.WGS84)
     union = None
     for layer in stack:
@@ -427,7 +427,7 @@ def _crs_and_extent(stack, transform_context):
     centre = union.center()
     _, crs = layers.output_crs(None, [centre.y()], [centre.x()])
     extent = QgsCoordinateTransform(wgs84, crs, transform_context).transformBoundingBox(union)
-    margin = max(20.0, 0.1 * max(extent.width(), extent.height()))
+    margin = max(2.0, 0.1 * max(extent.width(), extent.height()))
     return crs, extent.buffered(margin)
 
 
@@ -473,12 +473,21 @@ def _common_fields(layer, recorded_when=None) -> None:
         if alias is not None:
             layer.setFieldAlias(_index(layer, name), alias)
             _read_only(layer, name)
+    layer.setFieldAlias(_index(layer, "worker"), tr("Worker"))
+    layer.setFieldAlias(_index(layer, "note"), tr("Note"))
+    if _index(layer, "fid") >= 0:  # the GeoPackage's own row number: nothing for the worker to read or set
+        layer.setEditorWidgetSetup(_index(layer, "fid"), QgsEditorWidgetSetup("Hidden", {}))
 
 
 def _geotag_layer(layer: QgsVectorLayer, settings: SurveySettings) -> QgsVectorLayer:
     _value_map(layer, "label", [(c, c) for c in settings.classes])
     _default(layer, "label", _quoted(settings.classes[0]))
+    layer.setFieldAlias(_index(layer, "label"), tr("Class"))
     _default(layer, settings.height_field, fs.ALTITUDE_EXPRESSION)
+    layer.setFieldAlias(_index(layer, settings.height_field), (
+        tr("Height above MSL (m, receiver)") if settings.height_field == fs.HEIGHT_FIELDS[fs.HEIGHT_ORTHOMETRIC]
+        else tr("Ellipsoidal height (m, receiver)")))
+    _read_only(layer, settings.height_field)
     _default(layer, "radius_m", repr(float(settings.label_radius_m)))
     layer.setFieldAlias(_index(layer, "radius_m"), tr("Label radius (m)"))
     _common_fields(layer)
@@ -501,8 +510,12 @@ def _geotag_layer(layer: QgsVectorLayer, settings: SurveySettings) -> QgsVectorL
 
 def _visit_layer(layer: QgsVectorLayer) -> QgsVectorLayer:
     _value_map(layer, "decision", [(None, tr("Not visited")), *fs.DECISIONS.items()])
-    for name in ("visit_id", "origin", "unit_keys", "question"):
-        _read_only(layer, name)
+    for name, alias in (("visit_id", tr("Visit")), ("origin", tr("Why it is visited")), ("unit_keys", None),
+                        ("question", tr("Question")), ("decision", tr("Decision"))):
+        if name != "decision":
+            _read_only(layer, name)
+        if alias is not None:
+            layer.setFieldAlias(_index(layer, name), alias)
     _common_fields(layer, recorded_when='"decision" IS NOT NULL')
     rules = [(tr("Not visited"), '"decision" IS NULL', _ORANGE)]
     rules += [(shown, f'"decision" = {_quoted(value)}', _DECISION_COLOURS[value])
