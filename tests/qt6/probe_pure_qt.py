@@ -96,7 +96,7 @@ def probe_unit_table(dock) -> None:
     check("added target row", cell(2, 1) == "Added target")
     check("invalid index", model.data(QModelIndex()) is None)
     html = unit_summary_html("c3", dock.units, dock.entries, dock.status("c3"), 0.2)
-    check("unit summary", "<b>Unit 1</b>" in html and "geotag 12 within 0.20 m" in html and "9 detections in" in html)
+    check("unit summary", "<b>Unit 1</b>" in html and "geotag 12 within 0.20 m" in html and "9 detection(s) in" in html)
 
 
 def probe_scores_table() -> None:
