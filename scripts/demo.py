@@ -114,6 +114,7 @@ LAYER_KINDS = {
     ("planflight", "OUTPUT_WAYPOINTS"): "Waypoints",
     ("planflight", "OUTPUT_ROUTE"): "Route",
     ("comparedetectors", "OUTPUT"): "Changes",
+    ("partitionfield", "OUTPUT"): "Partitions",
 }
 # Warnings the simulation causes on purpose: (a regular expression matching the start of the message, why it is
 # expected). The demo prints them as notes saying why; any other warning stays a warning.
@@ -209,6 +210,15 @@ def build_steps(size: DemoSize, model: Path | None) -> list[Step]:
                 "OUTPUT_GEOTAGS": f"{{out}}/labels/geotags_seen_{flight.key}.gpkg"},
                 group="labels", tag=flight.tag, hidden=("OUTPUT_FRAMES", "OUTPUT_GEOTAGS")))
     h = held_out.key
+    steps += [
+        Step("partitions", "partitionfield", f"Partition the {held_out.title}'s field for two people", {
+            "AREA": f"{{campaign_{h}[FIELD]}}", "N_PEOPLE": 2, "OUTPUT": "{out}/survey/partitions.gpkg"},
+            group="survey", tag=held_out.tag),
+        Step("field_package", "preparefieldsurvey", f"Prepare the next walk over the {held_out.title} (QField)", {
+            "OUTPUT_FOLDER": "{out}/field_survey", "PROJECT_NAME": "next_walk", "CLASSES": "burrow",
+            "GEOTAGS": f"{{geotags_{h}[OUTPUT]}}", "AREA": "{partitions[OUTPUT]}",
+            "BACKGROUND": f"{{campaign_{h}[ORTHOMOSAIC]}}"}),
+    ]
     detect = {"FRAMES": f"{{flight_{h}[OUTPUT]}}", "OUTPUT": "{out}/detections/detections.gpkg"}
     mosaic = {"RASTER": f"{{campaign_{h}[ORTHOMOSAIC]}}", "OUTPUT": "{out}/detections/detections_mosaic.gpkg"}
     if model is not None:
@@ -563,6 +573,8 @@ def figures(values: dict, out: Path, project, model: Path | None) -> dict:
                                             get("mosaic_vs_frames", "RECALL_PRE_NEW")],
                              "gmcf_pre": [get("mosaic_vs_frames", "GMCF_PRE_OLD"),
                                           get("mosaic_vs_frames", "GMCF_PRE_NEW")]},
+        "partitions": get("partitions", "PIECES"),
+        "field_package": get("field_package", "PROJECT"),
         "waypoints": get("plan", "WAYPOINT_COUNT"),
         "route_length_m": get("plan", "ROUTE_LENGTH_M"),
         "flight_time_min": get("plan", "FLIGHT_TIME_MIN"),
@@ -606,6 +618,8 @@ def summary(shown_out: str, numbers: dict, timings: list, elapsed: float) -> str
         f"             frames | mosaic: recall_pre {fmt(f['frames_vs_mosaic']['recall_pre'][0])} | "
         f"{fmt(f['frames_vs_mosaic']['recall_pre'][1])}, gmcf_pre {fmt(f['frames_vs_mosaic']['gmcf_pre'][0])} | "
         f"{fmt(f['frames_vs_mosaic']['gmcf_pre'][1])}",
+        f" Next walk   {f['partitions']} partitions for 2 people; QField package → "
+        f"{Path(f['field_package']).parent.name}/{Path(f['field_package']).name}",
         f" Next flight {f['waypoints']} waypoints over the held-out geotags, route {f['route_length_m']:.1f} m, "
         f"{f['flight_time_min']:.1f} min → plan/",
     ]

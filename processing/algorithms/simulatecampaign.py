@@ -125,7 +125,8 @@ class SimulateCampaign(BirdsEyeAlgorithm):
             DOUBLE, None, optional=True, minValue=-120.0, maxValue=120.0)
         self._add(geoid, True)
         self.addParameter(QgsProcessingParameterFolderDestination(self.OUTPUT_FOLDER, self.tr("Output folder")))
-        for name, text in (("GEOTAGS", "Geotags (rover CSV)"), ("POSES", "Pose log (CSV)"),
+        for name, text in (("GEOTAGS", "Geotags (rover CSV)"), ("FIELD", "Field boundary (field.geojson)"),
+                           ("POSES", "Pose log (CSV)"),
                            ("IMAGES", "Image list (images.csv)"), ("CALIBRATION", "Calibration (Kalibr YAML)")):
             self.addOutput(QgsProcessingOutputFile(name, self.tr(text)))
         self.addOutput(QgsProcessingOutputRasterLayer(
@@ -197,6 +198,7 @@ class SimulateCampaign(BirdsEyeAlgorithm):
         feedback.pushInfo(self.tr("Wrote {n_frames} frames, {log}{n_geotags} geotags to {folder}.").format(
                               n_frames=result.n_frames, log=log, n_geotags=result.n_geotags, folder=result.folder))
         return {"OUTPUT_FOLDER": str(result.folder), "GEOTAGS": str(result.files["geotags"]),
+                "FIELD": str(result.files["field"]),
                 "POSES": str(result.files.get("poses", "")), "IMAGES": str(result.files.get("images", "")),
                 "CALIBRATION": str(result.files.get("calibration", "")), self.DEM: str(result.files.get("dem", "")),
                 self.ORTHOMOSAIC: str(result.files.get("orthomosaic", "")),

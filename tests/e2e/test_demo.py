@@ -36,10 +36,10 @@ EXPECTED_STYLE = {
     "geotags_seen_train1": "geotags.qml", "geotags_seen_train2": "geotags.qml",
     "detections": "detections.qml", "clusters": "clusters.qml", "cluster_points": "cluster_points.qml",
     "detections_mosaic": "detections.qml", "mosaic_changes": "changes.qml",
-    "waypoints": "waypoints.qml", "route": "route.qml",
+    "waypoints": "waypoints.qml", "route": "route.qml", "partitions": "partitions.qml",
 }
 EXPECTED_GROUP = {name: group for group, names in {
-    "survey": ["geotags_train1", "geotags_train2", "geotags_heldout"],
+    "survey": ["geotags_train1", "geotags_train2", "geotags_heldout", "partitions"],
     "flight": ["frames_train1", "frames_train2", "frames_heldout", "track_train1", "track_train2", "track_heldout"],
     "labels": ["frames_labelled_train1", "frames_labelled_train2", "geotags_seen_train1", "geotags_seen_train2"],
     "detections": ["detections", "detections_mosaic", "mosaic_changes"],
@@ -123,8 +123,8 @@ def test_summary_screen(demo):
     assert len(screen.splitlines()) <= 24, "the summary must fit one screen"
     as_for_a_user = screen.replace(str(demo["out"]), "birdseye-demo")  # make demo's folder, not pytest's
     assert max(len(line) for line in as_for_a_user.splitlines()) <= 100, "and a terminal's width"
-    for step in range(1, 19):
-        assert f"[{step}/18]" in stdout  # progress names every step
+    for step in range(1, 21):
+        assert f"[{step}/20]" in stdout  # progress names every step
 
 
 def test_project_layers_valid_grouped_and_styled(qgis_app, demo):

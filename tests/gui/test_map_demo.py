@@ -30,7 +30,8 @@ MAX_FILL_OPACITY = 0.05
 # Each BirdsEye output (by the start of its file name in the demo) and the renderer its style uses.
 RENDERERS = {"geotags": "categorizedSymbol", "frames": "categorizedSymbol", "track": "RuleRenderer",
              "detections": "RuleRenderer", "clusters": "categorizedSymbol", "cluster_points": "RuleRenderer",
-             "waypoints": "RuleRenderer", "route": "RuleRenderer", "mosaic_changes": "categorizedSymbol"}
+             "waypoints": "RuleRenderer", "route": "RuleRenderer", "mosaic_changes": "categorizedSymbol",
+             "partitions": "RuleRenderer"}
 
 pytestmark = test_desktop.pytestmark  # slow, and skipped without Debian's qgis or Xvfb
 

@@ -340,6 +340,7 @@ def simulate_campaign(config: CampaignConfig, output_folder, progress: Callable[
                                    rng_geotag)
     files = {}
     files["geotags"] = _write_csv(out / "geotags.csv", None, geotags)
+    files["field"] = _write_field(out / "field.geojson", cfg, local)
     if dji:
         radalt_true = None
         image_ns = times_ns[frame_rows]
@@ -641,6 +642,19 @@ def _ns_text(ns: int) -> str:
     """Seconds with nine decimals, exact from integer nanoseconds (also the frame file stem)."""
     ns = int(ns)
     return f"{ns // 1_000_000_000}.{ns % 1_000_000_000:09d}"
+
+
+def _write_field(path: Path, cfg: CampaignConfig, local: LocalFrame) -> Path:
+    """The field's boundary (the rectangle the targets lie in, centred on the site) as a GeoJSON polygon in WGS84:
+    what a farm map holds and Partition field cuts."""
+    hw, hl = cfg.field_width_m / 2, cfg.field_length_m / 2
+    corners = np.array([[-hw, -hl, 0.0], [hw, -hl, 0.0], [hw, hl, 0.0], [-hw, hl, 0.0], [-hw, -hl, 0.0]])
+    lat, lon, _ = local.to_geodetic(corners)
+    ring = [[round(float(x), 9), round(float(y), 9)] for x, y in zip(lon, lat)]
+    feature = {"type": "Feature", "properties": {"name": "field"},
+               "geometry": {"type": "Polygon", "coordinates": [ring]}}
+    path.write_text(json.dumps({"type": "FeatureCollection", "features": [feature]}), encoding="utf-8")
+    return path
 
 
 def _write_csv(path: Path, header, rows) -> Path:
