@@ -3626,12 +3626,12 @@ exact</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/simulatecampaign.py" line="131"/>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="132"/>
         <source>Terrain model (truth/dem.tif, ellipsoidal heights; none for flat terrain)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/simulatecampaign.py" line="136"/>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="137"/>
         <source>Frames</source>
         <translation type="unfinished"></translation>
     </message>
@@ -3646,32 +3646,32 @@ exact</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/simulatecampaign.py" line="135"/>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="136"/>
         <source>Frames folder</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/simulatecampaign.py" line="171"/>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="172"/>
         <source>Simulating seed {seed}: {n_targets} targets in a {field_width_m:g} × {field_length_m:g} m field, flown at {altitude_m:g} m, {speed_ms:g} m/s, {fps:g} frames/s.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/simulatecampaign.py" line="178"/>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="179"/>
         <source>TERRAIN is flat: SLOPE_DEG and RELIEF_M are ignored (choose plane or hills).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/simulatecampaign.py" line="181"/>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="182"/>
         <source>TERRAIN is a plane: RELIEF_M is ignored (choose hills).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/simulatecampaign.py" line="187"/>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="188"/>
         <source>A DJI drone: photos on the lines with {forward_overlap:.0%} forward and {effective_side_overlap:.0%} side overlap; the pose in each JPEG&apos;s metadata carries heading, tilt and height errors (truth/dji_metadata_errors.csv).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/simulatecampaign.py" line="197"/>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="198"/>
         <source>Wrote {n_frames} frames, {log}{n_geotags} geotags to {folder}.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -3681,7 +3681,7 @@ exact</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/algorithms/simulatecampaign.py" line="133"/>
+        <location filename="../processing/algorithms/simulatecampaign.py" line="134"/>
         <source>Orthomosaic of the field (orthomosaic.tif; none without rendering)</source>
         <translation type="unfinished"></translation>
     </message>
@@ -5852,6 +5852,7 @@ exact</source>
 - `poses.csv` — BirdsEye pose log: `time_s, lat_deg, lon_deg, height_m, qw, qx, qy, qz, rtk_status, radalt_m, radalt_snr, strobe` (seconds, degrees, ellipsoidal metres, body forward-right-down → NED quaternion with yaw from true north, rtk_status 3 fixed / 2 float, altimeter range in metres along the body z axis and its SNR in dB — mostly above 13, with a few short low-SNR bursts of poor readings — and strobe = 1 on the rows of the camera&apos;s exposures).
 - `images.csv` (`time_s, file`) and `frames/&lt;sec&gt;.&lt;nsec&gt;.jpg` — the frames, named by their timestamps (a few milliseconds after their strobe), JPEG quality 92.
 - `calibration.yaml` — Kalibr camchain-imucam: intrinsics, radtan distortion, resolution, `T_cam_imu` (nadir camera, image up = forward, with a small lever arm and boresight) and `T_rad_imu` (the altimeter&apos;s lever arm).
+- `field.geojson` — the field&apos;s boundary (the rectangle FIELD_WIDTH_M × FIELD_LENGTH_M the targets lie in, centred on the site), a WGS84 polygon: returned as **FIELD**, for *Partition field* and *Prepare field survey*.
 - `truth/targets.csv` — every target: `id, lat, lon, h_ground, radius_m, contrast, surveyed, geotag_row, mound_radius_m, east_m, north_m` (geotag_row: its 1-based row in geotags.csv, empty if missed).
 - `truth/distractors.csv` — the look-alikes: `id, kind, lat, lon, radius_m, east_m, north_m`.
 - `truth/frames_true.csv` — every frame&apos;s true pose: `frame_index, image, pose_row, time_s, image_time_s, lat_deg, lon_deg, height_m, qw…qz, roll_deg, pitch_deg, yaw_deg, radalt_m, ground_h_m, line, speed_ms, exposure_gain` (radalt_m: the true altimeter range; ground_h_m: ellipsoidal height of the ground directly below the IMU).
@@ -5861,7 +5862,7 @@ exact</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../resources/help/simulatecampaign.md" line="66"/>
+        <location filename="../resources/help/simulatecampaign.md" line="67"/>
         <source>Rendering takes about half a second of one processor core per 1920 × 1200 frame, and each frame is about 1 MB; the default campaign has about 1,100 frames (roughly 10 minutes, 1.2 GB). Over terrain every pixel&apos;s ray is traced to the terrain model, which roughly doubles the rendering time. The orthomosaic adds about 5 seconds and 14 MB for the default field at 2 cm (5.5 million pixels). For a quick look use a smaller field, a lower FPS or smaller images. Progress is shown per frame and Cancel stops between frames.</source>
         <translation type="unfinished"></translation>
     </message>
