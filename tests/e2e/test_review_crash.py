@@ -161,6 +161,9 @@ def run_and_kill(script_path, store, after_lines=None, hold=0):
                 os.kill(child.pid, signal.SIGKILL)
                 break
         child.wait(timeout=60)
+        # What the child printed before the kill landed but the loop had not read yet: the child runs on
+        # while the parent reads, so the last line read is not the last action the child reported.
+        reported.extend(int(line) for line in child.stdout if not line.startswith("holding"))
     finally:
         if child.poll() is None:
             child.kill()
