@@ -138,7 +138,7 @@ class Ledger:
                 continue
             seen.add(slot)
             rows.append(PlannedRow(r["unit_key"], before.get(slot, UNREVIEWED), r["provenance"], float(r["lat"]),
-                                   float(r["lon"]), tuple(_layers(r.get("layers_fired")))))
+                                   float(r["lon"]), layers_fired(r.get("layers_fired"))))
         return action, rows
 
     def propagated_from(self, source_key: str) -> list[str]:
@@ -147,12 +147,14 @@ class Ledger:
         return sorted(u for u in self._by_source.get(source_key, ()) if self.latest(u, prov) != UNREVIEWED)
 
 
-def _layers(value) -> list:
+def layers_fired(value) -> tuple:
+    """A log row's ``layers_fired`` as a tuple of layer names: the stored JSON list, a list already
+    decoded, or nothing (an empty tuple)."""
     if value in (None, ""):
-        return []
+        return ()
     if isinstance(value, (list, tuple)):
-        return list(value)
-    return list(json.loads(value))
+        return tuple(value)
+    return tuple(json.loads(value))
 
 
 @dataclass(frozen=True)

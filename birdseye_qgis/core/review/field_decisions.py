@@ -16,7 +16,7 @@ from typing import Iterable, Mapping, Sequence
 from ..errors import InputError, detached
 from ..field.field_survey import DECISIONS, FIELD_REVIEWER_PREFIX
 from ..scoring.verdicts import DIRECT
-from .actions import PlannedRow, _layers
+from .actions import PlannedRow, layers_fired
 
 #: The reviewer of a decision whose worker left no name.
 FIELD_REVIEWER = FIELD_REVIEWER_PREFIX.rstrip(":")
@@ -147,7 +147,7 @@ def plan_field_decisions(visits: Sequence[Visit], log_rows: Iterable[Mapping]) -
             continue
         before = latest.get(key, {})
         out.verdicts.append(FieldVerdict(
-            PlannedRow(key, visit.decision, DIRECT, visit.lat, visit.lon, tuple(_layers(before.get("layers_fired")))),
+            PlannedRow(key, visit.decision, DIRECT, visit.lat, visit.lon, layers_fired(before.get("layers_fired"))),
             reviewer, *(before.get(name) or NO_METADATA
                         for name in ("input_digests", "matching_parameters", "postprocessing"))))
     return out
