@@ -21,14 +21,16 @@ Runs in a standalone QGIS application, every step through the Processing registr
    model's card.
 
     .venv/bin/python scripts/demo_loop.py [--out birdseye-demo-loop] [--size full|small] [--minutes M]
-        [--seeds R1,R2,T1,T2] [--model round1/model/retrained.onnx [--init round1/model/retrained.pt]]
+        [--seeds R1,R2[,R3…],T1,T2] [--model round1/model/retrained.onnx [--init round1/model/retrained.pt]]
         [--validation-fraction F] [--validation blocks|flights|none]
 
-``--seeds`` simulates other campaigns (two review, two test seeds) than the demo's 401, 402, 501, 502: a round on
-campaigns the project has not used. ``--model`` starts the round from another model than the bundled one (it
-detects on the review campaigns, is the "before" on the test campaigns and is retrained); ``--init`` gives the
-weights retraining starts from (default: the ``.pt`` beside ``--model`` when there is one, else ``--model``),
-so a second round goes on from the first round's ``.pt``.
+``--seeds`` simulates other campaigns than the demo's 401, 402, 501, 502: a round on campaigns the project has not
+used. The last two seeds are the test campaigns, the ones before them (two or more) the review campaigns: with
+three, ``--validation flights`` holds one whole review campaign out, a paddock of its own as the test campaigns are.
+``--model`` starts the round from another model than the bundled one (it detects on the review campaigns, is the
+"before" on the test campaigns and is retrained); ``--init`` gives the weights retraining starts from
+(default: the ``.pt`` beside ``--model`` when there is one, else ``--model``), so a second round goes on from the first
+round's ``.pt``.
 """
 from __future__ import annotations
 
@@ -40,7 +42,7 @@ import os
 import runpy
 import sys
 import time
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
@@ -67,10 +69,25 @@ class Campaign:
     offset: int            # paddocks side by side, this many spacings east of the first
 
 
-CAMPAIGNS = [Campaign("review1", "review campaign 1", "review 1", 401, True, 0),
-             Campaign("review2", "review campaign 2", "review 2", 402, True, 1),
-             Campaign("test1", "test campaign 1", "test 1", 501, False, 2),
-             Campaign("test2", "test campaign 2", "test 2", 502, False, 3)]
+#: Test campaigns in every round; the seeds before them are review campaigns.
+TEST_CAMPAIGNS = 2
+
+
+def campaigns_of(seeds) -> list:
+    """Campaigns for ``seeds``: every seed but the last :data:`TEST_CAMPAIGNS` a review campaign, those last
+    ones the test campaigns, the paddocks side by side in that order."""
+    n_review = len(seeds) - TEST_CAMPAIGNS
+    out = []
+    for offset, seed in enumerate(seeds):
+        review = offset < n_review
+        n = offset + 1 if review else offset - n_review + 1
+        kind = "review" if review else "test"
+        out.append(Campaign(f"{kind}{n}", f"{kind} campaign {n}", f"{kind} {n}", seed, review, offset))
+    return out
+
+
+#: The demo's round: two review campaigns, two test campaigns.
+CAMPAIGNS = campaigns_of((401, 402, 501, 502))
 
 
 @dataclass(frozen=True)
@@ -87,7 +104,7 @@ class LoopRound:
     @classmethod
     def of(cls, seeds=None, model: Path | None = None, init: Path | None = None,
            validation_fraction: float | None = None, validation: str | None = None) -> "LoopRound":
-        campaigns = CAMPAIGNS if seeds is None else [replace(c, seed=s) for c, s in zip(CAMPAIGNS, seeds)]
+        campaigns = CAMPAIGNS if seeds is None else campaigns_of(seeds)
         model = Path(model or demo.BUNDLED_MODEL)
         beside = model.with_suffix(".pt")
         return cls(tuple(campaigns), model, Path(init) if init else beside if beside.is_file() else model,
@@ -419,8 +436,8 @@ def main(argv=None) -> int:
     parser.add_argument("--minutes", type=float, default=None,
                         help="training budget in minutes on 2 threads (default: 7.25 at full size, 0.5 small)")
     parser.add_argument("--seeds", default=None,
-                        help="seeds of the two review and two test campaigns, comma-separated (default: "
-                             + ",".join(str(c.seed) for c in CAMPAIGNS) + ")")
+                        help="seeds of the review campaigns (two or more) and then of the two test campaigns, "
+                             "comma-separated (default: " + ",".join(str(c.seed) for c in CAMPAIGNS) + ")")
     parser.add_argument("--model", type=Path, default=None,
                         help="the ONNX model the round starts from (default: the bundled model)")
     parser.add_argument("--init", type=Path, default=None,
@@ -440,9 +457,10 @@ def main(argv=None) -> int:
         try:
             seeds = [int(s) for s in args.seeds.split(",")]
         except ValueError:
-            parser.error(f"--seeds: {args.seeds!r} is not {len(CAMPAIGNS)} whole numbers separated by commas")
-        if len(seeds) != len(CAMPAIGNS) or len(set(seeds)) != len(seeds):
-            parser.error(f"--seeds takes {len(CAMPAIGNS)} different seeds (review 1, review 2, test 1, test 2)")
+            parser.error(f"--seeds: {args.seeds!r} is not whole numbers separated by commas")
+        if len(seeds) < TEST_CAMPAIGNS + 2 or len(set(seeds)) != len(seeds):
+            parser.error(f"--seeds takes {TEST_CAMPAIGNS + 2} or more different seeds: two or more review campaigns, "
+                         f"then {TEST_CAMPAIGNS} test campaigns")
     for given in (args.model, args.init):
         if given is not None and not given.is_file():
             parser.error(f"{given}: no such file")
