@@ -32,6 +32,7 @@ import sqlite3
 import struct
 from dataclasses import dataclass
 from datetime import datetime, timezone
+from functools import partial
 from pathlib import Path
 from typing import Sequence
 
@@ -418,8 +419,9 @@ class ReviewInputs:
     on the level plane instead of the recorded DEM (empty when it stands on the recorded ground).
 
     A review of detections found on a raster has no frames (``pose_groups`` and ``images`` empty):
-    ``raster`` is the raster's file (empty for frame detections) and ``view_mask`` (G,) the geotags in view,
-    those the raster covers (:func:`.raster_reader.covered_geotags`, as Evaluate detections counts them)."""
+    ``raster`` is the raster's file (empty for frame detections), ``view_mask`` (G,) the geotags in view, those the
+    raster covers (:func:`.raster_reader.covered_geotags`, as Evaluate detections counts them), and ``covers``
+    the same test for other points — the targets the reviewer adds, which count where the raster covers them."""
 
     layers: list
     pose_groups: list
@@ -431,13 +433,14 @@ class ReviewInputs:
     ground_fallback: str = ""
     raster: str = ""
     view_mask: object = None
+    covers: object = None
 
     def flights(self) -> list:
         """Each reviewed layer as the :class:`..core.scoring.evaluation.Flight` Evaluate detections scores on the
         same layers (the raster's in-view mask, or the frames on the review's ground)."""
         from ..core.scoring.evaluation import Flight
 
-        return [Flight(layer.detections, self.pose_groups, layer.name, self.ground, self.view_mask)
+        return [Flight(layer.detections, self.pose_groups, layer.name, self.ground, self.view_mask, self.covers)
                 for layer in self.layers]
 
 
@@ -496,9 +499,9 @@ def read_review_inputs(detection_layers, frame_layer, geotag_layer) -> ReviewInp
     if on_raster:
         # No frames: the local frame stands on the geotags (as Evaluate detections' does without frames) and the
         # geotags in view are those the raster covers.
-        view_mask = covered_geotags(record.dem_source, geotags.lat, geotags.lon, context.transformContext())
+        covers = partial(covered_geotags, record.dem_source, transform_context=context.transformContext())
         return ReviewInputs(review_layers, [], [], geotags, review_local_frame([], geotags), digests,
-                            raster=record.dem_source, view_mask=view_mask)
+                            raster=record.dem_source, view_mask=covers(geotags.lat, geotags.lon), covers=covers)
     groups, records, with_index = read_pose_groups(frame_layer, frame_layer.name())
     images = [[records[i].get("image") or "" for i in idx] for _, idx in with_index]
     local = review_local_frame(groups, geotags)

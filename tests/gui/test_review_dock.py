@@ -777,6 +777,15 @@ def test_detections_found_on_a_raster_are_reviewed_with_chips_cut_from_it(mosaic
     assert layer == -1 and (u + plan.window[0], v + plan.window[1]) == (pytest.approx(700.0, abs=0.05),
                                                                         pytest.approx(300.0, abs=0.05))
     assert np.array_equal(dock.chip_loader.pixels.window(plan), gdal_window(mosaic.ortho, plan.window))
+    # It counts in the scores after review (a): the raster covers it — there is no frame to see it — as in
+    # Evaluate detections on the same log.
+    wait_scores(qtbot, dock)
+    assert {conv: post["a"] for conv, post in dock.scores["on_mosaic"]["post"].items()} == \
+        dict.fromkeys(dock.scores["on_mosaic"]["post"], 1)
+    review = QgsVectorLayer(f"{dock.session.store.path}|layername={VERDICT_TABLE}", "verdicts", "ogr")
+    run("evaluatedetections", {"DETECTIONS": [mosaic.detections], "GEOTAGS": mosaic.geotags, "REVIEW": review,
+                               "OUTPUT_JSON": str(out), "OUTPUT_REPORT": None})
+    assert dock.scores["on_mosaic"]["post"] == json.loads(out.read_text())["flights"][0]["post"]
     # Undo while the added target is on screen: it goes, and the dock shows a unit that is left.
     dock.run_command("undo")
     assert dock.session.ledger.added_targets() == [] and dock.current_key in dock.entries

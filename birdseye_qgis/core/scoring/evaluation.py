@@ -57,8 +57,9 @@ class Flight:
     ``view_mask`` (G,): for detections found on a raster (``ground`` RASTER, :func:`mosaic_flight`), the geotags
     in view (its valid pixels cover them) instead of the frames' test; for frame detections, the geotags the
     frames' test may count (the others are left out: a comparison with a mosaic over the same targets).
-    ``covers(lat, lon) -> (G,) bool``: for raster detections without ``view_mask``, which geotags the raster
-    covers (the plugin reads the raster the layer records)."""
+    ``covers(lat, lon) -> (N,) bool``: for raster detections, which points the raster covers (the plugin reads the
+    raster the layer records): the geotags in view when there is no ``view_mask``, and the targets a reviewer
+    added that count (:func:`added_in_view`)."""
 
     detections: Detections
     pose_groups: Sequence[FramePoses]
@@ -147,6 +148,18 @@ def raster_view(mask, n_geotags: int) -> InView:
     return InView(mask, 0, 0, np.empty(0, dtype=int))
 
 
+def added_in_view(flight: Flight, local: LocalFrame, added_lat, added_lon, edge_buffer_px: float) -> np.ndarray:
+    """Which targets a reviewer added (WGS84, (A,)) ``flight`` sees, by the rule its geotags follow: for detections
+    found on a raster, the points the raster covers (``covers``; a flight without it — a mosaic compared with
+    frames — counts by its frames, as its geotags must be in their view too); for frame detections, the frames'
+    in-view test on the flight's ground."""
+    added_lat, added_lon = np.asarray(added_lat, dtype=float), np.asarray(added_lon, dtype=float)
+    if flight.seen_once and flight.covers is not None:
+        return np.asarray(flight.covers(added_lat, added_lon), dtype=bool).reshape(-1)
+    added_local = local.from_geodetic(added_lat, added_lon, np.full(len(added_lat), local.h0))
+    return in_view(flight.pose_groups, local, added_local, edge_buffer_px, flight.ground).mask
+
+
 def local_frame_for(pose_groups: Sequence[FramePoses], geotags: Geotags | None = None) -> LocalFrame:
     """A local frame at the middle of every frame (and geotag) position, at the median ground height."""
     pose_groups = list(pose_groups)
@@ -171,7 +184,7 @@ def evaluate_flights(flights: Sequence[Flight], geotags: Geotags, op: OperatingP
         raise InputError("give at least one detection layer")
     local = local or local_frame_for([p for f in flights for p in f.pose_groups], geotags)
     geotag_local = geotags.in_local(local)
-    unit_keys, unit_xy, added_local, notes = [], np.empty((0, 2)), np.empty((0, 3)), []
+    unit_keys, unit_xy, added, notes = [], np.empty((0, 2)), [], []
     if log is not None:
         unit_keys, ulat, ulon, unplaced = log.unit_positions()
         if len(unit_keys):
@@ -180,9 +193,8 @@ def evaluate_flights(flights: Sequence[Flight], geotags: Geotags, op: OperatingP
             notes.append(f"{len(unplaced)} reviewed unit(s) have no position (lat, lon) and could not be "
                          f"attached to clusters, e.g. {', '.join(unplaced[:3])}")
         added = log.added_targets()
-        if added:
-            added_local = local.from_geodetic([r.lat for r in added], [r.lon for r in added],
-                                              np.full(len(added), local.h0))
+    added_lat, added_lon = np.array([r.lat for r in added], dtype=float), np.array([r.lon for r in added], dtype=float)
+    added_xy = local.from_geodetic(added_lat, added_lon, np.full(len(added), local.h0))[:, :2] if added else None
     results = []
     n = len(flights)
     for i, flight in enumerate(flights):
@@ -208,9 +220,9 @@ def evaluate_flights(flights: Sequence[Flight], geotags: Geotags, op: OperatingP
         ev = FlightEvaluation(flight.name or det.name, clustering, score, view, int(keep.sum()), ground=det.ground)
         if log is not None:
             ev.cluster_units = units_of_clusters(clustering, unit_xy, unit_keys, op.eps_pred_m)
-            if len(added_local):
-                seen = in_view(flight.pose_groups, local, added_local, op.edge_buffer_px, flight.ground).mask
-                ev.n_added = int(countable_added_targets(added_local[:, :2], seen, clustering, geotag_local[:, :2],
+            if added:
+                seen = added_in_view(flight, local, added_lat, added_lon, op.edge_buffer_px)
+                ev.n_added = int(countable_added_targets(added_xy, seen, clustering, geotag_local[:, :2],
                                                          op.eps_pred_m).sum())
         results.append(ev)
         if progress is not None:

@@ -10,9 +10,10 @@ from birdseye.birdseye_qgis.core.detect.clustering import GroundPositions, clust
 from birdseye.birdseye_qgis.core.field.geotags import Geotags
 from birdseye.birdseye_qgis.core.geometry.camera import CameraModel
 from birdseye.birdseye_qgis.core.geometry.geodesy import LocalFrame
+from birdseye.birdseye_qgis.core.geometry.ground_record import RASTER, GroundRecord
 from birdseye.birdseye_qgis.core.geometry.poses import FramePoses
 from birdseye.birdseye_qgis.core.geometry.rotations import euler_zyx_to_rotmat, rotmat_to_quat
-from birdseye.birdseye_qgis.core.scoring.evaluation import Detections, Flight, evaluate_flights
+from birdseye.birdseye_qgis.core.scoring.evaluation import Detections, Flight, added_in_view, evaluate_flights
 from birdseye.birdseye_qgis.core.scoring.operating_point import OperatingPoint
 from birdseye.birdseye_qgis.core.scoring.post_review import (
     PostCounts,
@@ -142,6 +143,35 @@ def test_evaluation_counts_in_a_only_the_added_targets_the_definition_admits():
         assert p.a == expected_a and p.c == 0
         # the geotag is missed (no cluster near it): recall_post = (0 + 0) / (1 + 0 + 4), a point value
         assert p.to_dict()["recall_post"] == "0.000"
+
+
+def test_on_a_raster_an_added_target_counts_where_the_raster_covers_it():
+    """Detections found on a raster have no frames: the targets a reviewer added are in view where the raster
+    covers them (``covers``, as its geotags), not by a frame's test that would leave every one out."""
+    lat, lon, h = geodetic(BLOB)
+    n = len(lat)
+    det = Detections(lat, lon, np.full(n, np.nan), np.zeros(n), np.full(n, 0.9), name="mosaic",
+                     ground=GroundRecord(RASTER, "/data/ortho.tif"))
+    glat, glon, _ = geodetic(GEOTAG)
+    geotags = Geotags(["g"], glat, glon, np.full(1, np.nan))
+    spots = {"covered": ((-1.0, -4.0), True), "off the raster": ((30.0, 0.0), False),
+             "beside the blob": ((2.0 + 0.04 + 0.19, 1.0), False)}   # the blob's spot: its verdict counts in c
+    alat, alon, _ = geodetic([xy for xy, _ in spots.values()])
+    log = VerdictLog([Verdict(f"a{k}", "added", lat=la, lon=lo) for k, (la, lo) in enumerate(zip(alat, alon))])
+    east_of_site = SITE.to_geodetic(np.array([[20.0, 0.0, 0.0]]))[1][0]
+
+    def covers(lat, lon):   # the raster: everything west of 20 m east of the site
+        return np.asarray(lon) < east_of_site
+
+    ev = evaluate_flights([Flight(det, [], "mosaic", covers=covers)], geotags, OP, log=log)
+    assert ev.flights[0].n_added == 1 and ev.flights[0].in_view.mask.tolist() == [True]
+    for conv in CONVENTIONS:
+        assert ev.post[conv].pooled.a == 1
+    seen = added_in_view(Flight(det, [], "mosaic", covers=covers), SITE, alat, alon, OP.edge_buffer_px)
+    assert seen.tolist() == [True, False, True]
+    # A mosaic compared with frames (a view mask, no coverage function) counts added targets by its frames.
+    mosaic = Flight(det, [one_nadir_frame()], "mosaic", None, np.array([True]))
+    assert added_in_view(mosaic, SITE, alat, alon, OP.edge_buffer_px).tolist() == [True, False, True]
 
 
 def test_pooled_counts_report_the_methods_f1():
