@@ -145,6 +145,8 @@ _COLUMN_NAMES = {
               "vertical precision", "vprec", "v prec", "vertical error", "height rms"),
     "time": ("averaging start", "time utc", "utc time", "utcdatetime", "utc date time", "date time utc",
              "timestamp", "datetime", "date time", "time", "start time"),
+    # Who recorded the point: Emlid Flow's "Author" (the account that collected it), a field package's "worker".
+    "worker": ("worker", "author", "surveyor", "observer", "collected by", "recorded by"),
     "cs": ("cs name", "coordinate system", "coordinate system name", "crs name"),
     "units": ("units", "unit", "height units", "linear units", "length units", "coordinate units"),
     "antenna": ("antenna height", "ant height", "antheight", "antenna h", "instrument ht", "instrument height"),
@@ -797,7 +799,8 @@ def _parse_header(lines, source: str, mapping: ColumnMapping | None = None, unit
             continue
         time_utc = _capture_time(out, cells[col["time"].index], col["time"].name) if "time" in col else ""
         label = cells[col["label"].index].strip() if "label" in col else ""
-        out.add(lat, lon, h, msl, fix, label, row, h_acc, v_acc, time_utc)
+        worker = cells[col["worker"].index].strip() if "worker" in col else ""
+        out.add(lat, lon, h, msl, fix, label, row, h_acc, v_acc, time_utc, worker)
         for text in (h_note, msl_note, acc_note):
             if text:
                 out.note(text)

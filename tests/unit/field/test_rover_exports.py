@@ -76,6 +76,7 @@ def test_emlid_flow_export_in_us_survey_feet_reads_with_no_mapping():
     assert tags.time_utc.tolist() == ["2026-05-20T15:09:54.400Z", "2026-05-20T15:27:09.400Z",
                                       "2026-05-20T15:27:30.000Z"]
     assert tags.source_row.tolist() == [2, 3, 4]
+    assert tags.worker.tolist() == [r["Author"] for r in rows] and tags.worker[0] != ""  # who collected each point
     assert tags.ground_heights  # Emlid removed the 6.812 ft antenna height already
     notes = "\n".join(tags.notes)
     assert "Emlid Flow export (42 columns)" in notes
