@@ -130,7 +130,7 @@ class TrainDetector(BirdsEyeAlgorithm):
         for name, text in (("TILES", "Training tiles"), ("THRESHOLD_USED", "Default threshold of the model"),
                            ("TRAIN_SECONDS", "Training time (s)"), ("TILES_PER_SECOND", "Training throughput "
                                                                                          "(tiles/s)"),
-                           ("VALIDATION_RECALL", "Recall of the held-out targets at the default threshold"),
+                           ("VALIDATION_RECALL", "Recall of the held-out geotags at the default threshold"),
                            ("VALIDATION_GMCF", "GMCF on the held-out frames at the default threshold")):
             self.addOutput(QgsProcessingOutputNumber(name, self.tr(text)))
 

@@ -26,9 +26,13 @@ out at random (:func:`.recipe.split_tiles`) and the result says those figures ar
 **Ground figures** (:func:`ground_figures`): the exported model runs with the plugin's detector over the held-out
 frames' full images (:func:`detect_frames_at_thresholds`, one heatmap per frame, peaks at each threshold),
 detections are back-projected, clustered and scored by :func:`..scoring.evaluation.evaluate_flights` at each
-threshold. ``recall`` counts the held-out targets in view of the scored frames recovered by a cluster; ``gmcf``
-the clusters on a held-out target among the clusters that are not on a training target (a training target seen
-at a frame's edge is neither a false cluster nor a validated one: the model learnt it). The default threshold is
+threshold, against the held-out *geotags* as the product scores a flight against its survey: ``recall`` counts
+the held-out geotags in view of the scored frames recovered by a cluster; ``gmcf`` the clusters on a held-out
+geotag among the clusters that are not on a training target (a training target seen at a frame's edge is neither
+a false cluster nor a validated one: the model learnt it). A cluster on a held-out target a review confirmed
+(``provenance`` review) is no geotag match, as on a flight whose survey missed that target — scored against them
+too, the figures flattered what the test flights then showed — and is counted apart
+(``clusters_on_review_targets``). The default threshold is
 chosen from them (:func:`.recipe.best_threshold`). Fewer than :data:`FEW_HELD_OUT_TARGETS` held-out targets
 in view make a warning: one target then moves recall by more than a tenth.
 
@@ -43,7 +47,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import InputError, check_cancel
-from ..field.geotags import Geotags
+from ..field.geotags import SURVEY, Geotags
 from ..geometry.geodesy import LocalFrame
 from ..labels.raster_labels import raster_record
 from ..labels.training_set import read_targets
@@ -404,8 +408,9 @@ def ground_figures(model_path, flights: list[GroundFlight], thresholds=GROUND_TH
     """Recall of the held-out targets and GMCF per threshold, pooled over ``flights`` (sums of counts, one
     division), the model run as Detect runs it (module docstring).
 
-    Returns ``{"frames", "frames_skipped", "targets" (held-out targets in view), "by_threshold": {t: {"recall",
-    "gmcf", "f1", "clusters" (those GMCF counts), "clusters_on_training_targets", "detections", ...}},
+    Returns ``{"frames", "frames_skipped", "targets" (held-out geotags in view), "by_threshold": {t: {"recall",
+    "gmcf", "f1", "clusters" (those GMCF counts), "clusters_on_review_targets", "clusters_on_training_targets",
+    "detections", ...}},
     "operating_point"}``; ``f1`` is the harmonic mean of recall and GMCF (:func:`..scoring.pre_review.f1_geo`)."""
     from dataclasses import replace
 
@@ -418,12 +423,13 @@ def ground_figures(model_path, flights: list[GroundFlight], thresholds=GROUND_TH
     op = op or OperatingPoint()
     model = HeatmapModel(model_path)
     thresholds = [float(t) for t in thresholds]
-    tot = {t: dict(in_view=0, recovered=0, clusters=0, hit_clusters=0, training_clusters=0, detections=0)
-           for t in thresholds}
+    tot = {t: dict(in_view=0, recovered=0, clusters=0, hit_clusters=0, review_clusters=0, training_clusters=0,
+                   detections=0) for t in thresholds}
     n_frames = n_skipped = 0
     for n, flight in enumerate(flights):
         groups = poses_from_records(flight.records, flight.name)
         local = local_frame_for([p for p, _ in groups], flight.targets)
+        held_geotags = flight.held & (np.asarray(flight.targets.provenance) == SURVEY)
         found, processed_groups = {t: [] for t in thresholds}, []
         for poses, index in groups:
             images = [flight.records[i]["image"] for i in index]
@@ -441,13 +447,15 @@ def ground_figures(model_path, flights: list[GroundFlight], thresholds=GROUND_TH
             check_cancel(is_canceled)
             ev = evaluate_flights([Flight(detections_of(found[t]), processed_groups, flight.name)], flight.targets,
                                   replace(op, threshold=t), local=local).flights[0]
-            counted = ev.in_view.mask & flight.held
+            counted = ev.in_view.mask & held_geotags
             tot[t]["in_view"] += int(counted.sum())
             tot[t]["recovered"] += int((ev.score.recovered & counted).sum())
             on_held = np.array([bool(flight.held[g].any()) for g in ev.score.cluster_geotags], dtype=bool)
+            on_geotag = np.array([bool(held_geotags[g].any()) for g in ev.score.cluster_geotags], dtype=bool)
             on_training_only = ev.score.cluster_hit & ~on_held
             tot[t]["clusters"] += int(ev.score.counts.n_clusters - on_training_only.sum())
-            tot[t]["hit_clusters"] += int(on_held.sum())
+            tot[t]["hit_clusters"] += int(on_geotag.sum())
+            tot[t]["review_clusters"] += int((on_held & ~on_geotag).sum())
             tot[t]["training_clusters"] += int(on_training_only.sum())
             tot[t]["detections"] += int(ev.n_detections)
         if progress is not None:
@@ -459,7 +467,7 @@ def ground_figures(model_path, flights: list[GroundFlight], thresholds=GROUND_TH
         f1 = float(f1_geo(recall, gmcf)) if recall is not None and gmcf is not None else 0.0
         by[f"{t:g}"] = {"recall": _round(recall), "gmcf": _round(gmcf), "f1": round(f1 if np.isfinite(f1) else 0.0, 4),
                         "targets_recovered": c["recovered"], "clusters": c["clusters"],
-                        "clusters_on_target": c["hit_clusters"],
+                        "clusters_on_target": c["hit_clusters"], "clusters_on_review_targets": c["review_clusters"],
                         "clusters_on_training_targets": c["training_clusters"], "detections": c["detections"]}
     return {"frames": n_frames, "frames_skipped": n_skipped, "targets": tot[thresholds[0]]["in_view"],
             "by_threshold": by, "operating_point": {k: v for k, v in op.to_dict().items() if k != "threshold"}}

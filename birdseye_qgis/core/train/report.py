@@ -201,12 +201,14 @@ def ground_section(result: dict) -> list[str]:
         return lines + [f"Not measured: {note}.", ""]
     lines += [f"{ground['frames']} frames that see held-out targets run whole through the detector "
               f"({ground['frames_skipped']} skipped), detections clustered and scored against {ground['targets']} "
-              "held-out targets in view. Recall: held-out targets recovered; GMCF: clusters on a held-out target "
-              "among the clusters not on a training target; F1: their harmonic mean.", "",
-              "| threshold | recall | GMCF | F1 | clusters | detections |",
-              "| ---: | ---: | ---: | ---: | ---: | ---: |"]
+              "held-out geotags in view, as Evaluate detections scores a flight against its survey. Recall: held-out "
+              "geotags recovered; GMCF: clusters on a held-out geotag among the clusters not on a training target "
+              "(a cluster on a target only a review confirmed is no geotag match, as on a flight whose survey "
+              "missed it); F1: their harmonic mean.", "",
+              "| threshold | recall | GMCF | F1 | clusters | of them on review targets | detections |",
+              "| ---: | ---: | ---: | ---: | ---: | ---: | ---: |"]
     for t, row in ground["by_threshold"].items():
         mark = " **(default)**" if abs(float(t) - result["threshold"]) < 1e-9 else ""
         lines.append(f"| {t}{mark} | {_fmt(row['recall'])} | {_fmt(row['gmcf'])} | {row['f1']:.3f} | "
-                     f"{row['clusters']} | {row['detections']} |")
+                     f"{row['clusters']} | {row.get('clusters_on_review_targets', '–')} | {row['detections']} |")
     return lines + [""]

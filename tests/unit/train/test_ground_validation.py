@@ -251,12 +251,10 @@ def test_tile_figures_match_one_peak_to_one_target():
     assert (row["detections"], row["recall"], row["precision"], row["false_per_tile"]) == (2, 1.0, 0.5, 1.0)
 
 
-def test_ground_figures_count_held_out_targets_and_leave_training_targets_out(monkeypatch):
-    """Two nadir frames 10 m up see four targets 0.5 m apart: a, b, c held out, d a training target. The detector
-    (stood in for) finds, in both frames, a, b, d and a spot 0.5 m from every target at 0.3, and a alone at 0.6.
-    At 0.3: recall 2/3 (of the held-out targets), 4 clusters: one on d (learnt in training: neither false nor
-    validated, left out), 2 of the other 3 on a held-out target: GMCF 2/3. At 0.6: recall 1/3, GMCF 1/1.
-    Clustering and scoring are Evaluate detections' own."""
+def four_targets_figures(monkeypatch, provenance):
+    """Two nadir frames 10 m up see four targets 0.5 m apart (``provenance`` each): a, b, c held out, d a training
+    target. The detector (stood in for) finds, in both frames, a, b, d and a spot 0.5 m from every target at 0.3,
+    and a alone at 0.6. Clustering and scoring are Evaluate detections' own."""
     from birdseye.birdseye_qgis.core.detect import detector
     from birdseye.birdseye_qgis.core.detect.detector import FrameDetections
     from birdseye.birdseye_qgis.core.field.geotags import Geotags
@@ -276,7 +274,7 @@ def test_ground_figures_count_held_out_targets_and_leave_training_targets_out(mo
     spots = {"a": (-0.5, 0.0), "b": (0.0, 0.5), "c": (0.5, 0.0), "d": (0.0, -0.5), "false": (1.0, 0.5)}
     targets_xy = np.array([spots[t] for t in "abcd"])
     lat, lon, h = site.to_geodetic(np.column_stack([targets_xy, np.zeros(4)]))
-    targets = Geotags(list("abcd"), lat, lon, h)
+    targets = Geotags(list("abcd"), lat, lon, h, ["burrow"] * 4, provenance)
 
     def found(frame_index, names, offset):
         xy = np.array([spots[n] for n in names]).reshape(-1, 2) + offset
@@ -291,8 +289,15 @@ def test_ground_figures_count_held_out_targets_and_leave_training_targets_out(mo
 
     monkeypatch.setattr(detector, "HeatmapModel", lambda path: None)
     monkeypatch.setattr(gv, "detect_at_thresholds", fake_detect)
-    figures = gv.ground_figures("model.onnx", [gv.GroundFlight("f", records, targets, np.array([1, 1, 1, 0], bool))],
-                                thresholds=(0.3, 0.6))
+    return gv.ground_figures("model.onnx", [gv.GroundFlight("f", records, targets, np.array([1, 1, 1, 0], bool))],
+                             thresholds=(0.3, 0.6))
+
+
+def test_ground_figures_count_held_out_targets_and_leave_training_targets_out(monkeypatch):
+    """Every target surveyed. At 0.3: recall 2/3 (of the held-out targets), 4 clusters: one on d (learnt in
+    training: neither false nor validated, left out), 2 of the other 3 on a held-out target: GMCF 2/3. At 0.6:
+    recall 1/3, GMCF 1/1."""
+    figures = four_targets_figures(monkeypatch, ["survey"] * 4)
     assert figures["frames"] == 2 and figures["targets"] == 3
     low, high = figures["by_threshold"]["0.3"], figures["by_threshold"]["0.6"]
     assert (low["recall"], low["gmcf"], low["clusters"], low["detections"]) == (0.6667, 0.6667, 3, 8)
@@ -302,6 +307,19 @@ def test_ground_figures_count_held_out_targets_and_leave_training_targets_out(mo
     # F1 0.67 at 0.3 and 0.5 at 0.6 are within one target's worth (1/3), but 0.6 finds one held-out target
     # where 0.3 finds two: a tie never gives up a target.
     assert recipe.best_threshold(figures) == 0.3
+
+
+def test_a_target_only_a_review_confirmed_is_no_geotag_match_on_the_ground(monkeypatch):
+    """b was found in a review, not surveyed: the held-out figures score against the geotags, as a flight's are,
+    so b is in no recall and its cluster is no match — counted apart. At 0.3: recall 1/2 (a of a, c), 3
+    clusters (d's left out), 1 on a geotag: GMCF 1/3, 1 on b. At 0.6: recall 1/2, GMCF 1/1."""
+    figures = four_targets_figures(monkeypatch, ["survey", "review", "survey", "survey"])
+    assert figures["targets"] == 2
+    low, high = figures["by_threshold"]["0.3"], figures["by_threshold"]["0.6"]
+    assert (low["recall"], low["gmcf"], low["clusters"]) == (0.5, 0.3333, 3)
+    assert (low["clusters_on_target"], low["clusters_on_review_targets"], low["clusters_on_training_targets"]) == \
+        (1, 1, 1)
+    assert (high["recall"], high["gmcf"], high["clusters_on_review_targets"]) == (0.5, 1.0, 0)
 
 
 def test_a_training_python_without_onnxruntime_is_told_what_to_install(monkeypatch):
