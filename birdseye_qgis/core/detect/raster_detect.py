@@ -154,17 +154,23 @@ def _resampled_window(read: ReadWindow, grid: RasterGrid, s: float, x0: int, y0:
     c1, r1 = c0 + -(-(c1 - c0) // k) * k, r0 + -(-(r1 - r0) // k) * k
     planes, valid = read(c0, r0, c1 - c0, r1 - r0)
     rgb = to_8bit(planes, value_range)
+    # dst pixel (u', v') of the window → raster pixel u = (u' + x0 + 0.5)/s − 0.5 → block pixel u − c0 →
+    # reduced pixel (u − c0 + 0.5)/k − 0.5.
+    a = 1.0 / (s * k)
+    shift_x, shift_y = ((x0 + 0.5) / s - 0.5 - c0 + 0.5) / k - 0.5, ((y0 + 0.5) / s - 0.5 - r0 + 0.5) / k - 0.5
+    if k == 1 and a == 1.0 and float(shift_x).is_integer() and float(shift_y).is_integer():
+        # The raster is at the model's resolution, on its pixel grid: the warp would shift by whole pixels, which
+        # bilinear interpolation reproduces exactly — a slice of the block does the same without the warp.
+        cols, rows = slice(int(shift_x), int(shift_x) + w), slice(int(shift_y), int(shift_y) + h)
+        return np.ascontiguousarray(np.stack([rgb[2, rows, cols], rgb[1, rows, cols], rgb[0, rows, cols]], axis=-1)), \
+            np.ascontiguousarray(valid[rows, cols])
     bgr = np.ascontiguousarray(np.stack([rgb[2], rgb[1], rgb[0]], axis=-1))
     valid8 = valid.astype(np.uint8) * 255
     if k > 1:
         size = ((c1 - c0) // k, (r1 - r0) // k)
         bgr = cv2.resize(bgr, size, interpolation=cv2.INTER_AREA)
         valid8 = cv2.resize(valid8, size, interpolation=cv2.INTER_AREA)
-    # dst pixel (u', v') of the window → raster pixel u = (u' + x0 + 0.5)/s − 0.5 → block pixel u − c0 →
-    # reduced pixel (u − c0 + 0.5)/k − 0.5.
-    a = 1.0 / (s * k)
-    m = np.array([[a, 0.0, ((x0 + 0.5) / s - 0.5 - c0 + 0.5) / k - 0.5],
-                  [0.0, a, ((y0 + 0.5) / s - 0.5 - r0 + 0.5) / k - 0.5]])
+    m = np.array([[a, 0.0, shift_x], [0.0, a, shift_y]])
     flags = cv2.INTER_LINEAR | cv2.WARP_INVERSE_MAP
     image = cv2.warpAffine(bgr, m, (w, h), flags=flags, borderMode=cv2.BORDER_CONSTANT, borderValue=0)
     mask = cv2.warpAffine(valid8, m, (w, h), flags=flags, borderMode=cv2.BORDER_CONSTANT, borderValue=0)

@@ -7,6 +7,7 @@ from test_detector import conv_model, gaussian_image
 from birdseye.birdseye_qgis.core.detect.detector import HeatmapModel, tile_spans
 from birdseye.birdseye_qgis.core.detect.raster_detect import (
     RasterGrid,
+    _resampled_window,
     detect_raster,
     model_canvas,
     to_8bit,
@@ -198,3 +199,26 @@ def test_a_target_at_the_far_edge_of_a_much_finer_raster_is_found(tmp_path):
     raster = ArrayRaster(gaussian_image(width, height, targets, sigma=10.0))
     found = detect_raster(model, grid_of(width, height, 0.3), raster, window_tiles=3)
     found_once_each(found, targets, tol=1.0)
+
+
+@pytest.mark.parametrize("window", [(0, 0, 64, 48), (37, 21, 50, 40), (70, 50, 40, 30)])
+def test_at_the_models_resolution_a_window_is_the_rasters_pixels_as_the_warp_gives_them(window):
+    """A raster at the model's resolution is cut, not warped: the same pixels and valid mask as OpenCV's bilinear
+    warp by the whole-pixel shift (inside, at the raster's edge, and partly off it)."""
+    import cv2
+
+    rng = np.random.default_rng(3)
+    rgb = rng.integers(0, 256, (80, 100, 3), dtype=np.uint8)
+    raster = ArrayRaster(rgb)
+    x0, y0, w, h = window
+    image, valid = _resampled_window(raster, grid_of(100, 80), 1.0, x0, y0, w, h, None)
+    bgr = np.ascontiguousarray(rgb[:, :, ::-1])
+    m = np.array([[1.0, 0.0, x0], [0.0, 1.0, y0]])
+    flags = cv2.INTER_LINEAR | cv2.WARP_INVERSE_MAP
+    warped = cv2.warpAffine(bgr, m, (w, h), flags=flags, borderMode=cv2.BORDER_CONSTANT, borderValue=0)
+    inside = cv2.warpAffine(np.full((80, 100), 255, np.uint8), m, (w, h), flags=flags,
+                            borderMode=cv2.BORDER_CONSTANT, borderValue=0) >= 128
+    assert image.shape == (h, w, 3) and valid.shape == (h, w)
+    np.testing.assert_array_equal(image, warped)
+    np.testing.assert_array_equal(valid, inside)
+    assert valid.all() == (x0 + w <= 100 and y0 + h <= 80)
