@@ -148,15 +148,16 @@ def raster_view(mask, n_geotags: int) -> InView:
     return InView(mask, 0, 0, np.empty(0, dtype=int))
 
 
-def added_in_view(flight: Flight, local: LocalFrame, added_lat, added_lon, edge_buffer_px: float) -> np.ndarray:
-    """Which targets a reviewer added (WGS84, (A,)) ``flight`` sees, by the rule its geotags follow: for detections
-    found on a raster, the points the raster covers (``covers``; a flight without it — a mosaic compared with
-    frames — counts by its frames, as its geotags must be in their view too); for frame detections, the frames'
-    in-view test on the flight's ground."""
-    added_lat, added_lon = np.asarray(added_lat, dtype=float), np.asarray(added_lon, dtype=float)
+def added_in_view(flight: Flight, local: LocalFrame, added_lat, added_lon, added_local,
+                  edge_buffer_px: float) -> np.ndarray:
+    """Which targets a reviewer added ``flight`` sees — WGS84 ``added_lat``, ``added_lon`` (A,), the same points in
+    ``local`` as ``added_local`` (A, 3) — by the rule its geotags follow: for detections found on a raster, the
+    points the raster covers (``covers``; a flight without it — a mosaic compared with frames — counts by its
+    frames, as its geotags must be in their view too); for frame detections, the frames' in-view test on the
+    flight's ground."""
     if flight.seen_once and flight.covers is not None:
-        return np.asarray(flight.covers(added_lat, added_lon), dtype=bool).reshape(-1)
-    added_local = local.from_geodetic(added_lat, added_lon, np.full(len(added_lat), local.h0))
+        return np.asarray(flight.covers(np.asarray(added_lat, dtype=float), np.asarray(added_lon, dtype=float)),
+                          dtype=bool).reshape(-1)
     return in_view(flight.pose_groups, local, added_local, edge_buffer_px, flight.ground).mask
 
 
@@ -194,7 +195,7 @@ def evaluate_flights(flights: Sequence[Flight], geotags: Geotags, op: OperatingP
                          f"attached to clusters, e.g. {', '.join(unplaced[:3])}")
         added = log.added_targets()
     added_lat, added_lon = np.array([r.lat for r in added], dtype=float), np.array([r.lon for r in added], dtype=float)
-    added_xy = local.from_geodetic(added_lat, added_lon, np.full(len(added), local.h0))[:, :2] if added else None
+    added_local = local.from_geodetic(added_lat, added_lon, np.full(len(added), local.h0)) if added else None
     results = []
     n = len(flights)
     for i, flight in enumerate(flights):
@@ -221,8 +222,8 @@ def evaluate_flights(flights: Sequence[Flight], geotags: Geotags, op: OperatingP
         if log is not None:
             ev.cluster_units = units_of_clusters(clustering, unit_xy, unit_keys, op.eps_pred_m)
             if added:
-                seen = added_in_view(flight, local, added_lat, added_lon, op.edge_buffer_px)
-                ev.n_added = int(countable_added_targets(added_xy, seen, clustering, geotag_local[:, :2],
+                seen = added_in_view(flight, local, added_lat, added_lon, added_local, op.edge_buffer_px)
+                ev.n_added = int(countable_added_targets(added_local[:, :2], seen, clustering, geotag_local[:, :2],
                                                          op.eps_pred_m).sum())
         results.append(ev)
         if progress is not None:

@@ -167,11 +167,12 @@ def test_on_a_raster_an_added_target_counts_where_the_raster_covers_it():
     assert ev.flights[0].n_added == 1 and ev.flights[0].in_view.mask.tolist() == [True]
     for conv in CONVENTIONS:
         assert ev.post[conv].pooled.a == 1
-    seen = added_in_view(Flight(det, [], "mosaic", covers=covers), SITE, alat, alon, OP.edge_buffer_px)
+    alocal = SITE.from_geodetic(alat, alon, np.full(len(alat), SITE.h0))
+    seen = added_in_view(Flight(det, [], "mosaic", covers=covers), SITE, alat, alon, alocal, OP.edge_buffer_px)
     assert seen.tolist() == [True, False, True]
     # A mosaic compared with frames (a view mask, no coverage function) counts added targets by its frames.
     mosaic = Flight(det, [one_nadir_frame()], "mosaic", None, np.array([True]))
-    assert added_in_view(mosaic, SITE, alat, alon, OP.edge_buffer_px).tolist() == [True, False, True]
+    assert added_in_view(mosaic, SITE, alat, alon, alocal, OP.edge_buffer_px).tolist() == [True, False, True]
 
 
 def test_pooled_counts_report_the_methods_f1():
